@@ -1,0 +1,69 @@
+#include "core/hex_mesh.h"
+
+#include <limits>
+
+namespace vorohex::core {
+
+// Outward faces of a positively oriented VTK hexahedron.
+const std::array<std::array<int, 4>, 6> kHexFaces = {{
+    {0, 3, 2, 1},  // bottom (z = 0 in the reference cube)
+    {4, 5, 6, 7},  // top
+    {0, 1, 5, 4},  // y = 0
+    {2, 3, 7, 6},  // y = 1
+    {0, 4, 7, 3},  // x = 0
+    {1, 2, 6, 5},  // x = 1
+}};
+
+void HexMesh::reserve(std::size_t nodes, std::size_t hexes) {
+  points_.reserve(nodes);
+  classes_.reserve(nodes);
+  hexes_.reserve(hexes);
+  sub_volumes_.reserve(hexes);
+}
+
+NodeId HexMesh::add_node(const Vec3& p, NodeClass c) {
+  points_.push_back(p);
+  classes_.push_back(c);
+  return NodeId(static_cast<std::int32_t>(points_.size() - 1));
+}
+
+HexId HexMesh::add_hex(const HexNodes& nodes, std::int32_t sub_volume) {
+  hexes_.push_back(nodes);
+  sub_volumes_.push_back(sub_volume);
+  return HexId(static_cast<std::int32_t>(hexes_.size() - 1));
+}
+
+std::array<Vec3, 8> HexMesh::corners(HexId h) const {
+  std::array<Vec3, 8> c;
+  const HexNodes& n = hexes_[h.value()];
+  for (int i = 0; i < 8; ++i) c[i] = points_[n[i]];
+  return c;
+}
+
+std::size_t HexMesh::append(const HexMesh& other) {
+  const std::size_t offset = points_.size();
+  points_.insert(points_.end(), other.points_.begin(), other.points_.end());
+  classes_.insert(classes_.end(), other.classes_.begin(), other.classes_.end());
+  hexes_.reserve(hexes_.size() + other.hexes_.size());
+  for (HexNodes h : other.hexes_) {
+    for (auto& n : h) n += static_cast<std::int32_t>(offset);
+    hexes_.push_back(h);
+  }
+  sub_volumes_.insert(sub_volumes_.end(), other.sub_volumes_.begin(), other.sub_volumes_.end());
+  return offset;
+}
+
+BoundingBox HexMesh::bounding_box() const {
+  BoundingBox b;
+  if (points_.empty()) return b;
+  const double inf = std::numeric_limits<double>::infinity();
+  b.min = Vec3(inf, inf, inf);
+  b.max = -b.min;
+  for (const Vec3& p : points_) {
+    b.min = b.min.cwiseMin(p);
+    b.max = b.max.cwiseMax(p);
+  }
+  return b;
+}
+
+}  // namespace vorohex::core

@@ -1,0 +1,75 @@
+// The all-hexahedral mesh every stage produces and consumes.
+//
+// Hexahedra use VTK's node order: 0-1-2-3 one quad, 4-5-6-7 the opposite quad with node
+// i+4 above node i, both counter-clockwise seen from the side of 4-5-6-7 (so a unit cube
+// with nodes (0,0,0) (1,0,0) (1,1,0) (0,1,0) (0,0,1) (1,0,1) (1,1,1) (0,1,1) is positive).
+// Every node is classified on the model entity it lies on (dimension 0/1/2, 1-based
+// MapShapes index) or is interior (dimension 3).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "core/geometry.h"
+#include "core/ids.h"
+
+namespace vorohex::core {
+
+struct NodeClass {
+  std::int8_t dim = 3;   // 0 vertex, 1 edge, 2 face, 3 interior
+  std::int32_t id = 0;   // MapShapes index of the entity (0 when interior)
+
+  static NodeClass interior() { return {3, 0}; }
+  static NodeClass on(VertexId v) { return {0, v.value()}; }
+  static NodeClass on(EdgeId e) { return {1, e.value()}; }
+  static NodeClass on(FaceId f) { return {2, f.value()}; }
+  bool is_interior() const { return dim == 3; }
+  friend bool operator==(NodeClass a, NodeClass b) { return a.dim == b.dim && a.id == b.id; }
+};
+
+using HexNodes = std::array<std::int32_t, 8>;  // node indices, VTK order
+
+class HexMesh {
+ public:
+  void reserve(std::size_t nodes, std::size_t hexes);
+
+  NodeId add_node(const Vec3& p, NodeClass c = NodeClass::interior());
+  HexId add_hex(const HexNodes& nodes, std::int32_t sub_volume = 0);
+
+  std::size_t num_nodes() const { return points_.size(); }
+  std::size_t num_hexes() const { return hexes_.size(); }
+
+  const Vec3& point(NodeId n) const { return points_[n.value()]; }
+  void set_point(NodeId n, const Vec3& p) { points_[n.value()] = p; }
+  NodeClass node_class(NodeId n) const { return classes_[n.value()]; }
+  void set_node_class(NodeId n, NodeClass c) { classes_[n.value()] = c; }
+  const HexNodes& hex(HexId h) const { return hexes_[h.value()]; }
+  std::int32_t sub_volume(HexId h) const { return sub_volumes_[h.value()]; }
+
+  // The eight corner points of a hexahedron, VTK order.
+  std::array<Vec3, 8> corners(HexId h) const;
+
+  // Bulk access for writers, readers and numeric kernels.
+  const std::vector<Vec3>& points() const { return points_; }
+  const std::vector<NodeClass>& node_classes() const { return classes_; }
+  const std::vector<HexNodes>& hexes() const { return hexes_; }
+  const std::vector<std::int32_t>& sub_volumes() const { return sub_volumes_; }
+
+  // Appends another mesh (nodes are not merged); returns the node offset used.
+  std::size_t append(const HexMesh& other);
+
+  BoundingBox bounding_box() const;
+
+ private:
+  std::vector<Vec3> points_;
+  std::vector<NodeClass> classes_;
+  std::vector<HexNodes> hexes_;
+  std::vector<std::int32_t> sub_volumes_;
+};
+
+// The six quadrilateral faces of a VTK hexahedron, as local node indices, each ordered
+// so that its normal points out of the hexahedron.
+extern const std::array<std::array<int, 4>, 6> kHexFaces;
+
+}  // namespace vorohex::core

@@ -1,0 +1,50 @@
+// Mapped (transfinite) meshing of a topological hexahedron: a solid of six faces with one
+// wire of four edges each (planar or curved). Intervals come from the target size and are
+// equal on the four parallel edges of each direction; edge nodes are placed by arc length,
+// face nodes by 2-D transfinite interpolation (projected onto curved faces), inner nodes by
+// 3-D transfinite interpolation.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "core/diagnostic.h"
+#include "core/hex_mesh.h"
+#include "core/progress.h"
+#include "occ/solid.h"
+
+namespace vorohex::mesh {
+
+struct MapBlockOptions {
+  double size = 1.0;          // target edge length, model units (> 0)
+  int max_intervals = 100000; // per direction; more is refused (> 0)
+  void validate() const;      // throws std::invalid_argument naming the bad field
+};
+
+struct Applicability {
+  bool ok = false;
+  std::string reason;  // why not, naming the entities ("Face3 has 5 edges")
+};
+
+// The block structure of a solid that map_block accepts.
+Applicability map_block_applicable(const occ::Solid& solid);
+
+// Intervals per block direction and the node and hex counts compute() will produce.
+struct MapBlockEstimate {
+  std::array<int, 3> intervals{};
+  std::size_t nodes = 0, hexes = 0;
+};
+MapBlockEstimate map_block_evaluate(const occ::Solid& solid, const MapBlockOptions& options);
+
+struct MapBlockResult {
+  core::HexMesh mesh;
+  std::array<int, 3> intervals{};
+  bool ok = false;
+  std::vector<core::Diagnostic> diagnostics;
+};
+
+MapBlockResult map_block(const occ::Solid& solid, const MapBlockOptions& options,
+                         const core::Progress& progress = {});
+
+}  // namespace vorohex::mesh

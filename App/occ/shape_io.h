@@ -1,0 +1,33 @@
+// Reading CAD files (STEP, BREP, IGES) and BREP strings into exactly one solid, with
+// errors that name the problem; writing solids back for tests and examples.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/diagnostic.h"
+#include "occ/solid.h"
+
+namespace vorohex::occ {
+
+struct ReadResult {
+  std::unique_ptr<Solid> solid;                 // null when reading failed
+  std::vector<core::Diagnostic> diagnostics;    // errors when solid is null; notes otherwise
+  bool ok() const { return solid != nullptr; }
+};
+
+// Format from the extension (.step/.stp, .brep/.brp, .iges/.igs, case-insensitive).
+// Errors (codes): file_not_found, empty_file, unsupported_format, unreadable_file,
+// no_solid, several_solids (message says how many), open_shell (names free edges),
+// invalid_shape.
+ReadResult read_solid(const std::string& path);
+
+// The same checks on a BREP string (FreeCAD's Part.Shape.exportBrepToString()).
+ReadResult read_solid_from_brep_string(const std::string& brep);
+
+// Writes a solid; format from the extension (.step/.stp or .brep). Returns false and
+// fills error on failure.
+bool write_solid(const Solid& solid, const std::string& path, std::string* error);
+
+}  // namespace vorohex::occ

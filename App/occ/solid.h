@@ -1,0 +1,89 @@
+// A CAD solid with indexed topology and geometry queries. The only place OCCT types live
+// is behind this pimpl (and in occ/*.cpp), so no other stage includes TopoDS/BRep headers.
+//
+// Entity ids are the 1-based TopExp::MapShapes indices of the solid (FaceId{7} == "Face7").
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/geometry.h"
+#include "core/ids.h"
+
+namespace vorohex::occ {
+
+using core::BoundingBox;
+using core::EdgeId;
+using core::FaceId;
+using core::Vec3;
+using core::VertexId;
+
+// An edge of a face boundary as it is traversed (forward = from first to last vertex).
+struct OrientedEdge {
+  EdgeId edge;
+  bool forward = true;
+};
+
+struct Solid {
+ public:
+  struct Impl;  // holds the TopoDS_Solid and its MapShapes maps (occ/solid_impl.h)
+
+  explicit Solid(std::unique_ptr<Impl> impl);
+  Solid(Solid&&) noexcept;
+  Solid& operator=(Solid&&) noexcept;
+  ~Solid();
+
+  // A copy sharing the same (immutable) OCCT shape.
+  Solid clone() const;
+
+  // Topology ------------------------------------------------------------------------
+  int num_faces() const;
+  int num_edges() const;
+  int num_vertices() const;
+  std::vector<FaceId> faces() const;  // 1..num_faces
+  std::vector<EdgeId> edges() const;
+  std::vector<VertexId> vertices() const;
+
+  // The wires of a face: outer first, each a closed cycle of oriented edges in order,
+  // oriented so that the face material lies on the left seen from outside the solid.
+  std::vector<std::vector<OrientedEdge>> face_wires(FaceId f) const;
+  std::vector<FaceId> edge_faces(EdgeId e) const;    // faces an edge bounds
+  VertexId edge_first_vertex(EdgeId e) const;        // in the edge's own orientation
+  VertexId edge_last_vertex(EdgeId e) const;
+  bool edge_is_degenerated(EdgeId e) const;          // e.g. a sphere's pole
+
+  // Geometry ------------------------------------------------------------------------
+  double volume() const;
+  double area(FaceId f) const;
+  BoundingBox bounding_box() const;                  // tight (optimal) box
+  double diagonal() const { return bounding_box().diagonal(); }
+  bool face_is_planar(FaceId f) const;
+
+  Vec3 vertex_point(VertexId v) const;
+  double edge_length(EdgeId e) const;
+  // n+1 points dividing the edge into n segments of equal arc length, from its first to
+  // its last vertex (end points are exactly the vertex points).
+  std::vector<Vec3> edge_points_by_length(EdgeId e, int n) const;
+
+  // Closest point on the face (its trimmed extent), and the distance to it.
+  Vec3 project_to_face(FaceId f, const Vec3& p) const;
+  double distance_to_face(FaceId f, const Vec3& p) const;
+  Vec3 project_to_edge(EdgeId e, const Vec3& p) const;
+  double distance_to_edge(EdgeId e, const Vec3& p) const;
+  double distance_to_vertex(VertexId v, const Vec3& p) const;
+  // Distance to the whole boundary (nearest face), for meshes made by other tools.
+  double distance_to_boundary(const Vec3& p) const;
+  // Outward unit normal of face f at the point of the face nearest to p.
+  Vec3 face_normal(FaceId f, const Vec3& p) const;
+
+  // Serialisation (FreeCAD's Part.Shape.exportBrepToString gives this format).
+  std::string to_brep_string() const;
+
+  const Impl& impl() const { return *impl_; }
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace vorohex::occ

@@ -1,0 +1,50 @@
+// Validity of a hex mesh, with or without its CAD solid: the invariants every VoroHex
+// result must satisfy and that `vorohex check` reports for any tool's mesh.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "core/diagnostic.h"
+#include "core/hex_mesh.h"
+#include "occ/solid.h"
+#include "quality/quality_stats.h"
+
+namespace vorohex::quality {
+
+struct CheckOptions {
+  // Volume: |mesh - CAD| must be <= volume_rel_tol * CAD volume + chord allowance, where the
+  // chord allowance is the sum over boundary quads of area * distance of the quad centre
+  // from the CAD boundary (zero for planar solids, so planar meshes must match exactly).
+  double volume_rel_tol = 1e-9;
+  // Boundary nodes must lie within this distance of the CAD boundary, relative to the
+  // CAD bounding-box diagonal.
+  double distance_rel_tol = 1e-6;
+  void validate() const;  // throws std::invalid_argument naming the bad field
+};
+
+struct CheckReport {
+  bool valid = false;
+  std::size_t nodes = 0, hexes = 0;
+  QualityStats scaled_jacobian;       // Verdict scaled Jacobian statistics
+  std::size_t non_positive = 0;       // hexes with scaled Jacobian <= 0
+  std::size_t interior_quads = 0;     // quads shared by exactly two hexes
+  std::size_t boundary_quads = 0;     // quads of exactly one hex
+  std::size_t non_manifold_quads = 0; // quads shared by more than two hexes
+  std::size_t open_boundary_edges = 0;     // boundary edges not in exactly two boundary quads
+  std::size_t unused_nodes = 0;
+  bool has_cad = false;
+  double mesh_volume = 0, cad_volume = 0;
+  double volume_rel_error = 0;        // |mesh - CAD| / CAD
+  double volume_allowance = 0;        // the absolute tolerance applied (see CheckOptions)
+  double max_boundary_distance = 0;   // absolute, model units
+  double max_boundary_distance_rel = 0;  // relative to the CAD diagonal
+  std::vector<core::Diagnostic> diagnostics;  // one per violated invariant
+};
+
+// cad may be null: then only the mesh-intrinsic invariants are checked. Boundary nodes
+// classified on an entity are measured against that entity, others against the nearest face.
+CheckReport check_mesh(const core::HexMesh& mesh, const occ::Solid* cad,
+                       const CheckOptions& options = {});
+
+}  // namespace vorohex::quality
