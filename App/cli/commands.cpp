@@ -1,1 +1,304 @@
-// placeholder: implementation in progress
+#include "cli/commands.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+
+#include "cli/report.h"
+#include "io/mesh_io.h"
+#include "occ/shape_io.h"
+#include "pipeline/generate_mesh.h"
+
+namespace vorohex::cli {
+
+const char* const kMeshUsage =
+    "usage: vorohex mesh IN -o OUT [--size H] [--report REPORT.json] [--max-hexes N]\n"
+    "                    [--keep-invalid] [--quiet]\n"
+    "  IN    a solid as STEP (.step/.stp), BREP (.brep/.brp) or IGES (.iges/.igs)\n"
+    "  OUT   the hex mesh: .vtu (ParaView), .msh (Gmsh 4.1) or .inp (Abaqus/CalculiX)\n"
+    "  --size H        target edge length in model units (default: diagonal / 20)\n"
+    "  --report FILE   write the quality and validity report as JSON\n"
+    "  --max-hexes N   refuse up front when the predicted mesh is larger (default 50000000)\n"
+    "  --keep-invalid  write the mesh even when it fails the validity check\n"
+    "  --quiet         no progress lines\n"
+    "exit: 0 valid mesh written, 1 meshing failed or mesh invalid, 2 bad input\n";
+
+const char* const kCheckUsage =
+    "usage: vorohex check MESH [--cad IN] [--report REPORT.json]\n"
+    "                     [--volume-tol R] [--distance-tol R]\n"
+    "  MESH  a hex mesh: .vtu or .msh (Gmsh 2.2 / 4.1); cells other than hexahedra are ignored\n"
+    "  --cad IN          the solid it should fill: adds volume and distance-to-CAD checks\n"
+    "  --volume-tol R    relative volume tolerance (default 1e-9, plus the chord allowance)\n"
+    "  --distance-tol R  boundary node distance tolerance, x bounding-box diagonal (1e-6)\n"
+    "exit: 0 valid, 1 invalid, 2 bad input\n";
+
+namespace {
+
+// Thrown for usage errors; main turns it into exit code 2.
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct Args {
+  std::vector<std::string> positional;
+  std::map<std::string, std::string> values;  // --name value
+  std::map<std::string, bool> flags;          // --name
+};
+
+Args parse(const std::vector<std::string>& args, const std::vector<std::string>& value_options,
+           const std::vector<std::string>& flag_options) {
+  Args out;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    if (a.size() > 1 && a[0] == '-') {
+      bool known = false;
+      for (const auto& v : value_options) {
+        if (a == v) {
+          if (i + 1 >= args.size()) throw UsageError("option " + a + " needs a value");
+          if (out.values.count(a)) throw UsageError("option " + a + " given twice");
+          out.values[a] = args[++i];
+          known = true;
+        }
+      }
+      for (const auto& f : flag_options) {
+        if (a == f) {
+          out.flags[a] = true;
+          known = true;
+        }
+      }
+      if (!known) throw UsageError("unknown option " + a);
+    } else {
+      out.positional.push_back(a);
+    }
+  }
+  return out;
+}
+
+double parse_positive(const std::string& name, const std::string& text) {
+  std::size_t used = 0;
+  double v = 0;
+  try {
+    v = std::stod(text, &used);
+  } catch (const std::exception&) {
+    throw UsageError(name + " must be a number, got '" + text + "'");
+  }
+  if (used != text.size()) throw UsageError(name + " must be a number, got '" + text + "'");
+  if (!std::isfinite(v) || v <= 0)
+    throw UsageError(name + " must be a positive finite number, got '" + text + "'");
+  return v;
+}
+
+std::size_t parse_count(const std::string& name, const std::string& text) {
+  const double v = parse_positive(name, text);
+  if (v != std::floor(v) || v > 9e15)
+    throw UsageError(name + " must be a whole number, got '" + text + "'");
+  return static_cast<std::size_t>(v);
+}
+
+// Progress lines on stderr: one per stage and every 25 % within it.
+core::Progress progress_printer(bool quiet) {
+  if (quiet) return {};
+  auto t0 = std::chrono::steady_clock::now();
+  auto last_stage = std::make_shared<std::string>();
+  auto last_quarter = std::make_shared<int>(-1);
+  return core::Progress([=](std::string_view stage, double fraction) {
+    const int quarter = static_cast<int>(fraction * 4);
+    if (stage == *last_stage && quarter == *last_quarter) return;
+    *last_stage = std::string(stage);
+    *last_quarter = quarter;
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::fprintf(stderr, "[%7.2fs] %-8s %3d%%\n", s, std::string(stage).c_str(),
+                 static_cast<int>(100 * fraction));
+  });
+}
+
+void print_diagnostics(const std::vector<core::Diagnostic>& diagnostics) {
+  for (const auto& d : diagnostics) std::cerr << "vorohex: " << core::format(d) << "\n";
+}
+
+// Writes to a temporary file beside the target and renames it only on success, so a
+// failed run never leaves a partial file or clobbers what the user had.
+bool write_atomically(const core::HexMesh& mesh, const std::string& path,
+                      const io::WriteOptions& options, std::string* error) {
+  namespace fs = std::filesystem;
+  const fs::path target(path);
+  const fs::path tmp = target.parent_path() /
+                       (".vorohex-tmp-" + target.filename().string() + target.extension().string());
+  if (!io::write_mesh(mesh, tmp.string(), options, error)) {
+    std::error_code ec;
+    fs::remove(tmp, ec);
+    return false;
+  }
+  std::error_code ec;
+  fs::rename(tmp, target, ec);
+  if (ec) {
+    *error = "cannot move the mesh into place at " + path + ": " + ec.message();
+    fs::remove(tmp, ec);
+    return false;
+  }
+  return true;
+}
+
+bool known_mesh_extension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (auto& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".vtu" || ext == ".msh" || ext == ".inp";
+}
+
+int mesh_command(const std::vector<std::string>& argv) {
+  const Args args = parse(argv, {"-o", "--output", "--size", "--report", "--max-hexes"},
+                          {"--keep-invalid", "--quiet"});
+  if (args.positional.size() != 1)
+    throw UsageError("expected exactly one input file, got " +
+                     std::to_string(args.positional.size()));
+  std::string out_path;
+  if (args.values.count("-o")) out_path = args.values.at("-o");
+  if (args.values.count("--output")) out_path = args.values.at("--output");
+  if (out_path.empty()) throw UsageError("missing -o OUT (the mesh file to write)");
+  if (!known_mesh_extension(out_path))
+    throw UsageError("cannot write '" + out_path + "': use a .vtu, .msh or .inp file name");
+
+  pipeline::MeshOptions options;
+  if (args.values.count("--size"))
+    options.size = parse_positive("--size", args.values.at("--size"));
+  if (args.values.count("--max-hexes"))
+    options.max_hexes = parse_count("--max-hexes", args.values.at("--max-hexes"));
+  const bool quiet = args.flags.count("--quiet") > 0;
+
+  const auto t0 = std::chrono::steady_clock::now();
+  occ::ReadResult read = occ::read_solid(args.positional[0]);
+  if (!read.ok()) {
+    print_diagnostics(read.diagnostics);
+    return kExitBadInput;
+  }
+  const core::Progress progress = progress_printer(quiet);
+  pipeline::MeshResult result = pipeline::generate_mesh(*read.solid, options, progress);
+
+  std::vector<core::Diagnostic> all = read.diagnostics;
+  all.insert(all.end(), result.diagnostics.begin(), result.diagnostics.end());
+  const bool meshed = result.mesh.num_hexes() > 0;
+  if (meshed) {
+    std::cout << "mesh of " << args.positional[0] << " (scheme " << result.stats.scheme << ", size "
+              << result.stats.size_used << ", intervals " << result.stats.intervals[0] << " x "
+              << result.stats.intervals[1] << " x " << result.stats.intervals[2] << ")\n";
+    print_check_report(std::cout, result.check);
+  } else {
+    print_diagnostics(all);
+  }
+
+  bool written = false;
+  double seconds_writing = 0;
+  if (meshed && (result.ok || args.flags.count("--keep-invalid"))) {
+    const auto tw = std::chrono::steady_clock::now();
+    if (!quiet) progress.report("write", 0.0);
+    io::WriteOptions write_options;
+    write_options.scaled_jacobian = result.scaled_jacobian;
+    std::string error;
+    if (!write_atomically(result.mesh, out_path, write_options, &error)) {
+      std::cerr << "vorohex: " << error << "\n";
+      return kExitBadInput;
+    }
+    if (!quiet) progress.report("write", 1.0);
+    seconds_writing = std::chrono::duration<double>(std::chrono::steady_clock::now() - tw).count();
+    written = true;
+    std::cout << "wrote " << out_path << "\n";
+  } else if (meshed) {
+    std::cerr << "vorohex: the mesh is invalid; nothing written (use --keep-invalid to write it)\n";
+  }
+  const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+  if (args.values.count("--report")) {
+    nlohmann::json j;
+    j["input"] = args.positional[0];
+    j["output"] = written ? out_path : "";
+    j["ok"] = result.ok;
+    j["scheme"] = result.stats.scheme;
+    j["size"] = result.stats.size_used;
+    j["intervals"] = result.stats.intervals;
+    j["sub_volumes"] = result.stats.sub_volumes;
+    j["seconds"] = {{"meshing", result.stats.seconds_meshing},
+                    {"checking", result.stats.seconds_checking},
+                    {"writing", seconds_writing},
+                    {"total", total}};
+    if (meshed) j["check"] = check_report_json(result.check);
+    j["diagnostics"] = diagnostics_json(all);
+    std::string error;
+    if (!write_json(j, args.values.at("--report"), &error)) {
+      std::cerr << "vorohex: " << error << "\n";
+      return kExitBadInput;
+    }
+  }
+  return result.ok ? kExitOk : kExitInvalid;
+}
+
+int check_command(const std::vector<std::string>& argv) {
+  const Args args = parse(argv, {"--cad", "--report", "--volume-tol", "--distance-tol"}, {});
+  if (args.positional.size() != 1)
+    throw UsageError("expected exactly one mesh file, got " +
+                     std::to_string(args.positional.size()));
+  quality::CheckOptions options;
+  if (args.values.count("--volume-tol"))
+    options.volume_rel_tol = parse_positive("--volume-tol", args.values.at("--volume-tol"));
+  if (args.values.count("--distance-tol"))
+    options.distance_rel_tol = parse_positive("--distance-tol", args.values.at("--distance-tol"));
+
+  io::ReadMeshResult mesh = io::read_mesh(args.positional[0]);
+  if (!mesh.ok) {
+    print_diagnostics(mesh.diagnostics);
+    return kExitBadInput;
+  }
+  std::unique_ptr<occ::Solid> cad;
+  if (args.values.count("--cad")) {
+    occ::ReadResult read = occ::read_solid(args.values.at("--cad"));
+    if (!read.ok()) {
+      print_diagnostics(read.diagnostics);
+      return kExitBadInput;
+    }
+    cad = std::move(read.solid);
+  }
+  const quality::CheckReport report = quality::check_mesh(mesh.mesh, cad.get(), options);
+  for (const auto& d : mesh.diagnostics) std::cout << "  " << core::format(d) << "\n";
+  std::cout << "check of " << args.positional[0] << "\n";
+  print_check_report(std::cout, report);
+  if (args.values.count("--report")) {
+    nlohmann::json j = check_report_json(report);
+    j["input"] = args.positional[0];
+    std::string error;
+    if (!write_json(j, args.values.at("--report"), &error)) {
+      std::cerr << "vorohex: " << error << "\n";
+      return kExitBadInput;
+    }
+  }
+  return report.valid ? kExitOk : kExitInvalid;
+}
+
+// Runs a command, turning usage errors and option validation into exit code 2.
+template <class F>
+int guarded(F&& f, const std::vector<std::string>& args, const char* usage) {
+  try {
+    return f(args);
+  } catch (const UsageError& e) {
+    std::cerr << "vorohex: " << e.what() << "\n" << usage;
+    return kExitBadInput;
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "vorohex: " << e.what() << "\n";
+    return kExitBadInput;
+  }
+}
+
+}  // namespace
+
+int run_mesh(const std::vector<std::string>& args) {
+  return guarded(mesh_command, args, kMeshUsage);
+}
+int run_check(const std::vector<std::string>& args) {
+  return guarded(check_command, args, kCheckUsage);
+}
+
+}  // namespace vorohex::cli

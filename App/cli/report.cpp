@@ -1,1 +1,95 @@
-// placeholder: implementation in progress
+#include "cli/report.h"
+
+#include <cstdio>
+#include <fstream>
+#include <iomanip>
+
+namespace vorohex::cli {
+
+void print_check_report(std::ostream& out, const quality::CheckReport& r) {
+  const auto& sj = r.scaled_jacobian;
+  out << "hexahedra            " << r.hexes << "\n";
+  out << "nodes                " << r.nodes << "\n";
+  out << std::setprecision(4);
+  out << "scaled Jacobian      min " << sj.min << "  mean " << sj.mean << "  max " << sj.max
+      << "\n";
+  out << "  below 0.2          " << 100.0 * sj.fraction_below_0_2 << " %\n";
+  out << "  inverted (<= 0)    " << sj.inverted << "\n";
+  out << "  histogram          ";
+  // Only the non-negative half: bins [0,0.1) ... [0.9,1.0].
+  for (int i = quality::QualityStats::kBins / 2; i < quality::QualityStats::kBins; ++i)
+    out << sj.histogram[i] << (i + 1 < quality::QualityStats::kBins ? " " : "");
+  out << "  (bins of 0.1 from 0 to 1)\n";
+  out << "conformity           " << r.interior_quads << " inner quads, " << r.boundary_quads
+      << " boundary quads, " << r.non_manifold_quads << " shared by more than two hexes\n";
+  out << "boundary             " << (r.open_boundary_edges == 0 ? "closed" : "OPEN") << " ("
+      << r.open_boundary_edges << " open edges)\n";
+  if (r.has_cad) {
+    out << std::setprecision(6);
+    out << "volume               mesh " << r.mesh_volume << "  CAD " << r.cad_volume
+        << "  relative error " << std::scientific << std::setprecision(2) << r.volume_rel_error
+        << std::defaultfloat << "\n";
+    out << "distance to CAD      max " << std::scientific << std::setprecision(2)
+        << r.max_boundary_distance << " (" << r.max_boundary_distance_rel << " x diagonal)"
+        << std::defaultfloat << "\n";
+  }
+  out << "valid                " << (r.valid ? "yes" : "NO") << "\n";
+  for (const auto& d : r.diagnostics) out << "  " << core::format(d) << "\n";
+}
+
+nlohmann::json diagnostics_json(const std::vector<core::Diagnostic>& diagnostics) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const auto& d : diagnostics)
+    list.push_back({{"severity", core::severity_name(d.severity)},
+                    {"code", d.code},
+                    {"message", d.message},
+                    {"entities", d.entities}});
+  return list;
+}
+
+nlohmann::json check_report_json(const quality::CheckReport& r) {
+  const auto& sj = r.scaled_jacobian;
+  nlohmann::json j;
+  j["valid"] = r.valid;
+  j["nodes"] = r.nodes;
+  j["hexes"] = r.hexes;
+  j["scaled_jacobian"] = {{"min", sj.min},
+                          {"mean", sj.mean},
+                          {"max", sj.max},
+                          {"inverted", sj.inverted},
+                          {"fraction_below_0_2", sj.fraction_below_0_2},
+                          {"histogram_bins", "20 bins of 0.1 from -1 to 1"},
+                          {"histogram", sj.histogram}};
+  j["conformity"] = {{"interior_quads", r.interior_quads},
+                     {"boundary_quads", r.boundary_quads},
+                     {"non_manifold_quads", r.non_manifold_quads},
+                     {"open_boundary_edges", r.open_boundary_edges},
+                     {"unused_nodes", r.unused_nodes}};
+  if (r.has_cad) {
+    j["cad"] = {{"mesh_volume", r.mesh_volume},
+                {"cad_volume", r.cad_volume},
+                {"volume_rel_error", r.volume_rel_error},
+                {"volume_allowance", r.volume_allowance},
+                {"max_boundary_distance", r.max_boundary_distance},
+                {"max_boundary_distance_rel", r.max_boundary_distance_rel}};
+  }
+  j["diagnostics"] = diagnostics_json(r.diagnostics);
+  return j;
+}
+
+bool write_json(const nlohmann::json& j, const std::string& path, std::string* error) {
+  std::ofstream f(path);
+  if (!f) {
+    *error = "cannot open " + path + " for writing";
+    return false;
+  }
+  f << std::setw(2) << j << "\n";
+  f.close();
+  if (!f) {
+    *error = "could not write " + path;
+    return false;
+  }
+  return true;
+}
+
+}  // namespace vorohex::cli

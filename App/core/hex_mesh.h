@@ -17,8 +17,8 @@
 namespace vorohex::core {
 
 struct NodeClass {
-  std::int8_t dim = 3;   // 0 vertex, 1 edge, 2 face, 3 interior
-  std::int32_t id = 0;   // MapShapes index of the entity (0 when interior)
+  std::int8_t dim = 3;  // 0 vertex, 1 edge, 2 face, 3 interior
+  std::int32_t id = 0;  // MapShapes index of the entity (0 when interior)
 
   static NodeClass interior() { return {3, 0}; }
   static NodeClass on(VertexId v) { return {0, v.value()}; }

@@ -41,9 +41,15 @@ using NodeId = StrongId<NodeTag>;
 using HexId = StrongId<HexTag>;
 
 // FreeCAD's sub-element names: "Vertex3", "Edge5", "Face7".
-inline std::string entity_name(VertexId id) { return "Vertex" + std::to_string(id.value()); }
-inline std::string entity_name(EdgeId id) { return "Edge" + std::to_string(id.value()); }
-inline std::string entity_name(FaceId id) { return "Face" + std::to_string(id.value()); }
+inline std::string entity_name(VertexId id) {
+  return "Vertex" + std::to_string(id.value());
+}
+inline std::string entity_name(EdgeId id) {
+  return "Edge" + std::to_string(id.value());
+}
+inline std::string entity_name(FaceId id) {
+  return "Face" + std::to_string(id.value());
+}
 
 }  // namespace vorohex::core
 

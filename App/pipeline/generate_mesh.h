@@ -16,25 +16,25 @@
 namespace vorohex::pipeline {
 
 struct MeshOptions {
-  double size = 0;             // target edge length, model units; 0 = diagonal / 20
+  double size = 0;                     // target edge length, model units; 0 = diagonal / 20
   std::size_t max_hexes = 50'000'000;  // refused up front when the prediction exceeds it
-  quality::CheckOptions check; // tolerances of the final validity check
-  void validate() const;       // throws std::invalid_argument naming the bad option
+  quality::CheckOptions check;         // tolerances of the final validity check
+  void validate() const;               // throws std::invalid_argument naming the bad option
 };
 
 struct MeshStats {
-  double size_used = 0;         // the target size actually applied
+  double size_used = 0;  // the target size actually applied
   std::array<int, 3> intervals{};
   double seconds_meshing = 0;
   double seconds_checking = 0;
   int sub_volumes = 0;
-  std::string scheme;           // "map" for a mapped block
+  std::string scheme;  // "map" for a mapped block
 };
 
 struct MeshResult {
   core::HexMesh mesh;
-  bool ok = false;              // a valid mesh was produced
-  quality::CheckReport check;   // validity and quality of `mesh`
+  bool ok = false;                      // a valid mesh was produced
+  quality::CheckReport check;           // validity and quality of `mesh`
   std::vector<double> scaled_jacobian;  // per hex, for writers and the GUI
   MeshStats stats;
   std::vector<core::Diagnostic> diagnostics;

@@ -1,0 +1,20 @@
+// The `vorohex` sub-commands. Each returns the process exit code:
+// 0 success (valid mesh), 1 meshing failed or the mesh is invalid, 2 bad input or usage.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace vorohex::cli {
+
+constexpr int kExitOk = 0;
+constexpr int kExitInvalid = 1;
+constexpr int kExitBadInput = 2;
+
+int run_mesh(const std::vector<std::string>& args);
+int run_check(const std::vector<std::string>& args);
+
+extern const char* const kMeshUsage;
+extern const char* const kCheckUsage;
+
+}  // namespace vorohex::cli

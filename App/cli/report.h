@@ -1,0 +1,24 @@
+// Human-readable and JSON reports of `vorohex mesh` and `vorohex check`.
+#pragma once
+
+#include <ostream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "pipeline/generate_mesh.h"
+#include "quality/check_mesh.h"
+
+namespace vorohex::cli {
+
+// The quality and validity figures, several lines, for people.
+void print_check_report(std::ostream& out, const quality::CheckReport& report);
+
+// JSON of a check report; mesh runs add their own fields around it.
+nlohmann::json check_report_json(const quality::CheckReport& report);
+nlohmann::json diagnostics_json(const std::vector<core::Diagnostic>& diagnostics);
+
+// Writes JSON to a file; false and *error on failure.
+bool write_json(const nlohmann::json& j, const std::string& path, std::string* error);
+
+}  // namespace vorohex::cli
