@@ -1,0 +1,259 @@
+#!/usr/bin/python3
+"""End-to-end tests of the `vorohex` command: meshing, checking, bad input, exit codes.
+
+Run by ctest: /usr/bin/python3 test_cli.py <path to vorohex> <examples dir>
+"""
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+
+import numpy as np
+
+VOROHEX = None
+EXAMPLES = None
+
+
+def run(*args):
+    p = subprocess.run([VOROHEX, *map(str, args)], capture_output=True, text=True, timeout=300)
+    return p.returncode, p.stdout, p.stderr
+
+
+def verdict_scaled_jacobian(c):
+    """Independent NumPy version of the Verdict hex scaled Jacobian (VTK node order)."""
+    # For corner i: neighbours (a, b, c) such that det(a-i, b-i, c-i) > 0 for a unit cube.
+    nbrs = [(1, 3, 4), (2, 0, 5), (3, 1, 6), (0, 2, 7), (7, 5, 0), (4, 6, 1), (5, 7, 2), (6, 4, 3)]
+    vals = []
+    for i, (a, b, d) in enumerate(nbrs):
+        m = np.stack([c[a] - c[i], c[b] - c[i], c[d] - c[i]], axis=1)
+        n = np.linalg.norm(m, axis=0)
+        if np.any(n == 0):
+            return 0.0
+        vals.append(np.linalg.det(m / n))
+    x1 = (c[1] - c[0]) + (c[2] - c[3]) + (c[5] - c[4]) + (c[6] - c[7])
+    x2 = (c[3] - c[0]) + (c[2] - c[1]) + (c[7] - c[4]) + (c[6] - c[5])
+    x3 = (c[4] - c[0]) + (c[5] - c[1]) + (c[6] - c[2]) + (c[7] - c[3])
+    m = np.stack([x1, x2, x3], axis=1)
+    n = np.linalg.norm(m, axis=0)
+    if np.any(n == 0):
+        return 0.0
+    vals.append(np.linalg.det(m / n))
+    return max(-1.0, min(1.0, min(vals)))
+
+
+def read_msh2_hexes(path):
+    """Minimal reader of an ASCII MSH 2.2 file: node coordinates and 8-node hexahedra."""
+    nodes, hexes = {}, []
+    with open(path) as f:
+        lines = iter(f.read().split("\n"))
+    for line in lines:
+        if line.strip() == "$Nodes":
+            for _ in range(int(next(lines))):
+                t, x, y, z = next(lines).split()
+                nodes[int(t)] = np.array([float(x), float(y), float(z)])
+        elif line.strip() == "$Elements":
+            for _ in range(int(next(lines))):
+                v = list(map(int, next(lines).split()))
+                if v[1] == 5:
+                    ntags = v[2]
+                    hexes.append(v[3 + ntags:3 + ntags + 8])
+    return nodes, hexes
+
+
+class MeshCommand(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.dir = self.tmp.name
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def test_box_and_tapered_brick_are_valid(self):
+        for name, exact in (("box_3x2x1", True), ("tapered_brick", False)):
+            out = os.path.join(self.dir, name + ".vtu")
+            rep = os.path.join(self.dir, name + ".json")
+            code, stdout, stderr = run("mesh", os.path.join(EXAMPLES, name + ".step"), "-o", out,
+                                       "--size", "0.25", "--report", rep)
+            self.assertEqual(code, 0, stdout + stderr)
+            self.assertTrue(os.path.exists(out))
+            with open(rep) as f:
+                r = json.load(f)
+            check = r["check"]
+            self.assertTrue(r["ok"])
+            self.assertTrue(check["valid"])
+            self.assertEqual(check["scaled_jacobian"]["inverted"], 0)
+            self.assertGreater(check["scaled_jacobian"]["min"], 0)
+            if exact:
+                self.assertAlmostEqual(check["scaled_jacobian"]["min"], 1.0, places=12)
+                self.assertEqual(check["hexes"], 12 * 8 * 4)
+            self.assertEqual(check["conformity"]["open_boundary_edges"], 0)
+            self.assertEqual(check["conformity"]["non_manifold_quads"], 0)
+            self.assertLess(check["cad"]["volume_rel_error"], 1e-9)
+            self.assertLess(check["cad"]["max_boundary_distance_rel"], 1e-9)
+            # The written mesh checks valid against its CAD, read back from disk.
+            code, stdout, stderr = run("check", out, "--cad", os.path.join(EXAMPLES, name + ".step"))
+            self.assertEqual(code, 0, stdout + stderr)
+            self.assertIn("valid                yes", stdout)
+
+    def test_every_output_format(self):
+        step = os.path.join(EXAMPLES, "box_3x2x1.step")
+        for ext in ("vtu", "msh", "inp"):
+            out = os.path.join(self.dir, "box." + ext)
+            code, stdout, stderr = run("mesh", step, "-o", out, "--size", "0.5", "--quiet")
+            self.assertEqual(code, 0, stderr)
+            self.assertGreater(os.path.getsize(out), 0)
+        code, stdout, _ = run("check", os.path.join(self.dir, "box.msh"), "--cad", step)
+        self.assertEqual(code, 0, stdout)
+        with open(os.path.join(self.dir, "box.inp")) as f:
+            self.assertIn("C3D8", f.read())
+
+    def expect_bad_input(self, args, phrase):
+        out = os.path.join(self.dir, "out.vtu")
+        code, stdout, stderr = run("mesh", *args, "-o", out)
+        self.assertEqual(code, 2, stdout + stderr)
+        self.assertIn(phrase.lower(), stderr.lower())
+        self.assertFalse(os.path.exists(out), "no output may be left behind")
+        self.assertEqual([f for f in os.listdir(self.dir) if f.startswith(".vorohex-tmp")], [])
+
+    def test_bad_input_files(self):
+        self.expect_bad_input([os.path.join(self.dir, "missing.step")], "not")
+        empty = os.path.join(self.dir, "empty.step")
+        open(empty, "w").close()
+        self.expect_bad_input([empty], "empty")
+        text = os.path.join(self.dir, "text.step")
+        with open(text, "w") as f:
+            f.write("this is not a STEP file\n")
+        self.expect_bad_input([text], "text.step")
+        unknown = os.path.join(self.dir, "part.obj")
+        with open(unknown, "w") as f:
+            f.write("v 0 0 0\n")
+        self.expect_bad_input([unknown], "format")
+
+    def test_open_shell_and_two_solids(self):
+        sys.path.append("/usr/lib/freecad-python3/lib")
+        import FreeCAD  # FreeCAD's Part, only to write the bad inputs
+        import Part
+        box = Part.makeBox(1, 1, 1)
+        shell = Part.Shell(box.Faces[:5])
+        path = os.path.join(self.dir, "open.brep")
+        shell.exportBrep(path)
+        self.expect_bad_input([path], "open")
+        two = Part.makeCompound([Part.makeBox(1, 1, 1),
+                                 Part.makeBox(1, 1, 1, FreeCAD.Vector(3, 0, 0))])
+        path = os.path.join(self.dir, "two.step")
+        two.exportStep(path)
+        self.expect_bad_input([path], "2 solids")
+
+    def test_bad_options(self):
+        step = os.path.join(EXAMPLES, "box_3x2x1.step")
+        for size in ("0", "-1", "nan", "inf", "abc"):
+            self.expect_bad_input([step, "--size", size], "--size")
+        self.expect_bad_input([step, "--frobnicate"], "unknown option")
+
+    def test_unsupported_solid_is_refused_clearly(self):
+        sys.path.append("/usr/lib/freecad-python3/lib")
+        import Part
+        path = os.path.join(self.dir, "cyl.step")
+        Part.makeCylinder(1, 2).exportStep(path)
+        out = os.path.join(self.dir, "cyl.vtu")
+        code, stdout, stderr = run("mesh", path, "-o", out)
+        self.assertEqual(code, 1)
+        self.assertIn("not supported yet", stderr)
+        self.assertFalse(os.path.exists(out))
+
+    def test_help_and_version(self):
+        code, stdout, _ = run("--help")
+        self.assertEqual(code, 0)
+        self.assertIn("vorohex mesh", stdout.replace("  mesh", "vorohex mesh"))
+        code, stdout, _ = run("--version")
+        self.assertEqual(code, 0)
+        self.assertRegex(stdout, r"vorohex \d+\.\d+")
+        code, _, stderr = run("frob")
+        self.assertEqual(code, 2)
+
+
+class CheckCommand(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.dir = self.tmp.name
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def test_gmsh_mesh_figures_match_an_independent_computation(self):
+        import gmsh
+        path = os.path.join(self.dir, "gmsh.msh")
+        gmsh.initialize(["-noenv"])
+        gmsh.option.setNumber("General.Terminal", 0)
+        gmsh.model.add("cyl")
+        gmsh.model.occ.addCylinder(0, 0, 0, 0, 0, 2, 1)
+        gmsh.model.occ.synchronize()
+        gmsh.option.setNumber("Mesh.MeshSizeMax", 0.5)
+        gmsh.option.setNumber("Mesh.SubdivisionAlgorithm", 2)
+        gmsh.option.setNumber("Mesh.RecombineAll", 1)
+        gmsh.option.setNumber("Mesh.MshFileVersion", 2.2)
+        gmsh.model.mesh.generate(3)
+        gmsh.write(path)
+        gmsh.finalize()
+        nodes, hexes = read_msh2_hexes(path)
+        self.assertGreater(len(hexes), 100)
+        sj = [verdict_scaled_jacobian(np.array([nodes[t] for t in h])) for h in hexes]
+        rep = os.path.join(self.dir, "r.json")
+        code, stdout, stderr = run("check", path, "--report", rep)
+        self.assertIn(code, (0, 1), stderr)
+        with open(rep) as f:
+            r = json.load(f)
+        self.assertEqual(r["hexes"], len(hexes))
+        self.assertAlmostEqual(r["scaled_jacobian"]["min"], min(sj), places=9)
+        self.assertAlmostEqual(r["scaled_jacobian"]["mean"], float(np.mean(sj)), places=9)
+        self.assertEqual(r["scaled_jacobian"]["inverted"], sum(1 for v in sj if v <= 0))
+
+    def write_grid_msh(self, path, flip_one):
+        """A 2x2x2 grid of unit hexes in MSH 2.2; optionally one hex inverted."""
+        pts = [(x, y, z) for z in range(3) for y in range(3) for x in range(3)]
+        idx = lambda x, y, z: 1 + x + 3 * y + 9 * z
+        hexes = []
+        for z in range(2):
+            for y in range(2):
+                for x in range(2):
+                    hexes.append([idx(x, y, z), idx(x + 1, y, z), idx(x + 1, y + 1, z), idx(x, y + 1, z),
+                                  idx(x, y, z + 1), idx(x + 1, y, z + 1), idx(x + 1, y + 1, z + 1),
+                                  idx(x, y + 1, z + 1)])
+        if flip_one:
+            h = hexes[0]
+            hexes[0] = h[4:] + h[:4]  # top and bottom swapped: inside out
+        with open(path, "w") as f:
+            f.write("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n%d\n" % len(pts))
+            for i, p in enumerate(pts):
+                f.write("%d %g %g %g\n" % (i + 1, *p))
+            f.write("$EndNodes\n$Elements\n%d\n" % len(hexes))
+            for i, h in enumerate(hexes):
+                f.write("%d 5 2 1 1 %s\n" % (i + 1, " ".join(map(str, h))))
+            f.write("$EndElements\n")
+
+    def test_valid_grid_and_one_inverted_hex(self):
+        good = os.path.join(self.dir, "good.msh")
+        self.write_grid_msh(good, False)
+        code, stdout, stderr = run("check", good)
+        self.assertEqual(code, 0, stdout + stderr)
+        bad = os.path.join(self.dir, "bad.msh")
+        self.write_grid_msh(bad, True)
+        code, stdout, stderr = run("check", bad)
+        self.assertEqual(code, 1, stdout + stderr)
+        self.assertIn("inverted", stdout.lower())
+
+    def test_bad_mesh_input(self):
+        code, _, stderr = run("check", os.path.join(self.dir, "nope.vtu"))
+        self.assertEqual(code, 2)
+        garbage = os.path.join(self.dir, "garbage.msh")
+        with open(garbage, "w") as f:
+            f.write("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 2 1\n")
+        code, _, stderr = run("check", garbage)
+        self.assertEqual(code, 2, stderr)
+
+
+if __name__ == "__main__":
+    VOROHEX, EXAMPLES = sys.argv[1], sys.argv[2]
+    unittest.main(argv=[sys.argv[0], "-v"])
