@@ -1,1 +1,497 @@
-// placeholder: implementation in progress
+// Gmsh MSH: write 4.1 ASCII; read 4.1 ASCII, 4.1 binary and 2.2 ASCII.
+//
+// Hexahedra are element type 5, whose node order is VTK's (Gmsh 4.8's
+// getElementProperties(5) lists the reference nodes (-1,-1,-1) (1,-1,-1) (1,1,-1)
+// (-1,1,-1) and then the same four at z = +1). Gmsh entity tags are positive, so
+// sub-volume s is written as volume entity (and physical group "SV<s>") s + 1, and a
+// volume entity tag t reads back as sub-volume t - 1. Node tags are 1-based.
+#include <algorithm>
+#include <charconv>
+#include <cstring>
+#include <limits>
+#include <map>
+#include <unordered_map>
+
+#include "io/detail/io_common.h"
+#include "io/mesh_io.h"
+
+namespace vorohex::io {
+
+bool write_msh(const core::HexMesh& mesh, const std::string& path, std::string* error) {
+  if (!detail::check_hex_indices(mesh, error)) return false;
+  const auto& sub = mesh.sub_volumes();
+  for (std::int32_t s : sub)
+    if (s < 0 || s == std::numeric_limits<std::int32_t>::max()) {
+      detail::set_error(error,
+                        "MSH output needs sub-volume ids >= 0 (found " + std::to_string(s) + ")");
+      return false;
+    }
+  // Members and bounding box of each sub-volume; a mesh without hexahedra keeps one
+  // volume entity so that its nodes have an entity to belong to.
+  struct Volume {
+    std::vector<std::size_t> hexes;
+    core::BoundingBox box;
+  };
+  std::map<std::int32_t, Volume> volumes;
+  const auto& hexes = mesh.hexes();
+  const auto& points = mesh.points();
+  for (std::size_t h = 0; h < hexes.size(); ++h) {
+    Volume& v = volumes[sub[h]];
+    if (v.hexes.empty()) v.box.min = v.box.max = points[hexes[h][0]];
+    v.hexes.push_back(h);
+    for (std::int32_t n : hexes[h]) {
+      v.box.min = v.box.min.cwiseMin(points[n]);
+      v.box.max = v.box.max.cwiseMax(points[n]);
+    }
+  }
+  if (volumes.empty()) volumes[0].box = mesh.bounding_box();
+
+  detail::OutputFile out;
+  if (!out.open(path, error)) return false;
+  std::string& t = out.text();
+  t += "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$PhysicalNames\n";
+  detail::append_int(&t, static_cast<std::int64_t>(volumes.size()));
+  t += '\n';
+  for (const auto& [s, v] : volumes) {
+    t += "3 ";
+    detail::append_int(&t, s + 1);
+    t += " \"SV" + std::to_string(s) + "\"\n";
+  }
+  t += "$EndPhysicalNames\n$Entities\n0 0 0 ";
+  detail::append_int(&t, static_cast<std::int64_t>(volumes.size()));
+  t += '\n';
+  for (const auto& [s, v] : volumes) {
+    detail::append_int(&t, s + 1);
+    for (const core::Vec3* p : {&v.box.min, &v.box.max})
+      for (int k = 0; k < 3; ++k) {
+        t += ' ';
+        detail::append_double(&t, (*p)[k]);
+      }
+    t += " 1 ";
+    detail::append_int(&t, s + 1);
+    t += " 0\n";
+  }
+  t += "$EndEntities\n$Nodes\n";
+  const auto nn = static_cast<std::int64_t>(points.size());
+  if (nn == 0) {
+    t += "0 0 0 0\n";
+  } else {
+    // All nodes in one block of the first volume; elements may use nodes of any entity.
+    t += "1 " + std::to_string(nn) + " 1 " + std::to_string(nn) + "\n3 " +
+         std::to_string(volumes.begin()->first + 1) + " 0 " + std::to_string(nn) + "\n";
+    for (std::int64_t i = 1; i <= nn; ++i) {
+      detail::append_int(&t, i);
+      t += '\n';
+      out.flush_if_full();
+    }
+    for (const core::Vec3& p : points) {
+      detail::append_double(&t, p.x());
+      t += ' ';
+      detail::append_double(&t, p.y());
+      t += ' ';
+      detail::append_double(&t, p.z());
+      t += '\n';
+      out.flush_if_full();
+    }
+  }
+  t += "$EndNodes\n$Elements\n";
+  const auto nh = static_cast<std::int64_t>(hexes.size());
+  if (nh == 0) {
+    t += "0 0 0 0\n";
+  } else {
+    t += std::to_string(volumes.size()) + " " + std::to_string(nh) + " 1 " + std::to_string(nh) +
+         "\n";
+    for (const auto& [s, v] : volumes) {
+      t += "3 " + std::to_string(s + 1) + " 5 " + std::to_string(v.hexes.size()) + "\n";
+      for (std::size_t h : v.hexes) {
+        detail::append_int(&t, static_cast<std::int64_t>(h) + 1);
+        for (std::int32_t n : hexes[h]) {
+          t += ' ';
+          detail::append_int(&t, static_cast<std::int64_t>(n) + 1);
+        }
+        t += '\n';
+        out.flush_if_full();
+      }
+    }
+  }
+  t += "$EndElements\n";
+  return out.close(error);
+}
+
+namespace {
+
+// Gmsh element types: dimension and node count (from Gmsh 4.8's getElementProperties).
+struct ElementKind {
+  int dim = -1;
+  int nodes = 0;
+};
+ElementKind element_kind(int type) {
+  static const std::map<int, ElementKind> kKinds = {
+      {1, {1, 2}},    {2, {2, 3}},    {3, {2, 4}},    {4, {3, 4}},    {5, {3, 8}},
+      {6, {3, 6}},    {7, {3, 5}},    {8, {1, 3}},    {9, {2, 6}},    {10, {2, 9}},
+      {11, {3, 10}},  {12, {3, 27}},  {13, {3, 18}},  {14, {3, 14}},  {15, {0, 1}},
+      {16, {2, 8}},   {17, {3, 20}},  {18, {3, 15}},  {19, {3, 13}},  {20, {2, 9}},
+      {21, {2, 10}},  {22, {2, 12}},  {23, {2, 15}},  {24, {2, 15}},  {25, {2, 21}},
+      {26, {1, 4}},   {27, {1, 5}},   {28, {1, 6}},   {29, {3, 20}},  {30, {3, 35}},
+      {31, {3, 56}},  {32, {3, 22}},  {33, {3, 28}},  {36, {2, 16}},  {37, {2, 25}},
+      {38, {2, 36}},  {39, {2, 12}},  {40, {2, 16}},  {41, {2, 20}},  {42, {2, 28}},
+      {43, {2, 36}},  {44, {2, 45}},  {45, {2, 55}},  {46, {2, 66}},  {47, {2, 49}},
+      {48, {2, 64}},  {49, {2, 81}},  {50, {2, 100}}, {51, {2, 121}}, {62, {1, 7}},
+      {63, {1, 8}},   {64, {1, 9}},   {65, {1, 10}},  {66, {1, 11}},  {71, {3, 84}},
+      {72, {3, 120}}, {73, {3, 165}}, {74, {3, 220}}, {75, {3, 286}}, {92, {3, 64}},
+      {93, {3, 125}}, {94, {3, 216}}, {95, {3, 343}}, {96, {3, 512}}, {97, {3, 729}},
+      {98, {3, 1000}}};
+  const auto it = kKinds.find(type);
+  return it == kKinds.end() ? ElementKind{} : it->second;
+}
+
+constexpr int kGmshHexahedron = 5;
+
+// Bounds-checked reading of text tokens, lines and little-endian binary values.
+class Cursor {
+ public:
+  explicit Cursor(std::string_view s) : s_(s) {}
+
+  std::size_t pos() const { return pos_; }
+  std::size_t remaining() const { return s_.size() - pos_; }
+  void skip_space() {
+    while (pos_ < s_.size() && is_space(s_[pos_])) ++pos_;
+  }
+  bool token(std::string_view* t) {
+    skip_space();
+    const std::size_t b = pos_;
+    while (pos_ < s_.size() && !is_space(s_[pos_])) ++pos_;
+    *t = s_.substr(b, pos_ - b);
+    return pos_ > b;
+  }
+  template <class T>
+  bool number(T* v) {
+    std::string_view t;
+    if (!token(&t)) return false;
+    const char* b = t.data();
+    if (!t.empty() && t[0] == '+') ++b;
+    const auto r = std::from_chars(b, t.data() + t.size(), *v);
+    return r.ec == std::errc() && r.ptr == t.data() + t.size();
+  }
+  // Skips the rest of the current line, newline included.
+  void skip_line() {
+    while (pos_ < s_.size() && s_[pos_] != '\n') ++pos_;
+    if (pos_ < s_.size()) ++pos_;
+  }
+  bool binary(void* out, std::size_t n) {
+    if (remaining() < n) return false;
+    std::memcpy(out, s_.data() + pos_, n);  // MSH binary is little-endian, like the host
+    pos_ += n;
+    return true;
+  }
+  // Moves past the next occurrence of `marker` (returns false if there is none).
+  bool skip_past(std::string_view marker) {
+    const std::size_t p = s_.find(marker, pos_);
+    if (p == std::string_view::npos) return false;
+    pos_ = p + marker.size();
+    return true;
+  }
+
+ private:
+  static bool is_space(char c) { return c == ' ' || c == '\n' || c == '\r' || c == '\t'; }
+  std::string_view s_;
+  std::size_t pos_ = 0;
+};
+
+class MshReader {
+ public:
+  MshReader(std::string_view data, ReadMeshResult* result) : in_(data), result_(result) {}
+
+  bool read() {
+    std::string_view t;
+    if (!in_.token(&t) || t != "$MeshFormat")
+      return fail("the file does not start with $MeshFormat");
+    std::string_view version;
+    int file_type = -1;
+    if (!in_.token(&version) || !in_.number(&file_type) || !in_.number(&data_size_))
+      return fail("invalid $MeshFormat line");
+    binary_ = file_type == 1;
+    if (file_type != 0 && file_type != 1) return fail("invalid file type in $MeshFormat");
+    if (version == "4.1") {
+      v4_ = true;
+      if (data_size_ != 4 && data_size_ != 8) return fail("unsupported data size");
+    } else if (version == "2.2" || version == "2.1" || version == "2") {
+      if (binary_) return fail("binary MSH 2 files are not supported (save as MSH 4.1)");
+    } else {
+      return fail("unsupported MSH version " + std::string(version) + " (use 4.1 or 2.2)");
+    }
+    if (binary_) {
+      in_.skip_line();
+      std::int32_t one = 0;
+      if (!in_.binary(&one, sizeof one)) return fail("truncated $MeshFormat");
+      if (one != 1) return fail("big-endian binary MSH files are not supported");
+    }
+    if (!in_.skip_past("$EndMeshFormat")) return fail("no $EndMeshFormat");
+    while (true) {
+      if (!in_.token(&t)) break;
+      if (t.empty() || t[0] != '$')
+        return fail("unexpected text '" + std::string(t.substr(0, 20)) + "'");
+      const std::string section(t.substr(1));
+      if (binary_) in_.skip_line();  // binary data starts on the next line
+      bool ok = true;
+      if (section == "Nodes")
+        ok = v4_ ? nodes41() : nodes22();
+      else if (section == "Elements")
+        ok = v4_ ? elements41() : elements22();
+      else if (section == "Entities" && binary_)
+        ok = entities41_binary();
+      else if (!in_.skip_past("$End" + section))
+        return fail("section $" + section + " has no end (truncated?)");
+      if (!ok) return false;
+      if ((section == "Nodes" || section == "Elements" || (section == "Entities" && binary_)) &&
+          (!in_.token(&t) || t != "$End" + section))
+        return fail("section $" + section + " does not end with $End" + section +
+                    " (truncated or inconsistent counts)");
+    }
+    if (!have_nodes_) return fail("no $Nodes section");
+    if (result_->mesh.num_hexes() == 0) return fail("the file contains no hexahedron (type 5)");
+    report_skipped();
+    return true;
+  }
+
+ private:
+  bool fail(const std::string& what) {
+    result_->diagnostics.push_back(core::make_error("unreadable_mesh", "MSH: " + what));
+    return false;
+  }
+
+  bool size_value(std::uint64_t* v) {
+    if (!binary_) return in_.number(v);
+    if (data_size_ == 8) return in_.binary(v, 8);
+    std::uint32_t x = 0;
+    if (!in_.binary(&x, 4)) return false;
+    *v = x;
+    return true;
+  }
+  bool int_value(std::int32_t* v) { return binary_ ? in_.binary(v, 4) : in_.number(v); }
+  bool double_value(double* v) { return binary_ ? in_.binary(v, 8) : in_.number(v); }
+
+  // Rejects counts that the rest of the file cannot hold (at least `bytes` each).
+  bool plausible(std::uint64_t count, std::size_t bytes, const char* what) {
+    if (count > in_.remaining() / bytes ||
+        count > std::uint64_t(std::numeric_limits<std::int32_t>::max()))
+      return fail(std::string("the file is too short for ") + std::to_string(count) + " " + what +
+                  " (truncated?)");
+    return true;
+  }
+
+  bool add_node(std::uint64_t tag, const core::Vec3& p) {
+    if (tag == 0) return fail("node tag 0 is invalid");
+    const auto index = static_cast<std::int32_t>(result_->mesh.num_nodes());
+    if (!node_index_.emplace(tag, index).second)
+      return fail("node tag " + std::to_string(tag) + " appears twice");
+    result_->mesh.add_node(p);
+    return true;
+  }
+
+  bool node_of(std::uint64_t tag, std::int32_t* index) {
+    const auto it = node_index_.find(tag);
+    if (it == node_index_.end())
+      return fail("an element refers to node " + std::to_string(tag) + ", which does not exist");
+    *index = it->second;
+    return true;
+  }
+
+  bool add_element(int type, std::int64_t entity, const std::vector<std::uint64_t>& nodes) {
+    if (type != kGmshHexahedron) {
+      ++skipped_[element_kind(type).dim < 3 ? 0 : 1];
+      return true;
+    }
+    if (entity <= std::numeric_limits<std::int32_t>::min() ||
+        entity > std::numeric_limits<std::int32_t>::max())
+      return fail("entity tag out of range");
+    core::HexNodes h;
+    for (int k = 0; k < 8; ++k)
+      if (!node_of(nodes[k], &h[k])) return false;
+    result_->mesh.add_hex(h, static_cast<std::int32_t>(entity - 1));
+    return true;
+  }
+
+  void report_skipped() {
+    if (skipped_[0] > 0)
+      result_->diagnostics.push_back(core::make_info(
+          "boundary_elements_skipped",
+          "Skipped " + std::to_string(skipped_[0]) + " point, line and surface elements"));
+    if (skipped_[1] > 0)
+      result_->diagnostics.push_back(core::make_warning(
+          "non_hex_elements_skipped", "Skipped " + std::to_string(skipped_[1]) +
+                                          " volume elements that are not 8-node hexahedra"));
+  }
+
+  bool nodes41() {
+    std::uint64_t blocks = 0, count = 0, min_tag = 0, max_tag = 0;
+    if (!size_value(&blocks) || !size_value(&count) || !size_value(&min_tag) ||
+        !size_value(&max_tag))
+      return fail("invalid $Nodes header");
+    if (!plausible(count, binary_ ? 32 : 8, "nodes") ||
+        !plausible(blocks, binary_ ? 20 : 8, "node blocks"))
+      return false;
+    result_->mesh.reserve(static_cast<std::size_t>(count), 0);
+    node_index_.reserve(static_cast<std::size_t>(count));
+    std::uint64_t total = 0;
+    std::vector<std::uint64_t> tags;
+    for (std::uint64_t b = 0; b < blocks; ++b) {
+      std::int32_t dim = 0, entity = 0, parametric = 0;
+      std::uint64_t n = 0;
+      if (!int_value(&dim) || !int_value(&entity) || !int_value(&parametric) || !size_value(&n))
+        return fail("invalid node block header");
+      if (dim < 0 || dim > 3 || (parametric != 0 && parametric != 1))
+        return fail("invalid node block header");
+      total += n;
+      if (total > count) return fail("node blocks hold more nodes than announced");
+      tags.resize(static_cast<std::size_t>(n));
+      for (auto& tag : tags)
+        if (!size_value(&tag)) return fail("truncated node tags");
+      const int extra = parametric ? dim : 0;
+      for (std::uint64_t tag : tags) {
+        double x[6];
+        for (int k = 0; k < 3 + extra; ++k)
+          if (!double_value(&x[k])) return fail("truncated or invalid node coordinates");
+        if (!add_node(tag, core::Vec3(x[0], x[1], x[2]))) return false;
+      }
+    }
+    if (total != count) return fail("node blocks hold fewer nodes than announced");
+    have_nodes_ = true;
+    return true;
+  }
+
+  bool elements41() {
+    if (!have_nodes_) return fail("$Elements comes before $Nodes");
+    std::uint64_t blocks = 0, count = 0, min_tag = 0, max_tag = 0;
+    if (!size_value(&blocks) || !size_value(&count) || !size_value(&min_tag) ||
+        !size_value(&max_tag))
+      return fail("invalid $Elements header");
+    if (!plausible(count, binary_ ? 16 : 4, "elements") ||
+        !plausible(blocks, binary_ ? 20 : 8, "element blocks"))
+      return false;
+    result_->mesh.reserve(0, static_cast<std::size_t>(count));
+    std::uint64_t total = 0;
+    std::vector<std::uint64_t> nodes;
+    for (std::uint64_t b = 0; b < blocks; ++b) {
+      std::int32_t dim = 0, entity = 0, type = 0;
+      std::uint64_t n = 0;
+      if (!int_value(&dim) || !int_value(&entity) || !int_value(&type) || !size_value(&n))
+        return fail("invalid element block header");
+      total += n;
+      if (total > count) return fail("element blocks hold more elements than announced");
+      const ElementKind kind = element_kind(type);
+      if (kind.nodes == 0) {
+        if (binary_) return fail("unknown element type " + std::to_string(type));
+        // ASCII: one element per line, so unknown types can still be skipped.
+        in_.skip_line();
+        for (std::uint64_t e = 0; e < n; ++e) in_.skip_line();
+        skipped_[dim < 3 ? 0 : 1] += n;
+        continue;
+      }
+      nodes.resize(static_cast<std::size_t>(kind.nodes));
+      for (std::uint64_t e = 0; e < n; ++e) {
+        std::uint64_t tag = 0;
+        if (!size_value(&tag)) return fail("truncated element data");
+        for (auto& v : nodes)
+          if (!size_value(&v)) return fail("truncated element data");
+        if (!add_element(type, entity, nodes)) return false;
+      }
+    }
+    if (total != count) return fail("element blocks hold fewer elements than announced");
+    return true;
+  }
+
+  // Binary $Entities cannot be skipped by searching; walk it (its content is unused).
+  bool entities41_binary() {
+    std::uint64_t counts[4];
+    for (auto& c : counts)
+      if (!size_value(&c)) return fail("truncated $Entities");
+    for (int dim = 0; dim < 4; ++dim) {
+      if (!plausible(counts[dim], 12, "entities")) return false;
+      for (std::uint64_t e = 0; e < counts[dim]; ++e) {
+        std::int32_t tag = 0;
+        double box[6];
+        std::uint64_t n = 0;
+        if (!int_value(&tag)) return fail("truncated $Entities");
+        for (int k = 0; k < (dim == 0 ? 3 : 6); ++k)
+          if (!double_value(&box[k])) return fail("truncated $Entities");
+        for (int list = 0; list < (dim == 0 ? 1 : 2); ++list) {  // physicals, then boundary
+          if (!size_value(&n) || !plausible(n, 4, "entity tags"))
+            return fail("truncated $Entities");
+          for (std::uint64_t i = 0; i < n; ++i)
+            if (!int_value(&tag)) return fail("truncated $Entities");
+        }
+      }
+    }
+    return true;
+  }
+
+  bool nodes22() {
+    std::uint64_t count = 0;
+    if (!in_.number(&count)) return fail("invalid $Nodes header");
+    if (!plausible(count, 8, "nodes")) return false;
+    result_->mesh.reserve(static_cast<std::size_t>(count), 0);
+    node_index_.reserve(static_cast<std::size_t>(count));
+    for (std::uint64_t i = 0; i < count; ++i) {
+      std::uint64_t tag = 0;
+      double x[3];
+      if (!in_.number(&tag) || !in_.number(&x[0]) || !in_.number(&x[1]) || !in_.number(&x[2]))
+        return fail("truncated or invalid node line");
+      if (!add_node(tag, core::Vec3(x[0], x[1], x[2]))) return false;
+    }
+    have_nodes_ = true;
+    return true;
+  }
+
+  bool elements22() {
+    if (!have_nodes_) return fail("$Elements comes before $Nodes");
+    std::uint64_t count = 0;
+    if (!in_.number(&count)) return fail("invalid $Elements header");
+    if (!plausible(count, 8, "elements")) return false;
+    std::vector<std::uint64_t> nodes(8);
+    for (std::uint64_t i = 0; i < count; ++i) {
+      std::uint64_t tag = 0;
+      std::int32_t type = 0, ntags = 0;
+      if (!in_.number(&tag) || !in_.number(&type) || !in_.number(&ntags) || ntags < 0 || ntags > 64)
+        return fail("truncated or invalid element line");
+      std::int64_t entity = 1;
+      for (std::int32_t k = 0; k < ntags; ++k) {
+        std::int64_t v = 0;
+        if (!in_.number(&v)) return fail("truncated or invalid element tags");
+        // Tag 0 is the physical group, tag 1 the elementary entity.
+        if (k == 1 || ntags == 1) entity = v;
+      }
+      if (type != kGmshHexahedron) {
+        in_.skip_line();
+        ++skipped_[element_kind(type).dim < 3 ? 0 : 1];
+        continue;
+      }
+      for (auto& v : nodes)
+        if (!in_.number(&v)) return fail("truncated or invalid hexahedron line");
+      if (!add_element(type, entity, nodes)) return false;
+    }
+    return true;
+  }
+
+  Cursor in_;
+  ReadMeshResult* result_;
+  bool v4_ = false;
+  bool binary_ = false;
+  int data_size_ = 8;
+  bool have_nodes_ = false;
+  std::unordered_map<std::uint64_t, std::int32_t> node_index_;
+  std::uint64_t skipped_[2] = {0, 0};  // lower-dimensional, other volume elements
+};
+
+}  // namespace
+
+ReadMeshResult read_msh(const std::string& path) {
+  ReadMeshResult result;
+  std::string data;
+  if (!detail::load_file(path, &data, &result.diagnostics)) return result;
+  result.ok = MshReader(data, &result).read();
+  if (!result.ok) result.mesh = core::HexMesh();
+  return result;
+}
+
+}  // namespace vorohex::io
