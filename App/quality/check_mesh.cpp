@@ -1,1 +1,420 @@
-// placeholder: implementation in progress
+#include "quality/check_mesh.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <numeric>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include "quality/detail/parallel.h"
+#include "quality/scaled_jacobian.h"
+
+namespace vorohex::quality {
+namespace {
+
+using core::HexMesh;
+using core::NodeClass;
+using core::Vec3;
+
+constexpr std::size_t kListHexes = 10;
+constexpr std::size_t kListNodes = 5;
+
+// "3, 7, 12 and 4 more"
+std::string list_indices(const std::vector<std::size_t>& shown, std::size_t total) {
+  std::string s;
+  for (std::size_t i = 0; i < shown.size(); ++i) {
+    if (i) s += ", ";
+    s += std::to_string(shown[i]);
+  }
+  if (total > shown.size()) s += " and " + std::to_string(total - shown.size()) + " more";
+  return s;
+}
+
+std::string number(double v) {
+  std::ostringstream os;
+  os.precision(9);
+  os << v;
+  return os.str();
+}
+
+bool valid_node_index(std::int32_t n, std::size_t num_nodes) {
+  return n >= 0 && static_cast<std::size_t>(n) < num_nodes;
+}
+
+bool has_repeated_node(const core::HexNodes& h) {
+  for (int i = 0; i < 8; ++i)
+    for (int j = i + 1; j < 8; ++j)
+      if (h[i] == h[j]) return true;
+  return false;
+}
+
+// A quad key grouped by its smallest node id (the CSR bucket); the three larger ids sorted.
+struct QuadEntry {
+  std::int32_t b, c, d;
+  std::uint32_t quad;  // hex * 6 + local face
+  bool operator<(const QuadEntry& o) const {
+    if (b != o.b) return b < o.b;
+    if (c != o.c) return c < o.c;
+    return d < o.d;
+  }
+  bool same_key(const QuadEntry& o) const { return b == o.b && c == o.c && d == o.d; }
+};
+
+std::array<std::int32_t, 4> quad_nodes(const HexMesh& mesh, std::uint32_t quad) {
+  const auto& h = mesh.hexes()[quad / 6];
+  const auto& f = core::kHexFaces[quad % 6];
+  return {h[f[0]], h[f[1]], h[f[2]], h[f[3]]};
+}
+
+// Conformity: every quad keyed by its sorted node ids. Bucketing by the smallest id (a
+// counting sort) leaves only tiny per-node sorts, so millions of quads take well under 1 s.
+// Returns the boundary quads (hex * 6 + face); quads with a repeated node are no faces.
+std::vector<std::uint32_t> classify_quads(const HexMesh& mesh, CheckReport& report,
+                                          std::vector<std::size_t>& non_manifold_hexes) {
+  const auto& hexes = mesh.hexes();
+  const std::size_t num_nodes = mesh.num_nodes();
+  auto sorted_quad = [&](std::uint32_t q) {
+    auto n = quad_nodes(mesh, q);
+    // Sorting network for four ids (faster than std::sort on six million tiny arrays).
+    auto order = [&](int i, int j) {
+      if (n[j] < n[i]) std::swap(n[i], n[j]);
+    };
+    order(0, 1);
+    order(2, 3);
+    order(0, 2);
+    order(1, 3);
+    order(1, 2);
+    return n;
+  };
+  std::vector<std::uint32_t> offsets(num_nodes + 1, 0);
+  const std::uint32_t num_quads = static_cast<std::uint32_t>(hexes.size() * 6);
+  for (std::uint32_t q = 0; q < num_quads; ++q) {
+    const auto n = sorted_quad(q);
+    if (n[0] != n[1] && n[1] != n[2] && n[2] != n[3]) ++offsets[n[0] + 1];
+  }
+  std::partial_sum(offsets.begin(), offsets.end(), offsets.begin());
+  std::vector<QuadEntry> entries(offsets.back());
+  std::vector<std::uint32_t> fill(offsets.begin(), offsets.end() - 1);
+  for (std::uint32_t q = 0; q < num_quads; ++q) {
+    const auto n = sorted_quad(q);
+    if (n[0] != n[1] && n[1] != n[2] && n[2] != n[3]) entries[fill[n[0]]++] = {n[1], n[2], n[3], q};
+  }
+  std::vector<std::uint32_t> boundary;
+  for (std::size_t node = 0; node < num_nodes; ++node) {
+    const auto first = entries.begin() + offsets[node], last = entries.begin() + offsets[node + 1];
+    std::sort(first, last);
+    for (auto run = first; run != last;) {
+      auto end = run + 1;
+      while (end != last && end->same_key(*run)) ++end;
+      const auto shared = end - run;
+      if (shared == 1) {
+        boundary.push_back(run->quad);
+      } else if (shared == 2) {
+        ++report.interior_quads;
+      } else {
+        ++report.non_manifold_quads;
+        for (auto it = run; it != end && non_manifold_hexes.size() < kListHexes; ++it)
+          non_manifold_hexes.push_back(it->quad / 6);
+      }
+      run = end;
+    }
+  }
+  report.boundary_quads = boundary.size();
+  std::sort(boundary.begin(), boundary.end());  // deterministic order for later sums
+  return boundary;
+}
+
+// Edges of the boundary quads: each must lie in exactly two of them.
+void check_boundary_edges(const HexMesh& mesh, const std::vector<std::uint32_t>& boundary,
+                          CheckReport& report) {
+  std::vector<std::uint64_t> keys;
+  keys.reserve(boundary.size() * 4);
+  for (std::uint32_t q : boundary) {
+    const auto n = quad_nodes(mesh, q);
+    for (int i = 0; i < 4; ++i) {
+      const auto a = static_cast<std::uint64_t>(std::min(n[i], n[(i + 1) % 4]));
+      const auto b = static_cast<std::uint64_t>(std::max(n[i], n[(i + 1) % 4]));
+      keys.push_back((a << 32) | b);
+    }
+  }
+  std::sort(keys.begin(), keys.end());
+  std::size_t single = 0, multiple = 0;
+  for (std::size_t i = 0; i < keys.size();) {
+    std::size_t j = i + 1;
+    while (j < keys.size() && keys[j] == keys[i]) ++j;
+    if (j - i == 1) ++single;
+    if (j - i > 2) ++multiple;
+    i = j;
+  }
+  report.open_boundary_edges = single + multiple;
+  if (report.open_boundary_edges)
+    report.diagnostics.push_back(core::make_error(
+        "open_boundary", "The boundary surface is not closed: " + std::to_string(single) +
+                             " boundary edges lie in one boundary quad and " +
+                             std::to_string(multiple) + " in more than two"));
+}
+
+bool class_in_range(NodeClass c, const occ::Solid* cad, int num_vertices, int num_edges,
+                    int num_faces) {
+  if (c.dim == 3) return true;
+  if (c.dim < 0 || c.dim > 3 || c.id < 1) return false;
+  if (!cad) return true;
+  const int limit = c.dim == 0 ? num_vertices : c.dim == 1 ? num_edges : num_faces;
+  return c.id <= limit;
+}
+
+std::string class_name(NodeClass c) {
+  if (c.dim == 0) return core::entity_name(core::VertexId(c.id));
+  if (c.dim == 1) return core::entity_name(core::EdgeId(c.id));
+  return core::entity_name(core::FaceId(c.id));
+}
+
+// The CAD part: node distances to their entities, and mesh volume against CAD volume.
+void check_against_cad(const HexMesh& mesh, const occ::Solid& cad, const CheckOptions& options,
+                       const std::vector<std::uint32_t>& boundary,
+                       const std::vector<char>& class_ok, CheckReport& report) {
+  report.has_cad = true;
+  report.cad_volume = cad.volume();
+  const double diagonal = cad.diagonal();
+  const double distance_tol = options.distance_rel_tol * diagonal;
+  const auto& points = mesh.points();
+  const auto& classes = mesh.node_classes();
+
+  // Faces around each edge and vertex, to find the face a boundary quad lies on.
+  const int nv = cad.num_vertices(), ne = cad.num_edges();
+  std::vector<std::vector<int>> edge_faces(ne + 1), vertex_faces(nv + 1);
+  for (core::EdgeId e : cad.edges()) {
+    for (core::FaceId f : cad.edge_faces(e)) {
+      edge_faces[e.value()].push_back(f.value());
+      for (core::VertexId v : {cad.edge_first_vertex(e), cad.edge_last_vertex(e)})
+        if (v.valid() && v.value() <= nv) vertex_faces[v.value()].push_back(f.value());
+    }
+  }
+  for (auto* lists : {&edge_faces, &vertex_faces})
+    for (auto& l : *lists) {
+      std::sort(l.begin(), l.end());
+      l.erase(std::unique(l.begin(), l.end()), l.end());
+    }
+
+  // Node distances: boundary nodes and every node classified on a CAD entity.
+  std::vector<char> on_boundary(mesh.num_nodes(), 0);
+  for (std::uint32_t q : boundary)
+    for (std::int32_t n : quad_nodes(mesh, q)) on_boundary[n] = 1;
+  std::vector<double> distance(mesh.num_nodes(), 0.0);
+  std::vector<std::size_t> off;
+  for (std::size_t n = 0; n < mesh.num_nodes(); ++n) {
+    const NodeClass c = classes[n];
+    const bool classified = class_ok[n] && c.dim < 3;
+    if (!classified && !on_boundary[n]) continue;
+    const Vec3& p = points[n];
+    double d;
+    if (!classified)
+      d = cad.distance_to_boundary(p);
+    else if (c.dim == 0)
+      d = cad.distance_to_vertex(core::VertexId(c.id), p);
+    else if (c.dim == 1)
+      d = cad.distance_to_edge(core::EdgeId(c.id), p);
+    else
+      d = cad.distance_to_face(core::FaceId(c.id), p);
+    distance[n] = d;
+    report.max_boundary_distance = std::max(report.max_boundary_distance, d);
+    if (!(d <= distance_tol)) off.push_back(n);
+  }
+  report.max_boundary_distance_rel = diagonal > 0 ? report.max_boundary_distance / diagonal : 0;
+  if (!off.empty()) {
+    std::stable_sort(off.begin(), off.end(),
+                     [&](std::size_t a, std::size_t b) { return distance[a] > distance[b]; });
+    std::vector<std::size_t> shown(off.begin(), off.begin() + std::min(off.size(), kListNodes));
+    std::vector<std::string> entities;
+    for (std::size_t n : shown)
+      if (class_ok[n] && classes[n].dim < 3) entities.push_back(class_name(classes[n]));
+    std::sort(entities.begin(), entities.end());
+    entities.erase(std::unique(entities.begin(), entities.end()), entities.end());
+    report.diagnostics.push_back(core::make_error(
+        "nodes_off_cad",
+        std::to_string(off.size()) + " nodes lie off the CAD boundary (nodes " +
+            list_indices(shown, off.size()) + "); worst distance " +
+            number(report.max_boundary_distance) + " (" + number(report.max_boundary_distance_rel) +
+            " of the diagonal, allowed " + number(options.distance_rel_tol) + ")",
+        std::move(entities)));
+  }
+
+  // Chord allowance: a boundary quad whose nodes lie on the CAD approximates the surface
+  // within (area * centre distance). Quads with nodes off the CAD are no chords of it and
+  // get no allowance, or a mesh with a hole would excuse its own missing volume.
+  double chord = 0;
+  auto node_faces = [&](std::int32_t n) -> std::vector<int> {
+    const NodeClass c = classes[n];
+    if (!class_ok[n] || c.dim == 3) return {};
+    if (c.dim == 2) return {c.id};
+    return c.dim == 1 ? edge_faces[c.id] : vertex_faces[c.id];
+  };
+  for (std::uint32_t q : boundary) {
+    const auto n = quad_nodes(mesh, q);
+    bool on_cad = true;
+    for (std::int32_t i : n) on_cad = on_cad && distance[i] <= distance_tol;
+    if (!on_cad) continue;
+    const Vec3 &a = points[n[0]], &b = points[n[1]], &c = points[n[2]], &d = points[n[3]];
+    // Mean of the two diagonal splittings, so the area does not depend on the start node.
+    const double area = 0.25 * ((b - a).cross(c - a).norm() + (c - a).cross(d - a).norm() +
+                                (b - a).cross(d - a).norm() + (c - b).cross(d - b).norm());
+    const Vec3 centre = 0.25 * (a + b + c + d);
+    std::vector<int> common = node_faces(n[0]);
+    for (int i = 1; i < 4 && !common.empty(); ++i) {
+      const std::vector<int> other = node_faces(n[i]);
+      std::vector<int> kept;
+      std::set_intersection(common.begin(), common.end(), other.begin(), other.end(),
+                            std::back_inserter(kept));
+      common.swap(kept);
+    }
+    const double dist = common.empty() ? cad.distance_to_boundary(centre)
+                                       : cad.distance_to_face(core::FaceId(common[0]), centre);
+    chord += area * dist;
+  }
+  report.volume_allowance = options.volume_rel_tol * std::abs(report.cad_volume) + chord;
+  const double diff = std::abs(report.mesh_volume - report.cad_volume);
+  report.volume_rel_error = report.cad_volume != 0 ? diff / std::abs(report.cad_volume) : diff;
+  if (!(diff <= report.volume_allowance))
+    report.diagnostics.push_back(core::make_error(
+        "volume_mismatch", "Mesh volume " + number(report.mesh_volume) +
+                               " differs from the CAD volume " + number(report.cad_volume) +
+                               " by " + number(diff) + " (allowed " +
+                               number(report.volume_allowance) + ")"));
+}
+
+}  // namespace
+
+void CheckOptions::validate() const {
+  auto check = [](double v, const char* name) {
+    if (std::isnan(v) || v < 0)
+      throw std::invalid_argument(std::string("CheckOptions::") + name +
+                                  " must be a non-negative number, got " + number(v));
+  };
+  check(volume_rel_tol, "volume_rel_tol");
+  check(distance_rel_tol, "distance_rel_tol");
+}
+
+CheckReport check_mesh(const HexMesh& mesh, const occ::Solid* cad, const CheckOptions& options) {
+  options.validate();
+  CheckReport report;
+  report.nodes = mesh.num_nodes();
+  report.hexes = mesh.num_hexes();
+  const auto& hexes = mesh.hexes();
+  auto& diags = report.diagnostics;
+
+  // Node indices first: nothing else can be measured if a hex points outside the mesh.
+  {
+    std::vector<std::size_t> bad;
+    std::size_t count = 0;
+    for (std::size_t h = 0; h < hexes.size(); ++h)
+      for (std::int32_t n : hexes[h])
+        if (!valid_node_index(n, mesh.num_nodes())) {
+          if (bad.size() < kListHexes) bad.push_back(h);
+          ++count;
+          break;
+        }
+    if (count) {
+      diags.push_back(core::make_error("invalid_node_index",
+                                       std::to_string(count) +
+                                           " hexahedra refer to nodes that do not exist (hexes " +
+                                           list_indices(bad, count) + ")"));
+      return report;
+    }
+  }
+
+  // Element quality.
+  const std::vector<double> sj = scaled_jacobians(mesh);
+  report.scaled_jacobian = quality_stats(sj);
+  report.non_positive = report.scaled_jacobian.inverted;
+  if (report.non_positive) {
+    std::vector<std::size_t> shown;
+    for (std::size_t h = 0; h < sj.size() && shown.size() < kListHexes; ++h)
+      if (!(sj[h] > 0)) shown.push_back(h);
+    diags.push_back(
+        core::make_error("inverted_elements", std::to_string(report.non_positive) +
+                                                  " hexahedra have a scaled Jacobian <= 0 (hexes " +
+                                                  list_indices(shown, report.non_positive) + ")"));
+  }
+  {
+    std::vector<std::size_t> shown;
+    std::size_t count = 0;
+    for (std::size_t h = 0; h < hexes.size(); ++h)
+      if (has_repeated_node(hexes[h])) {
+        if (shown.size() < kListHexes) shown.push_back(h);
+        ++count;
+      }
+    if (count)
+      diags.push_back(core::make_error(
+          "degenerate_elements", std::to_string(count) + " hexahedra use a node twice (hexes " +
+                                     list_indices(shown, count) + ")"));
+  }
+
+  // Conformity and a closed boundary.
+  std::vector<std::size_t> non_manifold_hexes;
+  const std::vector<std::uint32_t> boundary = classify_quads(mesh, report, non_manifold_hexes);
+  if (report.non_manifold_quads)
+    diags.push_back(core::make_error(
+        "non_manifold_faces", std::to_string(report.non_manifold_quads) +
+                                  " quads are shared by more than two hexahedra (hexes " +
+                                  list_indices(non_manifold_hexes, non_manifold_hexes.size()) +
+                                  ")"));
+  check_boundary_edges(mesh, boundary, report);
+
+  std::vector<char> used(mesh.num_nodes(), 0);
+  for (const auto& h : hexes)
+    for (std::int32_t n : h) used[n] = 1;
+  report.unused_nodes = static_cast<std::size_t>(std::count(used.begin(), used.end(), 0));
+  if (report.unused_nodes)
+    diags.push_back(core::make_warning(
+        "unused_nodes", std::to_string(report.unused_nodes) + " nodes belong to no hexahedron"));
+
+  // Classification: dimension 0..3 and, for model entities, a 1-based id within the solid.
+  const int nv = cad ? cad->num_vertices() : 0, ne = cad ? cad->num_edges() : 0,
+            nf = cad ? cad->num_faces() : 0;
+  std::vector<char> class_ok(mesh.num_nodes(), 1);
+  {
+    std::vector<std::size_t> shown;
+    std::size_t count = 0;
+    const auto& classes = mesh.node_classes();
+    for (std::size_t n = 0; n < classes.size(); ++n)
+      if (!class_in_range(classes[n], cad, nv, ne, nf)) {
+        class_ok[n] = 0;
+        if (shown.size() < kListHexes) shown.push_back(n);
+        ++count;
+      }
+    if (count)
+      diags.push_back(core::make_error(
+          "bad_classification", std::to_string(count) +
+                                    " nodes are classified on entities that do not exist (nodes " +
+                                    list_indices(shown, count) + ")"));
+  }
+
+  // Volume (always reported; compared with the CAD when there is one).
+  {
+    std::vector<double> partial(detail::num_chunks(hexes.size(), 20000), 0.0);
+    detail::parallel_chunks(
+        hexes.size(), 20000, [&](std::size_t chunk, std::size_t b, std::size_t e) {
+          double sum = 0;
+          for (std::size_t h = b; h < e; ++h)
+            sum += hex_volume(mesh.corners(core::HexId(static_cast<std::int32_t>(h))));
+          partial[chunk] = sum;
+        });
+    report.mesh_volume = std::accumulate(partial.begin(), partial.end(), 0.0);
+  }
+  if (cad) {
+    try {
+      check_against_cad(mesh, *cad, options, boundary, class_ok, report);
+    } catch (const std::exception& e) {
+      diags.push_back(
+          core::make_error("cad_query_failed", std::string("A CAD query failed: ") + e.what()));
+    }
+  }
+
+  report.valid = !core::has_error(diags);
+  return report;
+}
+
+}  // namespace vorohex::quality

@@ -89,24 +89,18 @@ std::vector<double> scaled_jacobians(const core::HexMesh& mesh) {
 }
 
 double hex_volume(const std::array<Vec3, 8>& p) {
-  // x(u,v,w) = a + b u + c v + d w + e uv + f uw + g vw + h uvw on the unit cube. det J has
-  // degree <= 2 in each coordinate, so 2-point Gauss-Legendre per direction is exact.
-  const Vec3 b = p[1] - p[0], c = p[3] - p[0], d = p[4] - p[0];
-  const Vec3 e = p[2] - p[1] - p[3] + p[0];
-  const Vec3 f = p[5] - p[1] - p[4] + p[0];
-  const Vec3 g = p[7] - p[3] - p[4] + p[0];
-  const Vec3 h = p[6] - p[2] - p[5] - p[7] + p[1] + p[3] + p[4] - p[0];
-  const double q[2] = {0.5 - 0.5 / std::sqrt(3.0), 0.5 + 0.5 / std::sqrt(3.0)};
-  double volume = 0;
-  for (double u : q)
-    for (double v : q)
-      for (double w : q) {
-        const Vec3 xu = b + v * e + w * f + (v * w) * h;
-        const Vec3 xv = c + u * e + w * g + (u * w) * h;
-        const Vec3 xw = d + u * f + v * g + (u * v) * h;
-        volume += det3(xu, xv, xw);
-      }
-  return volume / 8.0;  // Gauss weights are 1/2 per direction on [0, 1]
+  // Divergence theorem over the six bilinear faces: the flux of x through a bilinear patch
+  // a-b-c-d is exactly (a + b + c + d) . ((c - a) x (d - b)) / 8, so V = sum / 24 with no
+  // quadrature error (equal to 2x2x2 Gauss of det J). Coordinates relative to node 0 keep
+  // rounding independent of where the element sits.
+  std::array<Vec3, 8> q;
+  for (int i = 0; i < 8; ++i) q[i] = p[i] - p[0];
+  double sum = 0;
+  for (const auto& f : core::kHexFaces) {
+    const Vec3 &a = q[f[0]], &b = q[f[1]], &c = q[f[2]], &d = q[f[3]];
+    sum += (a + b + c + d).dot((c - a).cross(d - b));
+  }
+  return sum / 24.0;
 }
 
 }  // namespace vorohex::quality

@@ -164,5 +164,28 @@ TEST(HexVolume, IsAdditiveOverTrilinearSubdivision) {
   }
 }
 
+TEST(HexVolume, MatchesGaussQuadratureOfJacobianDeterminant) {
+  // det J of a trilinear map has degree <= 2 per coordinate: 2-point Gauss is exact.
+  const double g[2] = {0.5 - 0.5 / std::sqrt(3.0), 0.5 + 0.5 / std::sqrt(3.0)};
+  const double h = 1e-6;  // central differences are exact for the (linear) partials
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> jitter(-0.35, 0.35);
+  for (int trial = 0; trial < 20; ++trial) {
+    Corners c = box_corners(1.0, 2.0, 1.5);
+    for (auto& p : c) p += Vec3(jitter(rng), jitter(rng), jitter(rng)) + Vec3(100, 50, -20);
+    double gauss = 0;
+    for (double u : g)
+      for (double v : g)
+        for (double w : g) {
+          Eigen::Matrix3d j;
+          j.col(0) = (trilinear(c, u + h, v, w) - trilinear(c, u - h, v, w)) / (2 * h);
+          j.col(1) = (trilinear(c, u, v + h, w) - trilinear(c, u, v - h, w)) / (2 * h);
+          j.col(2) = (trilinear(c, u, v, w + h) - trilinear(c, u, v, w - h)) / (2 * h);
+          gauss += j.determinant() / 8;
+        }
+    EXPECT_NEAR(hex_volume(c), gauss, 1e-6);
+  }
+}
+
 }  // namespace
 }  // namespace vorohex::quality
