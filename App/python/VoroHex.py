@@ -1,0 +1,363 @@
+# VoroHex: all-hexahedral meshing of a CAD solid, for FreeCAD's Python.
+#
+#   import VoroHex
+#   r = VoroHex.mesh(shape, size=2.0)       # shape: a Part.Shape holding one closed solid
+#   r.ok, r.diagnostics, r.stats, r.nodes, r.hexes, r.scaled_jacobian
+#   r.to_femmesh()                          # Fem.FemMesh, SMESH node order
+#   r.write("part.vtu")                     # .vtu / .msh / .inp
+#   VoroHex.check(r, shape)                 # validity and quality of any hex mesh
+#
+# Why two modules: the compiled _VoroHexCore knows only plain values (BREP strings, byte
+# buffers) and no FreeCAD type, so it can be built and tested without FreeCAD; this file is
+# the thin FreeCAD side (Part.Shape checks, Fem.FemMesh, numpy when present).
+"""VoroHex all-hexahedral mesher (Sheffer et al., embedded Voronoi graph)."""
+
+import math
+import numbers
+import os
+from array import array
+
+import _VoroHexCore as _core
+
+try:  # numpy is optional: without it node and hex arrays are lists of tuples
+    import numpy as _np
+except ImportError:  # pragma: no cover - numpy is installed with FreeCAD on Debian
+    _np = None
+
+__all__ = ["mesh", "check", "MeshResult", "MeshStats", "CancelToken", "OPTIONS",
+           "ShapeError", "from_femmesh", "SMESH_FROM_VTK"]
+
+MOD_DIR = os.path.dirname(os.path.abspath(__file__))
+CancelToken = _core.CancelToken
+Diagnostic = _core.Diagnostic
+CheckReport = _core.CheckReport
+
+# VTK hex order -> SMESH (FreeCAD FemMesh) order; the permutation is its own inverse.
+SMESH_FROM_VTK = (0, 3, 2, 1, 4, 7, 6, 5)
+
+
+class ShapeError(ValueError):
+    """The shape given cannot be meshed as one solid (no solid, several, open shell...)."""
+
+
+class _Option:
+    """One pipeline option: its keyword, the FreeCAD property that carries it, and how."""
+
+    def __init__(self, name, prop, prop_type, group, doc, kind, auto_zero=False):
+        self.name, self.prop, self.prop_type = name, prop, prop_type
+        self.group, self.doc, self.kind, self.auto_zero = group, doc, kind, auto_zero
+
+    @property
+    def default(self):
+        return getattr(_core.MeshOptions(), self.name)
+
+
+# The single table mapping keyword options <-> MeshOptions fields <-> document properties.
+# A new pipeline option is one line here (and one field in the C++ binding).
+OPTIONS = (
+    _Option("size", "TargetSize", "App::PropertyLength", "Mesh",
+            "Target hex edge length; 0 = automatic (bounding-box diagonal / 20)", "length",
+            auto_zero=True),
+    _Option("max_hexes", "MaxHexes", "App::PropertyInteger", "Mesh",
+            "Refuse to mesh when more hexahedra than this are predicted", "count"),
+    _Option("volume_rel_tol", "VolumeTolerance", "App::PropertyFloat", "Check",
+            "Allowed relative volume error of the mesh against the solid", "tolerance"),
+    _Option("distance_rel_tol", "DistanceTolerance", "App::PropertyFloat", "Check",
+            "Allowed distance of boundary nodes from the solid, relative to its diagonal",
+            "tolerance"),
+)
+_OPTION_BY_NAME = {o.name: o for o in OPTIONS}
+
+
+def _number(name, value, integer=False):
+    if hasattr(value, "Value") and hasattr(value, "Unit"):  # FreeCAD.Units.Quantity (mm)
+        value = value.Value
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise TypeError("VoroHex: option '{}' must be a number, got {!r}".format(name, value))
+    value = float(value)
+    if math.isnan(value) or math.isinf(value):
+        raise ValueError("VoroHex: option '{}' must be finite, got {}".format(name, value))
+    if integer:
+        if value != int(value):
+            raise ValueError("VoroHex: option '{}' must be a whole number, got {}".format(
+                name, value))
+        return int(value)
+    return value
+
+
+def _make_options(kwargs):
+    unknown = sorted(set(kwargs) - set(_OPTION_BY_NAME))
+    if unknown:
+        raise TypeError("VoroHex: unknown option(s) {}; known options: {}".format(
+            ", ".join(unknown), ", ".join(o.name for o in OPTIONS)))
+    opts = _core.MeshOptions()
+    for name, value in kwargs.items():
+        if value is None:
+            continue  # None = keep the default (for size: automatic)
+        option = _OPTION_BY_NAME[name]
+        value = _number(name, value, integer=option.kind == "count")
+        if value <= 0 and option.kind != "tolerance":
+            raise ValueError("VoroHex: option '{}' must be > 0, got {}{}".format(
+                name, value, " (leave it out or pass None for automatic)"
+                if option.auto_zero else ""))
+        if value < 0:
+            raise ValueError("VoroHex: option '{}' must be >= 0, got {}".format(name, value))
+        setattr(opts, name, value)
+    opts.validate()
+    return opts
+
+
+def _shape_of(shape):
+    """The Part.Shape of a Part.Shape or of a document object; TypeError otherwise."""
+    import Part
+
+    if isinstance(shape, Part.Shape):
+        return shape
+    type_id = getattr(shape, "TypeId", None)
+    if type_id is not None:  # a document object: give its Shape, or say what it is
+        inner = getattr(shape, "Shape", None)
+        if isinstance(inner, Part.Shape):
+            return inner
+        raise TypeError("VoroHex: '{}' is a {}, which has no Part shape; select a solid "
+                        "(for a mesh: Part > Create shape from mesh, then Convert to solid)"
+                        .format(getattr(shape, "Label", "?"), type_id))
+    raise TypeError("VoroHex: expected a Part.Shape holding one solid, got {}".format(
+        type(shape).__name__))
+
+
+def _free_edges(shape):
+    """Names of edges bounding only one face (why a shell is open)."""
+    import Part
+
+    names = []
+    for i, e in enumerate(shape.Edges, 1):
+        if len(shape.ancestorsOfType(e, Part.Face)) == 1:
+            names.append("Edge{}".format(i))
+    return names
+
+
+def check_shape(shape):
+    """Raises ShapeError (a ValueError) unless shape is one closed solid; returns it."""
+    shape = _shape_of(shape)
+    if shape.isNull():
+        raise ShapeError("VoroHex: the shape is empty (null)")
+    solids = shape.Solids
+    if len(solids) > 1:
+        raise ShapeError("VoroHex: the shape holds {} solids; VoroHex meshes one solid at a "
+                         "time (fuse them or select one)".format(len(solids)))
+    if not solids:
+        shells = shape.Shells
+        if shells and not all(s.isClosed() for s in shells):
+            free = _free_edges(shape)
+            raise ShapeError("VoroHex: the shape is an open shell, not a solid; free edges: {}"
+                             .format(", ".join(free[:12]) + (" ..." if len(free) > 12 else "")))
+        if shells:
+            raise ShapeError("VoroHex: the shape is a closed shell but not a solid; make a "
+                             "solid first (Part > Convert to solid)")
+        kind = "faces" if shape.Faces else ("a wire/edges" if shape.Edges else "vertices")
+        raise ShapeError("VoroHex: the shape contains no solid (it has {}); only solids can "
+                         "be hex-meshed".format(kind))
+    return shape
+
+
+def _read_solid(shape):
+    solid, diags = _core.read_brep(shape.exportBrepToString())
+    if solid is None:
+        msg = "; ".join(d.message for d in diags if d.severity == "error") or "unknown error"
+        raise ShapeError("VoroHex: cannot read the solid: " + msg)
+    return solid
+
+
+class MeshStats:
+    """Counts and quality figures of a mesh result (plain attributes)."""
+
+    def __init__(self, core_result):
+        c, s = core_result.check, core_result.stats
+        sj = c.scaled_jacobian
+        self.hexes, self.nodes = c.hexes, c.nodes
+        self.min_scaled_jacobian, self.mean_scaled_jacobian = sj.min, sj.mean
+        self.max_scaled_jacobian = sj.max
+        self.histogram = list(sj.histogram)  # bin i: [-1 + 0.1 i, -1 + 0.1 (i + 1))
+        self.inverted = sj.inverted
+        self.fraction_below_0_2 = sj.fraction_below_0_2
+        self.volume_rel_error = c.volume_rel_error
+        self.mesh_volume, self.cad_volume = c.mesh_volume, c.cad_volume
+        self.max_boundary_distance = c.max_boundary_distance
+        self.sub_volumes = s.sub_volumes
+        self.size_used = s.size_used
+        self.intervals = tuple(s.intervals)
+        self.scheme = s.scheme
+        self.seconds = s.seconds_meshing + s.seconds_checking
+
+    def as_dict(self):
+        return dict(vars(self))
+
+    def __repr__(self):
+        return "MeshStats({})".format(", ".join("{}={!r}".format(k, v)
+                                                for k, v in vars(self).items()))
+
+
+def _nodes_of(core_mesh):
+    buf = core_mesh.node_bytes()
+    if _np is not None:
+        return _np.frombuffer(buf, dtype=_np.float64).reshape(-1, 3).copy()
+    flat = array("d", buf)
+    return [tuple(flat[i:i + 3]) for i in range(0, len(flat), 3)]
+
+
+def _hexes_of(core_mesh):
+    buf = core_mesh.hex_bytes()
+    if _np is not None:
+        return _np.frombuffer(buf, dtype=_np.int32).reshape(-1, 8).copy()
+    flat = array("i", buf)
+    return [tuple(flat[i:i + 8]) for i in range(0, len(flat), 8)]
+
+
+def _femmesh_of(core_mesh):
+    import Fem
+
+    fm = Fem.FemMesh()
+    nodes = array("d", core_mesh.node_bytes())
+    for i in range(len(nodes) // 3):
+        fm.addNode(nodes[3 * i], nodes[3 * i + 1], nodes[3 * i + 2], i + 1)
+    hexes = array("i", core_mesh.hex_bytes())
+    for e in range(len(hexes) // 8):
+        h = hexes[8 * e:8 * e + 8]
+        fm.addVolume([h[k] + 1 for k in SMESH_FROM_VTK], e + 1)
+    return fm
+
+
+class MeshResult:
+    """What VoroHex.mesh returns: status, diagnostics, statistics and the mesh."""
+
+    def __init__(self, core_result, solid):
+        self._core = core_result
+        self._solid = solid
+        self._mesh = core_result.mesh
+
+    ok = property(lambda self: self._core.ok, doc="True if a valid mesh was produced")
+    diagnostics = property(lambda self: self._core.diagnostics)
+    check_report = property(lambda self: self._core.check, doc="the validity check")
+    stats = property(lambda self: MeshStats(self._core))
+    scaled_jacobian = property(lambda self: list(self._core.scaled_jacobian))
+    hex_count = property(lambda self: self._mesh.num_hexes)
+    node_count = property(lambda self: self._mesh.num_nodes)
+    core_mesh = property(lambda self: self._mesh, doc="the _VoroHexCore.HexMesh")
+
+    @property
+    def errors(self):
+        return [d for d in self.diagnostics if d.severity == "error"]
+
+    @property
+    def message(self):
+        """One line for the user: the errors, else 'ok' with the counts."""
+        errs = self.errors + ([] if self.ok else [d for d in self.check_report.diagnostics
+                                                   if d.severity == "error"])
+        if errs or not self.ok:
+            return "; ".join(_describe(d) for d in errs) or "meshing failed"
+        s = self.stats
+        return "{} hexes, {} nodes, min scaled Jacobian {:.3f}".format(
+            s.hexes, s.nodes, s.min_scaled_jacobian)
+
+    @property
+    def nodes(self):
+        """N x 3 coordinates (numpy array if numpy is installed, else list of tuples)."""
+        return _nodes_of(self._mesh)
+
+    @property
+    def hexes(self):
+        """M x 8 zero-based node indices, VTK order."""
+        return _hexes_of(self._mesh)
+
+    def to_femmesh(self):
+        """A Fem.FemMesh with the hexahedra in SMESH node order (1-based ids)."""
+        return _femmesh_of(self._mesh)
+
+    def write(self, path):
+        """Writes .vtu, .msh or .inp (format from the extension)."""
+        _core.write_mesh(self._mesh, os.fspath(path), list(self._core.scaled_jacobian))
+
+    def __repr__(self):
+        return "<VoroHex.MeshResult ok={} {}>".format(self.ok, self.message)
+
+
+def _describe(d):
+    ents = " ({})".format(", ".join(d.entities)) if d.entities else ""
+    return "{}{}".format(d.message, ents)
+
+
+def mesh(shape, size=None, progress=None, cancel=None, **options):
+    """Hex-meshes the one solid in `shape` (a Part.Shape or a Part feature).
+
+    size: target edge length (a number or a Quantity, mm); None = automatic.
+    progress: optional callable(stage, fraction); returning False cancels.
+    cancel: optional VoroHex.CancelToken, .cancel() from another thread stops meshing.
+    Other keyword options: see VoroHex.OPTIONS. Unknown keywords raise TypeError; bad
+    values or shapes raise ValueError (ShapeError for shapes). Meshing failures are not
+    exceptions: the result has ok=False and diagnostics saying why.
+    """
+    if progress is not None and not callable(progress):
+        raise TypeError("VoroHex: progress must be callable(stage, fraction)")
+    if cancel is not None and not isinstance(cancel, CancelToken):
+        raise TypeError("VoroHex: cancel must be a VoroHex.CancelToken")
+    opts = _make_options(dict(options, size=size))
+    solid = _read_solid(check_shape(shape))
+    core_result = _core.generate_mesh(solid, opts, progress, cancel)
+    return MeshResult(core_result, solid)
+
+
+def from_femmesh(femmesh):
+    """A _VoroHexCore.HexMesh from a Fem.FemMesh's 8-node hexahedra (VTK order)."""
+    ids = sorted(femmesh.Nodes)
+    index = {nid: i for i, nid in enumerate(ids)}
+    nodes = array("d")
+    for nid in ids:
+        p = femmesh.Nodes[nid]
+        nodes.extend((p.x, p.y, p.z))
+    hexes = array("i")
+    for vid in femmesh.Volumes:
+        en = femmesh.getElementNodes(vid)
+        if len(en) != 8:
+            raise ValueError("VoroHex: element {} has {} nodes; only 8-node hexahedra can be "
+                             "checked".format(vid, len(en)))
+        hexes.extend(index[en[k]] for k in SMESH_FROM_VTK)
+    return _core.HexMesh.from_bytes(nodes.tobytes(), hexes.tobytes())
+
+
+def _as_core_mesh(mesh_or_path):
+    if isinstance(mesh_or_path, MeshResult):
+        return mesh_or_path.core_mesh
+    if isinstance(mesh_or_path, _core.HexMesh):
+        return mesh_or_path
+    if isinstance(mesh_or_path, (str, os.PathLike)):
+        path = os.fspath(mesh_or_path)
+        if not os.path.exists(path):
+            raise FileNotFoundError("VoroHex.check: no such file: " + path)
+        m, diags = _core.read_mesh(path)
+        if m is None:
+            raise ValueError("VoroHex.check: cannot read {}: {}".format(
+                path, "; ".join(d.message for d in diags)))
+        return m
+    femmesh = getattr(mesh_or_path, "FemMesh", mesh_or_path)  # a mesh object or a FemMesh
+    if hasattr(femmesh, "Volumes") and hasattr(femmesh, "getElementNodes"):
+        return from_femmesh(femmesh)
+    if isinstance(mesh_or_path, tuple) and len(mesh_or_path) == 2:  # (nodes, hexes)
+        nodes, hexes = mesh_or_path
+        n = array("d", [float(c) for p in nodes for c in p])
+        h = array("i", [int(v) for e in hexes for v in e])
+        return _core.HexMesh.from_bytes(n.tobytes(), h.tobytes())
+    raise TypeError("VoroHex.check: expected a MeshResult, a file path, a Fem.FemMesh or "
+                    "(nodes, hexes), got {}".format(type(mesh_or_path).__name__))
+
+
+def check(mesh_or_path, shape=None, volume_rel_tol=None, distance_rel_tol=None):
+    """Validity and quality of a hex mesh (VoroHex's or any tool's), optionally against
+    the solid it should fill. Returns a CheckReport (.valid, .diagnostics, ...)."""
+    m = _as_core_mesh(mesh_or_path)
+    solid = _read_solid(check_shape(shape)) if shape is not None else None
+    defaults = _core.MeshOptions()
+    vt = defaults.volume_rel_tol if volume_rel_tol is None else _number(
+        "volume_rel_tol", volume_rel_tol)
+    dt = defaults.distance_rel_tol if distance_rel_tol is None else _number(
+        "distance_rel_tol", distance_rel_tol)
+    return _core.check_mesh(m, solid, vt, dt)

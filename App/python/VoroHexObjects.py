@@ -1,0 +1,129 @@
+# The parametric hex mesh document object, on FreeCAD's FemMeshGmsh pattern: a
+# Fem::FemMeshObjectPython whose proxy re-meshes its linked Part on recompute.
+"""VoroHex document objects (usable headless, in freecadcmd)."""
+
+import FreeCAD
+
+import VoroHex
+
+TYPE = "Fem::VoroHexMesh"
+
+# Read-only result properties: (name, type, doc).
+RESULTS = (
+    ("Status", "App::PropertyString", "ok, or error when the last recompute failed"),
+    ("Message", "App::PropertyString", "Summary of the last recompute, or why it failed"),
+    ("HexCount", "App::PropertyInteger", "Number of hexahedra"),
+    ("NodeCount", "App::PropertyInteger", "Number of nodes"),
+    ("SubVolumeCount", "App::PropertyInteger", "Number of sub-volumes of the decomposition"),
+    ("MinScaledJacobian", "App::PropertyFloat", "Smallest scaled Jacobian (1 = cube)"),
+    ("MeanScaledJacobian", "App::PropertyFloat", "Mean scaled Jacobian"),
+    ("VolumeError", "App::PropertyFloat", "Relative volume error of the mesh vs the solid"),
+    ("ScaledJacobianHistogram", "App::PropertyIntegerList",
+     "Hexes per scaled Jacobian bin of 0.1 from -1 to 1"),
+)
+
+
+def source_error(part):
+    """Why `part` cannot be hex-meshed (a sentence), or None if it holds one solid."""
+    if part is None:
+        return "No geometry linked: set the Part property to a solid"
+    if part.isDerivedFrom("Fem::FemMeshObject"):
+        return "'{}' is a FEM mesh, not a solid; select the solid it was made from".format(
+            part.Label)
+    if part.isDerivedFrom("Mesh::Feature"):
+        return ("'{}' is a triangle mesh, not a solid; convert it first (Part > Create shape "
+                "from mesh, then Part > Convert to solid)".format(part.Label))
+    try:
+        VoroHex.check_shape(part)
+    except (TypeError, ValueError) as e:
+        return "'{}': {}".format(part.Label, str(e).replace("VoroHex: ", ""))
+    return None
+
+
+def options_of(obj):
+    """Keyword options for VoroHex.mesh from the object's properties (via VoroHex.OPTIONS)."""
+    opts = {}
+    for o in VoroHex.OPTIONS:
+        value = getattr(obj, o.prop)
+        if o.prop_type == "App::PropertyLength":
+            value = value.Value
+        opts[o.name] = None if (o.auto_zero and value == 0) else value
+    return opts
+
+
+class HexMesh:
+    """Proxy of the VoroHex mesh object."""
+
+    Type = TYPE
+
+    def __init__(self, obj):
+        obj.Proxy = self
+        self.add_properties(obj)
+
+    def add_properties(self, obj):
+        # Only adds what is missing, so it can run again on restore of older files.
+        if not hasattr(obj, "Part"):
+            obj.addProperty("App::PropertyLink", "Part", "FEM Mesh",
+                            "Solid the hex mesh is made from")
+        for o in VoroHex.OPTIONS:
+            if not hasattr(obj, o.prop):
+                obj.addProperty(o.prop_type, o.prop, o.group, o.doc)
+                setattr(obj, o.prop, 0 if o.auto_zero else o.default)
+        for name, prop_type, doc in RESULTS:
+            if not hasattr(obj, name):
+                obj.addProperty(prop_type, name, "Result", doc)
+                obj.setEditorMode(name, 1)  # read-only in the property editor
+
+    def onDocumentRestored(self, obj):
+        self.add_properties(obj)
+
+    def __getstate__(self):
+        return None
+
+    def __setstate__(self, state):
+        return None
+
+    def execute(self, obj):
+        """Re-meshes; on failure keeps the previous FemMesh, records why and raises so
+        FreeCAD marks the object invalid with that message."""
+        error = source_error(obj.Part)
+        result = None
+        if error is None:
+            try:
+                result = VoroHex.mesh(obj.Part.Shape, progress=getattr(self, "progress", None),
+                                      **options_of(obj))
+            except (TypeError, ValueError) as e:
+                error = str(e).replace("VoroHex: ", "")
+        if result is not None and not result.ok:
+            error = result.message
+        if error is not None:
+            obj.Status, obj.Message = "error", error
+            raise RuntimeError("VoroHex: " + error)
+        femmesh = result.to_femmesh()
+        s = result.stats
+        obj.FemMesh = femmesh
+        obj.HexCount, obj.NodeCount, obj.SubVolumeCount = s.hexes, s.nodes, s.sub_volumes
+        obj.MinScaledJacobian, obj.MeanScaledJacobian = s.min_scaled_jacobian, \
+            s.mean_scaled_jacobian
+        obj.VolumeError = s.volume_rel_error
+        obj.ScaledJacobianHistogram = [int(c) for c in s.histogram]
+        obj.Status, obj.Message = "ok", result.message
+        self.last_result = result  # for the task panel (not saved)
+
+
+def makeHexMesh(doc, part, name="HexMesh", size=None):
+    """Adds a VoroHex mesh object for `part` to `doc`. Raises ValueError, leaving the
+    document untouched, when `part` holds no single closed solid."""
+    error = source_error(part)
+    if error is not None:
+        raise ValueError("VoroHex: " + error)
+    obj = doc.addObject("Fem::FemMeshObjectPython", name)
+    HexMesh(obj)
+    obj.Part = part
+    if size is not None:
+        obj.TargetSize = size
+    if FreeCAD.GuiUp:
+        from VoroHexGui import view_provider
+
+        view_provider.ViewProviderHexMesh(obj.ViewObject)
+    return obj

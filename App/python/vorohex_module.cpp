@@ -1,0 +1,317 @@
+// _VoroHexCore: the pybind11 binding of the C++ pipeline (the only C++ that knows Python).
+// It deals in plain values (BREP strings, flat byte buffers, option structs); VoroHex.py
+// next to it adds the FreeCAD side (Part.Shape, Fem.FemMesh, numpy) without which this
+// module stays testable from any Python.
+#include <pybind11/functional.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <atomic>
+#include <cstring>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "core/diagnostic.h"
+#include "core/hex_mesh.h"
+#include "core/progress.h"
+#include "io/mesh_io.h"
+#include "occ/shape_io.h"
+#include "pipeline/generate_mesh.h"
+#include "quality/check_mesh.h"
+#include "quality/scaled_jacobian.h"
+
+namespace py = pybind11;
+using namespace vorohex;
+
+namespace {
+
+// Shared so a Python object keeps the solid alive while a mesh result refers to it.
+using SolidPtr = std::shared_ptr<occ::Solid>;
+
+struct CancelToken {
+  std::atomic<bool> flag{false};
+};
+
+template <class T>
+py::bytes to_bytes(const std::vector<T>& v) {
+  return py::bytes(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+}
+
+py::bytes node_bytes(const core::HexMesh& m) {
+  std::vector<double> flat;
+  flat.reserve(3 * m.num_nodes());
+  for (const auto& p : m.points()) flat.insert(flat.end(), {p.x(), p.y(), p.z()});
+  return to_bytes(flat);
+}
+
+py::bytes hex_bytes(const core::HexMesh& m) {
+  std::vector<std::int32_t> flat;
+  flat.reserve(8 * m.num_hexes());
+  for (const auto& h : m.hexes()) flat.insert(flat.end(), h.begin(), h.end());
+  return to_bytes(flat);
+}
+
+// Builds a mesh from flat float64 xyz and int32 VTK-order connectivity buffers.
+core::HexMesh mesh_from_bytes(const std::string& nodes, const std::string& hexes) {
+  if (nodes.size() % (3 * sizeof(double)) != 0)
+    throw std::invalid_argument("nodes buffer is not a multiple of 3 float64 values");
+  if (hexes.size() % (8 * sizeof(std::int32_t)) != 0)
+    throw std::invalid_argument("hexes buffer is not a multiple of 8 int32 values");
+  const std::size_t n = nodes.size() / (3 * sizeof(double));
+  const std::size_t m = hexes.size() / (8 * sizeof(std::int32_t));
+  core::HexMesh mesh;
+  mesh.reserve(n, m);
+  for (std::size_t i = 0; i < n; ++i) {
+    double xyz[3];
+    std::memcpy(xyz, nodes.data() + i * sizeof(xyz), sizeof(xyz));
+    mesh.add_node({xyz[0], xyz[1], xyz[2]});
+  }
+  for (std::size_t i = 0; i < m; ++i) {
+    core::HexNodes h;
+    std::memcpy(h.data(), hexes.data() + i * sizeof(h), sizeof(h));
+    for (auto v : h)
+      if (v < 0 || static_cast<std::size_t>(v) >= n)
+        throw std::invalid_argument("hex " + std::to_string(i) + " refers to node " +
+                                    std::to_string(v) + " but there are " + std::to_string(n) +
+                                    " nodes");
+    mesh.add_hex(h);
+  }
+  return mesh;
+}
+
+py::list diagnostics_list(const std::vector<core::Diagnostic>& ds) {
+  py::list out;
+  for (const auto& d : ds) out.append(py::cast(d));
+  return out;
+}
+
+void bind_types(py::module_& m) {
+  py::class_<core::Diagnostic>(m, "Diagnostic", "A message from a stage: severity, code, entities")
+      .def_property_readonly(
+          "severity", [](const core::Diagnostic& d) { return core::severity_name(d.severity); })
+      .def_readonly("code", &core::Diagnostic::code)
+      .def_readonly("message", &core::Diagnostic::message)
+      .def_readonly("entities", &core::Diagnostic::entities)
+      .def("__str__", [](const core::Diagnostic& d) { return core::format(d); })
+      .def("__repr__",
+           [](const core::Diagnostic& d) { return "<Diagnostic " + core::format(d) + ">"; });
+
+  py::class_<quality::QualityStats>(m, "QualityStats")
+      .def_readonly("count", &quality::QualityStats::count)
+      .def_readonly("min", &quality::QualityStats::min)
+      .def_readonly("max", &quality::QualityStats::max)
+      .def_readonly("mean", &quality::QualityStats::mean)
+      .def_property_readonly("histogram",
+                             [](const quality::QualityStats& s) {
+                               return std::vector<std::size_t>(s.histogram.begin(),
+                                                               s.histogram.end());
+                             })
+      .def_readonly("fraction_below_0_2", &quality::QualityStats::fraction_below_0_2)
+      .def_readonly("inverted", &quality::QualityStats::inverted);
+
+  using R = quality::CheckReport;
+  py::class_<R>(m, "CheckReport")
+      .def_readonly("valid", &R::valid)
+      .def_readonly("nodes", &R::nodes)
+      .def_readonly("hexes", &R::hexes)
+      .def_readonly("scaled_jacobian", &R::scaled_jacobian)
+      .def_readonly("non_positive", &R::non_positive)
+      .def_readonly("interior_quads", &R::interior_quads)
+      .def_readonly("boundary_quads", &R::boundary_quads)
+      .def_readonly("non_manifold_quads", &R::non_manifold_quads)
+      .def_readonly("open_boundary_edges", &R::open_boundary_edges)
+      .def_readonly("unused_nodes", &R::unused_nodes)
+      .def_readonly("has_cad", &R::has_cad)
+      .def_readonly("mesh_volume", &R::mesh_volume)
+      .def_readonly("cad_volume", &R::cad_volume)
+      .def_readonly("volume_rel_error", &R::volume_rel_error)
+      .def_readonly("volume_allowance", &R::volume_allowance)
+      .def_readonly("max_boundary_distance", &R::max_boundary_distance)
+      .def_readonly("max_boundary_distance_rel", &R::max_boundary_distance_rel)
+      .def_property_readonly("diagnostics",
+                             [](const R& r) { return diagnostics_list(r.diagnostics); });
+
+  using S = pipeline::MeshStats;
+  py::class_<S>(m, "MeshStats")
+      .def_readonly("size_used", &S::size_used)
+      .def_readonly("intervals", &S::intervals)
+      .def_readonly("seconds_meshing", &S::seconds_meshing)
+      .def_readonly("seconds_checking", &S::seconds_checking)
+      .def_readonly("sub_volumes", &S::sub_volumes)
+      .def_readonly("scheme", &S::scheme);
+
+  // Flat option names: the one list VoroHex.py maps FreeCAD properties onto.
+  using O = pipeline::MeshOptions;
+  py::class_<O>(m, "MeshOptions")
+      .def(py::init<>())
+      .def_readwrite("size", &O::size, "target edge length, model units; 0 = diagonal / 20")
+      .def_readwrite("max_hexes", &O::max_hexes, "refuse up front above this predicted count")
+      .def_property(
+          "volume_rel_tol", [](const O& o) { return o.check.volume_rel_tol; },
+          [](O& o, double v) { o.check.volume_rel_tol = v; },
+          "check: allowed relative volume error vs the CAD solid")
+      .def_property(
+          "distance_rel_tol", [](const O& o) { return o.check.distance_rel_tol; },
+          [](O& o, double v) { o.check.distance_rel_tol = v; },
+          "check: allowed boundary node distance, relative to the diagonal")
+      .def("validate", &O::validate, "raises ValueError naming the bad option");
+
+  py::class_<CancelToken, std::shared_ptr<CancelToken>>(m, "CancelToken")
+      .def(py::init<>())
+      .def("cancel", [](CancelToken& t) { t.flag = true; })
+      .def_property_readonly("cancelled", [](const CancelToken& t) { return t.flag.load(); });
+}
+
+void bind_mesh(py::module_& m) {
+  py::class_<core::HexMesh, std::shared_ptr<core::HexMesh>>(m, "HexMesh",
+                                                            "All-hex mesh, VTK node order")
+      .def_static(
+          "from_bytes",
+          [](py::bytes nodes, py::bytes hexes) {
+            return std::make_shared<core::HexMesh>(mesh_from_bytes(nodes, hexes));
+          },
+          py::arg("nodes"), py::arg("hexes"),
+          "from float64 xyz and int32 connectivity (VTK order) buffers")
+      .def_property_readonly("num_nodes", &core::HexMesh::num_nodes)
+      .def_property_readonly("num_hexes", &core::HexMesh::num_hexes)
+      .def("node_bytes", &node_bytes, "float64 x y z per node")
+      .def("hex_bytes", &hex_bytes, "int32 8 node indices per hex, VTK order")
+      .def("sub_volume_bytes", [](const core::HexMesh& h) { return to_bytes(h.sub_volumes()); })
+      .def(
+          "node_class_bytes",
+          [](const core::HexMesh& h) {
+            std::vector<std::int32_t> flat;
+            for (const auto& c : h.node_classes()) flat.insert(flat.end(), {c.dim, c.id});
+            return to_bytes(flat);
+          },
+          "int32 (dimension, entity id) per node")
+      .def("scaled_jacobians", &quality::scaled_jacobians)
+      .def(
+          "hex_volumes",
+          [](const core::HexMesh& h) {
+            std::vector<double> v;
+            v.reserve(h.num_hexes());
+            for (std::size_t i = 0; i < h.num_hexes(); ++i)
+              v.push_back(quality::hex_volume(h.corners(core::HexId(static_cast<int>(i)))));
+            return v;
+          },
+          "signed trilinear volume per hex");
+
+  py::class_<occ::Solid, SolidPtr>(m, "Solid", "A CAD solid read by OCCT")
+      .def_property_readonly("num_faces", &occ::Solid::num_faces)
+      .def_property_readonly("num_edges", &occ::Solid::num_edges)
+      .def_property_readonly("num_vertices", &occ::Solid::num_vertices)
+      .def_property_readonly("volume", &occ::Solid::volume)
+      .def_property_readonly("diagonal", &occ::Solid::diagonal);
+
+  py::class_<pipeline::MeshResult, std::shared_ptr<pipeline::MeshResult>>(m, "MeshResult")
+      .def_readonly("ok", &pipeline::MeshResult::ok)
+      .def_property_readonly("mesh",
+                             [](std::shared_ptr<pipeline::MeshResult> r) {
+                               // aliasing pointer: the mesh lives as long as the result
+                               return std::shared_ptr<core::HexMesh>(r, &r->mesh);
+                             })
+      .def_readonly("check", &pipeline::MeshResult::check)
+      .def_readonly("scaled_jacobian", &pipeline::MeshResult::scaled_jacobian)
+      .def_readonly("stats", &pipeline::MeshResult::stats)
+      .def_property_readonly("diagnostics", [](const pipeline::MeshResult& r) {
+        return diagnostics_list(r.diagnostics);
+      });
+}
+
+// Reads a BREP string into one solid; returns (solid or None, diagnostics).
+py::tuple read_brep(const std::string& brep) {
+  occ::ReadResult r;
+  {
+    py::gil_scoped_release nogil;
+    r = occ::read_solid_from_brep_string(brep);
+  }
+  SolidPtr solid(r.solid.release());
+  return py::make_tuple(solid ? py::cast(solid) : py::none(), diagnostics_list(r.diagnostics));
+}
+
+std::shared_ptr<pipeline::MeshResult> generate(SolidPtr solid, const pipeline::MeshOptions& options,
+                                               py::object progress,
+                                               std::shared_ptr<CancelToken> cancel) {
+  if (!solid) throw std::invalid_argument("no solid given");
+  options.validate();
+  if (!cancel) cancel = std::make_shared<CancelToken>();
+  // The callback runs on the meshing thread with the GIL released: take it back, and turn a
+  // Python exception (or a False return) into cancellation so the pipeline stops early.
+  std::unique_ptr<py::error_already_set> callback_error;
+  core::Progress::Callback cb;
+  if (!progress.is_none()) {
+    cb = [&](std::string_view stage, double fraction) {
+      py::gil_scoped_acquire gil;
+      if (callback_error) return;
+      try {
+        py::object ret = progress(std::string(stage), fraction);
+        if (!ret.is_none() && !ret.cast<bool>()) cancel->flag = true;
+      } catch (py::error_already_set& e) {
+        callback_error = std::make_unique<py::error_already_set>(std::move(e));
+        cancel->flag = true;
+      }
+    };
+  }
+  auto result = std::make_shared<pipeline::MeshResult>();
+  {
+    py::gil_scoped_release nogil;
+    *result = pipeline::generate_mesh(*solid, options, core::Progress(cb, &cancel->flag));
+  }
+  if (callback_error) throw std::move(*callback_error);
+  return result;
+}
+
+quality::CheckReport check(const core::HexMesh& mesh, SolidPtr solid, double volume_rel_tol,
+                           double distance_rel_tol) {
+  quality::CheckOptions o;
+  o.volume_rel_tol = volume_rel_tol;
+  o.distance_rel_tol = distance_rel_tol;
+  o.validate();
+  py::gil_scoped_release nogil;
+  return quality::check_mesh(mesh, solid.get(), o);
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_VoroHexCore, m) {
+  m.doc() = "VoroHex C++ core (all-hexahedral meshing); use the VoroHex module instead";
+  py::register_exception<std::invalid_argument>(m, "InvalidArgument", PyExc_ValueError);
+  bind_types(m);
+  bind_mesh(m);
+  m.def("read_brep", &read_brep, py::arg("brep"), "BREP string -> (Solid or None, [Diagnostic])");
+  m.def("generate_mesh", &generate, py::arg("solid"), py::arg("options"),
+        py::arg("progress") = py::none(), py::arg("cancel") = nullptr,
+        "mesh a solid; progress(stage, fraction) may return False to cancel");
+  m.def("check_mesh", &check, py::arg("mesh"), py::arg("solid") = nullptr,
+        py::arg("volume_rel_tol") = quality::CheckOptions{}.volume_rel_tol,
+        py::arg("distance_rel_tol") = quality::CheckOptions{}.distance_rel_tol);
+  m.def(
+      "read_mesh",
+      [](const std::string& path) {
+        io::ReadMeshResult r;
+        {
+          py::gil_scoped_release nogil;
+          r = io::read_mesh(path);
+        }
+        auto mesh = std::make_shared<core::HexMesh>(std::move(r.mesh));
+        return py::make_tuple(r.ok ? py::cast(mesh) : py::none(), diagnostics_list(r.diagnostics));
+      },
+      py::arg("path"), "-> (HexMesh or None, [Diagnostic])");
+  m.def(
+      "write_mesh",
+      [](const core::HexMesh& mesh, const std::string& path, std::vector<double> scaled_jacobian) {
+        io::WriteOptions o;
+        o.scaled_jacobian = std::move(scaled_jacobian);
+        std::string error;
+        bool ok;
+        {
+          py::gil_scoped_release nogil;
+          ok = io::write_mesh(mesh, path, o, &error);
+        }
+        if (!ok) throw std::runtime_error("cannot write " + path + ": " + error);
+      },
+      py::arg("mesh"), py::arg("path"), py::arg("scaled_jacobian") = std::vector<double>{});
+  m.attr("HISTOGRAM_BINS") = quality::QualityStats::kBins;
+}

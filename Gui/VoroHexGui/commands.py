@@ -1,0 +1,66 @@
+# The "Hex mesh" command: one Part feature selected -> a VoroHex mesh object (added to the
+# active FEM analysis if there is one, as FEM's own mesh commands do) and its task panel.
+import FreeCAD
+import FreeCADGui
+from PySide import QtGui
+
+import VoroHexGui
+import VoroHexObjects
+
+
+def selected_part():
+    """The single selected Part feature, or None."""
+    if FreeCADGui.ActiveDocument is None:
+        return None
+    sel = FreeCADGui.Selection.getSelection()
+    if len(sel) == 1 and sel[0].isDerivedFrom("Part::Feature"):
+        return sel[0]
+    return None
+
+
+def active_analysis():
+    try:
+        import FemGui
+    except ImportError:
+        return None
+    return FemGui.getActiveAnalysis()
+
+
+class HexMeshCommand:
+    def GetResources(self):
+        return {
+            "Pixmap": VoroHexGui.resource("icons", "VoroHex.svg"),
+            "MenuText": "Hex mesh",
+            "ToolTip": "All-hexahedral FEM mesh of the selected solid (VoroHex)",
+        }
+
+    def IsActive(self):
+        return selected_part() is not None
+
+    def Activated(self):
+        part = selected_part()
+        error = VoroHexObjects.source_error(part)
+        if error is not None:
+            FreeCAD.Console.PrintError("VoroHex: {}\n".format(error))
+            QtGui.QMessageBox.warning(FreeCADGui.getMainWindow(), "VoroHex: cannot mesh", error)
+            return
+        doc = part.Document
+        doc.openTransaction("Hex mesh")
+        FreeCADGui.addModule("VoroHexObjects")
+        FreeCADGui.doCommand(
+            "_hexmesh = VoroHexObjects.makeHexMesh(FreeCAD.getDocument('{}'), "
+            "FreeCAD.getDocument('{}').getObject('{}'))".format(doc.Name, doc.Name, part.Name))
+        if active_analysis() is not None:
+            FreeCADGui.addModule("FemGui")
+            FreeCADGui.doCommand("FemGui.getActiveAnalysis().addObject(_hexmesh)")
+        doc.commitTransaction()
+        FreeCADGui.Selection.clearSelection()
+        FreeCADGui.doCommand(
+            "FreeCADGui.getDocument('{}').setEdit(_hexmesh.Name)".format(doc.Name))
+
+
+def register():
+    FreeCADGui.addCommand("VoroHex_HexMesh", HexMeshCommand())
+
+
+COMMANDS = ["VoroHex_HexMesh"]

@@ -1,0 +1,161 @@
+# Task panel of the VoroHex mesh object (the FemMeshGmsh task panel pattern): edit the
+# options, Run (with progress and Stop), and see the quality summary and histogram.
+import FreeCAD
+import FreeCADGui
+from PySide import QtCore, QtGui
+
+import VoroHex
+import VoroHexGui
+from VoroHexGui.histogram import HistogramWidget
+
+# Widget per option name (VoroHex.OPTIONS is the one option table; options without a widget
+# are edited in the property editor only).
+WIDGETS = {
+    "size": "sb_size",
+    "max_hexes": "sb_max_hexes",
+    "volume_rel_tol": "le_volume_rel_tol",
+    "distance_rel_tol": "le_distance_rel_tol",
+}
+
+
+def _get_property(obj, option):
+    value = getattr(obj, option.prop)
+    return value.Value if hasattr(value, "Value") else value
+
+
+def summary_text(obj):
+    """Plain-text quality summary of a mesh object's result properties."""
+    if obj.Status == "error":
+        return "Error: " + obj.Message
+    if obj.Status != "ok":
+        return "Not meshed yet: press Run or OK."
+    return ("{} hexahedra, {} nodes, {} sub-volume(s)\n"
+            "Scaled Jacobian: min {:.3f}, mean {:.3f}\n"
+            "Volume error: {:.2e}").format(obj.HexCount, obj.NodeCount, obj.SubVolumeCount,
+                                           obj.MinScaledJacobian, obj.MeanScaledJacobian,
+                                           obj.VolumeError)
+
+
+class TaskPanel:
+    def __init__(self, obj):
+        self.obj = obj
+        self.form = FreeCADGui.PySideUic.loadUi(VoroHexGui.resource("ui", "HexMesh.ui"))
+        self.form.setWindowIcon(QtGui.QIcon(VoroHexGui.resource("icons", "VoroHex.svg")))
+        self.histogram = HistogramWidget(self.form.histogram_host)
+        self.form.histogram_host.layout().addWidget(self.histogram)
+        for name in ("le_volume_rel_tol", "le_distance_rel_tol"):
+            v = QtGui.QDoubleValidator(0.0, 1.0, 15, self.form)
+            v.setNotation(QtGui.QDoubleValidator.ScientificNotation)
+            getattr(self.form, name).setValidator(v)
+        self.form.pb_run.clicked.connect(self.run)
+        self.form.pb_stop.clicked.connect(self.stop)
+        self.running = False
+        self.stop_requested = False
+        self.load()
+        self.show_result()
+
+    # Widgets <-> properties ------------------------------------------------------------
+    def _widget(self, option):
+        name = WIDGETS.get(option.name)
+        return getattr(self.form, name) if name else None
+
+    def load(self):
+        self.form.lbl_part.setText(self.obj.Part.Label if self.obj.Part else "(none)")
+        for option in VoroHex.OPTIONS:
+            w, value = self._widget(option), _get_property(self.obj, option)
+            if isinstance(w, QtGui.QLineEdit):
+                w.setText("{:g}".format(value))
+            elif w is not None:
+                w.setValue(value)
+
+    def store(self):
+        """Writes the widgets into the properties; True if anything changed."""
+        changed = False
+        for option in VoroHex.OPTIONS:
+            w = self._widget(option)
+            if w is None:
+                continue
+            if isinstance(w, QtGui.QLineEdit):
+                try:
+                    value = float(w.text())
+                except ValueError:
+                    continue  # keep the property; the validator flags the text
+            else:
+                value = w.value()
+            if value != _get_property(self.obj, option):
+                setattr(self.obj, option.prop, value)
+                changed = True
+        return changed
+
+    # Meshing ---------------------------------------------------------------------------
+    def on_progress(self, stage, fraction):
+        self.form.progress.setValue(int(round(100 * max(0.0, min(1.0, fraction)))))
+        self.form.progress.setFormat("{}: %p%".format(stage))
+        QtGui.QApplication.processEvents()  # meshing runs on this thread; keep Stop live
+        return not self.stop_requested
+
+    def run(self):
+        if self.running:
+            return
+        self.store()
+        self.running, self.stop_requested = True, False
+        self.form.pb_run.setEnabled(False)
+        self.form.pb_stop.setEnabled(True)
+        self.form.progress.setValue(0)
+        self.form.progress.setFormat("meshing: %p%")
+        self.form.lbl_status.setText("Meshing...")
+        QtGui.QApplication.setOverrideCursor(QtCore.Qt.WaitCursor)
+        proxy = self.obj.Proxy
+        try:
+            proxy.progress = self.on_progress
+            self.obj.touch()
+            self.obj.Document.recompute()
+        finally:
+            proxy.progress = None
+            QtGui.QApplication.restoreOverrideCursor()
+            self.running = False
+            self.form.pb_run.setEnabled(True)
+            self.form.pb_stop.setEnabled(False)
+        if self.obj.Status == "ok":
+            self.form.progress.setValue(100)
+            self.form.progress.setFormat("done")
+            if self.obj.Part and self.obj.Part.ViewObject:
+                self.obj.Part.ViewObject.Visibility = False  # so the mesh is seen
+        else:
+            self.form.progress.setFormat("failed")
+        self.show_result()
+
+    def stop(self):
+        self.stop_requested = True
+
+    def show_result(self):
+        self.form.lbl_status.setText(summary_text(self.obj))
+        colour = "#b00000" if self.obj.Status == "error" else "palette(text)"
+        self.form.lbl_status.setStyleSheet("color: {}".format(colour))
+        self.histogram.set_counts(self.obj.ScaledJacobianHistogram
+                                  if self.obj.Status == "ok" else [])
+
+    # Task dialog protocol --------------------------------------------------------------
+    def getStandardButtons(self):
+        return int(QtGui.QDialogButtonBox.Ok | QtGui.QDialogButtonBox.Cancel)
+
+    def accept(self):
+        if self.running:
+            return False
+        if self.store() or self.obj.Status != "ok":
+            self.run()
+        self._close()
+        return True
+
+    def reject(self):
+        if self.running:
+            self.stop_requested = True
+            return False
+        self._close()
+        return True
+
+    def _close(self):
+        gui_doc = FreeCADGui.getDocument(self.obj.Document.Name)
+        if gui_doc is not None:
+            gui_doc.resetEdit()
+        FreeCAD.Console.PrintLog("VoroHex: {}: {}\n".format(self.obj.Label, self.obj.Message))
