@@ -26,4 +26,8 @@ Solid make_prism(const std::vector<std::array<double, 2>>& outline, double depth
 // Cylinder of the given radius and height on the z axis.
 Solid make_cylinder(double radius, double height);
 
+// Extrusion along +z by `depth` of an annulus sector around the z axis from angle 0 to
+// `angle` (radians, < pi): a topological block with two cylindrical faces.
+Solid make_ring_sector(double inner_radius, double outer_radius, double angle, double depth);
+
 }  // namespace vorohex::occ

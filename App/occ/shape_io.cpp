@@ -1,1 +1,306 @@
-// placeholder: implementation in progress
+#include "occ/shape_io.h"
+
+#include <BRepBuilderAPI_MakeSolid.hxx>
+#include <BRepCheck_Analyzer.hxx>
+#include <BRepGProp.hxx>
+#include <BRepLib.hxx>
+#include <BRepTools.hxx>
+#include <BRep_Builder.hxx>
+#include <BRep_Tool.hxx>
+#include <GProp_GProps.hxx>
+#include <IFSelect_ReturnStatus.hxx>
+#include <IGESControl_Reader.hxx>
+#include <STEPControl_Reader.hxx>
+#include <STEPControl_Writer.hxx>
+#include <Standard_Failure.hxx>
+#include <TopExp.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Shape.hxx>
+#include <TopoDS_Shell.hxx>
+#include <TopoDS_Solid.hxx>
+
+#include <sys/stat.h>
+#include <algorithm>
+#include <cctype>
+#include <fstream>
+#include <sstream>
+
+#include "occ/solid_impl.h"
+
+namespace vorohex::occ {
+namespace {
+
+using core::make_error;
+using core::make_info;
+
+enum class Format { step, brep, iges, unknown };
+
+std::string lower_extension(const std::string& path) {
+  const auto slash = path.find_last_of("/\\");
+  const auto dot = path.find_last_of('.');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+  std::string ext = path.substr(dot);
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+  return ext;
+}
+
+Format format_of(const std::string& ext) {
+  if (ext == ".step" || ext == ".stp") return Format::step;
+  if (ext == ".brep" || ext == ".brp") return Format::brep;
+  if (ext == ".iges" || ext == ".igs") return Format::iges;
+  return Format::unknown;
+}
+
+std::string plural(int n, const char* word) {
+  return std::to_string(n) + " " + word + (n == 1 ? "" : "s");
+}
+
+int count(const TopoDS_Shape& shape, TopAbs_ShapeEnum type) {
+  TopTools_IndexedMapOfShape map;
+  TopExp::MapShapes(shape, type, map);
+  return map.Extent();
+}
+
+double signed_volume(const TopoDS_Shape& s) {
+  GProp_GProps props;
+  BRepGProp::VolumeProperties(s, props);
+  return props.Mass();
+}
+
+// Edges bounding exactly one face of the shell (a seam counts twice, degenerated edges are
+// skipped), named by their index in the edge map of the whole read shape.
+std::vector<std::string> free_edges(const TopoDS_Shape& shell, const TopoDS_Shape& whole) {
+  TopTools_IndexedMapOfShape edges;
+  TopExp::MapShapes(whole, TopAbs_EDGE, edges);
+  std::vector<int> uses(edges.Extent() + 1, 0);
+  for (TopExp_Explorer f(shell, TopAbs_FACE); f.More(); f.Next())
+    for (TopExp_Explorer e(f.Current(), TopAbs_EDGE); e.More(); e.Next())
+      ++uses[edges.FindIndex(e.Current())];
+  std::vector<std::string> names;
+  for (int i = 1; i <= edges.Extent(); ++i)
+    if (uses[i] == 1 && !BRep_Tool::Degenerated(TopoDS::Edge(edges(i))))
+      names.push_back("Edge" + std::to_string(i));
+  return names;
+}
+
+std::string join_names(const std::vector<std::string>& names, std::size_t max_names) {
+  std::string s;
+  for (std::size_t i = 0; i < names.size() && i < max_names; ++i) s += (i ? ", " : "") + names[i];
+  if (names.size() > max_names) s += " and " + std::to_string(names.size() - max_names) + " more";
+  return s;
+}
+
+// The checks shared by files and strings: exactly one valid, closed solid.
+ReadResult analyse(const TopoDS_Shape& shape, const std::string& where) {
+  ReadResult r;
+  if (shape.IsNull()) {
+    r.diagnostics.push_back(make_error("unreadable_file", where + " contains no shape."));
+    return r;
+  }
+  const int solids = count(shape, TopAbs_SOLID);
+  const int shells = count(shape, TopAbs_SHELL);
+  const int faces = count(shape, TopAbs_FACE);
+  if (solids > 1) {
+    r.diagnostics.push_back(make_error(
+        "several_solids",
+        where + " contains " + plural(solids, "solid") + "; VoroHex meshes one solid at a time."));
+    return r;
+  }
+  TopoDS_Solid solid;
+  if (solids == 1) {
+    TopExp_Explorer ex(shape, TopAbs_SOLID);
+    solid = TopoDS::Solid(ex.Current());
+  } else if (shells == 1) {
+    TopExp_Explorer ex(shape, TopAbs_SHELL);
+    const TopoDS_Shell shell = TopoDS::Shell(ex.Current());
+    const std::vector<std::string> open = free_edges(shell, shape);
+    if (!open.empty()) {
+      r.diagnostics.push_back(make_error(
+          "open_shell",
+          where + " holds a shell that is not closed: " + plural(int(open.size()), "edge") +
+              " bound only one face (" + join_names(open, 8) + ").",
+          open));
+      return r;
+    }
+    BRepBuilderAPI_MakeSolid make(shell);
+    if (!make.IsDone()) {
+      r.diagnostics.push_back(make_error(
+          "invalid_shape", where + " holds a closed shell that cannot be made a solid."));
+      return r;
+    }
+    solid = make.Solid();
+    BRepLib::OrientClosedSolid(solid);
+    r.diagnostics.push_back(make_info("closed_shell_made_solid",
+                                      where + " holds a closed shell; it was made a solid."));
+  } else {
+    std::string what;
+    if (shells > 1)
+      what = plural(shells, "shell");
+    else if (faces > 0)
+      what = plural(faces, "face");
+    else if (count(shape, TopAbs_EDGE) > 0)
+      what = plural(count(shape, TopAbs_EDGE), "edge");
+    else
+      what = "no faces";
+    r.diagnostics.push_back(make_error("no_solid", where + " contains " + what + " and no solid."));
+    return r;
+  }
+
+  BRepCheck_Analyzer check(solid);
+  if (!check.IsValid()) {
+    r.diagnostics.push_back(
+        make_error("invalid_shape", where + " holds a solid that fails OCCT's validity check "
+                                            "(self-intersecting or broken geometry)."));
+    return r;
+  }
+  // An inside-out solid has negative volume: turn it, so normals point outwards.
+  if (signed_volume(solid) < 0) {
+    BRepLib::OrientClosedSolid(solid);
+    r.diagnostics.push_back(
+        make_info("solid_reoriented", where + " holds an inside-out solid; it was turned."));
+  }
+  // A shell whose free edges are not detected by incidence (e.g. non-manifold) still fails.
+  if (count(solid, TopAbs_FACE) == 0) {
+    r.diagnostics.push_back(make_error("no_solid", where + " holds an empty solid."));
+    return r;
+  }
+  r.solid = std::make_unique<Solid>(make_solid_impl(solid));
+  return r;
+}
+
+bool only_whitespace(std::ifstream& in) {
+  char buf[4096];
+  while (in.read(buf, sizeof buf) || in.gcount() > 0) {
+    for (std::streamsize i = 0; i < in.gcount(); ++i)
+      if (!std::isspace(static_cast<unsigned char>(buf[i]))) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+ReadResult read_solid(const std::string& path) {
+  ReadResult r;
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) {
+    r.diagnostics.push_back(make_error("file_not_found", "The file " + path + " does not exist."));
+    return r;
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    r.diagnostics.push_back(
+        make_error("unreadable_file", "The file " + path + " cannot be opened."));
+    return r;
+  }
+  if (only_whitespace(in)) {
+    r.diagnostics.push_back(make_error("empty_file", "The file " + path + " is empty."));
+    return r;
+  }
+  const std::string ext = lower_extension(path);
+  const Format format = format_of(ext);
+  if (format == Format::unknown) {
+    r.diagnostics.push_back(
+        make_error("unsupported_format", "The file " + path + " has the unsupported extension '" +
+                                             (ext.empty() ? "(none)" : ext) +
+                                             "'; use .step/.stp, .brep/.brp or .iges/.igs."));
+    return r;
+  }
+  const std::string where = "The file " + path;
+  const char* kind = format == Format::step ? "STEP" : format == Format::iges ? "IGES" : "BREP";
+  TopoDS_Shape shape;
+  try {
+    bool read = false;
+    if (format == Format::step) {
+      STEPControl_Reader reader;
+      if (reader.ReadFile(path.c_str()) == IFSelect_RetDone && reader.TransferRoots() > 0) {
+        shape = reader.OneShape();
+        read = !shape.IsNull();
+      }
+    } else if (format == Format::iges) {
+      IGESControl_Reader reader;
+      if (reader.ReadFile(path.c_str()) == IFSelect_RetDone && reader.TransferRoots() > 0) {
+        shape = reader.OneShape();
+        read = !shape.IsNull();
+      }
+    } else {
+      BRep_Builder builder;
+      read = BRepTools::Read(shape, path.c_str(), builder) && !shape.IsNull();
+    }
+    if (!read) {
+      r.diagnostics.push_back(make_error("unreadable_file", where + " is not a readable " + kind +
+                                                                " file (no shape could be read)."));
+      return r;
+    }
+    return analyse(shape, where);
+  } catch (const Standard_Failure& e) {
+    r.diagnostics.push_back(make_error(
+        "unreadable_file", where + " could not be read as " + kind + ": " + e.GetMessageString()));
+  } catch (const std::exception& e) {
+    r.diagnostics.push_back(
+        make_error("unreadable_file", where + " could not be read as " + kind + ": " + e.what()));
+  }
+  r.solid.reset();
+  return r;
+}
+
+ReadResult read_solid_from_brep_string(const std::string& brep) {
+  ReadResult r;
+  const std::string where = "The BREP string";
+  if (std::all_of(brep.begin(), brep.end(),
+                  [](unsigned char ch) { return std::isspace(ch) != 0; })) {
+    r.diagnostics.push_back(make_error("empty_file", where + " is empty."));
+    return r;
+  }
+  try {
+    std::istringstream in(brep);
+    TopoDS_Shape shape;
+    BRep_Builder builder;
+    BRepTools::Read(shape, in, builder);
+    if (shape.IsNull()) {
+      r.diagnostics.push_back(make_error(
+          "unreadable_file", where + " is not valid BREP text (no shape could be read)."));
+      return r;
+    }
+    return analyse(shape, where);
+  } catch (const Standard_Failure& e) {
+    r.diagnostics.push_back(make_error(
+        "unreadable_file", where + " could not be read as BREP: " + e.GetMessageString()));
+  } catch (const std::exception& e) {
+    r.diagnostics.push_back(
+        make_error("unreadable_file", where + " could not be read as BREP: " + e.what()));
+  }
+  r.solid.reset();
+  return r;
+}
+
+bool write_solid(const Solid& solid, const std::string& path, std::string* error) {
+  const std::string ext = lower_extension(path);
+  const Format format = format_of(ext);
+  auto fail = [&](const std::string& message) {
+    if (error) *error = message;
+    return false;
+  };
+  try {
+    if (format == Format::step) {
+      STEPControl_Writer writer;
+      if (writer.Transfer(solid.impl().solid, STEPControl_AsIs) != IFSelect_RetDone)
+        return fail("cannot convert the solid to STEP for " + path);
+      if (writer.Write(path.c_str()) != IFSelect_RetDone)
+        return fail("cannot write the STEP file " + path);
+      return true;
+    }
+    if (format == Format::brep) {
+      if (!BRepTools::Write(solid.impl().solid, path.c_str()))
+        return fail("cannot write the BREP file " + path);
+      return true;
+    }
+    return fail("cannot write " + path + ": use the extension .step, .stp or .brep");
+  } catch (const Standard_Failure& e) {
+    return fail("cannot write " + path + ": " + e.GetMessageString());
+  }
+}
+
+}  // namespace vorohex::occ

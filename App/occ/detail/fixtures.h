@@ -1,0 +1,19 @@
+// Deliberately broken or unusual shapes written to files, for the reader's tests (tests may
+// not include OCCT headers). Defined in occ/primitives.cpp.
+#pragma once
+
+#include <string>
+
+namespace vorohex::occ::detail {
+
+enum class Fixture {
+  open_box_shell,    // a shell of five faces of the unit box (one face missing)
+  closed_box_shell,  // the six faces of the unit box as a shell, not a solid
+  two_boxes,         // a compound of two disjoint unit boxes
+  box_faces,         // a compound of three loose faces of the unit box
+};
+
+// Writes the fixture; the format comes from the extension (.brep/.brp or .step/.stp).
+bool write_fixture(Fixture kind, const std::string& path);
+
+}  // namespace vorohex::occ::detail

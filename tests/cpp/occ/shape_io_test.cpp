@@ -1,0 +1,157 @@
+#include "occ/shape_io.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+#include "occ/detail/fixtures.h"
+#include "occ/primitives.h"
+
+namespace vorohex::occ {
+namespace {
+
+std::string temp_path(const std::string& name) {
+  return ::testing::TempDir() + "vorohex_occ_" + name;
+}
+
+void write_text(const std::string& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+}
+
+// The one error of a failed read.
+core::Diagnostic only_error(const ReadResult& r) {
+  EXPECT_FALSE(r.ok());
+  EXPECT_EQ(r.diagnostics.size(), 1u);
+  return r.diagnostics.empty() ? core::Diagnostic{} : r.diagnostics.front();
+}
+
+TEST(ReadSolid, MissingFileIsFileNotFound) {
+  const std::string path = temp_path("does_not_exist.step");
+  std::remove(path.c_str());
+  const ReadResult r = read_solid(path);
+  const auto d = only_error(r);
+  EXPECT_EQ(d.code, "file_not_found");
+  EXPECT_NE(d.message.find("does not exist"), std::string::npos);
+  EXPECT_NE(d.message.find(path), std::string::npos);
+}
+
+TEST(ReadSolid, EmptyAndWhitespaceFilesAreEmptyFile) {
+  for (const std::string text : {"", "  \n\t \n"}) {
+    const std::string path = temp_path("empty.step");
+    write_text(path, text);
+    const auto d = only_error(read_solid(path));
+    EXPECT_EQ(d.code, "empty_file");
+    EXPECT_NE(d.message.find("is empty"), std::string::npos);
+  }
+}
+
+TEST(ReadSolid, TextFileNamedStepIsUnreadable) {
+  const std::string path = temp_path("x.step");
+  write_text(path, "this is not a STEP file\nat all\n");
+  const auto d = only_error(read_solid(path));
+  EXPECT_EQ(d.code, "unreadable_file");
+  EXPECT_NE(d.message.find("not a readable STEP file"), std::string::npos);
+}
+
+TEST(ReadSolid, GarbageBrepIsUnreadable) {
+  const std::string path = temp_path("x.brep");
+  write_text(path, "DBRep_DrawableShape\nCASCADE Topology V1\nLocations 5\n1 2 3\n");
+  EXPECT_EQ(only_error(read_solid(path)).code, "unreadable_file");
+}
+
+TEST(ReadSolid, UnsupportedExtensionIsNamed) {
+  const std::string path = temp_path("part.stl");
+  write_text(path, "solid x\nendsolid x\n");
+  const auto d = only_error(read_solid(path));
+  EXPECT_EQ(d.code, "unsupported_format");
+  EXPECT_NE(d.message.find("'.stl'"), std::string::npos);
+}
+
+TEST(ReadSolid, OpenShellNamesItsFreeEdges) {
+  const std::string path = temp_path("open_shell.brep");
+  ASSERT_TRUE(detail::write_fixture(detail::Fixture::open_box_shell, path));
+  const auto d = only_error(read_solid(path));
+  EXPECT_EQ(d.code, "open_shell");
+  EXPECT_NE(d.message.find("not closed"), std::string::npos);
+  EXPECT_NE(d.message.find("4 edges"), std::string::npos);
+  ASSERT_EQ(d.entities.size(), 4u);  // the border of the missing face
+  for (const auto& e : d.entities) EXPECT_EQ(e.rfind("Edge", 0), 0u);
+}
+
+TEST(ReadSolid, TwoBoxesInOneStepAreSeveralSolids) {
+  const std::string path = temp_path("two_boxes.step");
+  ASSERT_TRUE(detail::write_fixture(detail::Fixture::two_boxes, path));
+  const auto d = only_error(read_solid(path));
+  EXPECT_EQ(d.code, "several_solids");
+  EXPECT_NE(d.message.find("contains 2 solids; VoroHex meshes one solid at a time"),
+            std::string::npos);
+}
+
+TEST(ReadSolid, LooseFacesAreNoSolid) {
+  const std::string path = temp_path("faces.brep");
+  ASSERT_TRUE(detail::write_fixture(detail::Fixture::box_faces, path));
+  const auto d = only_error(read_solid(path));
+  EXPECT_EQ(d.code, "no_solid");
+  EXPECT_NE(d.message.find("contains 3 faces and no solid"), std::string::npos);
+}
+
+TEST(ReadSolid, ClosedShellIsMadeASolid) {
+  const std::string path = temp_path("closed_shell.brep");
+  ASSERT_TRUE(detail::write_fixture(detail::Fixture::closed_box_shell, path));
+  const ReadResult r = read_solid(path);
+  ASSERT_TRUE(r.ok());
+  ASSERT_FALSE(r.diagnostics.empty());
+  EXPECT_EQ(r.diagnostics.front().code, "closed_shell_made_solid");
+  EXPECT_EQ(r.diagnostics.front().severity, core::Severity::info);
+  EXPECT_NEAR(r.solid->volume(), 1.0, 1e-9);
+  EXPECT_EQ(r.solid->num_faces(), 6);
+}
+
+TEST(ReadSolid, BoxRoundTripsThroughStepAndBrep) {
+  const Solid box = make_box(1, 2, 3);
+  for (const std::string name : {"box.step", "box.stp", "box.brep"}) {
+    const std::string path = temp_path(name);
+    std::string error;
+    ASSERT_TRUE(write_solid(box, path, &error)) << error;
+    const ReadResult r = read_solid(path);
+    ASSERT_TRUE(r.ok()) << (r.diagnostics.empty() ? "" : format(r.diagnostics[0]));
+    EXPECT_FALSE(core::has_error(r.diagnostics));
+    EXPECT_NEAR(r.solid->volume(), 6.0, 1e-9) << name;
+    EXPECT_EQ(r.solid->num_faces(), 6) << name;
+    EXPECT_EQ(r.solid->num_edges(), 12) << name;
+  }
+}
+
+TEST(ReadSolid, WriteRefusesUnknownExtension) {
+  std::string error;
+  EXPECT_FALSE(write_solid(make_box(1, 1, 1), temp_path("box.obj"), &error));
+  EXPECT_NE(error.find(".step"), std::string::npos);
+}
+
+TEST(ReadSolidFromBrepString, RoundTripKeepsTopologyAndVolume) {
+  const Solid brick = make_tapered_brick(3, 2, 1, 0.5);
+  const ReadResult r = read_solid_from_brep_string(brick.to_brep_string());
+  ASSERT_TRUE(r.ok());
+  EXPECT_NEAR(r.solid->volume(), brick.volume(), 1e-12);
+  EXPECT_EQ(r.solid->num_faces(), 6);
+  EXPECT_EQ(r.solid->num_vertices(), 8);
+  // Same ids: Face k has the same area after the round trip.
+  for (FaceId f : brick.faces()) EXPECT_NEAR(r.solid->area(f), brick.area(f), 1e-12);
+}
+
+TEST(ReadSolidFromBrepString, GarbageAndEmptyStringsFailCleanly) {
+  EXPECT_EQ(only_error(read_solid_from_brep_string("")).code, "empty_file");
+  const auto d = only_error(read_solid_from_brep_string("hello world"));
+  EXPECT_EQ(d.code, "unreadable_file");
+  EXPECT_NE(d.message.find("BREP string"), std::string::npos);
+  // A truncated valid string must not crash either.
+  const std::string s = make_box(1, 1, 1).to_brep_string();
+  const ReadResult r = read_solid_from_brep_string(s.substr(0, s.size() / 2));
+  EXPECT_FALSE(r.ok());
+}
+
+}  // namespace
+}  // namespace vorohex::occ
