@@ -16,6 +16,7 @@ struct CheckOptions {
   // Volume: |mesh - CAD| must be <= volume_rel_tol * CAD volume + chord allowance, where the
   // chord allowance is the sum over boundary quads of area * distance of the quad centre
   // from the CAD boundary (zero for planar solids, so planar meshes must match exactly).
+  // Quads with a node off the CAD (see distance_rel_tol) are no chords and get none.
   double volume_rel_tol = 1e-9;
   // Boundary nodes must lie within this distance of the CAD boundary, relative to the
   // CAD bounding-box diagonal.
@@ -42,8 +43,8 @@ struct CheckReport {
   std::vector<core::Diagnostic> diagnostics;  // one per violated invariant
 };
 
-// cad may be null: then only the mesh-intrinsic invariants are checked. Boundary nodes
-// classified on an entity are measured against that entity, others against the nearest face.
+// cad may be null: then only the mesh-intrinsic invariants are checked. Nodes classified on
+// an entity are measured against that entity, other boundary nodes against the nearest face.
 CheckReport check_mesh(const core::HexMesh& mesh, const occ::Solid* cad,
                        const CheckOptions& options = {});
 
