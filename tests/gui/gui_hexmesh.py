@@ -1,0 +1,125 @@
+# GUI test, run by ctest under Xvfb:
+#   QTWEBENGINE_DISABLE_SANDBOX=1 xvfb-run -a -s "-screen 0 1280x1024x24" \
+#       freecad gui_hexmesh.py -M <stage>/VoroHex
+# Activates the workbench, selects a box, runs VoroHex_HexMesh, accepts the task panel,
+# checks the mesh object, and saves a screenshot of the whole window
+# (VOROHEX_SCREENSHOT, default ./gui_hexmesh_box.png). Exit code 0 = pass.
+import os
+import sys
+import threading
+import time
+import traceback
+
+import FreeCAD
+import FreeCADGui as Gui
+from PySide import QtCore, QtGui
+
+TIMEOUT_S = 100  # CI budget: a modal dialog or a hang must not block the pipeline
+SHOT = os.environ.get("VOROHEX_SCREENSHOT", os.path.abspath("gui_hexmesh_box.png"))
+
+
+def log(msg):
+    sys.stdout.write("gui_hexmesh: {}\n".format(msg))
+    sys.stdout.flush()
+
+
+def watchdog():
+    log("timed out after {} s".format(TIMEOUT_S))
+    os._exit(3)
+
+
+def pump(seconds=0.2):
+    end = time.time() + seconds
+    while time.time() < end:
+        QtGui.QApplication.processEvents()
+        time.sleep(0.01)
+
+
+def check(cond, what):
+    if not cond:
+        raise AssertionError(what)
+    log("ok: " + what)
+
+
+def task_ok_button(mw):
+    for box in mw.findChildren(QtGui.QDialogButtonBox):
+        b = box.button(QtGui.QDialogButtonBox.Ok)
+        if b is not None and b.isVisible():
+            return b
+    return None
+
+
+def main():
+    mw = Gui.getMainWindow()
+    mw.setGeometry(0, 0, 1280, 1024)
+    mw.showMaximized()
+    Gui.activateWorkbench("VoroHexWorkbench")
+    pump()
+    check(Gui.activeWorkbench().name() == "VoroHexWorkbench", "workbench active")
+    toolbars = [t.windowTitle() for t in mw.findChildren(QtGui.QToolBar) if t.isVisible()]
+    check("VoroHex" in toolbars, "VoroHex toolbar visible")
+
+    doc = FreeCAD.newDocument("HexMeshDemo")
+    box = doc.addObject("Part::Box", "Box")
+    box.Length, box.Width, box.Height = 40, 20, 10
+    doc.recompute()
+    Gui.SendMsgToActiveView("ViewFit")
+    pump()
+    Gui.Selection.clearSelection()
+    from VoroHexGui import commands
+
+    check(not commands.HexMeshCommand().IsActive(), "command inactive without selection")
+    Gui.Selection.addSelection(box)
+    pump()
+    check(commands.HexMeshCommand().IsActive(), "command active with the box selected")
+    Gui.runCommand("VoroHex_HexMesh")
+    pump(0.5)
+    meshes = [o for o in doc.Objects if o.isDerivedFrom("Fem::FemMeshObjectPython")]
+    check(len(meshes) == 1, "one mesh object created")
+    mesh = meshes[0]
+    check(bool(Gui.Control.activeDialog()), "task panel open")
+    size_box = mw.findChild(QtGui.QDoubleSpinBox, "sb_size")
+    check(size_box is not None, "size field in the task panel")
+    size_box.setValue(2.5)
+    ok = task_ok_button(mw)
+    check(ok is not None, "task panel OK button")
+    ok.click()
+    pump(1.0)
+    check(not Gui.Control.activeDialog(), "task panel closed")
+    check(mesh.isValid() and mesh.Status == "ok", "mesh valid: " + mesh.Message)
+    check(mesh.HexCount == 16 * 8 * 4, "hex count {} == 512".format(mesh.HexCount))
+    check(mesh.FemMesh.VolumeCount == mesh.HexCount, "FemMesh filled")
+    import VoroHex
+
+    check(VoroHex.check(mesh.FemMesh, box.Shape).valid, "VoroHex.check valid")
+    check(not box.ViewObject.Visibility, "solid hidden, mesh shown")
+
+    view = Gui.ActiveDocument.ActiveView
+    view.viewIsometric()
+    view.fitAll()
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(mesh)  # highlights the mesh object in the tree
+    pump(1.0)
+    os.makedirs(os.path.dirname(SHOT) or ".", exist_ok=True)
+    pixmap = QtGui.QGuiApplication.primaryScreen().grabWindow(0)
+    check(pixmap.save(SHOT), "screenshot saved to " + SHOT)
+
+
+def run():
+    code = 1
+    try:
+        main()
+        code = 0
+        log("PASS")
+    except Exception:
+        traceback.print_exc()
+        log("FAIL")
+    sys.stdout.flush()
+    sys.stderr.flush()
+    os._exit(code)
+
+
+timer = threading.Timer(TIMEOUT_S, watchdog)
+timer.daemon = True
+timer.start()
+QtCore.QTimer.singleShot(0, run)

@@ -1,0 +1,381 @@
+# FreeCAD unit tests of VoroHex (run: freecadcmd -t TestVoroHex -M <Mod/VoroHex>).
+# Registered through FreeCAD.__unit_test__ in Init.py.
+import math
+import os
+import re
+import tempfile
+import unittest
+
+import FreeCAD
+import Part
+
+import VoroHex
+import VoroHexObjects
+
+# VTK hex faces, outward (the mesh order VoroHex uses, and Abaqus/CalculiX C3D8 order).
+HEX_FACES = ((0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7))
+
+
+def hex_volume(p):
+    """Signed volume of a hexahedron (8 points, VTK/C3D8 order), by the divergence theorem
+    over its faces split into triangles around each face centroid."""
+    vol = 0.0
+    for f in HEX_FACES:
+        q = [p[i] for i in f]
+        c = [sum(v[k] for v in q) / 4.0 for k in range(3)]
+        for i in range(4):
+            a, b = q[i], q[(i + 1) % 4]
+            vol += (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
+                    a[2] * (b[0] * c[1] - b[1] * c[0])) / 6.0
+    return vol
+
+
+def femmesh_hex_volumes(fm):
+    """Volumes of a Fem.FemMesh's hexahedra, read in SMESH order and converted to VTK."""
+    out = []
+    for vid in fm.Volumes:
+        ids = fm.getElementNodes(vid)
+        pts = [fm.Nodes[ids[k]] for k in VoroHex.SMESH_FROM_VTK]
+        out.append(hex_volume([(v.x, v.y, v.z) for v in pts]))
+    return out
+
+
+def inp_c3d8_volumes(path):
+    """Volumes of the C3D8 elements of an Abaqus/CalculiX .inp, computed from its text."""
+    nodes, elements, section = {}, [], None
+    pending = []
+    with open(path) as f:
+        for raw in f:
+            line = raw.strip()
+            if not line or line.startswith("**"):
+                continue
+            if line.startswith("*"):
+                key = line.upper().replace(" ", "")
+                if key.startswith("*NODE") and not key.startswith("*NODEPRINT") and \
+                        not key.startswith("*NODEFILE"):
+                    section = "node"
+                elif re.match(r"\*ELEMENT,(.*,)?TYPE=C3D8R?(,|$)", key):
+                    section = "hex"
+                else:
+                    section = None
+                continue
+            vals = [v for v in line.split(",") if v.strip()]
+            if section == "node":
+                nodes[int(vals[0])] = tuple(float(v) for v in vals[1:4])
+            elif section == "hex":
+                pending.extend(int(v) for v in vals)
+                if len(pending) >= 9:  # element id + 8 nodes (may span lines)
+                    elements.append(pending[1:9])
+                    pending = pending[9:]
+    return [hex_volume([nodes[n] for n in e]) for e in elements]
+
+
+class TestVoroHexApi(unittest.TestCase):
+    def setUp(self):
+        self.box = Part.makeBox(10, 20, 30)
+
+    def test_module_comes_from_expected_folder(self):
+        stage = os.environ.get("VOROHEX_STAGE_DIR")
+        if stage:  # under ctest: never a stale install elsewhere
+            self.assertEqual(os.path.realpath(os.path.dirname(VoroHex.__file__)),
+                             os.path.realpath(stage))
+
+    def test_box_meshes(self):
+        r = VoroHex.mesh(self.box, size=5)
+        self.assertTrue(r.ok, r.message)
+        s = r.stats
+        self.assertEqual((s.hexes, s.nodes), (2 * 4 * 6, 3 * 5 * 7))
+        self.assertEqual((r.hex_count, r.node_count), (48, 105))
+        self.assertEqual(len(r.nodes), 105)
+        self.assertEqual(len(r.hexes[0]), 8)
+        self.assertEqual(len(r.scaled_jacobian), 48)
+        self.assertAlmostEqual(s.min_scaled_jacobian, 1.0, places=9)
+        self.assertAlmostEqual(s.mean_scaled_jacobian, 1.0, places=9)
+        self.assertEqual(sum(s.histogram), 48)
+        self.assertLess(s.volume_rel_error, 1e-9)
+        self.assertEqual(s.sub_volumes, 1)
+        self.assertFalse(r.errors)
+        nodes = r.nodes
+        vols = [hex_volume([tuple(nodes[i]) for i in h]) for h in r.hexes]
+        self.assertTrue(all(v > 0 for v in vols))
+        self.assertAlmostEqual(sum(vols), 6000.0, places=6)
+        self.assertTrue(VoroHex.check(r, self.box).valid)
+
+    def test_femmesh_smesh_order_positive(self):
+        r = VoroHex.mesh(self.box, size=10)
+        fm = r.to_femmesh()
+        self.assertEqual((fm.NodeCount, fm.VolumeCount), (r.node_count, r.hex_count))
+        self.assertEqual(fm.HexaCount, r.hex_count)
+        vols = femmesh_hex_volumes(fm)
+        self.assertTrue(all(v > 0 for v in vols))
+        self.assertAlmostEqual(sum(vols), 6000.0, places=6)
+        report = VoroHex.check(fm, self.box)
+        self.assertTrue(report.valid, [str(d) for d in report.diagnostics])
+
+    def test_cylinder_is_diagnosed(self):
+        r = VoroHex.mesh(Part.makeCylinder(5, 10))
+        self.assertFalse(r.ok)
+        self.assertTrue(r.errors)
+        self.assertIn("not_supported_yet", [d.code for d in r.errors])
+        self.assertTrue(r.message)
+        self.assertEqual(r.hex_count, 0)
+
+    def test_tapered_brick_meshes(self):
+        bottom = Part.makePolygon([FreeCAD.Vector(*p) for p in
+                                   [(0, 0, 0), (20, 0, 0), (20, 10, 0), (0, 10, 0), (0, 0, 0)]])
+        top = Part.makePolygon([FreeCAD.Vector(*p) for p in
+                                [(4, 2, 8), (16, 2, 8), (16, 8, 8), (4, 8, 8), (4, 2, 8)]])
+        solid = Part.makeLoft([bottom, top], True)
+        r = VoroHex.mesh(solid, size=2)
+        self.assertTrue(r.ok, r.message)
+        self.assertGreater(r.stats.min_scaled_jacobian, 0)
+        self.assertTrue(VoroHex.check(r, solid).valid)
+
+    def test_argument_errors(self):
+        with self.assertRaisesRegex(TypeError, "Part.Shape"):
+            VoroHex.mesh(42)
+        with self.assertRaisesRegex(TypeError, "bogus"):
+            VoroHex.mesh(self.box, bogus=1)
+        for bad in (0, -1.0, float("nan"), float("inf")):
+            with self.assertRaisesRegex(ValueError, "size"):
+                VoroHex.mesh(self.box, size=bad)
+        with self.assertRaisesRegex(TypeError, "size"):
+            VoroHex.mesh(self.box, size="big")
+        with self.assertRaisesRegex(ValueError, "max_hexes"):
+            VoroHex.mesh(self.box, max_hexes=0)
+        with self.assertRaisesRegex(ValueError, "no solid"):
+            VoroHex.mesh(Part.makePolygon([FreeCAD.Vector(0, 0, 0), FreeCAD.Vector(1, 0, 0),
+                                           FreeCAD.Vector(1, 1, 0)]))
+        with self.assertRaisesRegex(ValueError, "open shell.*Edge"):
+            VoroHex.mesh(Part.makeShell(self.box.Faces[:5]))
+        with self.assertRaisesRegex(ValueError, "2 solids"):
+            VoroHex.mesh(Part.makeCompound([self.box, Part.makeSphere(1)]))
+        with self.assertRaises(ValueError):
+            VoroHex.mesh(Part.Shape())
+        with self.assertRaisesRegex(TypeError, "progress"):
+            VoroHex.mesh(self.box, progress=3)
+
+    def test_too_many_hexes_is_a_diagnostic(self):
+        r = VoroHex.mesh(self.box, size=1, max_hexes=100)
+        self.assertFalse(r.ok)
+        self.assertIn("too_many_hexes", [d.code for d in r.errors])
+
+    def test_progress_callback(self):
+        calls = []
+        r = VoroHex.mesh(self.box, size=5, progress=lambda s, f: calls.append((s, f)))
+        self.assertTrue(r.ok)
+        self.assertTrue(calls)
+        self.assertTrue(all(0.0 <= f <= 1.0 and isinstance(s, str) for s, f in calls))
+
+        def boom(stage, fraction):
+            raise RuntimeError("stop here")
+
+        with self.assertRaisesRegex(RuntimeError, "stop here"):
+            VoroHex.mesh(self.box, size=5, progress=boom)
+
+    def test_write_and_check_files(self):
+        r = VoroHex.mesh(self.box, size=5)
+        with tempfile.TemporaryDirectory() as d:
+            for ext in ("vtu", "msh", "inp"):
+                path = os.path.join(d, "box." + ext)
+                r.write(path)
+                self.assertGreater(os.path.getsize(path), 0)
+            report = VoroHex.check(os.path.join(d, "box.vtu"), self.box)
+            self.assertTrue(report.valid)
+            self.assertEqual(report.hexes, 48)
+            vols = inp_c3d8_volumes(os.path.join(d, "box.inp"))
+            self.assertEqual(len(vols), 48)
+            self.assertTrue(all(v > 0 for v in vols))
+            with self.assertRaises(FileNotFoundError):
+                VoroHex.check(os.path.join(d, "missing.vtu"))
+            with self.assertRaises(RuntimeError):
+                r.write(os.path.join(d, "box.unknown"))
+
+    def test_check_detects_inverted_hex(self):
+        pts = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]
+        good = VoroHex.check((pts, [list(range(8))]))
+        self.assertTrue(good.valid)
+        bad = VoroHex.check((pts, [[4, 5, 6, 7, 0, 1, 2, 3]]))
+        self.assertFalse(bad.valid)
+        self.assertEqual(bad.non_positive, 1)
+
+
+def snapshot(doc):
+    """Objects and their (non-geometry) property values, to prove a document unchanged."""
+    out = []
+    for o in doc.Objects:
+        props = {}
+        for p in o.PropertiesList:
+            if p in ("Shape", "Mesh", "FemMesh", "Proxy"):
+                continue
+            props[p] = repr(o.getPropertyByName(p))
+        out.append((o.Name, o.TypeId, props))
+    return out
+
+
+class TestVoroHexObject(unittest.TestCase):
+    def setUp(self):
+        self.doc = FreeCAD.newDocument("VoroHexTest")
+        self.box = self.doc.addObject("Part::Box", "Box")
+        self.box.Length, self.box.Width, self.box.Height = 10, 20, 30
+        self.doc.recompute()
+
+    def tearDown(self):
+        FreeCAD.closeDocument(self.doc.Name)
+
+    def make_mesh(self, size=5):
+        obj = VoroHexObjects.makeHexMesh(self.doc, self.box, size=size)
+        self.doc.recompute()
+        return obj
+
+    def test_recompute_counts_validity(self):
+        obj = self.make_mesh()
+        self.assertEqual(obj.Proxy.Type, "Fem::VoroHexMesh")
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        self.assertEqual(obj.Status, "ok")
+        self.assertEqual((obj.HexCount, obj.NodeCount), (48, 105))
+        self.assertEqual((obj.FemMesh.VolumeCount, obj.FemMesh.NodeCount), (48, 105))
+        self.assertEqual(obj.SubVolumeCount, 1)
+        self.assertAlmostEqual(obj.MinScaledJacobian, 1.0, places=9)
+        self.assertEqual(sum(obj.ScaledJacobianHistogram), 48)
+        self.assertTrue(VoroHex.check(obj.FemMesh, self.box.Shape).valid)
+        self.assertTrue(all(v > 0 for v in femmesh_hex_volumes(obj.FemMesh)))
+        self.assertEqual(obj.TargetSize.Value, 5)
+
+    def test_smaller_size_more_hexes(self):
+        obj = self.make_mesh(size=10)
+        coarse = obj.HexCount
+        obj.TargetSize = 2.5
+        self.doc.recompute()
+        self.assertTrue(obj.isValid())
+        self.assertGreater(obj.HexCount, coarse)
+        self.assertEqual(obj.HexCount, 4 * 8 * 12)
+
+    def test_part_change_triggers_remesh(self):
+        obj = self.make_mesh(size=10)
+        self.box.Length = 20
+        self.doc.recompute()
+        self.assertTrue(obj.isValid())
+        self.assertEqual(obj.HexCount, 2 * 2 * 3)
+
+    def test_error_keeps_previous_mesh(self):
+        obj = self.make_mesh(size=10)
+        before = obj.FemMesh.VolumeCount
+        cyl = self.doc.addObject("Part::Cylinder", "Cylinder")
+        obj.Part = cyl
+        self.doc.recompute()
+        self.assertFalse(obj.isValid())
+        self.assertEqual(obj.Status, "error")
+        self.assertIn("topological hexahedra", obj.Message)
+        self.assertIn("topological hexahedra", obj.getStatusString())
+        self.assertEqual(obj.FemMesh.VolumeCount, before)
+        self.assertEqual(obj.HexCount, before)
+        obj.Part = self.box  # recovers
+        self.doc.recompute()
+        self.assertTrue(obj.isValid())
+        self.assertEqual(obj.Status, "ok")
+
+    def check_rejected(self, source, pattern):
+        before = snapshot(self.doc)
+        with self.assertRaisesRegex(ValueError, pattern):
+            VoroHexObjects.makeHexMesh(self.doc, source)
+        self.assertEqual(snapshot(self.doc), before)
+
+    def test_wire_rejected(self):
+        wire = self.doc.addObject("Part::Feature", "Wire")
+        wire.Shape = Part.makePolygon([FreeCAD.Vector(0, 0, 0), FreeCAD.Vector(5, 0, 0),
+                                       FreeCAD.Vector(5, 5, 0)])
+        self.doc.recompute()
+        self.check_rejected(wire, "no solid")
+
+    def test_open_shell_rejected(self):
+        shell = self.doc.addObject("Part::Feature", "Shell")
+        shell.Shape = Part.makeShell(self.box.Shape.Faces[:5])
+        self.doc.recompute()
+        self.check_rejected(shell, "open shell")
+
+    def test_meshes_rejected(self):
+        import Mesh
+
+        tri = self.doc.addObject("Mesh::Feature", "Tri")
+        tri.Mesh = Mesh.createBox(1, 1, 1)
+        self.doc.recompute()
+        self.check_rejected(tri, "triangle mesh")
+        fem = self.make_mesh(size=10)
+        self.check_rejected(fem, "FEM mesh")
+        self.check_rejected(None, "No geometry")
+
+    def test_save_and_restore(self):
+        obj = self.make_mesh(size=10)
+        name, hexes = obj.Name, obj.HexCount
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "hex.FCStd")
+            self.doc.saveAs(path)
+            FreeCAD.closeDocument(self.doc.Name)
+            self.doc = FreeCAD.openDocument(path)
+            o2 = self.doc.getObject(name)
+            self.assertEqual(o2.Proxy.Type, "Fem::VoroHexMesh")
+            self.assertEqual(o2.HexCount, hexes)
+            self.assertEqual(o2.FemMesh.VolumeCount, hexes)
+            o2.TargetSize = 5
+            self.doc.recompute()
+            self.assertTrue(o2.isValid(), o2.getStatusString())
+            self.assertEqual(o2.HexCount, 48)
+
+    def test_femmesh_export_inp(self):
+        import Fem
+
+        obj = self.make_mesh(size=5)
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "mesh.inp")
+            Fem.export([obj], path)
+            vols = inp_c3d8_volumes(path)
+            self.assertEqual(len(vols), 48)
+            self.assertTrue(all(v > 0 for v in vols))
+            self.assertAlmostEqual(sum(vols), 6000.0, places=6)
+
+    def test_calculix_analysis_inp(self):
+        import ObjectsFem
+        from femtools import ccxtools
+
+        analysis = ObjectsFem.makeAnalysis(self.doc, "Analysis")
+        solver = ObjectsFem.makeSolverCalculixCcxTools(self.doc, "CalculiXccxTools")
+        solver.AnalysisType = "static"
+        analysis.addObject(solver)
+        material = ObjectsFem.makeMaterialSolid(self.doc, "Steel")
+        mat = material.Material
+        mat.update({"Name": "Steel", "YoungsModulus": "210000 MPa",
+                    "PoissonRatio": "0.30", "Density": "7900 kg/m^3"})
+        material.Material = mat
+        analysis.addObject(material)
+        fixed = ObjectsFem.makeConstraintFixed(self.doc, "Fixed")
+        fixed.References = [(self.box, "Face5")]  # z = 0
+        analysis.addObject(fixed)
+        force = ObjectsFem.makeConstraintForce(self.doc, "Force")
+        force.References = [(self.box, "Face6")]  # z = 30
+        force.Force = 1000.0
+        analysis.addObject(force)
+        mesh = VoroHexObjects.makeHexMesh(self.doc, self.box, size=5)
+        analysis.addObject(mesh)
+        self.doc.recompute()
+        self.assertTrue(mesh.isValid())
+
+        with tempfile.TemporaryDirectory() as d:
+            fea = ccxtools.FemToolsCcx(analysis, solver, test_mode=True)
+            fea.update_objects()
+            fea.setup_working_dir(d)
+            self.assertFalse(fea.check_prerequisites())
+            self.assertFalse(fea.write_inp_file())
+            with open(fea.inp_file_name) as f:
+                text = f.read()
+            self.assertRegex(text, r"(?i)\*element,\s*type=C3D8")
+            self.assertRegex(text, r"(?i)\*boundary")
+            self.assertRegex(text, r"(?i)\*cload")
+            vols = inp_c3d8_volumes(fea.inp_file_name)
+            self.assertEqual(len(vols), 48)
+            self.assertTrue(all(v > 0 for v in vols), min(vols))
+            self.assertTrue(math.isclose(sum(vols), 6000.0, rel_tol=1e-9))
+
+
+if __name__ == "__main__":
+    unittest.main()
