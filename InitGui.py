@@ -28,7 +28,13 @@ class VoroHexWorkbench(Workbench):  # noqa: F821 (Workbench is FreeCAD's builtin
         self.appendMenu("&VoroHex", commands.COMMANDS)
 
     def Activated(self):
-        return
+        # One command: show its name beside the icon so the toolbar explains itself.
+        import FreeCADGui
+        from PySide import QtCore, QtGui
+
+        for bar in FreeCADGui.getMainWindow().findChildren(QtGui.QToolBar):
+            if bar.objectName() == "VoroHex" or bar.windowTitle() == "VoroHex":
+                bar.setToolButtonStyle(QtCore.Qt.ToolButtonTextBesideIcon)
 
     def Deactivated(self):
         return

@@ -60,9 +60,9 @@ OPTIONS = (
             auto_zero=True),
     _Option("max_hexes", "MaxHexes", "App::PropertyInteger", "Mesh",
             "Refuse to mesh when more hexahedra than this are predicted", "count"),
-    _Option("volume_rel_tol", "VolumeTolerance", "App::PropertyFloat", "Check",
+    _Option("volume_rel_tol", "VolumeTolerance", "App::PropertyPrecision", "Check",
             "Allowed relative volume error of the mesh against the solid", "tolerance"),
-    _Option("distance_rel_tol", "DistanceTolerance", "App::PropertyFloat", "Check",
+    _Option("distance_rel_tol", "DistanceTolerance", "App::PropertyPrecision", "Check",
             "Allowed distance of boundary nodes from the solid, relative to its diagonal",
             "tolerance"),
 )

@@ -98,7 +98,10 @@ def main():
     view.viewIsometric()
     view.fitAll()
     Gui.Selection.clearSelection()
-    Gui.Selection.addSelection(mesh)  # highlights the mesh object in the tree
+    # Select the mesh so the tree and property view show it, without the 3-D selection
+    # colour hiding the mesh's own look.
+    mesh.ViewObject.Selectable = False
+    Gui.Selection.addSelection(mesh)
     pump(1.0)
     os.makedirs(os.path.dirname(SHOT) or ".", exist_ok=True)
     pixmap = QtGui.QGuiApplication.primaryScreen().grabWindow(0)
