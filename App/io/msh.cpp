@@ -249,7 +249,8 @@ class MshReader {
                     " (truncated or inconsistent counts)");
     }
     if (!have_nodes_) return fail("no $Nodes section");
-    if (result_->mesh.num_hexes() == 0) return fail("the file contains no hexahedron (type 5)");
+    if (hexes_.empty()) return fail("the file contains no hexahedron (type 5)");
+    store_hexes();
     report_skipped();
     return true;
   }
@@ -297,7 +298,8 @@ class MshReader {
     return true;
   }
 
-  bool add_element(int type, std::int64_t entity, const std::vector<std::uint64_t>& nodes) {
+  bool add_element(std::uint64_t tag, int type, std::int64_t entity,
+                   const std::vector<std::uint64_t>& nodes) {
     if (type != kGmshHexahedron) {
       ++skipped_[element_kind(type).dim < 3 ? 0 : 1];
       return true;
@@ -308,8 +310,17 @@ class MshReader {
     core::HexNodes h;
     for (int k = 0; k < 8; ++k)
       if (!node_of(nodes[k], &h[k])) return false;
-    result_->mesh.add_hex(h, static_cast<std::int32_t>(entity - 1));
+    hexes_.push_back({tag, h, static_cast<std::int32_t>(entity - 1)});
     return true;
+  }
+
+  // Hexahedra in element-tag order (files group them by entity), so that a written mesh
+  // reads back in its own order.
+  void store_hexes() {
+    std::stable_sort(hexes_.begin(), hexes_.end(),
+                     [](const Hex& a, const Hex& b) { return a.tag < b.tag; });
+    result_->mesh.reserve(0, hexes_.size());
+    for (const Hex& h : hexes_) result_->mesh.add_hex(h.nodes, h.sub_volume);
   }
 
   void report_skipped() {
@@ -331,8 +342,10 @@ class MshReader {
     if (!plausible(count, binary_ ? 32 : 8, "nodes") ||
         !plausible(blocks, binary_ ? 20 : 8, "node blocks"))
       return false;
-    result_->mesh.reserve(static_cast<std::size_t>(count), 0);
-    node_index_.reserve(static_cast<std::size_t>(count));
+    // Reserve only what the remaining bytes can hold: counts may lie.
+    const std::size_t reserve = std::min<std::size_t>(count, in_.remaining() / 32);
+    result_->mesh.reserve(reserve, 0);
+    node_index_.reserve(reserve);
     std::uint64_t total = 0;
     std::vector<std::uint64_t> tags;
     for (std::uint64_t b = 0; b < blocks; ++b) {
@@ -369,7 +382,7 @@ class MshReader {
     if (!plausible(count, binary_ ? 16 : 4, "elements") ||
         !plausible(blocks, binary_ ? 20 : 8, "element blocks"))
       return false;
-    result_->mesh.reserve(0, static_cast<std::size_t>(count));
+    hexes_.reserve(std::min<std::size_t>(count, in_.remaining() / 32));
     std::uint64_t total = 0;
     std::vector<std::uint64_t> nodes;
     for (std::uint64_t b = 0; b < blocks; ++b) {
@@ -394,7 +407,7 @@ class MshReader {
         if (!size_value(&tag)) return fail("truncated element data");
         for (auto& v : nodes)
           if (!size_value(&v)) return fail("truncated element data");
-        if (!add_element(type, entity, nodes)) return false;
+        if (!add_element(tag, type, entity, nodes)) return false;
       }
     }
     if (total != count) return fail("element blocks hold fewer elements than announced");
@@ -430,8 +443,10 @@ class MshReader {
     std::uint64_t count = 0;
     if (!in_.number(&count)) return fail("invalid $Nodes header");
     if (!plausible(count, 8, "nodes")) return false;
-    result_->mesh.reserve(static_cast<std::size_t>(count), 0);
-    node_index_.reserve(static_cast<std::size_t>(count));
+    // Reserve only what the remaining bytes can hold: counts may lie.
+    const std::size_t reserve = std::min<std::size_t>(count, in_.remaining() / 32);
+    result_->mesh.reserve(reserve, 0);
+    node_index_.reserve(reserve);
     for (std::uint64_t i = 0; i < count; ++i) {
       std::uint64_t tag = 0;
       double x[3];
@@ -468,7 +483,7 @@ class MshReader {
       }
       for (auto& v : nodes)
         if (!in_.number(&v)) return fail("truncated or invalid hexahedron line");
-      if (!add_element(type, entity, nodes)) return false;
+      if (!add_element(tag, type, entity, nodes)) return false;
     }
     return true;
   }
@@ -481,6 +496,12 @@ class MshReader {
   bool have_nodes_ = false;
   std::unordered_map<std::uint64_t, std::int32_t> node_index_;
   std::uint64_t skipped_[2] = {0, 0};  // lower-dimensional, other volume elements
+  struct Hex {
+    std::uint64_t tag;
+    core::HexNodes nodes;
+    std::int32_t sub_volume;
+  };
+  std::vector<Hex> hexes_;
 };
 
 }  // namespace
