@@ -32,7 +32,7 @@ class HistogramWidget(QtGui.QWidget):
     def paintEvent(self, event):
         p = QtGui.QPainter(self)
         p.setRenderHint(QtGui.QPainter.Antialiasing, False)
-        rect = self.rect().adjusted(28, 6, -6, -20)
+        rect = self.rect().adjusted(28, 6, -14, -20)
         p.fillRect(self.rect(), self.palette().base())
         p.setPen(self.palette().text().color())
         p.drawRect(rect)

@@ -53,6 +53,11 @@ class TaskPanel:
         self.stop_requested = False
         self.load()
         self.show_result()
+        if self.obj.Status:
+            self.form.progress.setValue(100 if self.obj.Status == "ok" else 0)
+            self.form.progress.setFormat("last run: " + self.obj.Status)
+        else:
+            self.form.progress.setFormat("not run yet")
 
     # Widgets <-> properties ------------------------------------------------------------
     def _widget(self, option):

@@ -59,6 +59,12 @@ def main():
     toolbars = [t.windowTitle() for t in mw.findChildren(QtGui.QToolBar) if t.isVisible()]
     check("VoroHex" in toolbars, "VoroHex toolbar visible")
 
+    combo = [d for d in mw.findChildren(QtGui.QDockWidget) if d.isVisible()
+             and d.objectName() in ("Combo View", "ComboView")]
+    # Before the 3-D view exists: under Xvfb a GL view resized later is not re-rendered.
+    if combo:  # wide enough for the task panel and the property names
+        mw.resizeDocks(combo, [400], QtCore.Qt.Horizontal)
+    pump(1.0)
     doc = FreeCAD.newDocument("HexMeshDemo")
     box = doc.addObject("Part::Box", "Box")
     box.Length, box.Width, box.Height = 40, 20, 10
@@ -94,9 +100,16 @@ def main():
     check(VoroHex.check(mesh.FemMesh, box.Shape).valid, "VoroHex.check valid")
     check(not box.ViewObject.Visibility, "solid hidden, mesh shown")
 
+    pump(1.0)  # let the 3-D view take its final size before fitting
     view = Gui.ActiveDocument.ActiveView
     view.viewIsometric()
     view.fitAll()
+    pump(0.5)
+    view.fitAll()
+    cam = view.getCameraNode()
+    if hasattr(cam, "height"):  # orthographic: fitAll fits the height; leave room at the sides
+        cam.height.setValue(cam.height.getValue() * 1.3)
+    view.redraw()
     Gui.Selection.clearSelection()
     # Select the mesh so the tree and property view show it, without the 3-D selection
     # colour hiding the mesh's own look.
@@ -106,6 +119,24 @@ def main():
     os.makedirs(os.path.dirname(SHOT) or ".", exist_ok=True)
     pixmap = QtGui.QGuiApplication.primaryScreen().grabWindow(0)
     check(pixmap.save(SHOT), "screenshot saved to " + SHOT)
+
+    # Re-open the task panel: it shows the quality summary and the histogram.
+    mesh.ViewObject.Selectable = True
+    Gui.Selection.clearSelection()
+    Gui.ActiveDocument.setEdit(mesh.Name)
+    pump(1.0)
+    from VoroHexGui.histogram import HistogramWidget
+
+    hist = mw.findChild(HistogramWidget)
+    check(hist is not None and sum(hist.counts) == mesh.HexCount, "histogram shows all hexes")
+    status = mw.findChild(QtGui.QLabel, "lbl_status")
+    check(status is not None and "512 hexahedra" in status.text(), "quality summary shown")
+    panel_shot = os.path.splitext(SHOT)[0] + "_panel.png"
+    check(QtGui.QGuiApplication.primaryScreen().grabWindow(0).save(panel_shot),
+          "panel screenshot saved to " + panel_shot)
+    Gui.Control.closeDialog()
+    pump(0.3)
+    check(not Gui.Control.activeDialog(), "task panel closed again")
 
 
 def run():
