@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <string>
 
@@ -151,6 +152,21 @@ TEST(ReadSolidFromBrepString, GarbageAndEmptyStringsFailCleanly) {
   const std::string s = make_box(1, 1, 1).to_brep_string();
   const ReadResult r = read_solid_from_brep_string(s.substr(0, s.size() / 2));
   EXPECT_FALSE(r.ok());
+}
+
+// Every HexMe benchmark model reads as one valid solid with positive volume.
+TEST(ReadSolid, HexMeModelsReadAsSolids) {
+  int models = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(VOROHEX_HEXME_DIR)) {
+    if (entry.path().extension() != ".step") continue;
+    ++models;
+    const ReadResult r = read_solid(entry.path().string());
+    ASSERT_TRUE(r.ok()) << entry.path() << ": "
+                        << (r.diagnostics.empty() ? "" : format(r.diagnostics[0]));
+    EXPECT_GT(r.solid->volume(), 0) << entry.path();
+    EXPECT_GE(r.solid->num_faces(), 1) << entry.path();
+  }
+  EXPECT_EQ(models, 57);
 }
 
 }  // namespace

@@ -228,5 +228,29 @@ TEST(Solid, BoundaryDistanceIsFastOnPlanes) {
   RecordProperty("microseconds_per_query", std::to_string(seconds / n * 1e6));
 }
 
+TEST(Solid, CurvedFaceDistanceIsExactAndReasonablyFast) {
+  const double r = 1, h = 4;
+  const Solid cyl = make_cylinder(r, h);
+  FaceId lateral;
+  for (FaceId f : cyl.faces())
+    if (!cyl.face_is_planar(f)) lateral = f;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-3, 3), z(-2, 6);
+  const int n = 20000;
+  double worst = 0;
+  const auto t0 = std::chrono::steady_clock::now();
+  for (int i = 0; i < n; ++i) {
+    const Vec3 p(u(rng), u(rng), z(rng));
+    const double radial = std::hypot(p.x(), p.y()) - r;
+    const double axial = std::max({0.0, -p.z(), p.z() - h});
+    worst = std::max(worst, std::abs(cyl.distance_to_face(lateral, p) - std::hypot(radial, axial)));
+  }
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  EXPECT_LT(worst, 1e-9);
+  EXPECT_LT(seconds, 4.0) << n << " queries";
+  std::printf("cylinder face distance: %.2f us per query\n", seconds / n * 1e6);
+}
+
 }  // namespace
 }  // namespace vorohex::occ
