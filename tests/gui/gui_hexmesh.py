@@ -41,9 +41,9 @@ def check(cond, what):
     log("ok: " + what)
 
 
-def task_ok_button(mw):
+def task_ok_button(mw, which=QtGui.QDialogButtonBox.Ok):
     for box in mw.findChildren(QtGui.QDialogButtonBox):
-        b = box.button(QtGui.QDialogButtonBox.Ok)
+        b = box.button(which)
         if b is not None and b.isVisible():
             return b
     return None
@@ -134,9 +134,26 @@ def main():
     panel_shot = os.path.splitext(SHOT)[0] + "_panel.png"
     check(QtGui.QGuiApplication.primaryScreen().grabWindow(0).save(panel_shot),
           "panel screenshot saved to " + panel_shot)
-    Gui.Control.closeDialog()
+    task_ok_button(mw, QtGui.QDialogButtonBox.Cancel).click()
     pump(0.3)
     check(not Gui.Control.activeDialog(), "task panel closed again")
+
+    # Inside an active FEM analysis the new mesh object joins it (as FEM's mesh commands do).
+    import FemGui
+    import ObjectsFem
+
+    analysis = ObjectsFem.makeAnalysis(doc, "Analysis")
+    FemGui.setActiveAnalysis(analysis)
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(box)
+    pump()
+    Gui.runCommand("VoroHex_HexMesh")
+    pump(0.5)
+    new = [o for o in doc.Objects if o.isDerivedFrom("Fem::FemMeshObjectPython") and o != mesh]
+    check(len(new) == 1 and new[0] in analysis.Group, "mesh object added to the analysis")
+    task_ok_button(mw, QtGui.QDialogButtonBox.Cancel).click()
+    pump(0.3)
+    check(not Gui.Control.activeDialog(), "task panel cancelled")
 
 
 def run():
