@@ -16,11 +16,11 @@ packages=(
   g++ cmake ninja-build pkg-config
   # geometry kernel (the same OCCT 7.6 that FreeCAD loads), linear algebra, JSON, zlib
   libocct-foundation-dev libocct-modeling-data-dev libocct-modeling-algorithms-dev
-  libocct-data-exchange-dev libeigen3-dev nlohmann-json3-dev zlib1g-dev
+  libocct-data-exchange-dev libtbb-dev libeigen3-dev nlohmann-json3-dev zlib1g-dev
   # Python module for FreeCAD's interpreter, and tests
   pybind11-dev python3-dev python3-numpy libgtest-dev
   # FreeCAD (App and GUI) and a headless X server for the GUI tests
-  freecad freecad-python3 xvfb xauth
+  freecad-python3 xvfb xauth
   # the baseline the benchmarks compare against (never used for meshing)
   gmsh python3-gmsh
 )

@@ -42,8 +42,9 @@ MeshResult generate_mesh(const occ::Solid& solid, const MeshOptions& options,
   if (!map.ok) {
     result.diagnostics.push_back(core::make_error(
         "not_supported_yet",
-        "Only topological hexahedra (six faces of four edges) can be meshed in this version: " +
-            map.reason));
+        "This solid is not supported yet: this version meshes only topological hexahedra (six "
+        "faces of four edges each); " +
+            map.reason + "."));
     return result;
   }
 
@@ -69,6 +70,11 @@ MeshResult generate_mesh(const occ::Solid& solid, const MeshOptions& options,
   result.stats.intervals = mapped.intervals;
   result.stats.sub_volumes = 1;
   result.stats.scheme = "map";
+
+  if (progress.cancelled()) {
+    result.diagnostics.push_back(core::make_error("cancelled", "Meshing was cancelled."));
+    return result;
+  }
 
   // Never hand over an unchecked mesh: the validity check runs on every result.
   progress.report("check", 0.0);
