@@ -77,13 +77,17 @@ double trilinear_volume(const std::array<Vec3, 8>& c) {
   return vol;
 }
 
+std::string count_of(int n, const std::string& one, const std::string& many) {
+  return std::to_string(n) + " " + (n == 1 ? one : many);
+}
+
 std::string find_block(const Solid& s, Block& block, std::vector<std::string>& entities) {
   auto fail = [&](std::string entity, std::string why) {
     if (!entity.empty()) entities.push_back(std::move(entity));
     return why;
   };
   if (s.num_faces() != 6)
-    return fail("", "the solid has " + std::to_string(s.num_faces()) + " faces, not 6");
+    return fail("", "the solid has " + count_of(s.num_faces(), "face", "faces") + ", not 6");
   for (EdgeId e : s.edges()) {
     if (s.edge_is_degenerated(e))
       return fail(core::entity_name(e), core::entity_name(e) + " is degenerated");
@@ -103,9 +107,10 @@ std::string find_block(const Solid& s, Block& block, std::vector<std::string>& e
     quads.push_back(q);
   }
   if (s.num_edges() != 12)
-    return fail("", "the solid has " + std::to_string(s.num_edges()) + " edges, not 12");
+    return fail("", "the solid has " + count_of(s.num_edges(), "edge", "edges") + ", not 12");
   if (s.num_vertices() != 8)
-    return fail("", "the solid has " + std::to_string(s.num_vertices()) + " vertices, not 8");
+    return fail("",
+                "the solid has " + count_of(s.num_vertices(), "vertex", "vertices") + ", not 8");
 
   // Vertex adjacency (index 1..8).
   std::vector<std::vector<VertexId>> nbrs(9);
