@@ -202,7 +202,9 @@ class Builder {
   void add_pair(LabelSet labels, const Vec3& c) {
     labels.sort();
     const auto key = std::make_pair(labels.v[0], labels.v[1]);
-    if (!pairs_.count(key)) pairs_[key] = c;
+    const double depth = field_.boundary_distance(c);
+    auto it = pairs_.find(key);
+    if (it == pairs_.end() || it->second.second < depth) pairs_[key] = {c, depth};
   }
 
   // Extended distance to an entity (the supporting plane / line / point of its nearest
@@ -226,8 +228,6 @@ class Builder {
     Vec3 w;
     if (pr.type == Prim::polygon) {
       const Vec3 n = lin.polygons[pr.source].normal;
-      const double h = (x - near).dot(n);
-      *grad = h >= 0 ? n : Vec3(-n);
       // Distance to the plane through the nearest point (exact where the projection is on
       // the polygon, a smooth continuation elsewhere).
       const Vec3 o = lin.points[lin.polygons[pr.source].loops[0][0]];
@@ -309,7 +309,7 @@ class Builder {
   int level_ = 1;
   std::vector<int> arena_;
   std::vector<FineCell> fine_;
-  std::map<std::pair<int, int>, Vec3> pairs_;
+  std::map<std::pair<int, int>, std::pair<Vec3, double>> pairs_;  // evidence, its depth
 };
 
 bool subset(const std::vector<int>& a, const std::vector<int>& b) {  // a in b, both sorted
@@ -386,6 +386,9 @@ void Builder::extract() {
       for (int s : vcomps[v]) el.polyline.push_back(centre(fine_[s]));
     }
     el.radius = el.verified ? t : field_.boundary_distance(el.point);
+    // Regions also meet on the boundary (at a concave edge's end, say): those points are
+    // ends of Voronoi edges, not Voronoi vertices.
+    if (el.radius <= std::max(delta_, el.verified ? 0.0 : 1.5 * h_)) continue;
     if (!el.verified) {
       std::vector<std::string> names;
       for (const EntityRef& g : el.governors) names.push_back(g.name());
@@ -460,16 +463,26 @@ void Builder::extract() {
       Vec3 x = centre(fine_[s]);
       double t = field_.boundary_distance(x);
       const double res = solve(triple, x, t, 8);
-      if (res <= delta_ && (x - centre(fine_[s])).norm() <= 2 * h_ && verify(triple, x, t))
+      if (res <= delta_ && t > delta_ && (x - centre(fine_[s])).norm() <= 2 * h_ &&
+          verify(triple, x, t))
         pts.push_back(x);
       else
         ++failed;
+    }
+    // Cells along a boundary edge see the regions meeting there; no interior point of such
+    // a piece is equidistant: it is not a Voronoi edge.
+    if (pts.empty()) {
+      double deepest = 0;
+      for (int s : cells) deepest = std::max(deepest, field_.boundary_distance(centre(fine_[s])));
+      if (deepest <= 2 * h_) continue;
     }
     el.verified = failed == 0 && !pts.empty();
     if (pts.empty())
       for (int s : cells) pts.push_back(centre(fine_[s]));
     // Order: from an end vertex (or the point farthest from the middle), nearest next.
     Vec3 start;
+    vends.erase(std::remove_if(vends.begin(), vends.end(), [&](int v) { return vertex_element[v] < 0; }),
+                vends.end());
     if (!vends.empty()) {
       start = graph.elements[vertex_element[vends[0]]].point;
     } else {
@@ -494,20 +507,22 @@ void Builder::extract() {
         }
       used[best] = 1;
       cur = pts[best];
-      if ((cur - chain.back()).norm() >= 0.5 * h_ || chain.empty()) chain.push_back(cur);
+      if (chain.empty() || (cur - chain.back()).norm() >= 0.5 * h_) chain.push_back(cur);
     }
     if (vends.size() >= 2) chain.push_back(graph.elements[vertex_element[vends[1]]].point);
     el.polyline = std::move(chain);
     el.point = el.polyline[el.polyline.size() / 2];
     el.radius = field_.boundary_distance(el.point);
     const int id = int(graph.elements.size());
-    for (int v : vends) arcs.emplace_back(id, vertex_element[v]);
+    for (int v : vends)
+      if (vertex_element[v] >= 0) arcs.emplace_back(id, vertex_element[v]);
     graph.elements.push_back(std::move(el));
   }
 
   // Faces: pairs of regions seen side by side.
   std::map<std::pair<int, int>, int> face_of;
-  for (const auto& [pair, c] : pairs_) {
+  for (const auto& [pair, evidence] : pairs_) {
+    const Vec3 c = evidence.first;
     VoronoiElement el;
     el.kind = ElementKind::face;
     const std::vector<int> govs{pair.first, pair.second};
@@ -515,10 +530,12 @@ void Builder::extract() {
     Vec3 x = c;
     double t = field_.boundary_distance(x);
     el.point = c;
-    if (solve(govs, x, t, 8) <= delta_ && verify(govs, x, t)) {
+    if (solve(govs, x, t, 8) <= delta_ && t > delta_ && verify(govs, x, t)) {
       el.point = x;
       el.verified = true;
     }
+    // Seen only at the boundary (two faces meeting at a concave edge): not a Voronoi face.
+    if (!el.verified && evidence.second <= 3 * h_) continue;
     el.radius = field_.boundary_distance(el.point);
     const EntityRef a = el.governors[0], b = el.governors[1];
     el.fs = a.kind == model::EntityKind::face && b.kind == model::EntityKind::face &&
