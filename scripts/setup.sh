@@ -17,6 +17,8 @@ packages=(
   # geometry kernel (the same OCCT 7.6 that FreeCAD loads), linear algebra, JSON, zlib
   libocct-foundation-dev libocct-modeling-data-dev libocct-modeling-algorithms-dev
   libocct-data-exchange-dev libtbb-dev libeigen3-dev nlohmann-json3-dev zlib1g-dev
+  # constrained Delaunay triangulation for the all-quad face mesher
+  libcgal-dev libgmp-dev libmpfr-dev
   # Python module for FreeCAD's interpreter, and tests
   pybind11-dev python3-dev python3-numpy libgtest-dev
   # FreeCAD (App and GUI) and a headless X server for the GUI tests
