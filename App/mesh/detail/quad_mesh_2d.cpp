@@ -1,0 +1,389 @@
+#include "mesh/detail/quad_mesh_2d.h"
+
+#include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Constrained_triangulation_face_base_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_face_base_with_info_2.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <map>
+#include <utility>
+
+namespace vorohex::mesh::detail {
+
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Vb = CGAL::Triangulation_vertex_base_with_info_2<int, K>;
+using Fbi = CGAL::Triangulation_face_base_with_info_2<int, K>;
+using Fb = CGAL::Constrained_triangulation_face_base_2<K, Fbi>;
+using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
+using Cdt = CGAL::Constrained_Delaunay_triangulation_2<K, Tds, CGAL::Exact_predicates_tag>;
+using Point = K::Point_2;
+
+double cross(const Vec2& a, const Vec2& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
+
+double corner(const Vec2& p, const Vec2& next, const Vec2& prev) {
+  const Vec2 a = next - p, b = prev - p;
+  const double la = a.norm(), lb = b.norm();
+  if (la <= 0 || lb <= 0) return 0;
+  return cross(a, b) / (la * lb);
+}
+
+// Face info = nesting level: 0 outside, 1 in the domain, 2 in a hole, ... (a constrained
+// edge is crossed once per level); odd levels are the domain.
+void mark_domains(Cdt& cdt) {
+  for (auto f = cdt.all_faces_begin(); f != cdt.all_faces_end(); ++f) f->info() = -1;
+  std::deque<std::pair<Cdt::Face_handle, int>> seeds{{cdt.infinite_face(), 0}};
+  while (!seeds.empty()) {
+    auto [start, level] = seeds.front();
+    seeds.pop_front();
+    if (start->info() != -1) continue;
+    std::deque<Cdt::Face_handle> queue{start};
+    start->info() = level;
+    while (!queue.empty()) {
+      Cdt::Face_handle f = queue.front();
+      queue.pop_front();
+      for (int i = 0; i < 3; ++i) {
+        Cdt::Face_handle n = f->neighbor(i);
+        if (n->info() != -1) continue;
+        if (cdt.is_constrained({f, i})) {
+          seeds.emplace_back(n, level + 1);
+        } else {
+          n->info() = level;
+          queue.push_back(n);
+        }
+      }
+    }
+  }
+}
+
+double segment_distance(const Vec2& a, const Vec2& b, const Vec2& p) {
+  const Vec2 ab = b - a;
+  const double l2 = ab.squaredNorm();
+  const double t = l2 > 0 ? std::clamp((p - a).dot(ab) / l2, 0.0, 1.0) : 0.0;
+  return (a + t * ab - p).norm();
+}
+
+// Buckets of boundary segments for "is p within r of the boundary" (r <= cell size).
+class SegmentGrid {
+ public:
+  SegmentGrid(const std::vector<std::pair<Vec2, Vec2>>& segs, double cell) : segs_(segs), h_(cell) {
+    lo_ = Vec2(1e300, 1e300);
+    Vec2 hi(-1e300, -1e300);
+    for (const auto& [a, b] : segs)
+      lo_ = lo_.cwiseMin(a).cwiseMin(b), hi = hi.cwiseMax(a).cwiseMax(b);
+    nx_ = std::max(1, int((hi.x() - lo_.x()) / h_) + 1);
+    ny_ = std::max(1, int((hi.y() - lo_.y()) / h_) + 1);
+    cells_.resize(std::size_t(nx_) * ny_);
+    for (std::size_t s = 0; s < segs.size(); ++s) {
+      const auto [a, b] = segs[s];
+      const auto [i0, j0] = cell_of(a.cwiseMin(b));
+      const auto [i1, j1] = cell_of(a.cwiseMax(b));
+      for (int j = j0; j <= j1; ++j)
+        for (int i = i0; i <= i1; ++i) cells_[std::size_t(j) * nx_ + i].push_back(int(s));
+    }
+  }
+  bool near(const Vec2& p, double r) const {
+    const auto [ci, cj] = cell_of(p);
+    for (int j = std::max(0, cj - 1); j <= std::min(ny_ - 1, cj + 1); ++j)
+      for (int i = std::max(0, ci - 1); i <= std::min(nx_ - 1, ci + 1); ++i)
+        for (int s : cells_[std::size_t(j) * nx_ + i])
+          if (segment_distance(segs_[s].first, segs_[s].second, p) < r) return true;
+    return false;
+  }
+
+ private:
+  std::pair<int, int> cell_of(const Vec2& p) const {
+    const int i = std::clamp(int(std::floor((p.x() - lo_.x()) / h_)), 0, nx_ - 1);
+    const int j = std::clamp(int(std::floor((p.y() - lo_.y()) / h_)), 0, ny_ - 1);
+    return {i, j};
+  }
+  const std::vector<std::pair<Vec2, Vec2>>& segs_;
+  double h_;
+  Vec2 lo_;
+  int nx_ = 1, ny_ = 1;
+  std::vector<std::vector<int>> cells_;
+};
+
+// Quality-guarded smoothing of the nodes from `first_free` on.
+class Smoother {
+ public:
+  Smoother(std::vector<Vec2>& p, const std::vector<std::array<int, 4>>& quads, int first_free)
+      : p_(p), quads_(quads), first_(first_free) {
+    const int n = int(p.size());
+    std::vector<std::vector<int>> vq(n), vn(n);
+    for (int q = 0; q < int(quads.size()); ++q)
+      for (int c = 0; c < 4; ++c) {
+        const int v = quads[q][c];
+        vq[v].push_back(q);
+        vn[v].push_back(quads[q][(c + 1) % 4]);
+        vn[v].push_back(quads[q][(c + 3) % 4]);
+      }
+    for (auto& l : vn)
+      std::sort(l.begin(), l.end()), l.erase(std::unique(l.begin(), l.end()), l.end());
+    incident_ = std::move(vq);
+    nbrs_ = std::move(vn);
+  }
+
+  void run(int passes) {
+    const int n = int(p_.size());
+    for (int pass = 0; pass < passes; ++pass) {
+      for (int v = first_; v < n; ++v) laplace(v);
+    }
+    for (int pass = 0; pass < passes; ++pass) {
+      bool any = false;
+      for (int v = first_; v < n; ++v) any |= optimise(v);
+      if (!any) break;
+    }
+  }
+
+ private:
+  struct Score {
+    double min = 1, mean = 0;
+  };
+  Score score(int v) const {
+    Score s;
+    for (int q : incident_[v]) {
+      const auto& e = quads_[q];
+      const double x = quad_quality(p_[e[0]], p_[e[1]], p_[e[2]], p_[e[3]]);
+      s.min = std::min(s.min, x);
+      s.mean += x;
+    }
+    if (!incident_[v].empty()) s.mean /= incident_[v].size();
+    return s;
+  }
+  // Length-weighted umbrella: long edges pull harder, which evens out edge lengths.
+  void laplace(int v) {
+    if (nbrs_[v].empty()) return;
+    Vec2 sum = Vec2::Zero();
+    double w = 0;
+    for (int u : nbrs_[v]) {
+      const double l = (p_[u] - p_[v]).norm();
+      sum += l * p_[u];
+      w += l;
+    }
+    if (w <= 0) return;
+    const Score old = score(v);
+    const Vec2 keep = p_[v];
+    p_[v] = sum / w;
+    const Score now = score(v);
+    const bool better = now.min >= old.min - 1e-12 || (now.min >= 0.5 && now.mean > old.mean);
+    if (!better) p_[v] = keep;
+  }
+  // Pattern search on the worst incident quad's quality (min, then mean).
+  bool optimise(int v) {
+    Score best = score(v);
+    if (best.min >= 0.8 || nbrs_[v].empty()) return false;
+    double step = 0;
+    for (int u : nbrs_[v]) step += (p_[u] - p_[v]).norm();
+    step *= 0.1 / nbrs_[v].size();
+    bool moved = false;
+    for (int level = 0; level < 5; ++level, step *= 0.5) {
+      for (int d = 0; d < 8; ++d) {
+        const double a = d * M_PI / 4;
+        const Vec2 keep = p_[v];
+        p_[v] = keep + step * Vec2(std::cos(a), std::sin(a));
+        const Score now = score(v);
+        if (now.min > best.min + 1e-9 ||
+            (now.min >= best.min - 1e-12 && now.mean > best.mean + 1e-9)) {
+          best = now;
+          moved = true;
+          --level;  // keep the step while it helps
+          break;
+        }
+        p_[v] = keep;
+      }
+    }
+    return moved;
+  }
+
+  std::vector<Vec2>& p_;
+  const std::vector<std::array<int, 4>>& quads_;
+  int first_;
+  std::vector<std::vector<int>> incident_, nbrs_;
+};
+
+}  // namespace
+
+double quad_quality(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
+  return std::min({corner(a, b, d), corner(b, c, a), corner(c, d, b), corner(d, a, c)});
+}
+
+QuadMesh2d quad_mesh_2d(const std::vector<std::vector<Vec2>>& loops, double size,
+                        int smoothing_passes) {
+  QuadMesh2d out;
+  if (loops.empty() || !(size > 0)) {
+    out.error = "no boundary loops or no positive size";
+    return out;
+  }
+  for (std::size_t l = 0; l < loops.size(); ++l) {
+    const std::size_t n = loops[l].size();
+    if (n % 2 != 0) {
+      out.error = "boundary loop " + std::to_string(l) + " has an odd number of nodes (" +
+                  std::to_string(n) + ")";
+      return out;
+    }
+    if (n < 6 && !(n == 4 && loops.size() == 1)) {
+      out.error = "boundary loop " + std::to_string(l) + " has only " + std::to_string(n) +
+                  " nodes (at least 6 are needed, or 4 for a face without holes)";
+      return out;
+    }
+  }
+  for (const auto& loop : loops) out.points.insert(out.points.end(), loop.begin(), loop.end());
+  const int nb = int(out.points.size());
+  if (loops.size() == 1 && nb == 4) {
+    out.quads.push_back({0, 1, 2, 3});
+    if (quad_quality(out.points[0], out.points[1], out.points[2], out.points[3]) <= 0)
+      out.error = "the four boundary nodes do not make a valid quad";
+    return out;
+  }
+
+  // Coarse boundary (every other node) as constraints.
+  Cdt cdt;
+  std::vector<std::pair<Vec2, Vec2>> segs;
+  std::map<std::pair<int, int>, int> midpoint;  // coarse boundary edge -> fine node
+  double cx = 0, sx = 0;                        // dominant direction (angle x 4)
+  int base = 0, inserted = 0;
+  for (const auto& loop : loops) {
+    const int n = int(loop.size());
+    // Coarse nodes at the parity that holds the sharper corners: a corner that became an
+    // edge midpoint would give a quad with a straight angle.
+    double turn[2] = {0, 0};
+    for (int i = 0; i < n; ++i) {
+      const Vec2 a = loop[i] - loop[(i + n - 1) % n], b = loop[(i + 1) % n] - loop[i];
+      turn[i % 2] += std::abs(std::atan2(cross(a, b), a.dot(b)));
+    }
+    const int offset = turn[1] > turn[0] + 1e-9 ? 1 : 0;
+    std::vector<Cdt::Vertex_handle> vh;
+    for (int i = offset; i < n; i += 2) {
+      vh.push_back(cdt.insert(Point(loop[i].x(), loop[i].y())));
+      vh.back()->info() = base + i;
+      ++inserted;
+    }
+    for (int k = 0; k < n / 2; ++k) {
+      const int i = offset + 2 * k, j = (i + 2) % n;
+      cdt.insert_constraint(vh[k], vh[(k + 1) % (n / 2)]);
+      midpoint[{std::min(base + i, base + j), std::max(base + i, base + j)}] = base + (i + 1) % n;
+      segs.emplace_back(loop[i], loop[j]);
+      const Vec2 d = loop[j] - loop[i];
+      const double a = 4 * std::atan2(d.y(), d.x()), w = d.norm();
+      cx += w * std::cos(a), sx += w * std::sin(a);
+    }
+    for (int i = 0; i < n; ++i) segs.emplace_back(loop[i], loop[(i + 1) % n]);
+    base += n;
+  }
+  if (int(cdt.number_of_vertices()) != inserted) {
+    out.error = "boundary nodes coincide or boundary loops intersect";
+    return out;
+  }
+  mark_domains(cdt);
+
+  // Square lattice at twice the size, anchored at the first node, kept off the boundary.
+  const double H = 2 * size;
+  const double theta = std::atan2(sx, cx) / 4;
+  const Vec2 u(std::cos(theta), std::sin(theta)), v(-u.y(), u.x());
+  const Vec2 anchor = loops[0][0];
+  double s0 = 1e300, s1 = -1e300, t0 = 1e300, t1 = -1e300;
+  for (const Vec2& p : out.points) {
+    s0 = std::min(s0, (p - anchor).dot(u)), s1 = std::max(s1, (p - anchor).dot(u));
+    t0 = std::min(t0, (p - anchor).dot(v)), t1 = std::max(t1, (p - anchor).dot(v));
+  }
+  const SegmentGrid grid(segs, H);
+  std::vector<Vec2> lattice;
+  Cdt::Face_handle hint;
+  for (long j = long(std::floor(t0 / H)); j <= long(std::ceil(t1 / H)); ++j)
+    for (long i = long(std::floor(s0 / H)); i <= long(std::ceil(s1 / H)); ++i) {
+      const Vec2 p = anchor + double(i) * H * u + double(j) * H * v;
+      hint = cdt.locate(Point(p.x(), p.y()), hint);
+      if (cdt.is_infinite(hint) || hint->info() % 2 != 1) continue;
+      if (grid.near(p, 0.5 * H)) continue;
+      lattice.push_back(p);
+    }
+  Cdt::Vertex_handle vhint;
+  for (std::size_t i = 0; i < lattice.size(); ++i) {
+    const Point p(lattice[i].x(), lattice[i].y());
+    vhint = vhint == Cdt::Vertex_handle() ? cdt.insert(p) : cdt.insert(p, vhint->face());
+    vhint->info() = nb + int(i);
+  }
+  out.points.insert(out.points.end(), lattice.begin(), lattice.end());
+  if (cdt.number_of_vertices() != std::size_t(inserted) + lattice.size()) {
+    out.error = "the triangulation split the boundary";
+    return out;
+  }
+  mark_domains(cdt);
+
+  // Triangles of the domain, then greedy merging of good triangle pairs into quads.
+  std::vector<Cdt::Face_handle> tris;
+  for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f)
+    if (f->info() % 2 == 1) tris.push_back(f);
+  for (auto f = cdt.all_faces_begin(); f != cdt.all_faces_end(); ++f) f->info() = -1;
+  for (std::size_t t = 0; t < tris.size(); ++t) tris[t]->info() = int(t);
+  struct Pair {
+    double quality;
+    int t1, t2;
+    std::array<int, 4> quad;
+  };
+  std::vector<Pair> pairs;
+  const auto& P = out.points;
+  for (std::size_t t = 0; t < tris.size(); ++t) {
+    const auto f = tris[t];
+    for (int i = 0; i < 3; ++i) {
+      const auto n = f->neighbor(i);
+      if (n->info() <= int(t) || cdt.is_constrained({f, i})) continue;
+      const int p = f->vertex(i)->info(), q = f->vertex(Cdt::ccw(i))->info(),
+                r = f->vertex(Cdt::cw(i))->info(), s = n->vertex(n->index(f))->info();
+      const std::array<int, 4> quad{p, q, s, r};
+      const double x = quad_quality(P[p], P[q], P[s], P[r]);
+      if (x >= 0.5) pairs.push_back({x, int(t), n->info(), quad});
+    }
+  }
+  std::sort(pairs.begin(), pairs.end(),
+            [](const Pair& a, const Pair& b) { return a.quality > b.quality; });
+  std::vector<char> used(tris.size(), 0);
+  std::vector<std::vector<int>> cells;  // counter-clockwise polygons of 3 or 4 nodes
+  for (const Pair& pr : pairs) {
+    if (used[pr.t1] || used[pr.t2]) continue;
+    used[pr.t1] = used[pr.t2] = 1;
+    cells.push_back({pr.quad.begin(), pr.quad.end()});
+  }
+  for (std::size_t t = 0; t < tris.size(); ++t)
+    if (!used[t])
+      cells.push_back(
+          {tris[t]->vertex(0)->info(), tris[t]->vertex(1)->info(), tris[t]->vertex(2)->info()});
+
+  // Split: each cell of k nodes gives k quads around its centre.
+  auto mid = [&](int a, int b) {
+    const std::pair<int, int> key{std::min(a, b), std::max(a, b)};
+    auto it = midpoint.find(key);
+    if (it != midpoint.end()) return it->second;
+    out.points.push_back(0.5 * (out.points[a] + out.points[b]));
+    return midpoint[key] = int(out.points.size()) - 1;
+  };
+  for (const auto& c : cells) {
+    const int k = int(c.size());
+    Vec2 g = Vec2::Zero();
+    for (int a : c) g += out.points[a];
+    out.points.push_back(g / k);
+    const int centre = int(out.points.size()) - 1;
+    for (int i = 0; i < k; ++i) {
+      const int a = c[i], next = c[(i + 1) % k], prev = c[(i + k - 1) % k];
+      out.quads.push_back({a, mid(a, next), centre, mid(prev, a)});
+    }
+  }
+
+  Smoother(out.points, out.quads, nb).run(smoothing_passes);
+  for (const auto& q : out.quads)
+    if (quad_quality(out.points[q[0]], out.points[q[1]], out.points[q[2]], out.points[q[3]]) <= 0) {
+      out.error = "a quad is inverted after smoothing";
+      break;
+    }
+  return out;
+}
+
+}  // namespace vorohex::mesh::detail

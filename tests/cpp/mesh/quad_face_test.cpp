@@ -1,0 +1,218 @@
+#include "mesh/quad_face.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <map>
+
+#include "mesh/detail/quad_mesh_2d.h"
+#include "occ/primitives.h"
+
+namespace vorohex::mesh {
+namespace {
+
+using core::FaceId;
+using core::Vec3;
+using detail::Vec2;
+
+// Nodes of a closed polygon at about `size` apart (an even number per side if `even`).
+std::vector<Vec2> polygon_nodes(const std::vector<Vec2>& corners, double size, bool even = false) {
+  std::vector<Vec2> out;
+  for (std::size_t i = 0; i < corners.size(); ++i) {
+    const Vec2 a = corners[i], b = corners[(i + 1) % corners.size()];
+    int n = std::max(1, int(std::lround((b - a).norm() / size)));
+    if (even) n += n % 2;
+    for (int k = 0; k < n; ++k) out.push_back(a + (b - a) * double(k) / n);
+  }
+  return out;
+}
+
+std::vector<Vec2> circle_nodes(Vec2 c, double r, int n, bool ccw) {
+  std::vector<Vec2> out;
+  for (int k = 0; k < n; ++k) {
+    const double a = 2 * M_PI * k / n * (ccw ? 1 : -1);
+    out.push_back(c + r * Vec2(std::cos(a), std::sin(a)));
+  }
+  return out;
+}
+
+double polygon_area(const std::vector<Vec2>& l) {
+  double a = 0;
+  for (std::size_t i = 0; i < l.size(); ++i) {
+    const Vec2 p = l[i], q = l[(i + 1) % l.size()];
+    a += 0.5 * (p.x() * q.y() - p.y() * q.x());
+  }
+  return a;
+}
+
+// Invariants of a 2-D mesh: boundary kept, quads positive and of the given quality,
+// total area equal to the domain's, every inner edge in two quads, boundary edges in one.
+void check_2d(const std::vector<std::vector<Vec2>>& loops, const detail::QuadMesh2d& m,
+              double min_quality, double* mean_out = nullptr) {
+  ASSERT_TRUE(m.error.empty()) << m.error;
+  std::size_t k = 0;
+  double domain = 0;
+  for (const auto& l : loops) {
+    domain += polygon_area(l);
+    for (const Vec2& p : l) EXPECT_EQ(m.points[k++], p);
+  }
+  const int nb = int(k);
+  double area = 0, lo = 1, sum = 0;
+  std::map<std::pair<int, int>, int> edges;
+  for (const auto& q : m.quads) {
+    const double x =
+        detail::quad_quality(m.points[q[0]], m.points[q[1]], m.points[q[2]], m.points[q[3]]);
+    lo = std::min(lo, x);
+    sum += x;
+    area += polygon_area({m.points[q[0]], m.points[q[1]], m.points[q[2]], m.points[q[3]]});
+    for (int c = 0; c < 4; ++c) ++edges[{q[c], q[(c + 1) % 4]}];
+  }
+  EXPECT_GE(lo, min_quality);
+  EXPECT_NEAR(area, domain, 1e-9 * std::abs(domain));
+  for (const auto& [e, n] : edges) {
+    EXPECT_EQ(n, 1);  // consistently oriented, no duplicates
+    const bool reverse = edges.count({e.second, e.first}) > 0;
+    const bool boundary = e.first < nb && e.second < nb && !reverse;
+    if (!boundary) EXPECT_TRUE(reverse) << "open inner edge " << e.first << "-" << e.second;
+  }
+  if (mean_out) *mean_out = sum / m.quads.size();
+}
+
+TEST(QuadMesh2d, SquareLatticeAlignedGivesPerfectSquares) {
+  const std::vector<std::vector<Vec2>> loops = {
+      polygon_nodes({{0, 0}, {4, 0}, {4, 3}, {0, 3}}, 0.25)};
+  const auto m = detail::quad_mesh_2d(loops, 0.25, 30);
+  double mean = 0;
+  check_2d(loops, m, 0.99, &mean);
+  EXPECT_EQ(m.quads.size(), 16u * 12u);
+}
+
+TEST(QuadMesh2d, LShapeAndRotatedLShape) {
+  const std::vector<Vec2> l = {{0, 0}, {4, 0}, {4, 1}, {1, 1}, {1, 3}, {0, 3}};
+  double mean = 0;
+  const auto m = detail::quad_mesh_2d({polygon_nodes(l, 0.25)}, 0.25, 30);
+  check_2d({polygon_nodes(l, 0.25)}, m, 0.99, &mean);
+  // Rotated by 30 degrees and at a size that does not divide the sides: still good quads.
+  const Eigen::Rotation2Dd rot(M_PI / 6);
+  std::vector<Vec2> r;
+  for (const Vec2& p : l) r.push_back(rot * p);
+  std::vector<Vec2> nodes = polygon_nodes(r, 0.3, true);
+  ASSERT_EQ(nodes.size() % 2, 0u);
+  const auto m2 = detail::quad_mesh_2d({nodes}, 0.3, 30);
+  check_2d({nodes}, m2, 0.3, &mean);
+  EXPECT_GT(mean, 0.8);
+  std::printf("[quad_mesh_2d] rotated L at size 0.3: %zu quads, mean quality %.3f\n",
+              m2.quads.size(), mean);
+}
+
+TEST(QuadMesh2d, PlateWithRoundHole) {
+  const std::vector<std::vector<Vec2>> loops = {
+      polygon_nodes({{0, 0}, {10, 0}, {10, 6}, {0, 6}}, 0.25),
+      circle_nodes({5, 3}, 1.5, 38, false)};
+  const auto m = detail::quad_mesh_2d(loops, 0.25, 30);
+  double mean = 0;
+  // The polygon area differs from the discs': the domain is the polygonal one.
+  check_2d(loops, m, 0.3, &mean);
+  EXPECT_GT(mean, 0.85);
+  std::printf("[quad_mesh_2d] plate with round hole: %zu quads, mean quality %.3f\n",
+              m.quads.size(), mean);
+}
+
+TEST(QuadMesh2d, SmallFacesAndRefusals) {
+  // Four nodes: one quad; six nodes: a coarse triangle split into three quads.
+  const auto q = detail::quad_mesh_2d({{{0, 0}, {1, 0}, {1, 1}, {0, 1}}}, 1, 10);
+  ASSERT_TRUE(q.error.empty());
+  EXPECT_EQ(q.quads.size(), 1u);
+  const std::vector<std::vector<Vec2>> hexagon = {circle_nodes({0, 0}, 1, 6, true)};
+  const auto h = detail::quad_mesh_2d(hexagon, 1, 10);
+  check_2d(hexagon, h, 0.5);
+  EXPECT_EQ(h.quads.size(), 3u);
+  // Odd loops and self-intersecting boundaries are refused with a reason.
+  EXPECT_NE(detail::quad_mesh_2d({circle_nodes({0, 0}, 1, 7, true)}, 0.5, 10).error, "");
+  const std::vector<Vec2> bow = {{0, 0}, {1, 0}, {2, 1},  {2, 0},
+                                 {1, 1}, {0, 1}, {-1, 1}, {-1, 0.5}};
+  EXPECT_NE(detail::quad_mesh_2d({bow}, 0.5, 10).error, "");
+}
+
+TEST(QuadFace, PlanarFaceWithHolesOfAPrism) {
+  const occ::Solid plate =
+      occ::make_prism({{0, 0}, {10, 0}, {10, 6}, {0, 6}}, 1,
+                      {{{2, 2}, {4, 2}, {4, 4}, {2, 4}}, {{6, 2}, {8, 2}, {8, 4}, {6, 4}}});
+  // The bottom face (z = 0): outward normal -z.
+  FaceId bottom;
+  for (FaceId f : plate.faces())
+    if (plate.face_wires(f).size() == 3 && plate.face_normal(f, Vec3(5, 1, 0)).z() < -0.5)
+      bottom = f;
+  ASSERT_TRUE(bottom.valid());
+  std::vector<std::vector<Vec3>> loops;
+  for (const auto& wire : plate.face_wires(bottom)) {
+    std::vector<Vec3> loop;
+    for (const auto& oe : wire) {
+      const int n = int(std::lround(plate.edge_length(oe.edge) / 0.5));
+      auto pts = plate.edge_points_by_length(oe.edge, n);
+      if (!oe.forward) std::reverse(pts.begin(), pts.end());
+      loop.insert(loop.end(), pts.begin(), pts.end() - 1);
+    }
+    loops.push_back(loop);
+  }
+  QuadFaceOptions o;
+  o.size = 0.5;
+  const QuadFaceMesh m = quad_face(plate, bottom, loops, o);
+  ASSERT_TRUE(m.ok) << (m.diagnostics.empty() ? "" : m.diagnostics[0].message);
+  EXPECT_GE(m.min_quality, 0.99);
+  double area = 0;
+  for (const auto& q : m.quads) {
+    const Vec3 n = (m.points[q[1]] - m.points[q[0]]).cross(m.points[q[3]] - m.points[q[0]]) +
+                   (m.points[q[3]] - m.points[q[2]]).cross(m.points[q[1]] - m.points[q[2]]);
+    EXPECT_LT(n.z(), 0);  // counter-clockwise about the outward normal -z
+    area += 0.5 * n.norm();
+  }
+  EXPECT_NEAR(area, 60 - 8, 1e-9);
+  for (const Vec3& p : m.points) EXPECT_NEAR(p.z(), 0, 1e-12);
+}
+
+TEST(QuadFace, CurvedFaceStaysOnTheSurface) {
+  // The outer cylindrical face of a ring sector: four edges, a curved face.
+  const occ::Solid s = occ::make_ring_sector(2, 3, 1.2, 2);
+  FaceId outer;
+  for (FaceId f : s.faces())
+    if (!s.face_is_planar(f) && s.area(f) > 3 * 1.2 * 2 - 1e-6) outer = f;
+  ASSERT_TRUE(outer.valid());
+  std::vector<std::vector<Vec3>> loops;
+  for (const auto& wire : s.face_wires(outer)) {
+    std::vector<Vec3> loop;
+    for (const auto& oe : wire) {
+      const int n = 2 * int(std::lround(s.edge_length(oe.edge) / 0.5));  // even per edge
+      auto pts = s.edge_points_by_length(oe.edge, n);
+      if (!oe.forward) std::reverse(pts.begin(), pts.end());
+      loop.insert(loop.end(), pts.begin(), pts.end() - 1);
+    }
+    loops.push_back(loop);
+  }
+  QuadFaceOptions o;
+  o.size = 0.25;
+  const QuadFaceMesh m = quad_face(s, outer, loops, o);
+  ASSERT_TRUE(m.ok) << (m.diagnostics.empty() ? "" : m.diagnostics[0].message);
+  EXPECT_GE(m.min_quality, 0.3);
+  for (const Vec3& p : m.points) EXPECT_NEAR(std::hypot(p.x(), p.y()), 3, 1e-7);
+  for (const auto& q : m.quads) {
+    const Vec3 c = 0.25 * (m.points[q[0]] + m.points[q[1]] + m.points[q[2]] + m.points[q[3]]);
+    const Vec3 n = (m.points[q[2]] - m.points[q[0]]).cross(m.points[q[3]] - m.points[q[1]]);
+    EXPECT_GT(n.dot(Vec3(c.x(), c.y(), 0)), 0);  // outward, like the face
+  }
+  std::printf("[quad_face] curved face: %zu quads, min %.3f mean %.3f\n", m.quads.size(),
+              m.min_quality, m.mean_quality);
+}
+
+TEST(QuadFace, OptionsValidate) {
+  QuadFaceOptions o;
+  o.size = 0;
+  EXPECT_THROW(o.validate(), std::invalid_argument);
+  o.size = 1;
+  o.smoothing_passes = -1;
+  EXPECT_THROW(o.validate(), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace vorohex::mesh
