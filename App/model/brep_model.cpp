@@ -238,6 +238,12 @@ BRepModel::BRepModel(const occ::Solid& solid, const ModelOptions& options) : opt
       if (n.norm() <= 0) continue;
       poly.normal = n.normalized();
       f.normal = poly.normal;
+      const auto& ft = tess.faces[f.id.value()];
+      std::vector<int> map(ft.nodes.size());
+      for (size_t k = 0; k < ft.nodes.size(); ++k) map[k] = add_point(ft.nodes[k], ref(f.id));
+      for (const auto& t : ft.triangles)
+        if (map[t[0]] != map[t[1]] && map[t[1]] != map[t[2]] && map[t[0]] != map[t[2]])
+          poly.triangles.push_back({map[t[0]], map[t[1]], map[t[2]]});
       lin.polygons.push_back(std::move(poly));
     } else {
       const auto& ft = tess.faces[f.id.value()];

@@ -4,6 +4,7 @@
 // every polygon, segment and point is tagged with the model entity it comes from.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -89,6 +90,9 @@ struct LinearPolygon {
   EntityRef origin;                       // the model face it approximates
   Vec3 normal{0, 0, 0};                   // outward unit normal
   std::vector<std::vector<int>> loops;    // outer first; counter-clockwise seen from outside
+  // A triangulation of the polygon (planar faces only), for queries that prefer small
+  // pieces over one polygon of many sides.
+  std::vector<std::array<int, 3>> triangles;
 };
 struct LinearSegment {
   int a = 0, b = 0;

@@ -127,8 +127,9 @@ class Builder {
       const Prim& pr = field_.prim(i);
       const Vec3 d = (pr.lo - c).cwiseMax(c - pr.hi).cwiseMax(0.0);
       if (d.norm() > D + 2 * r) continue;
-      if (field_.zone_distance(i, c) > r) continue;
-      if (field_.distance(i, c) > D + 2 * r) continue;
+      double dist, zone;
+      field_.bounds(i, c, D + 2 * r, &dist, &zone);
+      if (dist > D + 2 * r || zone > r) continue;
       arena_.push_back(i);
       if (nent < 4 && std::find(ents, ents + nent, pr.entity) == ents + nent) ents[nent++] = pr.entity;
       else if (nent == 4 && std::find(ents, ents + 4, pr.entity) == ents + 4) nent = 5;
@@ -215,6 +216,8 @@ class Builder {
     double best = kInf;
     int which = -1;
     for (int i : field_.entity_prims(entity)) {
+      const Prim& pr = field_.prim(i);
+      if ((pr.lo - x).cwiseMax(x - pr.hi).cwiseMax(0.0).norm() >= best) continue;
       const double d = field_.distance(i, x, nullptr);
       if (d < best) {
         best = d;
@@ -227,10 +230,10 @@ class Builder {
     const model::Linearization& lin = model_.linear();
     Vec3 w;
     if (pr.type == Prim::polygon) {
-      const Vec3 n = lin.polygons[pr.source].normal;
-      // Distance to the plane through the nearest point (exact where the projection is on
-      // the polygon, a smooth continuation elsewhere).
-      const Vec3 o = lin.points[lin.polygons[pr.source].loops[0][0]];
+      // Distance to the supporting plane (exact where the projection is on the polygon, a
+      // smooth continuation elsewhere).
+      Vec3 o, n;
+      field_.plane(which, &o, &n);
       const double hp = (x - o).dot(n);
       *grad = hp >= 0 ? n : Vec3(-n);
       return std::abs(hp);
@@ -288,7 +291,7 @@ class Builder {
   bool verify(const std::vector<int>& govs, const Vec3& x, double t) const {
     for (int g : govs)
       if (std::abs(field_.entity_distance(g, x) - t) > delta_) return false;
-    return field_.boundary_distance(x) >= t - delta_ && field_.owner(x) >= 0;
+    return field_.boundary_distance(x) >= t - delta_;
   }
 
   std::vector<EntityRef> refs(const std::vector<int>& govs) const {
@@ -476,7 +479,8 @@ void Builder::extract() {
       for (int s : cells) deepest = std::max(deepest, field_.boundary_distance(centre(fine_[s])));
       if (deepest <= 2 * h_) continue;
     }
-    el.verified = failed == 0 && !pts.empty();
+    // Points that could not be placed (near the solid's boundary, say) are left out.
+    el.verified = !pts.empty();
     if (pts.empty())
       for (int s : cells) pts.push_back(centre(fine_[s]));
     // Order: from an end vertex (or the point farthest from the middle), nearest next.

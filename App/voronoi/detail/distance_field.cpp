@@ -50,23 +50,34 @@ DistanceField::DistanceField(const model::BRepModel& model) : model_(model) {
   };
   for (int k = 0; k < int(lin.polygons.size()); ++k) {
     const model::LinearPolygon& lp = lin.polygons[k];
-    Poly q;
-    q.normal = lp.normal;
-    q.origin = lin.points[lp.loops[0][0]];
-    const Vec3 axis = std::abs(q.normal.x()) < 0.6 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
-    q.u = q.normal.cross(axis).normalized();
-    q.v = q.normal.cross(q.u);
-    std::vector<Vec3> pts;
-    for (const auto& loop : lp.loops) {
-      for (int i : loop) {
-        const Vec3 d = lin.points[i] - q.origin;
-        q.pts.emplace_back(d.dot(q.u), d.dot(q.v));
-        pts.push_back(lin.points[i]);
+    size_t sides = 0;
+    for (const auto& loop : lp.loops) sides += loop.size();
+    // Polygons of many sides (planar faces with round holes) are queried by triangles:
+    // each query is then constant time and the octree keeps only the nearby ones.
+    std::vector<std::vector<std::vector<int>>> pieces;
+    if (sides > 16 && !lp.triangles.empty())
+      for (const auto& t : lp.triangles) pieces.push_back({{t[0], t[1], t[2]}});
+    else
+      pieces.push_back(lp.loops);
+    for (const auto& loops : pieces) {
+      Poly q;
+      q.normal = lp.normal;
+      q.origin = lin.points[loops[0][0]];
+      const Vec3 axis = std::abs(q.normal.x()) < 0.6 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
+      q.u = q.normal.cross(axis).normalized();
+      q.v = q.normal.cross(q.u);
+      std::vector<Vec3> pts;
+      for (const auto& loop : loops) {
+        for (int i : loop) {
+          const Vec3 d = lin.points[i] - q.origin;
+          q.pts.emplace_back(d.dot(q.u), d.dot(q.v));
+          pts.push_back(lin.points[i]);
+        }
+        q.loop_end.push_back(int(q.pts.size()));
       }
-      q.loop_end.push_back(int(q.pts.size()));
+      polys_.push_back(std::move(q));
+      add({Prim::polygon, int(polys_.size()) - 1, model.index(lp.origin)}, true, pts);
     }
-    polys_.push_back(std::move(q));
-    add({Prim::polygon, k, model.index(lp.origin)}, true, pts);
   }
   std::vector<std::vector<Vec3>> away(lin.points.size());
   for (int k = 0; k < int(lin.segments.size()); ++k) {
@@ -225,6 +236,28 @@ double DistanceField::zone_distance(int i, const Vec3& p) const {
   return 0;
 }
 
+void DistanceField::bounds(int i, const Vec3& p, double limit, double* dist, double* zone) const {
+  const Prim& pr = prims_[i];
+  if (pr.type != Prim::polygon) {
+    *dist = distance(i, p);
+    *zone = zone_distance(i, p);
+    return;
+  }
+  const Poly& q = polys_[pr.source];
+  const double h = (p - q.origin).dot(q.normal);
+  if (std::abs(h) > limit) {  // the plane alone is too far
+    *dist = std::abs(h);
+    *zone = 0;
+    return;
+  }
+  ++evaluations_;
+  double hh;
+  bool in;
+  const double d2 = poly_query(q, p, &hh, &in, nullptr);
+  *dist = std::sqrt(h * h + d2);
+  *zone = std::sqrt(d2);
+}
+
 double DistanceField::boundary_distance(const Vec3& p) const {
   if (nodes_.empty()) return kInf;
   double best = kInf;
@@ -276,10 +309,21 @@ int DistanceField::owner(const Vec3& p, const int* candidates, int n, double* di
   int who = -1;
   for (int k = 0; k < n; ++k) {
     const int i = candidates[k];
-    closed = std::min(closed, distance(i, p));
-    const double r = restricted(i, p);
+    const Prim& pr = prims_[i];
+    double r;
+    if (pr.type == Prim::polygon) {  // closed and restricted distance from one query
+      ++evaluations_;
+      double h;
+      bool in;
+      const double d2 = poly_query(polys_[pr.source], p, &h, &in, nullptr);
+      closed = std::min(closed, std::sqrt(h * h + d2));
+      r = in && h <= tie_ ? std::abs(h) : kInf;
+    } else {
+      closed = std::min(closed, distance(i, p));
+      r = restricted(i, p);
+    }
     if (r == kInf) continue;
-    const int e = prims_[i].entity;
+    const int e = pr.entity;
     if (r < best) {
       if (e != who) second = best;
       best = r;

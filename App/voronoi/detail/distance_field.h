@@ -26,7 +26,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 struct Prim {
   enum Type : unsigned char { polygon, segment, corner };
   Type type = polygon;
-  int source = 0;   // index into the model's linear polygons / segments / corners
+  int source = 0;   // polygon piece (internal) / the model's linear segment / corner index
   int entity = -1;  // dense model index of the entity owning points nearest to its interior
   Vec3 lo, hi;      // bounding box
 };
@@ -43,6 +43,11 @@ class DistanceField {
   const std::vector<int>& entity_prims(int entity) const { return entity_prims_[entity]; }
   int num_entities() const { return int(entity_prims_.size()); }
 
+  // Supporting plane of a polygon primitive (a point on it and its outward normal).
+  void plane(int i, Vec3* origin, Vec3* normal) const {
+    *origin = polys_[prims_[i].source].origin;
+    *normal = polys_[prims_[i].source].normal;
+  }
   // Distance to the closed primitive, and its nearest point.
   double distance(int i, const Vec3& p, Vec3* nearest = nullptr) const;
   // Distance if the nearest point lies in the primitive's relative interior and p is on
@@ -51,6 +56,9 @@ class DistanceField {
   // A lower bound on the distance from p to the zone of points the primitive may own
   // (1-Lipschitz in p; 0 if unknown).
   double zone_distance(int i, const Vec3& p) const;
+  // Both of the above in one pass; stops early (returning a lower bound on the distance)
+  // once the distance is known to exceed `limit`.
+  void bounds(int i, const Vec3& p, double limit, double* distance, double* zone) const;
   // Distance from p to the whole boundary (all polygons), through a bounding-volume
   // hierarchy.
   double boundary_distance(const Vec3& p) const;
