@@ -1,0 +1,372 @@
+#include "smooth/smooth_mesh.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include "quality/quality_stats.h"
+#include "quality/scaled_jacobian.h"
+#include "smooth/detail/node_objective.h"
+#include "smooth/detail/topology.h"
+
+namespace vorohex::smooth {
+namespace {
+
+using core::EdgeId;
+using core::FaceId;
+using core::HexMesh;
+using core::NodeClass;
+using core::Vec3;
+using detail::IncidentHex;
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// Valid hexes may fall to this scaled Jacobian (no lower) while inverted ones are untangled.
+constexpr double kUntangleFloor = 0.05;
+
+// What a trial position must respect, besides the per-hex floor rule.
+enum class Mode {
+  strict,    // every incident hex: new >= min(old, floor) (inverted hexes may only improve)
+  untangle,  // valid incident hexes as strict; inverted ones follow the objective
+};
+
+class Smoother {
+ public:
+  Smoother(HexMesh& mesh, const occ::Solid& solid, const SmoothOptions& options,
+           const core::Progress& progress, SmoothResult& result)
+      : mesh_(mesh), solid_(solid), options_(options), progress_(progress), result_(result) {}
+
+  void run() {
+    topology_ = detail::build_topology(mesh_);
+    classify_movable();
+    sj_ = quality::scaled_jacobians(mesh_);
+    const quality::QualityStats before = quality::quality_stats(sj_);
+    result_.min_before = before.min;
+    result_.mean_before = before.mean;
+    result_.inverted_before = before.inverted;
+    floor_ = std::max(options_.quality_target, before.min);
+    const std::vector<double> input_sj = sj_;
+
+    const auto t0 = std::chrono::steady_clock::now();
+    laplacian_phase();
+    result_.seconds_laplacian = seconds_since(t0);
+    const auto t1 = std::chrono::steady_clock::now();
+    if (!cancelled()) optimisation_phase(true);
+    if (!cancelled()) optimisation_phase(false);
+    result_.seconds_optimisation = seconds_since(t1);
+
+    // Recomputed from scratch, not taken from the running values.
+    const std::vector<double> after_sj = quality::scaled_jacobians(mesh_);
+    const quality::QualityStats after = quality::quality_stats(after_sj);
+    result_.min_after = after.min;
+    result_.mean_after = after.mean;
+    result_.inverted_after = after.inverted;
+    for (std::size_t h = 0; h < after_sj.size(); ++h)
+      if (input_sj[h] <= 0 && after_sj[h] > 0) ++result_.untangled;
+    if (result_.status != SmoothStatus::cancelled && after.inverted > 0) {
+      result_.status = SmoothStatus::inverted_remain;
+      std::ostringstream s;
+      s << after.inverted << " of " << after_sj.size()
+        << " hexahedra are still inverted after untangling (minimum scaled Jacobian " << after.min
+        << ").";
+      result_.diagnostics.push_back(core::make_error("inverted_elements", s.str()));
+    }
+  }
+
+ private:
+  bool cancelled() {
+    if (result_.status == SmoothStatus::cancelled) return true;
+    if (!progress_.cancelled()) return false;
+    result_.status = SmoothStatus::cancelled;
+    result_.diagnostics.push_back(core::make_warning(
+        "cancelled", "Smoothing was cancelled; the mesh keeps the moves made so far."));
+    return true;
+  }
+
+  // Vertex nodes, nodes without neighbours and nodes naming no entity of the solid stay put.
+  void classify_movable() {
+    const std::size_t nn = mesh_.num_nodes();
+    movable_.assign(nn, 0);
+    const int counts[3] = {solid_.num_vertices(), solid_.num_edges(), solid_.num_faces()};
+    std::vector<std::string> bad;
+    std::size_t num_bad = 0;
+    for (std::size_t n = 0; n < nn; ++n) {
+      const NodeClass c = mesh_.node_classes()[n];
+      bool known = c.dim == 3 || (c.dim >= 0 && c.dim <= 2 && c.id >= 1 && c.id <= counts[c.dim]);
+      if (known && c.dim == 1 && solid_.edge_is_degenerated(EdgeId(c.id))) known = c.dim != 1;
+      if (!known) {
+        if (bad.size() < 5) bad.push_back("node " + std::to_string(n));
+        ++num_bad;
+      }
+      movable_[n] = known && c.dim != 0 && topology_.neighbours.size(n) > 0 &&
+                    topology_.node_hexes.size(n) > 0;
+      if (!movable_[n]) ++result_.fixed_nodes;
+    }
+    if (num_bad > 0) {
+      std::ostringstream s;
+      s << num_bad << " nodes are classified on no entity of the solid (or on a degenerated "
+        << "edge) and were kept fixed.";
+      result_.diagnostics.push_back(core::make_warning("unknown_entity", s.str(), bad));
+    }
+  }
+
+  // Scaled Jacobian of hex h with its local corner c at x.
+  double hex_sj(std::int32_t item, const Vec3& x) const {
+    const auto& hex = mesh_.hexes()[item / 8];
+    const auto& pts = mesh_.points();
+    std::array<Vec3, 8> p;
+    for (int i = 0; i < 8; ++i) p[i] = pts[hex[i]];
+    p[item % 8] = x;
+    return quality::scaled_jacobian(p);
+  }
+
+  // Evaluates the incident hexes with node n at x; true if the floor rule holds.
+  bool acceptable(std::size_t n, const Vec3& x, Mode mode) {
+    trial_sj_.clear();
+    for (std::int64_t k = topology_.node_hexes.begin(n); k < topology_.node_hexes.end(n); ++k) {
+      const std::int32_t item = topology_.node_hexes.items[k];
+      const double old_sj = sj_[item / 8];
+      const double new_sj = hex_sj(item, x);
+      // Untangling may trade quality of valid hexes (never their validity) for fewer
+      // inverted ones; the optimisation phase then raises what fell below the target.
+      const bool ok = mode == Mode::strict
+                          ? new_sj >= std::min(old_sj, floor_)
+                          : old_sj <= 0 || new_sj >= std::min(old_sj, kUntangleFloor);
+      if (!ok) return false;
+      trial_sj_.push_back(new_sj);
+    }
+    return true;
+  }
+
+  void commit(std::size_t n, const Vec3& x) {
+    mesh_.set_point(core::NodeId(static_cast<std::int32_t>(n)), x);
+    std::size_t i = 0;
+    for (std::int64_t k = topology_.node_hexes.begin(n); k < topology_.node_hexes.end(n); ++k)
+      sj_[topology_.node_hexes.items[k] / 8] = trial_sj_[i++];
+  }
+
+  // Moves node n from x by d on its entity: a tangent step then a projection for face nodes,
+  // a projection for edge nodes. False when the projection jumps far from the step.
+  bool constrained_move(std::size_t n, const Vec3& x, Vec3 d, Vec3& y) const {
+    const NodeClass c = mesh_.node_classes()[n];
+    if (c.dim == 3) {
+      y = x + d;
+      return true;
+    }
+    const double step = d.norm();
+    if (c.dim == 2) {
+      const Vec3 normal = solid_.face_normal(FaceId(c.id), x);
+      d -= d.dot(normal) * normal;
+      y = solid_.project_to_face(FaceId(c.id), x + d);
+    } else {
+      y = solid_.project_to_edge(EdgeId(c.id), x + d);
+    }
+    return y.allFinite() && (y - x).norm() <= 3 * step;
+  }
+
+  void laplacian_phase() {
+    const auto& nb = topology_.neighbours;
+    const std::size_t nn = mesh_.num_nodes();
+    const int sweeps = options_.laplacian_iterations;
+    for (int it = 0; it < sweeps; ++it) {
+      if (cancelled()) return;
+      progress_.report("smooth", 0.5 * it / std::max(1, sweeps));
+      std::size_t moved = 0;
+      for (std::size_t n = 0; n < nn; ++n) {
+        if (!movable_[n]) continue;
+        const auto& pts = mesh_.points();
+        const Vec3 x = pts[n];
+        Vec3 sum = Vec3::Zero();
+        double length = 0;
+        for (std::int64_t k = nb.begin(n); k < nb.end(n); ++k) {
+          const Vec3& q = pts[nb.items[k]];
+          sum += q;
+          length += (q - x).norm();
+        }
+        const double count = static_cast<double>(nb.size(n));
+        const Vec3 d = options_.relaxation * (sum / count - x);
+        const double tol = options_.tolerance * length / count;
+        if (!(d.norm() > tol)) continue;
+        Vec3 y;
+        if (!constrained_move(n, x, d, y) || !acceptable(n, y, Mode::strict)) continue;
+        commit(n, y);
+        ++result_.laplacian_moves;
+        if ((y - x).norm() > tol) ++moved;
+      }
+      ++result_.laplacian_sweeps;
+      if (moved == 0) break;
+    }
+  }
+
+  // Gathers the incident hexes of node n for the local objective.
+  void gather(std::size_t n) {
+    incident_.clear();
+    const auto& pts = mesh_.points();
+    for (std::int64_t k = topology_.node_hexes.begin(n); k < topology_.node_hexes.end(n); ++k) {
+      const std::int32_t item = topology_.node_hexes.items[k];
+      IncidentHex h;
+      const auto& hex = mesh_.hexes()[item / 8];
+      for (int i = 0; i < 8; ++i) h.points[i] = pts[hex[i]];
+      h.corner = item % 8;
+      incident_.push_back(h);
+    }
+  }
+
+  // The descent direction restricted to the node's entity (zero when there is none).
+  Vec3 feasible_direction(std::size_t n, const Vec3& x, Vec3 d) const {
+    const NodeClass c = mesh_.node_classes()[n];
+    if (c.dim == 2) {
+      const Vec3 normal = solid_.face_normal(FaceId(c.id), x);
+      d -= d.dot(normal) * normal;
+    } else if (c.dim == 1) {
+      const auto& nb = topology_.neighbours;
+      const auto& pts = mesh_.points();
+      Vec3 t = nb.size(n) >= 2 ? Vec3(pts[nb.items[nb.begin(n) + 1]] - pts[nb.items[nb.begin(n)]])
+                               : Vec3(pts[nb.items[nb.begin(n)]] - x);
+      const double len = t.norm();
+      if (!(len > 0)) return Vec3::Zero();
+      t /= len;
+      d = d.dot(t) * t;
+    }
+    return d;
+  }
+
+  // One descent step of node n on the local objective with a backtracking line search.
+  bool descend(std::size_t n, Mode mode) {
+    gather(n);
+    const Vec3 x = mesh_.points()[n];
+    detail::ObjectiveValue v = detail::node_objective(incident_, x, 0);
+    const double delta = detail::choose_delta(v.min_det, v.mean_edge);
+    if (delta > 0) v = detail::node_objective(incident_, x, delta);
+    if (!std::isfinite(v.value)) return false;
+    Vec3 d = feasible_direction(n, x, -v.gradient);
+    const double norm = d.norm();
+    if (!(norm > 0) || !std::isfinite(norm)) return false;
+    d /= norm;
+    double step = 0.25 * v.mean_edge;
+    const double decrease = 1e-12 * std::abs(v.value);
+    for (int tries = 0; tries < 14; ++tries, step *= 0.5) {
+      Vec3 y;
+      if (!constrained_move(n, x, step * d, y)) continue;
+      const double value = detail::node_objective_value(incident_, y, delta);
+      if (!(value < v.value - decrease)) continue;
+      if (!acceptable(n, y, mode)) continue;
+      commit(n, y);
+      ++result_.optimisation_moves;
+      return true;
+    }
+    return false;
+  }
+
+  // Untangling (inverted hexes, `untangle` = true) or optimisation (hexes below the target):
+  // nodes of the worst hexes first; when a pass moves nothing, the neighbourhood widens.
+  void optimisation_phase(bool untangle) {
+    const int passes = options_.optimisation_passes;
+    const std::size_t nh = mesh_.num_hexes();
+    std::vector<char> seen(mesh_.num_nodes(), 0);
+    std::vector<std::int32_t> nodes;
+    int ring = 0;
+    for (int pass = 0; pass < passes; ++pass) {
+      if (cancelled()) return;
+      progress_.report("smooth", (untangle ? 0.5 : 0.75) + 0.25 * pass / passes);
+      std::vector<std::pair<double, std::int32_t>> bad;
+      for (std::size_t h = 0; h < nh; ++h) {
+        const bool is_bad = untangle ? sj_[h] <= 0 : sj_[h] < options_.quality_target;
+        if (is_bad) bad.emplace_back(sj_[h], static_cast<std::int32_t>(h));
+      }
+      if (bad.empty()) return;
+      std::sort(bad.begin(), bad.end());
+      nodes.clear();
+      auto add = [&](std::int32_t node) {
+        if (seen[node]) return;
+        seen[node] = 1;
+        nodes.push_back(node);
+      };
+      for (const auto& [value, h] : bad)
+        for (std::int32_t node : mesh_.hexes()[h]) add(node);
+      for (int r = 0; r < ring; ++r) {  // widen by whole rings of hexes
+        const std::size_t end = nodes.size();
+        for (std::size_t i = 0; i < end; ++i)
+          for (std::int64_t k = topology_.node_hexes.begin(nodes[i]);
+               k < topology_.node_hexes.end(nodes[i]); ++k)
+            for (std::int32_t node : mesh_.hexes()[topology_.node_hexes.items[k] / 8]) add(node);
+      }
+      std::size_t moves = 0;
+      const Mode mode = untangle ? Mode::untangle : Mode::strict;
+      for (std::int32_t node : nodes) {
+        seen[node] = 0;
+        if (!movable_[node]) continue;
+        for (int step = 0; step < 4; ++step) {
+          if (!descend(node, mode)) break;
+          ++moves;
+        }
+      }
+      if (moves == 0) {
+        if (ring >= 2) return;
+        ++ring;
+      }
+    }
+  }
+
+  HexMesh& mesh_;
+  const occ::Solid& solid_;
+  const SmoothOptions& options_;
+  const core::Progress& progress_;
+  SmoothResult& result_;
+  detail::SmoothTopology topology_;
+  std::vector<char> movable_;
+  std::vector<double> sj_;        // current scaled Jacobian per hex
+  std::vector<double> trial_sj_;  // incident values of the last acceptable() call
+  std::vector<IncidentHex> incident_;
+  double floor_ = 0;
+};
+
+}  // namespace
+
+void SmoothOptions::validate() const {
+  auto fail = [](const std::string& field, const std::string& rule, double value) {
+    std::ostringstream s;
+    s << field << " must be " << rule << ", got " << value;
+    throw std::invalid_argument(s.str());
+  };
+  if (laplacian_iterations < 0) fail("laplacian_iterations", ">= 0", laplacian_iterations);
+  if (optimisation_passes < 0) fail("optimisation_passes", ">= 0", optimisation_passes);
+  if (!(quality_target > 0 && quality_target <= 1))
+    fail("quality_target", "in (0, 1]", quality_target);
+  if (!(relaxation > 0 && relaxation <= 1)) fail("relaxation", "in (0, 1]", relaxation);
+  if (!(tolerance >= 0) || !std::isfinite(tolerance)) fail("tolerance", ">= 0", tolerance);
+}
+
+const char* status_name(SmoothStatus s) {
+  switch (s) {
+    case SmoothStatus::ok:
+      return "ok";
+    case SmoothStatus::inverted_remain:
+      return "inverted_remain";
+    case SmoothStatus::cancelled:
+      return "cancelled";
+  }
+  return "unknown";
+}
+
+SmoothResult smooth_mesh(HexMesh& mesh, const occ::Solid& solid, const SmoothOptions& options,
+                         const core::Progress& progress) {
+  options.validate();
+  const auto t0 = std::chrono::steady_clock::now();
+  SmoothResult result;
+  if (mesh.num_hexes() > 0) {
+    Smoother smoother(mesh, solid, options, progress, result);
+    smoother.run();
+  }
+  result.seconds = seconds_since(t0);
+  progress.report("smooth", 1.0);
+  return result;
+}
+
+}  // namespace vorohex::smooth

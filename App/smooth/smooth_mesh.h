@@ -1,0 +1,69 @@
+// Global smoothing and untangling of an all-hex mesh with its nodes kept on the CAD.
+//
+// Model-vertex nodes are fixed, edge nodes slide along their CAD curve, face nodes slide on
+// their CAD surface (tangent step, then projection), interior nodes are free. Three phases:
+//  1. Laplacian: each node moves towards the mean of its smoothing neighbours.
+//  2. Untangling: nodes of inverted hexes descend a regularised mean-ratio objective that
+//     stays finite for inverted corners (Escobar et al.'s modified determinant).
+//  3. Optimisation: nodes of hexes below the quality target descend the same objective.
+// Every move is accepted only when no incident hex's scaled Jacobian falls below
+// min(its previous value, floor), floor = max(quality_target, minimum of the input), so the
+// minimum never decreases and no valid hex is ever inverted.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "core/diagnostic.h"
+#include "core/hex_mesh.h"
+#include "core/progress.h"
+#include "occ/solid.h"
+
+namespace vorohex::smooth {
+
+struct SmoothOptions {
+  // Sweeps of the Laplacian phase over all movable nodes (>= 0; 0 skips the phase). The
+  // phase stops earlier once no node moves more than `tolerance`.
+  int laplacian_iterations = 20;
+  // Passes of untangling and of worst-element optimisation (>= 0; 0 skips both).
+  int optimisation_passes = 10;
+  // Scaled Jacobian in (0, 1]: hexes below it are optimised in phase 3, and no move may
+  // push a hex below min(its previous value, max(quality_target, input minimum)).
+  double quality_target = 0.5;
+  // Fraction of the Laplacian step taken, in (0, 1].
+  double relaxation = 0.7;
+  // A node moving less than this, relative to its mean incident edge length, counts as
+  // converged (>= 0).
+  double tolerance = 1e-4;
+  void validate() const;  // throws std::invalid_argument naming the bad field
+};
+
+enum class SmoothStatus {
+  ok,               // no inverted hex remains
+  inverted_remain,  // some hexes could not be untangled (reported as an error diagnostic)
+  cancelled,        // stopped by the progress object; the mesh is valid as far as it got
+};
+
+const char* status_name(SmoothStatus s);
+
+struct SmoothResult {
+  SmoothStatus status = SmoothStatus::ok;
+  // Verdict scaled Jacobian before and after (hexes with value <= 0 count as inverted).
+  double min_before = 0, mean_before = 0, min_after = 0, mean_after = 0;
+  std::size_t inverted_before = 0, inverted_after = 0;
+  std::size_t untangled = 0;           // hexes inverted in the input and valid in the output
+  std::size_t fixed_nodes = 0;         // vertex nodes and nodes with an unknown/invalid entity
+  std::size_t laplacian_moves = 0;     // accepted Laplacian node moves
+  std::size_t optimisation_moves = 0;  // accepted untangling/optimisation steps
+  int laplacian_sweeps = 0;            // Laplacian sweeps actually run
+  double seconds = 0, seconds_laplacian = 0, seconds_optimisation = 0;
+  std::vector<core::Diagnostic> diagnostics;
+  bool ok() const { return status == SmoothStatus::ok; }
+};
+
+// Smooths `mesh` in place. Node classes must refer to entities of `solid` (1-based
+// MapShapes ids); nodes with an id out of range are kept fixed and reported.
+SmoothResult smooth_mesh(core::HexMesh& mesh, const occ::Solid& solid, const SmoothOptions& options,
+                         const core::Progress& progress = {});
+
+}  // namespace vorohex::smooth
