@@ -1,0 +1,503 @@
+#include "mesh/sweep.h"
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include "mesh/quad_face.h"
+
+namespace vorohex::mesh {
+
+using core::EdgeId;
+using core::FaceId;
+using core::NodeClass;
+using core::Vec3;
+using core::VertexId;
+using occ::OrientedEdge;
+using occ::Solid;
+
+void SweepOptions::validate() const {
+  if (!std::isfinite(size) || size <= 0) {
+    std::ostringstream s;
+    s << "SweepOptions.size must be finite and > 0, got " << size;
+    throw std::invalid_argument(s.str());
+  }
+  if (max_intervals <= 0)
+    throw std::invalid_argument("SweepOptions.max_intervals must be > 0, got " +
+                                std::to_string(max_intervals));
+  if (smoothing_passes < 0)
+    throw std::invalid_argument("SweepOptions.smoothing_passes must be >= 0, got " +
+                                std::to_string(smoothing_passes));
+}
+
+namespace {
+
+// An edge with the direction it is read in (points from first to last when forward).
+struct Directed {
+  EdgeId edge;
+  bool forward = true;
+};
+
+// The linking face of one source edge. m runs along the source edge in the source loop's
+// direction, from its start vertex b (m = 0) to its end vertex a; k runs source -> target.
+struct Link {
+  FaceId face;
+  Directed source;  // as the source loop reads it
+  Directed target;  // read from b' (above b) to a'
+  Directed col0;    // linking edge at b, read source -> target
+  Directed col1;    // linking edge at a, read source -> target
+  VertexId b, b_target;
+};
+
+struct Topology {
+  FaceId source, target;
+  std::vector<std::vector<Link>> loops;  // per source wire, per edge in wire order
+  double link_length = 0;                // mean length of the linking edges
+};
+
+std::string name(FaceId f) {
+  return core::entity_name(f);
+}
+std::string name(EdgeId e) {
+  return core::entity_name(e);
+}
+
+VertexId start_of(const Solid& s, const OrientedEdge& e) {
+  return e.forward ? s.edge_first_vertex(e.edge) : s.edge_last_vertex(e.edge);
+}
+VertexId end_of(const Solid& s, const OrientedEdge& e) {
+  return e.forward ? s.edge_last_vertex(e.edge) : s.edge_first_vertex(e.edge);
+}
+
+// The sweep structure with `S` as source, or the reason why there is none.
+std::string find_topology(const Solid& s, FaceId S, Topology& topo) {
+  topo = Topology();
+  topo.source = S;
+  std::set<int> source_edges, linking_faces, source_vertices;
+  const auto wires = s.face_wires(S);
+  for (const auto& w : wires)
+    for (const OrientedEdge& oe : w) {
+      source_edges.insert(oe.edge.value());
+      source_vertices.insert(s.edge_first_vertex(oe.edge).value());
+      source_vertices.insert(s.edge_last_vertex(oe.edge).value());
+    }
+  FaceId T;
+  std::set<int> target_edges;
+  std::set<int> link_edges;
+  double link_sum = 0;
+  for (const auto& w : wires) {
+    std::vector<Link> loop;
+    for (const OrientedEdge& oe : w) {
+      if (s.edge_is_degenerated(oe.edge)) return name(oe.edge) + " is degenerated";
+      FaceId L;
+      for (FaceId f : s.edge_faces(oe.edge))
+        if (f != S) L = f;
+      if (!L.valid()) return name(oe.edge) + " bounds " + name(S) + " only (a seam)";
+      if (!linking_faces.insert(L.value()).second)
+        return name(L) + " touches " + name(S) + " along more than one edge";
+      const auto lw = s.face_wires(L);
+      if (lw.size() != 1 || lw[0].size() != 4)
+        return name(L) + " is not four-sided (" + std::to_string(lw.size()) + " wires, " +
+               std::to_string(lw[0].size()) + " edges)";
+      const auto& q = lw[0];
+      int i = -1;
+      for (int c = 0; c < 4; ++c)
+        if (q[c].edge == oe.edge) i = c;
+      const OrientedEdge &up = q[(i + 1) % 4], &opp = q[(i + 2) % 4], &down = q[(i + 3) % 4];
+      if (source_edges.count(up.edge.value()) || source_edges.count(down.edge.value()) ||
+          source_edges.count(opp.edge.value()))
+        return name(L) + " has more than one edge on " + name(S);
+      FaceId other;
+      for (FaceId f : s.edge_faces(opp.edge))
+        if (f != L) other = f;
+      if (!other.valid() || other == S) return name(opp.edge) + " does not reach a target face";
+      if (!T.valid()) T = other;
+      if (other != T)
+        return "the edges opposite " + name(S) + " lie on " + name(T) + " and " + name(other);
+      target_edges.insert(opp.edge.value());
+      Link link;
+      link.face = L;
+      link.source = {oe.edge, oe.forward};
+      link.target = {opp.edge, opp.forward};
+      link.col0 = {up.edge, up.forward};
+      link.col1 = {down.edge, !down.forward};
+      link.b = start_of(s, oe);
+      link.b_target = end_of(s, up);
+      if (start_of(s, up) != link.b) return name(L) + " has an inconsistent wire";
+      for (const OrientedEdge& e : {up, down}) {
+        if (source_vertices.count(end_of(s, e).value()) &&
+            source_vertices.count(start_of(s, e).value()))
+          return name(e.edge) + " joins two vertices of " + name(S);
+        if (link_edges.insert(e.edge.value()).second) link_sum += s.edge_length(e.edge);
+      }
+      loop.push_back(link);
+    }
+    for (std::size_t c = 0; c < loop.size(); ++c)
+      if (loop[c].col1.edge != loop[(c + 1) % loop.size()].col0.edge)
+        return name(loop[c].face) + " and " + name(loop[(c + 1) % loop.size()].face) +
+               " do not share a linking edge";
+    topo.loops.push_back(std::move(loop));
+  }
+  if (!T.valid()) return name(S) + " has no edges";
+  if (linking_faces.count(T.value())) return name(T) + " is both a linking and the target face";
+  if (int(linking_faces.size()) + 2 != s.num_faces())
+    return "besides " + name(S) + ", " + name(T) + " and " + std::to_string(linking_faces.size()) +
+           " linking faces the solid has other faces";
+  std::set<int> t_all;
+  for (const auto& w : s.face_wires(T))
+    for (const OrientedEdge& oe : w) {
+      t_all.insert(oe.edge.value());
+      if (source_vertices.count(s.edge_first_vertex(oe.edge).value()))
+        return name(S) + " and " + name(T) + " share a vertex";
+    }
+  if (t_all != target_edges) return name(T) + " has edges that no linking face reaches";
+  topo.target = T;
+  topo.link_length = link_edges.empty() ? 0 : link_sum / link_edges.size();
+  return "";
+}
+
+// Among all sources, the pair with the shortest linking edges, then the largest source.
+std::string choose(const Solid& s, Topology& best) {
+  std::string first_reason;
+  bool found = false;
+  for (FaceId f : s.faces()) {
+    Topology t;
+    const std::string why = find_topology(s, f, t);
+    if (!why.empty()) {
+      if (first_reason.empty()) first_reason = "with " + name(f) + " as source, " + why;
+      continue;
+    }
+    if (!found) {
+      best = std::move(t);
+      found = true;
+      continue;
+    }
+    const double tol = 1e-9 * std::max(1.0, best.link_length);
+    if (t.link_length < best.link_length - tol ||
+        (t.link_length <= best.link_length + tol && s.area(f) > s.area(best.source) * (1 + 1e-9)))
+      best = std::move(t);
+  }
+  if (found) return "";
+  return "no two faces are joined by four-sided linking faces (" + first_reason + ")";
+}
+
+struct Plan {
+  bool ok = false;
+  Topology topo;
+  int layers = 0;
+  std::vector<std::vector<int>> counts;         // intervals per source loop edge
+  std::vector<std::vector<Vec3>> source_loops;  // source boundary nodes per loop
+  QuadFaceMesh source_mesh;
+  std::vector<core::Diagnostic> diagnostics;
+};
+
+Plan plan(const Solid& solid, const SweepOptions& options) {
+  options.validate();
+  Plan p;
+  try {
+    const std::string why = choose(solid, p.topo);
+    if (!why.empty()) {
+      p.diagnostics.push_back(
+          core::make_error("not_applicable", "The solid is not a one-to-one sweep: " + why + "."));
+      return p;
+    }
+    const Topology& t = p.topo;
+    auto too_many = [&](double length, double n, std::vector<std::string> names) {
+      std::ostringstream s;
+      s << "Edges of length " << length << " at size " << options.size << " need " << n
+        << " intervals, more than max_intervals = " << options.max_intervals << ".";
+      p.diagnostics.push_back(core::make_error("too_many_intervals", s.str(), std::move(names)));
+      return p;
+    };
+    const double k = std::max(1.0, std::round(t.link_length / options.size));
+    if (k > options.max_intervals) return too_many(t.link_length, k, {});
+    p.layers = int(k);
+    // Source edges: their own counts, each even so that every model vertex is a coarse node
+    // of the quad mesher; loops of at least 6 (4 for a face without holes).
+    for (const auto& loop : t.loops) {
+      std::vector<int> counts;
+      std::vector<double> lengths;
+      int total = 0;
+      for (const Link& l : loop) {
+        const double len = solid.edge_length(l.source.edge);
+        double n = std::max(1.0, std::round(len / options.size));
+        n += std::fmod(n, 2.0);
+        if (n > options.max_intervals) return too_many(len, n, {name(l.source.edge)});
+        counts.push_back(int(n));
+        lengths.push_back(len);
+        total += int(n);
+      }
+      const int minimum = t.loops.size() == 1 ? 4 : 6;
+      while (total < minimum) {
+        std::size_t c = 0;
+        for (std::size_t e = 1; e < counts.size(); ++e)
+          if (lengths[e] / counts[e] > lengths[c] / counts[c]) c = e;
+        counts[c] += 2;
+        total += 2;
+      }
+      p.counts.push_back(counts);
+      std::vector<Vec3> nodes;
+      for (std::size_t e = 0; e < loop.size(); ++e) {
+        auto pts = solid.edge_points_by_length(loop[e].source.edge, counts[e]);
+        if (!loop[e].source.forward) std::reverse(pts.begin(), pts.end());
+        nodes.insert(nodes.end(), pts.begin(), pts.end() - 1);
+      }
+      p.source_loops.push_back(std::move(nodes));
+    }
+    QuadFaceOptions qo;
+    qo.size = options.size;
+    qo.smoothing_passes = options.smoothing_passes;
+    p.source_mesh = quad_face(solid, t.source, p.source_loops, qo);
+    if (!p.source_mesh.ok) {
+      p.diagnostics = p.source_mesh.diagnostics;
+      return p;
+    }
+    const double nodes = double(p.source_mesh.points.size()) * (p.layers + 1);
+    if (nodes > double(std::numeric_limits<std::int32_t>::max())) {
+      p.diagnostics.push_back(core::make_error(
+          "too_many_nodes", "The sweep would need " + std::to_string(nodes) +
+                                " nodes, more than a mesh can index; use a larger size."));
+      return p;
+    }
+  } catch (const std::invalid_argument&) {
+    throw;
+  } catch (const std::exception& e) {
+    p.diagnostics.push_back(
+        core::make_error("geometry_error", std::string("Planning the sweep failed: ") + e.what()));
+    return p;
+  }
+  p.ok = true;
+  return p;
+}
+
+// Least-squares affine map between two point sets, well posed for (near-)planar sources:
+// in-plane coordinates of x in its principal frame are mapped by a 3x2 matrix, the
+// out-of-plane offset along the image normal scaled like the in-plane lengths.
+class AffineFit {
+ public:
+  // Frame of the source points (computed once per source set).
+  explicit AffineFit(const std::vector<Vec3>& x) {
+    cx_ = Vec3::Zero();
+    for (const Vec3& p : x) cx_ += p;
+    cx_ /= double(x.size());
+    Eigen::Matrix3d c = Eigen::Matrix3d::Zero();
+    for (const Vec3& p : x) c += (p - cx_) * (p - cx_).transpose();
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(c);
+    n_ = es.eigenvectors().col(0);
+    e1_ = es.eigenvectors().col(2);
+    e2_ = n_.cross(e1_);
+    a_.reserve(x.size());
+    Eigen::Matrix2d g = Eigen::Matrix2d::Zero();
+    for (const Vec3& p : x) {
+      a_.emplace_back((p - cx_).dot(e1_), (p - cx_).dot(e2_));
+      g += a_.back() * a_.back().transpose();
+    }
+    ginv_ = g.inverse();
+  }
+  // Fits the map onto y (same order as x).
+  void fit(const std::vector<Vec3>& y) {
+    cy_ = Vec3::Zero();
+    for (const Vec3& p : y) cy_ += p;
+    cy_ /= double(y.size());
+    Eigen::Matrix<double, 3, 2> b = Eigen::Matrix<double, 3, 2>::Zero();
+    for (std::size_t i = 0; i < y.size(); ++i) b += (y[i] - cy_) * a_[i].transpose();
+    m_ = b * ginv_;
+    const Vec3 cr = m_.col(0).cross(m_.col(1));
+    const double len = cr.norm();
+    ny_ = len > 0 ? Vec3(cr / std::sqrt(len)) : Vec3::Zero();
+  }
+  Vec3 operator()(const Vec3& p) const {
+    const Vec3 d = p - cx_;
+    return cy_ + m_ * Eigen::Vector2d(d.dot(e1_), d.dot(e2_)) + d.dot(n_) * ny_;
+  }
+
+ private:
+  Vec3 cx_, e1_, e2_, n_, cy_, ny_;
+  std::vector<Eigen::Vector2d> a_;
+  Eigen::Matrix2d ginv_;
+  Eigen::Matrix<double, 3, 2> m_;
+};
+
+std::vector<Vec3> read_edge(const Solid& s, const Directed& d, int n) {
+  auto pts = s.edge_points_by_length(d.edge, n);
+  if (!d.forward) std::reverse(pts.begin(), pts.end());
+  return pts;
+}
+
+}  // namespace
+
+SweepApplicability sweep_applicable(const occ::Solid& solid) {
+  SweepApplicability a;
+  try {
+    Topology t;
+    a.reason = choose(solid, t);
+    if (a.reason.empty()) a.source = t.source, a.target = t.target;
+  } catch (const std::exception& e) {
+    a.reason = std::string("its topology cannot be explored (") + e.what() + ")";
+  }
+  a.ok = a.reason.empty();
+  return a;
+}
+
+SweepEstimate sweep_evaluate(const occ::Solid& solid, const SweepOptions& options) {
+  const Plan p = plan(solid, options);
+  SweepEstimate e;
+  if (!p.ok) return e;
+  e.layers = p.layers;
+  e.nodes = p.source_mesh.points.size() * std::size_t(p.layers + 1);
+  e.hexes = p.source_mesh.quads.size() * std::size_t(p.layers);
+  return e;
+}
+
+SweepResult sweep(const occ::Solid& solid, const SweepOptions& options,
+                  const core::Progress& progress) {
+  SweepResult result;
+  Plan p = plan(solid, options);  // throws std::invalid_argument on bad options
+  result.diagnostics = std::move(p.diagnostics);
+  if (!p.ok) return result;
+  const Topology& t = p.topo;
+  const QuadFaceMesh& sm = p.source_mesh;
+  result.source = t.source;
+  result.target = t.target;
+  result.layers = p.layers;
+  result.source_min_quality = sm.min_quality;
+  result.source_mean_quality = sm.mean_quality;
+  if (sm.min_quality < 0.3)
+    result.diagnostics.push_back(
+        core::make_warning("poor_source_quads",
+                           "The source face mesh has quads of scaled Jacobian " +
+                               std::to_string(sm.min_quality) + " (< 0.3).",
+                           {name(t.source)}));
+
+  const int K = p.layers;
+  const std::size_t M = sm.points.size(), nb = sm.num_boundary;
+  std::vector<Vec3> P(M * (K + 1));
+  std::vector<NodeClass> C(P.size(), NodeClass::interior());
+  auto id = [&](int k, std::size_t j) { return std::size_t(k) * M + j; };
+  const char* stage = "sweep";
+  auto cancelled = [&] {
+    if (!progress.cancelled()) return false;
+    result.diagnostics.push_back(core::make_error("cancelled", "Sweeping was cancelled."));
+    return true;
+  };
+
+  try {
+    // Linking faces: transfinite interpolation of their four edge rows, projected if curved.
+    std::size_t j0 = 0;
+    for (std::size_t l = 0; l < t.loops.size(); ++l) {
+      const std::size_t loop_size = p.source_loops[l].size();
+      for (std::size_t e = 0; e < t.loops[l].size(); ++e) {
+        const Link& link = t.loops[l][e];
+        const int n = p.counts[l][e];
+        const auto rs = read_edge(solid, link.source, n), rt = read_edge(solid, link.target, n);
+        const auto c0 = read_edge(solid, link.col0, K), c1 = read_edge(solid, link.col1, K);
+        const bool curved = !solid.face_is_planar(link.face);
+        for (int m = 0; m < n; ++m) {
+          const double s = double(m) / n;
+          const std::size_t j = j0 + m;
+          for (int k = 0; k <= K; ++k) {
+            const double w = double(k) / K;
+            Vec3 q;
+            NodeClass c;
+            if (k == 0) {
+              q = rs[m];
+              c = m == 0 ? NodeClass::on(link.b) : NodeClass::on(link.source.edge);
+            } else if (k == K) {
+              q = rt[m];
+              c = m == 0 ? NodeClass::on(link.b_target) : NodeClass::on(link.target.edge);
+            } else if (m == 0) {
+              q = c0[k];
+              c = NodeClass::on(link.col0.edge);
+            } else {
+              q = (1 - s) * c0[k] + s * c1[k] + (1 - w) * rs[m] + w * rt[m] -
+                  ((1 - s) * (1 - w) * rs[0] + s * (1 - w) * rs[n] + (1 - s) * w * rt[0] +
+                   s * w * rt[n]);
+              if (curved) q = solid.project_to_face(link.face, q);
+              c = NodeClass::on(link.face);
+            }
+            P[id(k, j)] = q;
+            C[id(k, j)] = c;
+          }
+        }
+        j0 += n;
+      }
+      if (j0 != nb && l + 1 == t.loops.size()) throw std::logic_error("boundary count mismatch");
+      (void)loop_size;
+    }
+    // Source and target faces.
+    std::vector<Vec3> xs(sm.points.begin(), sm.points.begin() + nb), xt(nb);
+    for (std::size_t j = 0; j < nb; ++j) xt[j] = P[id(K, j)];
+    AffineFit to_target(xs);
+    to_target.fit(xt);
+    for (std::size_t j = nb; j < M; ++j) {
+      P[id(0, j)] = sm.points[j];
+      C[id(0, j)] = NodeClass::on(t.source);
+      P[id(K, j)] = solid.project_to_face(t.target, to_target(sm.points[j]));
+      C[id(K, j)] = NodeClass::on(t.target);
+    }
+  } catch (const std::exception& e) {
+    result.diagnostics.push_back(core::make_error(
+        "geometry_error", std::string("Placing the sweep's boundary nodes failed: ") + e.what()));
+    return result;
+  }
+  if (cancelled()) return result;
+  progress.report(stage, 0.1);
+
+  // Inner layers: blend of the source- and target-based affine predictions.
+  {
+    std::vector<Vec3> xs(nb), xt(nb), y(nb);
+    for (std::size_t j = 0; j < nb; ++j) xs[j] = P[id(0, j)], xt[j] = P[id(K, j)];
+    AffineFit from_source(xs), from_target(xt);
+    for (int k = 1; k < K; ++k) {
+      for (std::size_t j = 0; j < nb; ++j) y[j] = P[id(k, j)];
+      from_source.fit(y);
+      from_target.fit(y);
+      const double w = double(k) / K;
+      for (std::size_t j = nb; j < M; ++j)
+        P[id(k, j)] = (1 - w) * from_source(P[id(0, j)]) + w * from_target(P[id(K, j)]);
+      progress.report(stage, 0.1 + 0.5 * k / K);
+      if (cancelled()) return result;
+    }
+  }
+
+  // Hexes: source quads run counter-clockwise about the source's outward normal, i.e.
+  // clockwise seen from the next layer, so they are reversed for VTK order.
+  core::HexMesh& mesh = result.mesh;
+  mesh.reserve(P.size(), sm.quads.size() * K);
+  for (std::size_t i = 0; i < P.size(); ++i) mesh.add_node(P[i], C[i]);
+  std::vector<Vec3>().swap(P);
+  double orientation = 0;  // summed corner triple products of the first layer
+  for (const auto& q : sm.quads) {
+    const Vec3 &a = mesh.points()[q[0]], &b = mesh.points()[q[3]], &d = mesh.points()[q[1]],
+               &up = mesh.points()[id(1, q[0])];
+    orientation += (b - a).cross(d - a).dot(up - a);
+  }
+  const bool flip = orientation < 0;
+  for (int k = 0; k < K; ++k) {
+    for (const auto& q : sm.quads) {
+      std::array<std::int32_t, 4> r = {q[0], q[3], q[2], q[1]};
+      if (flip) r = {q[0], q[1], q[2], q[3]};
+      core::HexNodes h;
+      for (int c = 0; c < 4; ++c) {
+        h[c] = std::int32_t(id(k, r[c]));
+        h[c + 4] = std::int32_t(id(k + 1, r[c]));
+      }
+      mesh.add_hex(h, 0);
+    }
+    progress.report(stage, 0.6 + 0.4 * (k + 1) / K);
+    if (cancelled()) {
+      result.mesh = core::HexMesh();
+      return result;
+    }
+  }
+  result.ok = true;
+  return result;
+}
+
+}  // namespace vorohex::mesh

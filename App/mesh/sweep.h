@@ -1,0 +1,57 @@
+// One-to-one sweeping: a solid with a source face (planar or curved, with holes), a target
+// face, and linking faces that each have one wire of four edges (one on the source, one on
+// the target, two linking edges). The source is meshed by quad_face, the target by the same
+// topology mapped (least-squares affine map of the boundary loops, projected), the linking
+// faces by transfinite interpolation (projected when curved), and the inner layers by the
+// blend of the source- and target-based least-squares affine maps onto each layer's
+// boundary (tolerates twist and taper).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/diagnostic.h"
+#include "core/hex_mesh.h"
+#include "core/progress.h"
+#include "occ/solid.h"
+
+namespace vorohex::mesh {
+
+struct SweepOptions {
+  double size = 1.0;           // target edge length, model units (> 0)
+  int max_intervals = 100000;  // per edge and for the layers; more is refused (> 0)
+  int smoothing_passes = 30;   // of the source face mesh (>= 0)
+  void validate() const;       // throws std::invalid_argument naming the bad field
+};
+
+struct SweepApplicability {
+  bool ok = false;
+  std::string reason;           // why not, naming the entities
+  core::FaceId source, target;  // the chosen pair when ok
+};
+
+// Finds a source/target pair: two faces sharing no vertex such that every other face is a
+// four-sided linking face joining their loops. Among several pairs it prefers the shortest
+// linking edges (fewest layers), then the largest source face.
+SweepApplicability sweep_applicable(const occ::Solid& solid);
+
+struct SweepEstimate {
+  int layers = 0;
+  std::size_t nodes = 0, hexes = 0;  // exactly what sweep() produces (0 when refused)
+};
+// Plans intervals and meshes the source face (cheap next to the volume) to count exactly.
+SweepEstimate sweep_evaluate(const occ::Solid& solid, const SweepOptions& options);
+
+struct SweepResult {
+  core::HexMesh mesh;
+  core::FaceId source, target;
+  int layers = 0;
+  double source_min_quality = 0, source_mean_quality = 0;  // 2-D quad scaled Jacobian
+  bool ok = false;
+  std::vector<core::Diagnostic> diagnostics;
+};
+
+SweepResult sweep(const occ::Solid& solid, const SweepOptions& options,
+                  const core::Progress& progress = {});
+
+}  // namespace vorohex::mesh

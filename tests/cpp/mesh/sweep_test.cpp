@@ -1,0 +1,175 @@
+#include "mesh/sweep.h"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+#include "occ/primitives.h"
+#include "quality/check_mesh.h"
+
+namespace vorohex::mesh {
+namespace {
+
+using core::FaceId;
+using core::Vec3;
+using Outline = std::vector<std::array<double, 2>>;
+
+struct Figures {
+  double min = 0, mean = 0;
+};
+
+// Every invariant of a swept mesh: applicable, evaluate == compute, check_mesh valid
+// against the CAD (positive, conforming, closed, volume, nodes on their entities).
+Figures sweep_and_check(const std::string& label, const occ::Solid& solid, double size,
+                        bool planar) {
+  const SweepApplicability a = sweep_applicable(solid);
+  EXPECT_TRUE(a.ok) << label << ": " << a.reason;
+  SweepOptions o;
+  o.size = size;
+  const SweepEstimate e = sweep_evaluate(solid, o);
+  const SweepResult r = sweep(solid, o);
+  EXPECT_TRUE(r.ok) << label << ": "
+                    << (r.diagnostics.empty() ? "" : core::format(r.diagnostics[0]));
+  EXPECT_EQ(r.source, a.source);
+  EXPECT_EQ(r.target, a.target);
+  EXPECT_EQ(e.layers, r.layers);
+  EXPECT_EQ(e.nodes, r.mesh.num_nodes());
+  EXPECT_EQ(e.hexes, r.mesh.num_hexes());
+  EXPECT_GT(r.mesh.num_hexes(), 0u);
+  const quality::CheckReport c = quality::check_mesh(r.mesh, &solid);
+  EXPECT_TRUE(c.valid) << label << ": "
+                       << (c.diagnostics.empty() ? "" : core::format(c.diagnostics[0]));
+  EXPECT_EQ(c.non_positive, 0u);
+  EXPECT_EQ(c.unused_nodes, 0u);
+  if (planar) {
+    EXPECT_LE(c.volume_rel_error, 1e-9) << label;
+    EXPECT_GE(c.scaled_jacobian.min, 0.3) << label;
+    EXPECT_GE(c.scaled_jacobian.mean, 0.85) << label;
+  } else {
+    EXPECT_GE(c.scaled_jacobian.min, 0.3) << label;
+  }
+  std::printf("[sweep] %-22s %s->%s layers %3d hexes %7zu  SJ min %.3f mean %.3f  vol err %.1e\n",
+              label.c_str(), core::entity_name(r.source).c_str(),
+              core::entity_name(r.target).c_str(), r.layers, r.mesh.num_hexes(),
+              c.scaled_jacobian.min, c.scaled_jacobian.mean, c.volume_rel_error);
+  return {c.scaled_jacobian.min, c.scaled_jacobian.mean};
+}
+
+const Outline kL = {{0, 0}, {4, 0}, {4, 1}, {1, 1}, {1, 3}, {0, 3}};
+
+TEST(Sweep, LShapedExtrusionsThickAndThin) {
+  sweep_and_check("L depth 3", occ::make_prism(kL, 3), 0.25, true);
+  sweep_and_check("L depth 0.4", occ::make_prism(kL, 0.4), 0.25, true);
+  sweep_and_check("L depth 3, size 0.3", occ::make_prism(kL, 3), 0.3, true);
+}
+
+TEST(Sweep, TAndUExtrusions) {
+  sweep_and_check(
+      "T", occ::make_prism({{2, 0}, {3, 0}, {3, 2}, {5, 2}, {5, 3}, {0, 3}, {0, 2}, {2, 2}}, 2),
+      0.25, true);
+  sweep_and_check(
+      "U", occ::make_prism({{0, 0}, {5, 0}, {5, 4}, {4, 4}, {4, 1}, {1, 1}, {1, 4}, {0, 4}}, 1.5),
+      0.25, true);
+}
+
+TEST(Sweep, PlatesWithHoles) {
+  const Outline plate = {{0, 0}, {10, 0}, {10, 6}, {0, 6}};
+  sweep_and_check(
+      "plate, 2 square holes",
+      occ::make_prism(plate, 1,
+                      {{{2, 2}, {4, 2}, {4, 4}, {2, 4}}, {{6, 2}, {8, 2}, {8, 4}, {6, 4}}}),
+      0.25, true);
+  Outline round;  // a 24-gon: make_prism takes polygonal holes
+  for (int i = 0; i < 24; ++i)
+    round.push_back({5 + 1.5 * std::cos(2 * M_PI * i / 24), 3 + 1.5 * std::sin(2 * M_PI * i / 24)});
+  sweep_and_check("plate, round hole", occ::make_prism(plate, 1, {round}), 0.25, true);
+}
+
+TEST(Sweep, SteppedPrismAndBox) {
+  sweep_and_check(
+      "stepped prism",
+      occ::make_prism({{0, 0}, {6, 0}, {6, 1}, {4, 1}, {4, 2}, {2, 2}, {2, 3}, {0, 3}}, 2), 0.25,
+      true);
+  const occ::Solid box = occ::make_box(2, 3, 1);
+  sweep_and_check("box", box, 0.25, true);
+  // The box is swept through its shortest direction (z).
+  const auto a = sweep_applicable(box);
+  EXPECT_NEAR(std::abs(box.face_normal(a.source, box.vertex_point(core::VertexId(1))).z()), 1,
+              1e-9);
+}
+
+TEST(Sweep, CylinderIsADiscSwept) {
+  const occ::Solid cyl = occ::make_cylinder(1, 2);
+  const Figures f = sweep_and_check("cylinder", cyl, 0.15, false);
+  EXPECT_GE(f.mean, 0.85);
+  const auto a = sweep_applicable(cyl);
+  EXPECT_TRUE(cyl.face_is_planar(a.source));
+}
+
+TEST(Sweep, TaperedBrickTolerated) {
+  sweep_and_check("tapered brick", occ::make_tapered_brick(4, 3, 2, 0.5), 0.25, true);
+}
+
+TEST(Sweep, RefusesSolidsWithoutASweepDirection) {
+  const occ::Solid tet = occ::make_polyhedron({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}},
+                                              {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}});
+  const SweepApplicability a = sweep_applicable(tet);
+  EXPECT_FALSE(a.ok);
+  EXPECT_NE(a.reason.find("Face"), std::string::npos) << a.reason;
+  const SweepResult r = sweep(tet, SweepOptions{});
+  EXPECT_FALSE(r.ok);
+  ASSERT_FALSE(r.diagnostics.empty());
+  EXPECT_EQ(r.diagnostics[0].code, "not_applicable");
+  EXPECT_EQ(sweep_evaluate(tet, SweepOptions{}).hexes, 0u);
+  std::printf("[sweep] tetrahedron refused: %s\n", a.reason.c_str());
+}
+
+TEST(Sweep, OptionsValidateAndCancel) {
+  SweepOptions o;
+  o.size = -1;
+  EXPECT_THROW(o.validate(), std::invalid_argument);
+  EXPECT_THROW(sweep(occ::make_box(1, 1, 1), o), std::invalid_argument);
+  o.size = 0.1;
+  o.max_intervals = 5;
+  const SweepResult r = sweep(occ::make_box(1, 1, 1), o);
+  EXPECT_FALSE(r.ok);
+  ASSERT_FALSE(r.diagnostics.empty());
+  EXPECT_EQ(r.diagnostics[0].code, "too_many_intervals");
+  std::atomic<bool> cancel{true};
+  o.max_intervals = 1000;
+  const SweepResult c = sweep(occ::make_box(1, 1, 1), o, core::Progress({}, &cancel));
+  EXPECT_FALSE(c.ok);
+  EXPECT_EQ(c.mesh.num_hexes(), 0u);
+}
+
+long peak_rss_kb() {
+  std::ifstream s("/proc/self/status");
+  std::string line;
+  while (std::getline(s, line))
+    if (line.rfind("VmHWM:", 0) == 0) return std::stol(line.substr(6));
+  return 0;
+}
+
+TEST(Sweep, MillionHexPlateWithHolesTiming) {
+  const occ::Solid plate =
+      occ::make_prism({{0, 0}, {10, 0}, {10, 6}, {0, 6}}, 1,
+                      {{{2, 2}, {4, 2}, {4, 4}, {2, 4}}, {{6, 2}, {8, 2}, {8, 4}, {6, 4}}});
+  SweepOptions o;
+  o.size = 0.037;  // about 38,000 quads x 27 layers
+  const auto t0 = std::chrono::steady_clock::now();
+  const SweepResult r = sweep(plate, o);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  ASSERT_TRUE(r.ok);
+  EXPECT_GT(r.mesh.num_hexes(), 900000u);
+  std::printf("[sweep] plate with holes: %zu hexes in %.2f s, peak RSS %.0f MB\n",
+              r.mesh.num_hexes(), seconds, peak_rss_kb() / 1024.0);
+}
+
+}  // namespace
+}  // namespace vorohex::mesh
