@@ -111,6 +111,18 @@ TEST(Sweep, CylinderIsADiscSwept) {
   EXPECT_TRUE(cyl.face_is_planar(a.source));
 }
 
+TEST(Sweep, CurvedSourceFace) {
+  // Radial edges (1) are shorter than the axial ones (2): swept from the outer cylindrical
+  // face to the inner one, the source meshed in its (u, v) chart.
+  const occ::Solid ring = occ::make_ring_sector(2, 3, 1.2, 2);
+  const auto a = sweep_applicable(ring);
+  ASSERT_TRUE(a.ok) << a.reason;
+  EXPECT_FALSE(ring.face_is_planar(a.source));
+  EXPECT_FALSE(ring.face_is_planar(a.target));
+  const Figures f = sweep_and_check("ring sector (curved)", ring, 0.2, false);
+  EXPECT_GE(f.mean, 0.85);
+}
+
 TEST(Sweep, TaperedBrickTolerated) {
   sweep_and_check("tapered brick", occ::make_tapered_brick(4, 3, 2, 0.5), 0.25, true);
 }
