@@ -74,7 +74,9 @@ void check_2d(const std::vector<std::vector<Vec2>>& loops, const detail::QuadMes
     EXPECT_EQ(n, 1);  // consistently oriented, no duplicates
     const bool reverse = edges.count({e.second, e.first}) > 0;
     const bool boundary = e.first < nb && e.second < nb && !reverse;
-    if (!boundary) EXPECT_TRUE(reverse) << "open inner edge " << e.first << "-" << e.second;
+    if (!boundary) {
+      EXPECT_TRUE(reverse) << "open inner edge " << e.first << "-" << e.second;
+    }
   }
   if (mean_out) *mean_out = sum / m.quads.size();
 }
