@@ -496,6 +496,29 @@ SweepResult sweep(const occ::Solid& solid, const SweepOptions& options,
       return result;
     }
   }
+  // Corner determinants: the layer placement may fold under strong twist or shape change;
+  // say so instead of handing on a tangled mesh.
+  std::size_t folded = 0;
+  for (const core::HexNodes& h : mesh.hexes()) {
+    const auto c = [&](int i) -> const Vec3& { return mesh.points()[h[i]]; };
+    bool bad = false;
+    for (int i = 0; i < 4 && !bad; ++i) {
+      const int n = (i + 1) % 4, pv = (i + 3) % 4;
+      bad = (c(n) - c(i)).cross(c(pv) - c(i)).dot(c(i + 4) - c(i)) <= 0 ||
+            (c(pv + 4) - c(i + 4)).cross(c(n + 4) - c(i + 4)).dot(c(i) - c(i + 4)) <= 0;
+    }
+    folded += bad;
+  }
+  if (folded > 0) {
+    result.diagnostics.push_back(core::make_error("inverted_elements",
+                                                  std::to_string(folded) +
+                                                      " swept hexahedra have a non-positive corner "
+                                                      "Jacobian (the layers fold between " +
+                                                      name(t.source) + " and " + name(t.target) +
+                                                      ").",
+                                                  {name(t.source), name(t.target)}));
+    return result;
+  }
   result.ok = true;
   return result;
 }
