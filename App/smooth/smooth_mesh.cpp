@@ -1,6 +1,9 @@
 #include "smooth/smooth_mesh.h"
 
+#include <Eigen/Cholesky>
+#include <Eigen/SVD>
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -8,8 +11,10 @@
 #include <stdexcept>
 #include <string>
 
+#include "quality/detail/parallel.h"
 #include "quality/quality_stats.h"
 #include "quality/scaled_jacobian.h"
+#include "smooth/detail/hex_jacobian.h"
 #include "smooth/detail/node_objective.h"
 #include "smooth/detail/topology.h"
 
@@ -28,7 +33,9 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 }
 
 // Valid hexes may fall to this scaled Jacobian (no lower) while inverted ones are untangled.
-constexpr double kUntangleFloor = 0.05;
+constexpr double kUntangleFloor = 1e-3;
+// Scaled corner determinant the untangling model lifts every frame towards.
+constexpr double kUntangleTarget = 0.2;
 
 // What a trial position must respect, besides the per-hex floor rule.
 enum class Mode {
@@ -123,12 +130,12 @@ class Smoother {
     std::array<Vec3, 8> p;
     for (int i = 0; i < 8; ++i) p[i] = pts[hex[i]];
     p[item % 8] = x;
-    return quality::scaled_jacobian(p);
+    return detail::hex_scaled_jacobian(p);
   }
 
-  // Evaluates the incident hexes with node n at x; true if the floor rule holds.
-  bool acceptable(std::size_t n, const Vec3& x, Mode mode) {
-    trial_sj_.clear();
+  // Evaluates the incident hexes with node n at x into `trial`; true if the floor rule holds.
+  bool acceptable(std::size_t n, const Vec3& x, Mode mode, std::vector<double>& trial) const {
+    trial.clear();
     for (std::int64_t k = topology_.node_hexes.begin(n); k < topology_.node_hexes.end(n); ++k) {
       const std::int32_t item = topology_.node_hexes.items[k];
       const double old_sj = sj_[item / 8];
@@ -139,16 +146,18 @@ class Smoother {
                           ? new_sj >= std::min(old_sj, floor_)
                           : old_sj <= 0 || new_sj >= std::min(old_sj, kUntangleFloor);
       if (!ok) return false;
-      trial_sj_.push_back(new_sj);
+      trial.push_back(new_sj);
     }
     return true;
   }
 
-  void commit(std::size_t n, const Vec3& x) {
+  // Writes node n and its incident hexes' values. Nodes of one colour share no hex, so
+  // concurrent commits of such nodes touch disjoint entries.
+  void commit(std::size_t n, const Vec3& x, const std::vector<double>& trial) {
     mesh_.set_point(core::NodeId(static_cast<std::int32_t>(n)), x);
     std::size_t i = 0;
     for (std::int64_t k = topology_.node_hexes.begin(n); k < topology_.node_hexes.end(n); ++k)
-      sj_[topology_.node_hexes.items[k] / 8] = trial_sj_[i++];
+      sj_[topology_.node_hexes.items[k] / 8] = trial[i++];
   }
 
   // Moves node n from x by d on its entity: a tangent step then a projection for face nodes,
@@ -170,35 +179,86 @@ class Smoother {
     return y.allFinite() && (y - x).norm() <= 3 * step;
   }
 
-  void laplacian_phase() {
-    const auto& nb = topology_.neighbours;
+  // Greedy colouring of the movable interior nodes so that nodes of one colour share no hex
+  // (8 colours on a structured grid); boundary nodes and overflow stay serial because the
+  // CAD projections are not known to be thread-safe.
+  void colour_nodes() {
     const std::size_t nn = mesh_.num_nodes();
+    constexpr int kMaxColours = 64;
+    std::vector<std::int8_t> colour(nn, -1);
+    for (std::size_t n = 0; n < nn; ++n) {
+      if (!movable_[n]) continue;
+      if (!mesh_.node_classes()[n].is_interior()) {
+        serial_nodes_.push_back(static_cast<std::int32_t>(n));
+        continue;
+      }
+      std::uint64_t used = 0;
+      for (std::int64_t k = topology_.node_hexes.begin(n); k < topology_.node_hexes.end(n); ++k)
+        for (std::int32_t m : mesh_.hexes()[topology_.node_hexes.items[k] / 8])
+          if (colour[m] >= 0) used |= std::uint64_t{1} << colour[m];
+      int c = 0;
+      while (c < kMaxColours && (used >> c) & 1) ++c;
+      if (c == kMaxColours) {
+        serial_nodes_.push_back(static_cast<std::int32_t>(n));
+        continue;
+      }
+      colour[n] = static_cast<std::int8_t>(c);
+      if (static_cast<std::size_t>(c) >= colour_classes_.size()) colour_classes_.resize(c + 1);
+      colour_classes_[c].push_back(static_cast<std::int32_t>(n));
+    }
+  }
+
+  // One Laplacian move of node n: 0 = none, 1 = accepted but below the tolerance,
+  // 2 = accepted and larger.
+  int laplacian_step(std::size_t n, std::vector<double>& trial) {
+    const auto& nb = topology_.neighbours;
+    const auto& pts = mesh_.points();
+    const Vec3 x = pts[n];
+    Vec3 sum = Vec3::Zero();
+    double length = 0;
+    for (std::int64_t k = nb.begin(n); k < nb.end(n); ++k) {
+      const Vec3& q = pts[nb.items[k]];
+      sum += q;
+      length += (q - x).norm();
+    }
+    const double count = static_cast<double>(nb.size(n));
+    const Vec3 d = options_.relaxation * (sum / count - x);
+    const double tol = options_.tolerance * length / count;
+    if (!(d.norm() > tol)) return 0;
+    Vec3 y;
+    if (!constrained_move(n, x, d, y) || !acceptable(n, y, Mode::strict, trial)) return 0;
+    commit(n, y, trial);
+    return (y - x).norm() > tol ? 2 : 1;
+  }
+
+  void laplacian_phase() {
     const int sweeps = options_.laplacian_iterations;
+    if (sweeps == 0) return;
+    colour_nodes();
     for (int it = 0; it < sweeps; ++it) {
       if (cancelled()) return;
-      progress_.report("smooth", 0.5 * it / std::max(1, sweeps));
-      std::size_t moved = 0;
-      for (std::size_t n = 0; n < nn; ++n) {
-        if (!movable_[n]) continue;
-        const auto& pts = mesh_.points();
-        const Vec3 x = pts[n];
-        Vec3 sum = Vec3::Zero();
-        double length = 0;
-        for (std::int64_t k = nb.begin(n); k < nb.end(n); ++k) {
-          const Vec3& q = pts[nb.items[k]];
-          sum += q;
-          length += (q - x).norm();
-        }
-        const double count = static_cast<double>(nb.size(n));
-        const Vec3 d = options_.relaxation * (sum / count - x);
-        const double tol = options_.tolerance * length / count;
-        if (!(d.norm() > tol)) continue;
-        Vec3 y;
-        if (!constrained_move(n, x, d, y) || !acceptable(n, y, Mode::strict)) continue;
-        commit(n, y);
-        ++result_.laplacian_moves;
-        if ((y - x).norm() > tol) ++moved;
+      progress_.report("smooth", 0.5 * it / sweeps);
+      std::atomic<std::size_t> moves{0}, moved{0};
+      for (const auto& nodes : colour_classes_) {
+        quality::detail::parallel_chunks(nodes.size(), 4096,
+                                         [&](std::size_t, std::size_t b, std::size_t e) {
+                                           std::vector<double> trial;
+                                           std::size_t local_moves = 0, local_moved = 0;
+                                           for (std::size_t i = b; i < e; ++i) {
+                                             const int r = laplacian_step(nodes[i], trial);
+                                             local_moves += r > 0;
+                                             local_moved += r > 1;
+                                           }
+                                           moves += local_moves;
+                                           moved += local_moved;
+                                         });
       }
+      for (std::int32_t n : serial_nodes_) {
+        const int r = laplacian_step(n, trial_sj_);
+        moves += r > 0;
+        moved += r > 1;
+      }
+      result_.laplacian_moves += moves;
       ++result_.laplacian_sweeps;
       if (moved == 0) break;
     }
@@ -256,8 +316,53 @@ class Smoother {
       if (!constrained_move(n, x, step * d, y)) continue;
       const double value = detail::node_objective_value(incident_, y, delta);
       if (!(value < v.value - decrease)) continue;
-      if (!acceptable(n, y, mode)) continue;
-      commit(n, y);
+      if (!acceptable(n, y, mode, trial_sj_)) continue;
+      commit(n, y, trial_sj_);
+      ++result_.optimisation_moves;
+      return true;
+    }
+    return false;
+  }
+
+  // One untangling step of node n: the convex Knupp-style model of its frames, minimised
+  // in the node's feasible directions, then backtracked until the move is acceptable.
+  bool untangle_node(std::size_t n) {
+    gather(n);
+    const Vec3 x = mesh_.points()[n];
+    const std::vector<detail::AffineFrame> frames = detail::affine_frames(incident_, x);
+    const double u0 = detail::untangle_value(frames, Vec3::Zero(), kUntangleTarget);
+    if (!(u0 > 0)) return false;
+    const NodeClass c = mesh_.node_classes()[n];
+    Eigen::Matrix<double, 3, Eigen::Dynamic> basis;
+    if (c.dim == 3) {
+      basis = Eigen::Matrix3d::Identity();
+    } else {
+      const Vec3 t = feasible_direction(n, x, Vec3::UnitX());
+      const Vec3 t2 = feasible_direction(n, x, Vec3::UnitY());
+      const Vec3 t3 = feasible_direction(n, x, Vec3::UnitZ());
+      // An orthonormal basis of the span of the projected axes (tangent plane or line).
+      Eigen::Matrix3d m;
+      m << t, t2, t3;
+      Eigen::JacobiSVD<Eigen::Matrix3d> svd(m, Eigen::ComputeFullU);
+      const auto& sv = svd.singularValues();
+      const int rank = (sv.array() > 1e-6 * std::max(sv(0), 1e-300)).count();
+      if (rank == 0) return false;
+      basis = svd.matrixU().leftCols(std::min(rank, c.dim == 2 ? 2 : 1));
+    }
+    double mean_edge = 0;
+    const auto& nb = topology_.neighbours;
+    for (std::int64_t k = nb.begin(n); k < nb.end(n); ++k)
+      mean_edge += (mesh_.points()[nb.items[k]] - x).norm();
+    mean_edge /= static_cast<double>(nb.size(n));
+    const Vec3 d = detail::untangle_step(frames, kUntangleTarget, basis, mean_edge);
+    if (!(d.norm() > 1e-12 * mean_edge)) return false;
+    double scale = 1;
+    for (int tries = 0; tries < 12; ++tries, scale *= 0.5) {
+      Vec3 y;
+      if (!constrained_move(n, x, scale * d, y)) continue;
+      if (!(detail::untangle_value(frames, y - x, kUntangleTarget) < u0)) continue;
+      if (!acceptable(n, y, Mode::untangle, trial_sj_)) continue;
+      commit(n, y, trial_sj_);
       ++result_.optimisation_moves;
       return true;
     }
@@ -272,6 +377,8 @@ class Smoother {
     std::vector<char> seen(mesh_.num_nodes(), 0);
     std::vector<std::int32_t> nodes;
     int ring = 0;
+    std::size_t last_count = 0;
+    double last_worst = 0;
     for (int pass = 0; pass < passes; ++pass) {
       if (cancelled()) return;
       progress_.report("smooth", (untangle ? 0.5 : 0.75) + 0.25 * pass / passes);
@@ -282,6 +389,13 @@ class Smoother {
       }
       if (bad.empty()) return;
       std::sort(bad.begin(), bad.end());
+      // No fewer bad hexes and no better worst one since the last pass: widen the set.
+      if (pass > 0 && bad.size() >= last_count && bad[0].first <= last_worst + 1e-9) {
+        if (ring >= 2) return;
+        ++ring;
+      }
+      last_count = bad.size();
+      last_worst = bad[0].first;
       nodes.clear();
       auto add = [&](std::int32_t node) {
         if (seen[node]) return;
@@ -303,14 +417,16 @@ class Smoother {
         seen[node] = 0;
         if (!movable_[node]) continue;
         for (int step = 0; step < 4; ++step) {
-          if (!descend(node, mode)) break;
+          // Untangling alternates per pass which model leads: the mean-ratio descent keeps
+          // neighbours good, the convex Knupp model escapes where that one stalls.
+          const bool knupp_first = untangle && pass % 2 == 1;
+          bool moved = knupp_first ? untangle_node(node) : descend(node, mode);
+          if (!moved && untangle) moved = knupp_first ? descend(node, mode) : untangle_node(node);
+          if (!moved) break;
           ++moves;
         }
       }
-      if (moves == 0) {
-        if (ring >= 2) return;
-        ++ring;
-      }
+      if (moves == 0 && ring >= 2) return;
     }
   }
 
@@ -322,7 +438,9 @@ class Smoother {
   detail::SmoothTopology topology_;
   std::vector<char> movable_;
   std::vector<double> sj_;        // current scaled Jacobian per hex
-  std::vector<double> trial_sj_;  // incident values of the last acceptable() call
+  std::vector<double> trial_sj_;  // incident values of the last serial acceptable() call
+  std::vector<std::vector<std::int32_t>> colour_classes_;  // interior nodes by colour
+  std::vector<std::int32_t> serial_nodes_;                 // boundary and uncoloured nodes
   std::vector<IncidentHex> incident_;
   double floor_ = 0;
 };

@@ -41,3 +41,28 @@ double node_objective_value(const std::vector<IncidentHex>& hexes, const core::V
 double choose_delta(double min_det, double mean_edge);
 
 }  // namespace vorohex::smooth::detail
+
+namespace vorohex::smooth::detail {
+
+// Untangling (after Knupp): every determinant of a frame containing the node - the corner
+// frames and the centre frame of each incident hex - is affine in the node position, so
+// det(y) = value + gradient . (y - x) exactly. Each is weighted by the product of its edge
+// lengths at x (frozen), and U(y) = sum max(0, b - det(y) / weight)^2 is a convex piecewise
+// quadratic whose minimum lifts every scaled corner determinant towards b.
+struct AffineFrame {
+  double value = 0;                          // determinant at x
+  core::Vec3 gradient = core::Vec3::Zero();  // its (constant) gradient
+  double weight = 1;                         // product of the frame's edge lengths at x
+};
+
+std::vector<AffineFrame> affine_frames(const std::vector<IncidentHex>& hexes, const core::Vec3& x);
+
+// U at x + d.
+double untangle_value(const std::vector<AffineFrame>& frames, const core::Vec3& d, double b);
+
+// A displacement d = basis * z (basis: 3 x k, k = 1..3 orthonormal columns) that decreases U
+// (Gauss-Newton on the active terms, backtracking), at most max_step long; zero if none.
+core::Vec3 untangle_step(const std::vector<AffineFrame>& frames, double b,
+                         const Eigen::Matrix<double, 3, Eigen::Dynamic>& basis, double max_step);
+
+}  // namespace vorohex::smooth::detail

@@ -6,6 +6,8 @@
 
 #include "mesh/map_block.h"
 #include "occ/primitives.h"
+#include "quality/scaled_jacobian.h"
+#include "smooth/detail/hex_jacobian.h"
 #include "smooth/detail/node_objective.h"
 #include "smooth/detail/topology.h"
 
@@ -53,6 +55,33 @@ TEST(SmoothTopology, MappedBoxAdjacency) {
   }
   EXPECT_EQ(counted[0], 8);
   EXPECT_GT(counted[3], 0);
+}
+
+TEST(HexScaledJacobian, BitwiseEqualToTheQualityModule) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> jitter(-0.6, 0.6);
+  int inverted = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    std::array<Vec3, 8> p = unit_cube();
+    const double scale = std::pow(10.0, trial % 7 - 3);
+    for (auto& q : p) q = scale * (q + Vec3(jitter(rng), jitter(rng), jitter(rng)));
+    const double expected = quality::scaled_jacobian(p);
+    EXPECT_EQ(hex_scaled_jacobian(p), expected) << trial;  // exact, not near
+    inverted += expected <= 0;
+  }
+  EXPECT_GT(inverted, 100);  // both signs were exercised
+  // Collapsed edges, collapsed hexes and non-finite points are invalid (0), as in quality/.
+  std::array<Vec3, 8> p = unit_cube();
+  p[1] = p[0];
+  EXPECT_EQ(hex_scaled_jacobian(p), 0.0);
+  EXPECT_EQ(quality::scaled_jacobian(p), 0.0);
+  std::array<Vec3, 8> flat;
+  flat.fill(Vec3(1, 2, 3));
+  EXPECT_EQ(hex_scaled_jacobian(flat), 0.0);
+  p = unit_cube();
+  p[5].x() = std::nan("");
+  EXPECT_EQ(hex_scaled_jacobian(p), 0.0);
+  EXPECT_EQ(hex_scaled_jacobian(unit_cube()), 1.0);
 }
 
 TEST(NodeObjective, CubeCornerIsOptimalAndScaleInvariant) {
@@ -113,6 +142,40 @@ TEST(NodeObjective, InvertedCornerWithoutRegularisationIsInfinite) {
   EXPECT_TRUE(std::isfinite(v.value));
   // Descending must move the node back towards (1, 1, 1).
   EXPECT_GT(-v.gradient.dot(Vec3(1, 1, 1)), 0);
+}
+
+}  // namespace
+}  // namespace vorohex::smooth::detail
+
+namespace vorohex::smooth::detail {
+namespace {
+
+TEST(UntangleModel, FramesAreAffineAndTheStepUntanglesAPulledThroughCorner) {
+  std::vector<IncidentHex> hexes(1);
+  hexes[0].points = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0),
+                     Vec3(0, 0, 1), Vec3(1, 0, 1), Vec3(1, 1, 1), Vec3(0, 1, 1)};
+  hexes[0].corner = 6;
+  const Vec3 x(0.3, 0.2, 0.25);  // node 6 pulled through: several frames negative
+  const auto frames = affine_frames(hexes, x);
+  ASSERT_EQ(frames.size(), 5u);  // four corner frames and the centre frame
+  // Affine: the model predicts the determinants at another point exactly.
+  const Vec3 y(0.9, 1.2, 0.8);
+  const auto at_y = affine_frames(hexes, y);
+  for (std::size_t i = 0; i < frames.size(); ++i)
+    EXPECT_NEAR(frames[i].value + frames[i].gradient.dot(y - x), at_y[i].value, 1e-12) << i;
+  const double u0 = untangle_value(frames, Vec3::Zero(), 0.2);
+  EXPECT_GT(u0, 0);
+  const Vec3 d = untangle_step(frames, 0.2, Eigen::Matrix3d::Identity(), 2.0);
+  EXPECT_LT(untangle_value(frames, d, 0.2), 1e-3 * u0);
+  std::array<Vec3, 8> p = hexes[0].points;
+  p[6] = x + d;
+  EXPECT_GT(hex_scaled_jacobian(p), 0);
+  // Restricted to a line (an edge node), the step stays on it.
+  Eigen::Matrix<double, 3, Eigen::Dynamic> line(3, 1);
+  line << 0, 0, 1;
+  const Vec3 dl = untangle_step(frames, 0.2, line, 2.0);
+  EXPECT_EQ(dl.x(), 0);
+  EXPECT_EQ(dl.y(), 0);
 }
 
 }  // namespace
