@@ -84,12 +84,21 @@ int main(int argc, char** argv) {
   std::vector<std::pair<std::string, std::function<occ::Solid()>>> cases = {
       {"box 3x2x1", [] { return occ::make_box(3, 2, 1); }},
       {"cube", [] { return occ::make_box(1, 1, 1); }},
-      {"triangular prism", [] { return occ::make_prism({{0, 0}, {1, 0}, {0.5, 0.8}}, 10); }},
-      {"L-shape", [] { return occ::make_prism({{0, 0}, {4, 0}, {4, 1}, {1, 1}, {1, 3}, {0, 3}}, 3); }},
+      {"triangular prism",
+       [] {
+         return occ::make_prism({{0, 0}, {1, 0}, {0.5, 0.8}}, 10);
+       }},
+      {"L-shape",
+       [] {
+         return occ::make_prism({{0, 0}, {4, 0}, {4, 1}, {1, 1}, {1, 3}, {0, 3}}, 3);
+       }},
       {"cylinder", [] { return occ::make_cylinder(1, 1); }},
       {"tapered brick", [] { return occ::make_tapered_brick(4, 3, 1, 0.3); }},
       {"plate with hole",
-       [] { return occ::make_prism({{0, 0}, {4, 0}, {4, 3}, {0, 3}}, 0.5, {{{1, 1}, {2, 1}, {2, 2}, {1, 2}}}); }},
+       [] {
+         return occ::make_prism({{0, 0}, {4, 0}, {4, 3}, {0, 3}}, 0.5,
+                                {{{1, 1}, {2, 1}, {2, 2}, {1, 2}}});
+       }},
   };
   std::vector<std::string> files;
   if (std::filesystem::is_directory(dir))
@@ -105,8 +114,9 @@ int main(int argc, char** argv) {
                        return std::move(*r.solid);
                      }});
 
-  std::printf("| solid | faces | seconds | of which model | octree cells | peak MB | "
-              "V vertices | V edges | V faces | f_s | unverified | status |\n");
+  std::printf(
+      "| solid | faces | seconds | of which model | octree cells | peak MB | "
+      "V vertices | V edges | V faces | f_s | unverified | status |\n");
   std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
   const char* names[] = {"ok", "partial", "failed"};
   int within = 0, small = 0;
@@ -115,8 +125,8 @@ int main(int argc, char** argv) {
     long peak = 0;
     const bool ok = run_child(make, &row, &peak);
     if (!ok || row.status < 0) {
-      std::printf("| %s | %d | - | - | - | %.0f | - | - | - | - | - | %s |\n", name.c_str(), row.faces,
-                  peak / 1024.0, ok ? "not a single solid" : "crashed or timed out");
+      std::printf("| %s | %d | - | - | - | %.0f | - | - | - | - | - | %s |\n", name.c_str(),
+                  row.faces, peak / 1024.0, ok ? "not a single solid" : "crashed or timed out");
       std::fflush(stdout);
       continue;
     }

@@ -54,18 +54,24 @@ unsigned long long pair_key(int a, int b) {
 
 std::string EntityRef::name() const {
   switch (kind) {
-    case EntityKind::face: return "Face" + std::to_string(id);
-    case EntityKind::edge: return "Edge" + std::to_string(id);
-    case EntityKind::vertex: return "Vertex" + std::to_string(id);
+    case EntityKind::face:
+      return "Face" + std::to_string(id);
+    case EntityKind::edge:
+      return "Edge" + std::to_string(id);
+    case EntityKind::vertex:
+      return "Vertex" + std::to_string(id);
   }
   return "?";
 }
 
 const char* convexity_name(Convexity c) {
   switch (c) {
-    case Convexity::convex: return "convex";
-    case Convexity::concave: return "concave";
-    case Convexity::smooth: return "smooth";
+    case Convexity::convex:
+      return "convex";
+    case Convexity::concave:
+      return "concave";
+    case Convexity::smooth:
+      return "smooth";
   }
   return "?";
 }
@@ -82,9 +88,12 @@ std::string ModelOptions::validate() const {
 int BRepModel::index(EntityRef e) const {
   const int nf = int(faces_.size()), ne = int(edges_.size());
   switch (e.kind) {
-    case EntityKind::face: return e.id - 1;
-    case EntityKind::edge: return nf + e.id - 1;
-    case EntityKind::vertex: return nf + ne + e.id - 1;
+    case EntityKind::face:
+      return e.id - 1;
+    case EntityKind::edge:
+      return nf + e.id - 1;
+    case EntityKind::vertex:
+      return nf + ne + e.id - 1;
   }
   return -1;
 }
@@ -116,9 +125,12 @@ bool BRepModel::unconnected(EntityRef a, EntityRef b) const {
 
 bool BRepModel::governs_interior(EntityRef e) const {
   switch (e.kind) {
-    case EntityKind::face: return true;
-    case EntityKind::edge: return edge(EdgeId(e.id)).convexity == Convexity::concave;
-    case EntityKind::vertex: return vertex(VertexId(e.id)).concave;
+    case EntityKind::face:
+      return true;
+    case EntityKind::edge:
+      return edge(EdgeId(e.id)).convexity == Convexity::concave;
+    case EntityKind::vertex:
+      return vertex(VertexId(e.id)).concave;
   }
   return false;
 }
@@ -165,7 +177,8 @@ BRepModel::BRepModel(const occ::Solid& solid, const ModelOptions& options) : opt
           f.edges.push_back(oe.edge);
         const ModelEdge& me = edges_[oe.edge.value() - 1];
         for (VertexId v : {me.first, me.last})
-          if (v.value() > 0 && std::find(f.vertices.begin(), f.vertices.end(), v) == f.vertices.end())
+          if (v.value() > 0 &&
+              std::find(f.vertices.begin(), f.vertices.end(), v) == f.vertices.end())
             f.vertices.push_back(v);
       }
     for (VertexId v : f.vertices) vertices_[v.value() - 1].faces.push_back(f.id);
@@ -297,9 +310,10 @@ BRepModel::BRepModel(const occ::Solid& solid, const ModelOptions& options) : opt
       s.concave = hs[0].inward.dot(lin.polygons[hs[1].polygon].normal) > concave_sin;
     lin.segments.push_back(s);
   }
-  std::sort(lin.segments.begin(), lin.segments.end(), [](const LinearSegment& x, const LinearSegment& y) {
-    return x.a != y.a ? x.a < y.a : x.b < y.b;
-  });
+  std::sort(lin.segments.begin(), lin.segments.end(),
+            [](const LinearSegment& x, const LinearSegment& y) {
+              return x.a != y.a ? x.a < y.a : x.b < y.b;
+            });
   // Corners: concave if, seen along the inward pseudo-normal, every neighbour lies strictly
   // behind the point (then a ball can touch the boundary there alone).
   for (int i = 0; i < int(lin.points.size()); ++i) {
@@ -314,7 +328,8 @@ BRepModel::BRepModel(const occ::Solid& solid, const ModelOptions& options) : opt
     }
     lin.corners.push_back(c);
   }
-  for (const ModelVertex& v : vertices_) vertices_[v.id.value() - 1].concave = lin.corners[v.id.value() - 1].concave;
+  for (const ModelVertex& v : vertices_)
+    vertices_[v.id.value() - 1].concave = lin.corners[v.id.value() - 1].concave;
 
   // Dihedral angles from the exact face normals at the middle of each edge.
   for (ModelEdge& e : edges_) {

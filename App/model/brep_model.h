@@ -34,9 +34,15 @@ struct EntityRef {
     return a.kind != b.kind ? a.kind < b.kind : a.id < b.id;
   }
 };
-inline EntityRef ref(FaceId f) { return {EntityKind::face, f.value()}; }
-inline EntityRef ref(EdgeId e) { return {EntityKind::edge, e.value()}; }
-inline EntityRef ref(VertexId v) { return {EntityKind::vertex, v.value()}; }
+inline EntityRef ref(FaceId f) {
+  return {EntityKind::face, f.value()};
+}
+inline EntityRef ref(EdgeId e) {
+  return {EntityKind::edge, e.value()};
+}
+inline EntityRef ref(VertexId v) {
+  return {EntityKind::vertex, v.value()};
+}
 
 struct ModelOptions {
   // Chord tolerance of the linearisation of curved faces and edges, relative to the
@@ -57,16 +63,16 @@ const char* convexity_name(Convexity c);
 struct ModelFace {
   FaceId id;
   bool planar = false;
-  Vec3 normal{0, 0, 0};                         // outward unit normal if planar
+  Vec3 normal{0, 0, 0};                               // outward unit normal if planar
   std::vector<std::vector<occ::OrientedEdge>> wires;  // outer first (see occ::Solid)
-  std::vector<EdgeId> edges;                    // distinct bounding edges
-  std::vector<VertexId> vertices;               // distinct vertices
+  std::vector<EdgeId> edges;                          // distinct bounding edges
+  std::vector<VertexId> vertices;                     // distinct vertices
 };
 
 struct ModelEdge {
   EdgeId id;
-  VertexId first, last;          // end vertices (equal for a closed edge)
-  std::vector<FaceId> faces;     // faces it bounds (one for a seam)
+  VertexId first, last;       // end vertices (equal for a closed edge)
+  std::vector<FaceId> faces;  // faces it bounds (one for a seam)
   bool degenerated = false;
   // Interior angle of the solid across the edge at its middle, radians in (0, 2 pi):
   // < pi convex, > pi concave (e.g. 3 pi / 2 at the inner corner of an L).
@@ -87,22 +93,22 @@ struct ModelVertex {
 // The polyhedral approximation. Point indices refer to `points` (welded: a point shared
 // by faces and edges appears once).
 struct LinearPolygon {
-  EntityRef origin;                       // the model face it approximates
-  Vec3 normal{0, 0, 0};                   // outward unit normal
-  std::vector<std::vector<int>> loops;    // outer first; counter-clockwise seen from outside
+  EntityRef origin;                     // the model face it approximates
+  Vec3 normal{0, 0, 0};                 // outward unit normal
+  std::vector<std::vector<int>> loops;  // outer first; counter-clockwise seen from outside
   // A triangulation of the polygon (planar faces only), for queries that prefer small
   // pieces over one polygon of many sides.
   std::vector<std::array<int, 3>> triangles;
 };
 struct LinearSegment {
   int a = 0, b = 0;
-  EntityRef origin;       // a model edge, or a face for segments inside a curved face
-  bool concave = false;   // the solid's interior angle across it exceeds pi (any bend)
+  EntityRef origin;      // a model edge, or a face for segments inside a curved face
+  bool concave = false;  // the solid's interior angle across it exceeds pi (any bend)
 };
 struct LinearPoint {
   int point = 0;
-  EntityRef origin;       // a model vertex, edge (inner polyline point) or face
-  bool concave = false;   // see ModelVertex::concave
+  EntityRef origin;      // a model vertex, edge (inner polyline point) or face
+  bool concave = false;  // see ModelVertex::concave
 };
 struct Linearization {
   std::vector<Vec3> points;
@@ -116,7 +122,7 @@ class BRepModel {
   // Throws std::runtime_error if the solid cannot be tessellated (OCCT failure).
   BRepModel(const occ::Solid& solid, const ModelOptions& options);
 
-  const std::vector<ModelFace>& faces() const { return faces_; }        // [i] has id i+1
+  const std::vector<ModelFace>& faces() const { return faces_; }  // [i] has id i+1
   const std::vector<ModelEdge>& edges() const { return edges_; }
   const std::vector<ModelVertex>& vertices() const { return vertices_; }
   const ModelFace& face(FaceId f) const { return faces_.at(f.value() - 1); }

@@ -9,14 +9,19 @@ namespace {
 
 const char* status_name(VoronoiStatus s) {
   switch (s) {
-    case VoronoiStatus::ok: return "ok";
-    case VoronoiStatus::partial: return "partial";
-    case VoronoiStatus::failed: return "failed";
+    case VoronoiStatus::ok:
+      return "ok";
+    case VoronoiStatus::partial:
+      return "partial";
+    case VoronoiStatus::failed:
+      return "failed";
   }
   return "?";
 }
 
-nlohmann::json point(const Vec3& p) { return nlohmann::json::array({p.x(), p.y(), p.z()}); }
+nlohmann::json point(const Vec3& p) {
+  return nlohmann::json::array({p.x(), p.y(), p.z()});
+}
 
 std::string governor_names(const VoronoiElement& el) {
   std::string s;
@@ -24,7 +29,9 @@ std::string governor_names(const VoronoiElement& el) {
   return s;
 }
 
-int kind_code(ElementKind k) { return k == ElementKind::face ? 0 : k == ElementKind::edge ? 1 : 2; }
+int kind_code(ElementKind k) {
+  return k == ElementKind::face ? 0 : k == ElementKind::edge ? 1 : 2;
+}
 
 std::string vtp_text(const VoronoiGraph& g) {
   // Point cells (vertices and faces) first, then polylines (edges), as VTK orders them.
@@ -78,7 +85,8 @@ std::string vtp_text(const VoronoiGraph& g) {
       << "</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">" << loffs.str()
       << "</DataArray>\n</Lines>\n"
       << "<CellData Scalars=\"kind\">\n"
-      << "<DataArray type=\"Int32\" Name=\"kind\" format=\"ascii\">" << kind.str() << "</DataArray>\n"
+      << "<DataArray type=\"Int32\" Name=\"kind\" format=\"ascii\">" << kind.str()
+      << "</DataArray>\n"
       << "<DataArray type=\"Int32\" Name=\"f_s\" format=\"ascii\">" << fs.str() << "</DataArray>\n"
       << "<DataArray type=\"Int32\" Name=\"id\" format=\"ascii\">" << ids.str() << "</DataArray>\n"
       << "<DataArray type=\"String\" Name=\"governors\" NumberOfTuples=\"" << order.size()

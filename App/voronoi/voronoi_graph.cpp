@@ -40,9 +40,9 @@ struct FineCell {
 };
 
 struct OctNode {
-  int child = -1;       // first of 8 children, or -1 for a leaf
-  int entity = -1;      // uniform leaf: the owning entity; -1 outside or mixed
-  int cand_begin = 0;   // mixed leaf: candidates in the pool
+  int child = -1;      // first of 8 children, or -1 for a leaf
+  int entity = -1;     // uniform leaf: the owning entity; -1 outside or mixed
+  int cand_begin = 0;  // mixed leaf: candidates in the pool
   int cand_count = 0;
 };
 
@@ -54,8 +54,7 @@ unsigned long long cell_key(long long i, long long j, long long k) {
 
 class Subdivision final : public RegionLocator {
  public:
-  Subdivision(std::shared_ptr<const model::BRepModel> m)
-      : model_(std::move(m)), field_(*model_) {}
+  Subdivision(std::shared_ptr<const model::BRepModel> m) : model_(std::move(m)), field_(*model_) {}
 
   EntityRef region(const Vec3& p) const override {
     Vec3 lo = origin_;
@@ -131,8 +130,10 @@ class Builder {
       field_.bounds(i, c, D + 2 * r, &dist, &zone);
       if (dist > D + 2 * r || zone > r) continue;
       arena_.push_back(i);
-      if (nent < 4 && std::find(ents, ents + nent, pr.entity) == ents + nent) ents[nent++] = pr.entity;
-      else if (nent == 4 && std::find(ents, ents + 4, pr.entity) == ents + 4) nent = 5;
+      if (nent < 4 && std::find(ents, ents + nent, pr.entity) == ents + nent)
+        ents[nent++] = pr.entity;
+      else if (nent == 4 && std::find(ents, ents + 4, pr.entity) == ents + 4)
+        nent = 5;
     }
     const int count = int(arena_.size()) - beg;
     OctNode& self = sub_.nodes_[node];
@@ -381,7 +382,8 @@ void Builder::extract() {
     double t = field_.boundary_distance(x);
     if (!elongated) {
       const double res = solve(vgov[v], x, t, 12);
-      if (res <= delta_ && (x - el.point).norm() <= 3 * std::max(eps_, h_) && verify(vgov[v], x, t)) {
+      if (res <= delta_ && (x - el.point).norm() <= 3 * std::max(eps_, h_) &&
+          verify(vgov[v], x, t)) {
         el.point = x;
         el.verified = true;
       }
@@ -485,8 +487,9 @@ void Builder::extract() {
       for (int s : cells) pts.push_back(centre(fine_[s]));
     // Order: from an end vertex (or the point farthest from the middle), nearest next.
     Vec3 start;
-    vends.erase(std::remove_if(vends.begin(), vends.end(), [&](int v) { return vertex_element[v] < 0; }),
-                vends.end());
+    vends.erase(
+        std::remove_if(vends.begin(), vends.end(), [&](int v) { return vertex_element[v] < 0; }),
+        vends.end());
     if (!vends.empty()) {
       start = graph.elements[vertex_element[vends[0]]].point;
     } else {
@@ -574,16 +577,21 @@ void Builder::extract() {
 
 const char* element_kind_name(ElementKind k) {
   switch (k) {
-    case ElementKind::face: return "face";
-    case ElementKind::edge: return "edge";
-    case ElementKind::vertex: return "vertex";
+    case ElementKind::face:
+      return "face";
+    case ElementKind::edge:
+      return "edge";
+    case ElementKind::vertex:
+      return "vertex";
   }
   return "?";
 }
 
 std::string VoronoiOptions::validate() const {
-  if (!(eps > 0 && eps <= 0.25)) return "eps must be in (0, 0.25] (relative to the bounding-box diagonal)";
-  if (!(delta > 0 && delta <= eps)) return "delta must be in (0, eps] (relative to the bounding-box diagonal)";
+  if (!(eps > 0 && eps <= 0.25))
+    return "eps must be in (0, 0.25] (relative to the bounding-box diagonal)";
+  if (!(delta > 0 && delta <= eps))
+    return "delta must be in (0, eps] (relative to the bounding-box diagonal)";
   if (max_depth < 1 || max_depth > 12) return "max_depth must be in 1..12";
   if (!(linear_tolerance > 0 && linear_tolerance < 0.5))
     return "linear_tolerance must be in (0, 0.5) (relative to the bounding-box diagonal)";
@@ -635,7 +643,8 @@ VoronoiResult compute_voronoi_graph(std::shared_ptr<const model::BRepModel> mode
     return result;
   }
   if (!model || model->linear().polygons.empty()) {
-    result.diagnostics.push_back(core::make_error("empty_model", "The solid has no faces to work on"));
+    result.diagnostics.push_back(
+        core::make_error("empty_model", "The solid has no faces to work on"));
     return result;
   }
   auto sub = std::make_shared<Subdivision>(model);
@@ -645,8 +654,8 @@ VoronoiResult compute_voronoi_graph(std::shared_ptr<const model::BRepModel> mode
   result.model = model;
   result.locator = sub;
   result.status = core::has_error(result.diagnostics) ? VoronoiStatus::failed
-                  : result.diagnostics.empty()       ? VoronoiStatus::ok
-                                                     : VoronoiStatus::partial;
+                  : result.diagnostics.empty()        ? VoronoiStatus::ok
+                                                      : VoronoiStatus::partial;
   result.stats.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return result;
@@ -668,7 +677,8 @@ VoronoiResult compute_voronoi_graph(const occ::Solid& solid, const VoronoiOption
     result.diagnostics = std::move(m.diagnostics);
     return result;
   }
-  result = compute_voronoi_graph(std::shared_ptr<const model::BRepModel>(std::move(m.model)), options);
+  result =
+      compute_voronoi_graph(std::shared_ptr<const model::BRepModel>(std::move(m.model)), options);
   result.stats.model_seconds = model_seconds;
   result.stats.seconds += model_seconds;
   return result;

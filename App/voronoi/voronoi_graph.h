@@ -56,11 +56,11 @@ struct VoronoiElement {
   std::vector<EntityRef> governors;  // sorted; faces first, then edges, then vertices
   // Vertex: its position. Edge: its middle. Face: a point of the face.
   Vec3 point{0, 0, 0};
-  double radius = 0;                 // distance from `point` to the governors
-  std::vector<Vec3> polyline;        // edges: from one end to the other
-  bool verified = false;             // point (and polyline) checked to delta
-  bool fs = false;                   // face governed by two unconnected model faces
-  std::vector<int> incident;         // indices of incident elements (sorted)
+  double radius = 0;           // distance from `point` to the governors
+  std::vector<Vec3> polyline;  // edges: from one end to the other
+  bool verified = false;       // point (and polyline) checked to delta
+  bool fs = false;             // face governed by two unconnected model faces
+  std::vector<int> incident;   // indices of incident elements (sorted)
 };
 
 struct VoronoiGraph {
@@ -82,18 +82,19 @@ struct VoronoiGraph {
 class RegionLocator {
  public:
   virtual ~RegionLocator() = default;
-  // The governing entity of p, or nullopt-like {face, 0} outside the solid.
+  // The entity whose region holds p (a point inside the solid); {face, id 0} when p is
+  // outside the subdivided box or found outside the solid.
   virtual EntityRef region(const Vec3& p) const = 0;
 };
 
 struct VoronoiStats {
-  long long cells = 0;            // octree cells visited
+  long long cells = 0;  // octree cells visited
   long long leaves = 0;
-  long long finest_cells = 0;     // cells at the finest level holding 3+ candidates
+  long long finest_cells = 0;  // cells at the finest level holding 3+ candidates
   long long distance_evaluations = 0;
   int finest_level = 0;
-  double seconds = 0;             // wall time of the whole computation
-  double model_seconds = 0;       // part of it spent building the BRepModel
+  double seconds = 0;        // wall time of the whole computation
+  double model_seconds = 0;  // part of it spent building the BRepModel
 };
 
 enum class VoronoiStatus { ok, partial, failed };
@@ -103,8 +104,8 @@ struct VoronoiResult {
   VoronoiStatus status = VoronoiStatus::failed;
   std::vector<core::Diagnostic> diagnostics;  // warnings name unverified elements
   VoronoiStats stats;
-  std::shared_ptr<const model::BRepModel> model;   // the model the governors refer to
-  std::shared_ptr<const RegionLocator> locator;    // the subdivision, for point queries
+  std::shared_ptr<const model::BRepModel> model;  // the model the governors refer to
+  std::shared_ptr<const RegionLocator> locator;   // the subdivision, for point queries
   bool ok() const { return status != VoronoiStatus::failed; }
 };
 

@@ -49,13 +49,15 @@ TEST(BRepModel, BoxTopologyIncidenceAndAdjacency) {
     // Outward normal: the face centre plus the normal leaves the box.
     const Vec3 c = m.vertex(f.vertices[0]).point;
     const Vec3 out = c + 0.1 * f.normal;
-    EXPECT_TRUE(out.x() < 0 || out.x() > 3 || out.y() < 0 || out.y() > 2 || out.z() < 0 || out.z() > 1);
+    EXPECT_TRUE(out.x() < 0 || out.x() > 3 || out.y() < 0 || out.y() > 2 || out.z() < 0 ||
+                out.z() > 1);
   }
   // A face and an edge of the opposite face share nothing; an edge of a side face does.
   const ModelEdge& e0 = m.edges()[0];
   for (const ModelFace& f : m.faces()) {
-    const bool has_vertex = std::find(f.vertices.begin(), f.vertices.end(), e0.first) != f.vertices.end() ||
-                            std::find(f.vertices.begin(), f.vertices.end(), e0.last) != f.vertices.end();
+    const bool has_vertex =
+        std::find(f.vertices.begin(), f.vertices.end(), e0.first) != f.vertices.end() ||
+        std::find(f.vertices.begin(), f.vertices.end(), e0.last) != f.vertices.end();
     const bool bounds = std::find(f.edges.begin(), f.edges.end(), e0.id) != f.edges.end();
     EXPECT_EQ(m.adjacent(ref(e0.id), ref(f.id)), has_vertex && !bounds);
   }
@@ -65,7 +67,8 @@ TEST(BRepModel, BoxTopologyIncidenceAndAdjacency) {
 }
 
 TEST(BRepModel, LShapeHasOneConcaveEdgeAndNoConcaveVertex) {
-  const ModelResult r = build_model(occ::make_prism({{0, 0}, {4, 0}, {4, 1}, {1, 1}, {1, 3}, {0, 3}}, 3));
+  const ModelResult r =
+      build_model(occ::make_prism({{0, 0}, {4, 0}, {4, 1}, {1, 1}, {1, 3}, {0, 3}}, 3));
   ASSERT_TRUE(r.ok());
   const BRepModel& m = *r.model;
   int concave = 0;
@@ -82,7 +85,8 @@ TEST(BRepModel, LShapeHasOneConcaveEdgeAndNoConcaveVertex) {
   for (const ModelVertex& v : m.vertices()) EXPECT_FALSE(v.concave);
   // The top and bottom faces are single polygons with six corners.
   int hexagons = 0;
-  for (const LinearPolygon& p : m.linear().polygons) hexagons += p.loops.size() == 1 && p.loops[0].size() == 6;
+  for (const LinearPolygon& p : m.linear().polygons)
+    hexagons += p.loops.size() == 1 && p.loops[0].size() == 6;
   EXPECT_EQ(hexagons, 2);
 }
 
@@ -150,8 +154,8 @@ TEST(BRepModel, CylinderIsLinearisedWithOrigins) {
 }
 
 TEST(BRepModel, PlateWithHoleKeepsTheHoleLoop) {
-  const ModelResult r =
-      build_model(occ::make_prism({{0, 0}, {4, 0}, {4, 3}, {0, 3}}, 1, {{{1, 1}, {2, 1}, {2, 2}, {1, 2}}}));
+  const ModelResult r = build_model(
+      occ::make_prism({{0, 0}, {4, 0}, {4, 3}, {0, 3}}, 1, {{{1, 1}, {2, 1}, {2, 2}, {1, 2}}}));
   ASSERT_TRUE(r.ok());
   const BRepModel& m = *r.model;
   int with_hole = 0, concave = 0;

@@ -48,8 +48,10 @@ void expect_vertices_exact(const occ::Solid& solid, const VoronoiResult& r, doub
     EXPECT_TRUE(el.verified);
     std::vector<double> d;
     for (const EntityRef& g : el.governors) {
-      if (g.kind == EntityKind::face) d.push_back(solid.distance_to_face(core::FaceId(g.id), el.point));
-      if (g.kind == EntityKind::edge) d.push_back(solid.distance_to_edge(core::EdgeId(g.id), el.point));
+      if (g.kind == EntityKind::face)
+        d.push_back(solid.distance_to_face(core::FaceId(g.id), el.point));
+      if (g.kind == EntityKind::edge)
+        d.push_back(solid.distance_to_edge(core::EdgeId(g.id), el.point));
       if (g.kind == EntityKind::vertex)
         d.push_back(solid.distance_to_vertex(core::VertexId(g.id), el.point));
     }
@@ -136,11 +138,13 @@ TEST(VoronoiGraph, LShapeHasElementsGovernedByTheConcaveEdge) {
   ASSERT_EQ(concave, 1);
   int edges_2f1e = 0, vertices_3f1e = 0;
   for (const VoronoiElement& el : r.graph.elements) {
-    const bool has_edge = std::find(el.governors.begin(), el.governors.end(), edge) != el.governors.end();
+    const bool has_edge =
+        std::find(el.governors.begin(), el.governors.end(), edge) != el.governors.end();
     if (!has_edge) continue;
     if (el.kind == ElementKind::edge && el.governors.size() == 3 && count_faces(el.governors) == 2)
       ++edges_2f1e;
-    if (el.kind == ElementKind::vertex && el.governors.size() == 4 && count_faces(el.governors) == 3)
+    if (el.kind == ElementKind::vertex && el.governors.size() == 4 &&
+        count_faces(el.governors) == 3)
       ++vertices_3f1e;
   }
   EXPECT_GE(edges_2f1e, 4) << describe(r.graph);
@@ -250,7 +254,8 @@ TEST(VoronoiGraph, ConcaveVertexGovernsARegion) {
   ASSERT_GT(corner.id, 0);
   int with_corner = 0;
   for (const VoronoiElement& el : r.graph.elements)
-    with_corner += std::find(el.governors.begin(), el.governors.end(), corner) != el.governors.end();
+    with_corner +=
+        std::find(el.governors.begin(), el.governors.end(), corner) != el.governors.end();
   // Its region borders the three concave edges' regions at least.
   EXPECT_GE(with_corner, 3) << describe(r.graph);
   const Vec3 inside_corner(0.8, 0.8, 0.8);  // nearest boundary point is (1, 1, 1)
