@@ -19,12 +19,16 @@ namespace vorohex::cli {
 
 const char* const kMeshUsage =
     "usage: vorohex mesh IN -o OUT [--size H] [--report REPORT.json] [--max-hexes N]\n"
+    "                    [--smooth-iterations N] [--smooth-passes N] [--no-smooth]\n"
     "                    [--keep-invalid] [--quiet]\n"
     "  IN    a solid as STEP (.step/.stp), BREP (.brep/.brp) or IGES (.iges/.igs)\n"
     "  OUT   the hex mesh: .vtu (ParaView), .msh (Gmsh 4.1) or .inp (Abaqus/CalculiX)\n"
     "  --size H        target edge length in model units (default: diagonal / 20)\n"
     "  --report FILE   write the quality and validity report as JSON\n"
     "  --max-hexes N   refuse up front when the predicted mesh is larger (default 50000000)\n"
+    "  --smooth-iterations N  Laplacian sweeps of the global smoothing (default 20)\n"
+    "  --smooth-passes N      untangling/optimisation passes of the smoothing (default 10)\n"
+    "  --no-smooth     no smoothing (same as both counts 0)\n"
     "  --keep-invalid  write the mesh even when it fails the validity check\n"
     "  --quiet         no progress lines\n"
     "exit: 0 valid mesh written, 1 meshing failed or mesh invalid, 2 bad input\n";
@@ -101,6 +105,13 @@ std::size_t parse_count(const std::string& name, const std::string& text) {
   return static_cast<std::size_t>(v);
 }
 
+int parse_count_or_zero(const std::string& name, const std::string& text) {
+  if (text == "0") return 0;
+  const std::size_t v = parse_count(name, text);
+  if (v > 100000) throw UsageError(name + " is unreasonably large: " + text);
+  return static_cast<int>(v);
+}
+
 // Progress lines on stderr: one per stage and every 25 % within it.
 core::Progress progress_printer(bool quiet) {
   if (quiet) return {};
@@ -169,6 +180,14 @@ int mesh_command(const std::vector<std::string>& argv) {
     options.size = parse_positive("--size", args.values.at("--size"));
   if (args.values.count("--max-hexes"))
     options.max_hexes = parse_count("--max-hexes", args.values.at("--max-hexes"));
+  if (args.values.count("--smooth-iterations"))
+    options.smoothing.laplacian_iterations =
+        parse_count_or_zero("--smooth-iterations", args.values.at("--smooth-iterations"));
+  if (args.values.count("--smooth-passes"))
+    options.smoothing.optimisation_passes =
+        parse_count_or_zero("--smooth-passes", args.values.at("--smooth-passes"));
+  if (args.flags.count("--no-smooth"))
+    options.smoothing.laplacian_iterations = options.smoothing.optimisation_passes = 0;
   const bool quiet = args.flags.count("--quiet") > 0;
 
   const auto t0 = std::chrono::steady_clock::now();
@@ -187,6 +206,8 @@ int mesh_command(const std::vector<std::string>& argv) {
     std::cout << "mesh of " << args.positional[0] << " (scheme " << result.stats.scheme << ", size "
               << result.stats.size_used << ", intervals " << result.stats.intervals[0] << " x "
               << result.stats.intervals[1] << " x " << result.stats.intervals[2] << ")\n";
+    std::cout << "before smoothing     min " << result.stats.min_sj_before_smoothing << "  mean "
+              << result.stats.mean_sj_before_smoothing << "\n";
     print_check_report(std::cout, result.check);
   } else {
     print_diagnostics(all);
@@ -222,7 +243,12 @@ int mesh_command(const std::vector<std::string>& argv) {
     j["size"] = result.stats.size_used;
     j["intervals"] = result.stats.intervals;
     j["sub_volumes"] = result.stats.sub_volumes;
+    j["smoothing"] = {{"laplacian_iterations", options.smoothing.laplacian_iterations},
+                      {"optimisation_passes", options.smoothing.optimisation_passes},
+                      {"min_scaled_jacobian_before", result.stats.min_sj_before_smoothing},
+                      {"mean_scaled_jacobian_before", result.stats.mean_sj_before_smoothing}};
     j["seconds"] = {{"meshing", result.stats.seconds_meshing},
+                    {"smoothing", result.stats.seconds_smoothing},
                     {"checking", result.stats.seconds_checking},
                     {"writing", seconds_writing},
                     {"total", total}};

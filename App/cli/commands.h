@@ -13,8 +13,10 @@ constexpr int kExitBadInput = 2;
 
 int run_mesh(const std::vector<std::string>& args);
 int run_check(const std::vector<std::string>& args);
+int run_voronoi(const std::vector<std::string>& args);
 
 extern const char* const kMeshUsage;
 extern const char* const kCheckUsage;
+extern const char* const kVoronoiUsage;
 
 }  // namespace vorohex::cli

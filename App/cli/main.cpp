@@ -15,6 +15,7 @@ const char* const kUsage =
     "usage: vorohex <command> [options]\n"
     "  mesh IN -o OUT [--size H] [--report R.json]   mesh a STEP/BREP/IGES solid\n"
     "  check MESH [--cad IN] [--report R.json]       validity and quality of a hex mesh\n"
+    "  voronoi IN -o GRAPH.json [--vtp G.vtp]        the embedded Voronoi graph of a solid\n"
     "  --help, -h                                    this text; `vorohex <command> --help`\n"
     "  --version                                     the version\n";
 
@@ -46,6 +47,10 @@ int main(int argc, char** argv) {
     if (command == "check") {
       if (help) return std::cout << kCheckUsage, kExitOk;
       return run_check(rest);
+    }
+    if (command == "voronoi") {
+      if (help) return std::cout << kVoronoiUsage, kExitOk;
+      return run_voronoi(rest);
     }
     std::cerr << "vorohex: unknown command '" << command << "'\n" << kUsage;
     return kExitBadInput;

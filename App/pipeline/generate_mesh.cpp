@@ -6,10 +6,15 @@
 #include <stdexcept>
 
 #include "mesh/map_block.h"
+#include "mesh/sweep.h"
 #include "quality/scaled_jacobian.h"
 
 namespace vorohex::pipeline {
 namespace {
+
+void append(std::vector<core::Diagnostic>& to, const std::vector<core::Diagnostic>& from) {
+  to.insert(to.end(), from.begin(), from.end());
+}
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -24,6 +29,7 @@ void MeshOptions::validate() const {
     throw std::invalid_argument(s.str());
   }
   if (max_hexes == 0) throw std::invalid_argument("max_hexes must be at least 1");
+  smoothing.validate();
   check.validate();
 }
 
@@ -38,53 +44,100 @@ MeshResult generate_mesh(const occ::Solid& solid, const MeshOptions& options,
   result.stats.size_used = size;
 
   progress.report("scheme", 0.0);
+  // Scheme choice: a mapped block where the solid is a topological hexahedron, else a
+  // one-to-one sweep where two faces are joined by four-sided linking faces.
   const mesh::Applicability map = mesh::map_block_applicable(solid);
-  if (!map.ok) {
+  const mesh::SweepApplicability sweepable =
+      map.ok ? mesh::SweepApplicability{} : mesh::sweep_applicable(solid);
+  if (!map.ok && !sweepable.ok) {
     result.diagnostics.push_back(core::make_error(
         "not_supported_yet",
-        "This solid is not supported yet: this version meshes only topological hexahedra (six "
-        "faces of four edges each); " +
-            map.reason + "."));
+        "This solid is not supported yet: this version meshes topological hexahedra (mapped) "
+        "and one-to-one sweeps. Not a block: " +
+            map.reason + ". Not a sweep: " + sweepable.reason + "."));
     return result;
   }
 
+  std::size_t predicted = 0;
   mesh::MapBlockOptions map_options;
-  map_options.size = size;
-  const mesh::MapBlockEstimate estimate = mesh::map_block_evaluate(solid, map_options);
-  result.stats.intervals = estimate.intervals;
-  if (estimate.hexes > options.max_hexes) {
+  mesh::SweepOptions sweep_options;
+  map_options.size = sweep_options.size = size;
+  if (map.ok) {
+    const mesh::MapBlockEstimate estimate = mesh::map_block_evaluate(solid, map_options);
+    result.stats.intervals = estimate.intervals;
+    predicted = estimate.hexes;
+  } else {
+    const mesh::SweepEstimate estimate = mesh::sweep_evaluate(solid, sweep_options);
+    result.stats.intervals = {0, 0, estimate.layers};
+    predicted = estimate.hexes;
+  }
+  if (predicted > options.max_hexes) {
     std::ostringstream s;
-    s << "The mesh would have " << estimate.hexes << " hexahedra (intervals "
-      << estimate.intervals[0] << " x " << estimate.intervals[1] << " x " << estimate.intervals[2]
-      << "), more than max_hexes = " << options.max_hexes << "; increase the size or the limit.";
+    s << "The mesh would have " << predicted
+      << " hexahedra, more than max_hexes = " << options.max_hexes
+      << "; increase the size or the limit.";
     result.diagnostics.push_back(core::make_error("too_many_hexes", s.str()));
     return result;
   }
 
-  mesh::MapBlockResult mapped = mesh::map_block(solid, map_options, progress);
-  result.diagnostics.insert(result.diagnostics.end(), mapped.diagnostics.begin(),
-                            mapped.diagnostics.end());
+  bool meshed = false;
+  if (map.ok) {
+    mesh::MapBlockResult mapped = mesh::map_block(solid, map_options, progress);
+    append(result.diagnostics, mapped.diagnostics);
+    result.stats.intervals = mapped.intervals;
+    result.stats.scheme = "map";
+    if ((meshed = mapped.ok)) result.mesh = std::move(mapped.mesh);
+  } else {
+    mesh::SweepResult swept = mesh::sweep(solid, sweep_options, progress);
+    append(result.diagnostics, swept.diagnostics);
+    result.stats.intervals = {0, 0, swept.layers};
+    result.stats.scheme = "sweep";
+    if ((meshed = swept.ok)) {
+      result.mesh = std::move(swept.mesh);
+      result.diagnostics.push_back(core::make_info(
+          "sweep",
+          "Swept from " + core::entity_name(swept.source) + " to " +
+              core::entity_name(swept.target) + " in " + std::to_string(swept.layers) + " layers.",
+          {core::entity_name(swept.source), core::entity_name(swept.target)}));
+    }
+  }
   result.stats.seconds_meshing = seconds_since(t0);
-  if (!mapped.ok) return result;
-  result.mesh = std::move(mapped.mesh);
-  result.stats.intervals = mapped.intervals;
+  if (!meshed) return result;
   result.stats.sub_volumes = 1;
-  result.stats.scheme = "map";
 
   if (progress.cancelled()) {
     result.diagnostics.push_back(core::make_error("cancelled", "Meshing was cancelled."));
     return result;
   }
 
+  // Global smoothing with nodes kept on their CAD entities; it never lowers the minimum
+  // scaled Jacobian and never inverts an element.
+  const auto ts = std::chrono::steady_clock::now();
+  if (options.smoothing.laplacian_iterations > 0 || options.smoothing.optimisation_passes > 0) {
+    const smooth::SmoothResult smoothed =
+        smooth::smooth_mesh(result.mesh, solid, options.smoothing, progress);
+    append(result.diagnostics, smoothed.diagnostics);
+    result.stats.min_sj_before_smoothing = smoothed.min_before;
+    result.stats.mean_sj_before_smoothing = smoothed.mean_before;
+    if (smoothed.status == smooth::SmoothStatus::cancelled) {
+      result.mesh = core::HexMesh();  // a cancelled run hands over nothing
+      return result;
+    }
+  }
+  result.stats.seconds_smoothing = seconds_since(ts);
+
   // Never hand over an unchecked mesh: the validity check runs on every result.
   progress.report("check", 0.0);
   const auto t1 = std::chrono::steady_clock::now();
   result.check = quality::check_mesh(result.mesh, &solid, options.check);
+  if (options.smoothing.laplacian_iterations == 0 && options.smoothing.optimisation_passes == 0) {
+    result.stats.min_sj_before_smoothing = result.check.scaled_jacobian.min;
+    result.stats.mean_sj_before_smoothing = result.check.scaled_jacobian.mean;
+  }
   result.scaled_jacobian = quality::scaled_jacobians(result.mesh);
   result.stats.seconds_checking = seconds_since(t1);
   progress.report("check", 1.0);
-  result.diagnostics.insert(result.diagnostics.end(), result.check.diagnostics.begin(),
-                            result.check.diagnostics.end());
+  append(result.diagnostics, result.check.diagnostics);
   result.ok = result.check.valid && !core::has_error(result.diagnostics);
   return result;
 }

@@ -12,23 +12,28 @@
 #include "core/progress.h"
 #include "occ/solid.h"
 #include "quality/check_mesh.h"
+#include "smooth/smooth_mesh.h"
 
 namespace vorohex::pipeline {
 
 struct MeshOptions {
   double size = 0;                     // target edge length, model units; 0 = diagonal / 20
   std::size_t max_hexes = 50'000'000;  // refused up front when the prediction exceeds it
+  smooth::SmoothOptions smoothing;     // global smoothing; 0 iterations and 0 passes = off
   quality::CheckOptions check;         // tolerances of the final validity check
   void validate() const;               // throws std::invalid_argument naming the bad option
 };
 
 struct MeshStats {
-  double size_used = 0;  // the target size actually applied
-  std::array<int, 3> intervals{};
+  double size_used = 0;            // the target size actually applied
+  std::array<int, 3> intervals{};  // map: per block direction; sweep: {0, 0, layers}
   double seconds_meshing = 0;
+  double seconds_smoothing = 0;
   double seconds_checking = 0;
+  // Scaled Jacobian before and after smoothing (equal when smoothing is off).
+  double min_sj_before_smoothing = 0, mean_sj_before_smoothing = 0;
   int sub_volumes = 0;
-  std::string scheme;  // "map" for a mapped block
+  std::string scheme;  // "map" (mapped block) or "sweep" (one-to-one sweep)
 };
 
 struct MeshResult {

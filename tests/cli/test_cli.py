@@ -97,6 +97,22 @@ class MeshCommand(unittest.TestCase):
             self.assertEqual(code, 0, stdout + stderr)
             self.assertIn("valid                yes", stdout)
 
+    def test_cylinder_is_swept_and_valid(self):
+        sys.path.append("/usr/lib/freecad-python3/lib")
+        import FreeCAD  # noqa: F401  (FreeCAD must be imported before Part)
+        import Part
+        path = os.path.join(self.dir, "cyl.step")
+        Part.makeCylinder(1, 2).exportStep(path)
+        out = os.path.join(self.dir, "cyl.vtu")
+        rep = os.path.join(self.dir, "cyl.json")
+        code, stdout, stderr = run("mesh", path, "-o", out, "--size", "0.2", "--report", rep)
+        self.assertEqual(code, 0, stdout + stderr)
+        with open(rep) as f:
+            r = json.load(f)
+        self.assertEqual(r["scheme"], "sweep")
+        self.assertTrue(r["check"]["valid"])
+        self.assertGreater(r["check"]["scaled_jacobian"]["min"], 0.2)
+
     def test_every_output_format(self):
         step = os.path.join(EXAMPLES, "box_3x2x1.step")
         for ext in ("vtu", "msh", "inp"):
@@ -134,6 +150,7 @@ class MeshCommand(unittest.TestCase):
     def test_open_shell_and_two_solids(self):
         sys.path.append("/usr/lib/freecad-python3/lib")
         import FreeCAD  # FreeCAD's Part, only to write the bad inputs
+        import FreeCAD  # noqa: F401  (FreeCAD must be imported before Part)
         import Part
         box = Part.makeBox(1, 1, 1)
         shell = Part.Shell(box.Faces[:5])
@@ -154,10 +171,11 @@ class MeshCommand(unittest.TestCase):
 
     def test_unsupported_solid_is_refused_clearly(self):
         sys.path.append("/usr/lib/freecad-python3/lib")
+        import FreeCAD  # noqa: F401  (FreeCAD must be imported before Part)
         import Part
-        path = os.path.join(self.dir, "cyl.step")
-        Part.makeCylinder(1, 2).exportStep(path)
-        out = os.path.join(self.dir, "cyl.vtu")
+        path = os.path.join(self.dir, "sphere.step")
+        Part.makeSphere(1).exportStep(path)
+        out = os.path.join(self.dir, "sphere.vtu")
         code, stdout, stderr = run("mesh", path, "-o", out)
         self.assertEqual(code, 1)
         self.assertIn("not supported yet", stderr)

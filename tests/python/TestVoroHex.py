@@ -112,8 +112,15 @@ class TestVoroHexApi(unittest.TestCase):
         report = VoroHex.check(fm, self.box)
         self.assertTrue(report.valid, [str(d) for d in report.diagnostics])
 
-    def test_cylinder_is_diagnosed(self):
-        r = VoroHex.mesh(Part.makeCylinder(5, 10))
+    def test_cylinder_is_swept(self):
+        cyl = Part.makeCylinder(5, 10)
+        r = VoroHex.mesh(cyl, size=1.5)
+        self.assertTrue(r.ok, r.message)
+        self.assertEqual(r.stats.scheme, "sweep")
+        self.assertTrue(VoroHex.check(r, cyl).valid)
+
+    def test_sphere_is_diagnosed(self):
+        r = VoroHex.mesh(Part.makeSphere(5))
         self.assertFalse(r.ok)
         self.assertTrue(r.errors)
         self.assertIn("not_supported_yet", [d.code for d in r.errors])
@@ -261,13 +268,13 @@ class TestVoroHexObject(unittest.TestCase):
     def test_error_keeps_previous_mesh(self):
         obj = self.make_mesh(size=10)
         before = obj.FemMesh.VolumeCount
-        cyl = self.doc.addObject("Part::Cylinder", "Cylinder")
-        obj.Part = cyl
+        sphere = self.doc.addObject("Part::Sphere", "Sphere")
+        obj.Part = sphere
         self.doc.recompute()
         self.assertFalse(obj.isValid())
         self.assertEqual(obj.Status, "error")
-        self.assertIn("topological hexahedra", obj.Message)
-        self.assertIn("topological hexahedra", obj.getStatusString())
+        self.assertIn("not supported yet", obj.Message)
+        self.assertIn("not supported yet", obj.getStatusString())
         self.assertEqual(obj.FemMesh.VolumeCount, before)
         self.assertEqual(obj.HexCount, before)
         obj.Part = self.box  # recovers
