@@ -1,0 +1,459 @@
+#include "decompose/decompose.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "mesh/map_block.h"
+#include "mesh/sweep.h"
+#include "occ/split_solid.h"
+
+namespace vorohex::decompose {
+
+using core::EdgeId;
+using core::FaceId;
+using model::EntityKind;
+using voronoi::ElementKind;
+using voronoi::VoronoiGraph;
+
+const char* sub_volume_type_name(SubVolumeType t) {
+  return t == SubVolumeType::vs ? "Vs" : "Ve";
+}
+
+const char* scheme_name(Scheme s) {
+  switch (s) {
+    case Scheme::sweep:
+      return "sweep";
+    case Scheme::map:
+      return "map";
+    case Scheme::none:
+      return "none";
+  }
+  return "?";
+}
+
+std::string DecomposeOptions::validate() const {
+  if (!(sharp_angle > 0 && sharp_angle <= 180)) return "sharp_angle must be in (0, 180] degrees";
+  if (!(tolerance > 0 && tolerance <= 0.01)) return "tolerance must be in (0, 0.01]";
+  if (!(plane_snap >= 0 && plane_snap <= 0.05)) return "plane_snap must be in [0, 0.05]";
+  return {};
+}
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+Vec3 project(const occ::Solid& solid, EntityRef target, const Vec3& p) {
+  if (target.kind == EntityKind::face) return solid.project_to_face(FaceId(target.id), p);
+  if (target.kind == EntityKind::edge) return solid.project_to_edge(EdgeId(target.id), p);
+  return solid.vertex_point(core::VertexId(target.id));
+}
+
+std::vector<std::string> names(const std::vector<EntityRef>& refs) {
+  std::vector<std::string> out;
+  for (const EntityRef& r : refs) out.push_back(r.name());
+  return out;
+}
+
+// Steps 1-2: classification with the [1] -> [1s] feedback of the vertex treatment.
+void classify_all(const VoronoiGraph& g, const detail::Relations& rel, double sharp,
+                  DecompositionResult& r) {
+  std::vector<std::pair<EntityRef, EntityRef>> forced;
+  const auto edge_ids = g.of_kind(ElementKind::edge);
+  const auto vertex_ids = g.of_kind(ElementKind::vertex);
+  std::map<int, detail::EdgeClass> cls;
+  std::map<int, detail::VertexTreatment> treat;
+  for (int round = 0; round < 6; ++round) {
+    cls.clear();
+    treat.clear();
+    for (int e : edge_ids)
+      cls[e] = detail::classify_edge(g.elements[e].governors, rel, sharp, forced);
+    bool changed = false;
+    for (int v : vertex_ids) {
+      std::vector<detail::IncidentEdge> inc;
+      bool relevant = false;
+      for (int e : g.elements[v].incident) {
+        if (g.elements[e].kind != ElementKind::edge) continue;
+        inc.push_back({g.elements[e].governors, cls[e]});
+        relevant = relevant || cls[e].interest;
+      }
+      if (!relevant) continue;
+      detail::VertexTreatment t = detail::treat_vertex(g.elements[v].governors, inc, rel);
+      for (const auto& p : t.sharpen)
+        if (std::find(forced.begin(), forced.end(), p) == forced.end()) {
+          forced.push_back(p);
+          changed = true;
+        }
+      treat[v] = std::move(t);
+    }
+    if (!changed) break;
+  }
+  for (int e : edge_ids) {
+    const auto& c = cls[e];
+    r.edges.push_back({e, c.type, c.interest, c.targets});
+    r.stats.edges_of_interest += c.interest;
+    r.stats.projected_edges += !c.targets.empty();
+  }
+  for (auto& [v, t] : treat) {
+    r.vertices.push_back({v, t.row, t.rectangles, t.points, t.open});
+    if (!t.open.empty())
+      r.diagnostics.push_back(
+          core::make_warning("open_vertex_gap",
+                             "Voronoi vertex " + std::to_string(v) + " (" + t.row +
+                                 ") leaves the decomposition open towards some governors",
+                             names(t.open)));
+  }
+  r.stats.vertices_treated = int(r.vertices.size());
+}
+
+// Step 3: the quadrilaterals of the projected edges and of the closing rectangles.
+void build_quads(const occ::Solid& solid, const VoronoiGraph& g, DecompositionResult& r) {
+  std::map<int, const TreatedVertex*> treated;
+  for (const TreatedVertex& t : r.vertices) treated[t.element] = &t;
+  // The vertex's single point for the faces a target stands for.
+  auto vertex_target = [&](int v, const detail::Target& t) {
+    const auto it = treated.find(v);
+    if (it != treated.end())
+      for (const auto& [f, entity] : it->second->points)
+        if (!t.faces.empty() && f == t.faces[0]) return entity;
+    return t.entity;
+  };
+  for (const ClassifiedEdge& ce : r.edges) {
+    if (ce.targets.empty()) continue;
+    const auto& el = g.elements[ce.element];
+    std::vector<Vec3> line = el.polyline;
+    if (line.size() < 2) continue;
+    // Snap the polyline ends to the edge's vertices (the one point per governor face).
+    std::array<int, 2> end_vertex{-1, -1};
+    for (int v : g.edge_vertices(ce.element)) {
+      const Vec3& p = g.elements[v].point;
+      const int k = (line.front() - p).norm() <= (line.back() - p).norm() ? 0 : 1;
+      end_vertex[k] = v;
+      (k == 0 ? line.front() : line.back()) = p;
+    }
+    for (const detail::Target& t : ce.targets) {
+      std::vector<Vec3> proj(line.size());
+      for (std::size_t i = 0; i < line.size(); ++i) proj[i] = project(solid, t.entity, line[i]);
+      if (end_vertex[0] >= 0)
+        proj.front() = project(solid, vertex_target(end_vertex[0], t), line.front());
+      if (end_vertex[1] >= 0)
+        proj.back() = project(solid, vertex_target(end_vertex[1], t), line.back());
+      for (std::size_t i = 0; i + 1 < line.size(); ++i) {
+        DecompositionQuad q;
+        q.points = {line[i], line[i + 1], proj[i + 1], proj[i]};
+        const bool on_edge = t.entity.kind == EntityKind::edge && t.faces.size() == 1;
+        q.anchored = {false, false, on_edge, on_edge};
+        q.supports = {EntityRef{EntityKind::face, 0}, EntityRef{EntityKind::face, 0}, t.entity,
+                      t.entity};
+        q.element = ce.element;
+        q.kind = "edge";
+        q.governors = t.faces;
+        q.target = t.entity;
+        r.quads.push_back(std::move(q));
+      }
+    }
+  }
+  for (const TreatedVertex& tv : r.vertices) {
+    const Vec3& v = g.elements[tv.element].point;
+    for (const detail::Rectangle& rect : tv.rectangles) {
+      // P_a and P_b: the vertex's projection for each face (an edge governor when the face
+      // is replaced by one, see [1e]); the shared edge's projection closes the rectangle.
+      auto entity_for = [&](EntityRef f) {
+        for (const auto& [face, entity] : tv.points)
+          if (face == f) return entity;
+        return f;
+      };
+      const EntityRef ea = entity_for(rect.a), eb = entity_for(rect.b);
+      DecompositionQuad q;
+      q.points = {v, project(solid, ea, v), project(solid, rect.edge, v), project(solid, eb, v)};
+      q.anchored = {false, ea.kind == EntityKind::edge, false, eb.kind == EntityKind::edge};
+      q.supports = {EntityRef{EntityKind::face, 0}, ea, rect.edge, eb};
+      q.element = tv.element;
+      q.kind = "rectangle";
+      q.governors = {rect.a, rect.b};
+      q.target = rect.edge;
+      r.quads.push_back(std::move(q));
+    }
+  }
+  r.stats.quads = int(r.quads.size());
+}
+
+// Merging (§4.4): quads whose planes agree within `snap` (model units) and a few degrees
+// are moved onto their common plane, so that the split leaves one planar face where the
+// embedding's approximate positions would leave several slightly tilted ones.
+void snap_coplanar(const occ::Solid& solid, std::vector<DecompositionQuad>& quads, double snap) {
+  struct Plane {
+    Vec3 n{0, 0, 0};
+    double d = 0, area = 0;
+    bool ok = false;
+  };
+  std::vector<Plane> planes(quads.size());
+  for (std::size_t i = 0; i < quads.size(); ++i) {
+    const auto& p = quads[i].points;
+    Vec3 n(0, 0, 0), c(0, 0, 0);
+    for (std::size_t k = 0; k < p.size(); ++k) n += p[k].cross(p[(k + 1) % p.size()]), c += p[k];
+    c /= double(p.size());
+    const double area = 0.5 * n.norm();
+    if (area <= snap * snap) continue;
+    n.normalize();
+    bool flat = true;
+    for (const Vec3& q : p) flat = flat && std::abs((q - c).dot(n)) <= snap;
+    if (!flat) continue;
+    if (n.x() + 1e-9 * n.y() + 1e-18 * n.z() < 0) n = -n;  // one orientation per plane
+    planes[i] = {n, n.dot(c), area, true};
+  }
+  const double cos_max = std::cos(5 * kPi / 180);
+  std::vector<int> cluster(quads.size(), -1);
+  for (std::size_t i = 0; i < quads.size(); ++i) {
+    if (!planes[i].ok || cluster[i] >= 0) continue;
+    std::vector<std::size_t> members{i};
+    cluster[i] = int(i);
+    Vec3 n = planes[i].n * planes[i].area;
+    double d = planes[i].d * planes[i].area, w = planes[i].area;
+    for (std::size_t j = i + 1; j < quads.size(); ++j) {
+      if (!planes[j].ok || cluster[j] >= 0) continue;
+      if (planes[i].n.dot(planes[j].n) < cos_max || std::abs(planes[i].d - planes[j].d) > snap)
+        continue;
+      cluster[j] = int(i);
+      members.push_back(j);
+      n += planes[j].n * planes[j].area;
+      d += planes[j].d * planes[j].area;
+      w += planes[j].area;
+    }
+    if (members.size() < 2) continue;
+    n.normalize();
+    d /= w;
+    // Points on edge governors (concave edges) are exact: the plane goes through them.
+    std::vector<Vec3> anchors;
+    for (std::size_t m : members)
+      for (std::size_t k = 0; k < quads[m].points.size(); ++k)
+        if (k < quads[m].anchored.size() && quads[m].anchored[k])
+          anchors.push_back(quads[m].points[k]);
+    if (!anchors.empty()) {
+      Vec3 c(0, 0, 0);
+      for (const Vec3& a : anchors) c += a;
+      c /= double(anchors.size());
+      // The anchors' main direction; drop it from the normal if they are spread along it.
+      Vec3 far = c;
+      for (const Vec3& a : anchors)
+        if ((a - c).norm() > (far - c).norm()) far = a;
+      if ((far - c).norm() > snap) {
+        const Vec3 t = (far - c).normalized();
+        n = (n - n.dot(t) * t).normalized();
+      }
+      d = n.dot(c);
+    }
+    // Move each point onto the plane without leaving its support: within a planar face,
+    // along a straight edge, or freely for inner points.
+    for (std::size_t m : members)
+      for (std::size_t k = 0; k < quads[m].points.size(); ++k) {
+        Vec3& q = quads[m].points[k];
+        const double off = q.dot(n) - d;
+        Vec3 dir = n;
+        const EntityRef sup = k < quads[m].supports.size() ? quads[m].supports[k] : EntityRef{};
+        if (sup.id > 0 && sup.kind == EntityKind::face && solid.face_is_planar(FaceId(sup.id))) {
+          const Vec3 fn = solid.face_normal(FaceId(sup.id), q);
+          dir = n - n.dot(fn) * fn;
+        } else if (sup.id > 0 && sup.kind == EntityKind::edge) {
+          const auto ends = solid.edge_points_by_length(EdgeId(sup.id), 1);
+          dir = (ends.back() - ends.front()).normalized();
+        }
+        if (std::abs(dir.dot(n)) < 0.2) dir = n;  // support nearly parallel to the plane
+        q -= off / dir.dot(n) * dir;
+      }
+  }
+}
+
+// The original face a sample lies on, or an invalid id.
+FaceId original_face(const occ::Solid& solid, const occ::FaceSample& s, double tol) {
+  for (FaceId f : solid.faces()) {
+    if (solid.distance_to_face(f, s.point) > tol) continue;
+    if (solid.face_normal(f, s.point).dot(s.normal) > 0.5) return f;
+  }
+  return FaceId();
+}
+
+// Steps 4-5: virtual topology of the pieces and the merged decomposition faces.
+void build_topology(const occ::Solid& solid, double tol, DecompositionResult& r) {
+  r.topology.faces.clear();
+  r.faces.clear();
+  std::vector<std::vector<occ::FaceSample>> samples;
+  for (std::size_t i = 0; i < r.sub_volumes.size(); ++i) {
+    samples.push_back(occ::sample_faces(*r.sub_volumes[i].solid));
+    for (const occ::FaceSample& s : samples.back()) {
+      VirtualFace vf;
+      vf.sub_volume = int(i);
+      vf.face = s.face;
+      vf.original = original_face(solid, s, tol);
+      vf.num_edges = s.num_edges;
+      vf.area = s.area;
+      r.topology.faces.push_back(vf);
+    }
+  }
+  // Decomposition faces: pair up the non-original faces of different sub-volumes.
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < samples.size(); ++i)
+    for (std::size_t j = 0; j < samples[i].size(); ++j, ++k) {
+      VirtualFace& vf = r.topology.faces[k];
+      if (vf.original.valid() || vf.decomposition_face >= 0) continue;
+      DecompositionFace df;
+      df.sub_volumes = {int(i), -1};
+      df.num_edges = vf.num_edges;
+      df.area = vf.area;
+      df.point = samples[i][j].point;
+      vf.decomposition_face = int(r.faces.size());
+      std::size_t k2 = 0;
+      for (std::size_t i2 = 0; i2 < samples.size(); ++i2)
+        for (std::size_t j2 = 0; j2 < samples[i2].size(); ++j2, ++k2) {
+          VirtualFace& other = r.topology.faces[k2];
+          if (i2 == i || other.original.valid() || other.decomposition_face >= 0) continue;
+          if (r.sub_volumes[i2].solid->distance_to_face(other.face, df.point) > tol) continue;
+          other.decomposition_face = vf.decomposition_face;
+          df.sub_volumes[1] = int(i2);
+        }
+      for (std::size_t q = 0; q < r.quads.size(); ++q) {
+        const auto& pts = r.quads[q].points;
+        Vec3 c(0, 0, 0);
+        for (const Vec3& p : pts) c += p;
+        c /= double(pts.size());
+        if (r.sub_volumes[i].solid->distance_to_face(vf.face, c) <= tol) {
+          df.quads.push_back(int(q));
+          df.elements.push_back(r.quads[q].element);
+        }
+      }
+      std::sort(df.elements.begin(), df.elements.end());
+      df.elements.erase(std::unique(df.elements.begin(), df.elements.end()), df.elements.end());
+      r.faces.push_back(std::move(df));
+    }
+  r.stats.decomposition_faces = int(r.faces.size());
+}
+
+// Step 6: type and scheme of one sub-volume.
+void type_sub_volume(const VoronoiGraph& g, const DecompositionResult& r, int index,
+                     SubVolume& sv) {
+  std::set<int> originals;
+  for (const VirtualFace& vf : r.topology.faces)
+    if (vf.sub_volume == index && vf.original.valid()) originals.insert(vf.original.value());
+  sv.type = SubVolumeType::ve;
+  sv.fs_face = -1;
+  for (int f : g.fs_faces()) {
+    const auto& gov = g.elements[f].governors;
+    if (gov.size() == 2 && originals.count(gov[0].id) && originals.count(gov[1].id)) {
+      sv.type = SubVolumeType::vs;
+      sv.fs_face = f;
+      break;
+    }
+  }
+  const mesh::SweepApplicability sweep = mesh::sweep_applicable(*sv.solid);
+  const mesh::Applicability map = mesh::map_block_applicable(*sv.solid);
+  auto use_sweep = [&](const std::string& why) {
+    sv.scheme = Scheme::sweep;
+    sv.source = sweep.source;
+    sv.target = sweep.target;
+    sv.reason = why;
+  };
+  if (sv.type == SubVolumeType::vs && sweep.ok) {
+    use_sweep("Vs: sweep between the faces across its f_s face");
+  } else if (map.ok) {
+    sv.scheme = Scheme::map;
+    sv.reason = sv.type == SubVolumeType::vs
+                    ? "Vs not sweepable (" + sweep.reason + "), a topological hexahedron"
+                    : "Ve: a topological hexahedron";
+  } else if (sweep.ok) {
+    use_sweep("Ve: sweep along its Voronoi edges");
+  } else {
+    sv.scheme = Scheme::none;
+    sv.reason = "no scheme: sweep: " + sweep.reason + "; map: " + map.reason;
+  }
+}
+
+}  // namespace
+
+DecompositionResult decompose(const occ::Solid& solid, const voronoi::VoronoiResult& voronoi,
+                              const DecomposeOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
+  DecompositionResult r;
+  if (const std::string why = options.validate(); !why.empty()) {
+    r.diagnostics.push_back(core::make_error("invalid_options", why));
+    return r;
+  }
+  if (!voronoi.model || !voronoi.ok()) {
+    r.diagnostics.push_back(core::make_error("no_voronoi_graph", "No Voronoi graph to decompose"));
+    return r;
+  }
+  const VoronoiGraph& g = voronoi.graph;
+  const double tol = options.tolerance * solid.diagonal();
+  const detail::ModelRelations rel(*voronoi.model);
+  classify_all(g, rel, options.sharp_angle * kPi / 180, r);
+  build_quads(solid, g, r);
+  snap_coplanar(solid, r.quads, options.plane_snap * solid.diagonal());
+
+  std::vector<std::vector<Vec3>> tools;
+  for (const auto& q : r.quads) tools.push_back(q.points);
+  occ::SplitResult split = occ::split_solid(solid, tools, std::max(tol, 1e-7));
+  for (auto& d : split.diagnostics) r.diagnostics.push_back(d);
+  if (!split.ok) return r;
+  if (split.dropped_internal_faces > 0)
+    r.diagnostics.push_back(
+        core::make_info("dangling_decomposition_faces",
+                        std::to_string(split.dropped_internal_faces) +
+                            " pieces of decomposition faces separated nothing and were dropped"));
+  for (occ::Solid& piece : split.pieces) {
+    SubVolume sv;
+    sv.volume = piece.volume();
+    sv.solid = std::make_shared<const occ::Solid>(std::move(piece));
+    r.sub_volumes.push_back(std::move(sv));
+  }
+  build_topology(solid, tol, r);
+  for (std::size_t i = 0; i < r.sub_volumes.size(); ++i)
+    type_sub_volume(g, r, int(i), r.sub_volumes[i]);
+  r.stats.sub_volumes_before_merge = int(r.sub_volumes.size());
+
+  // Merge pass (§7): unite two sub-volumes sharing a decomposition face when the union is
+  // sweepable; repeat until no pair qualifies.
+  bool merged = options.merge;
+  while (merged) {
+    merged = false;
+    for (const DecompositionFace& df : r.faces) {
+      const int a = df.sub_volumes[0], b = df.sub_volumes[1];
+      if (a < 0 || b < 0) continue;
+      std::unique_ptr<occ::Solid> u =
+          occ::fuse_solids(*r.sub_volumes[a].solid, *r.sub_volumes[b].solid);
+      if (!u || !mesh::sweep_applicable(*u).ok) continue;
+      SubVolume sv;
+      sv.volume = u->volume();
+      sv.merged_from = r.sub_volumes[a].merged_from + r.sub_volumes[b].merged_from;
+      sv.solid = std::shared_ptr<const occ::Solid>(std::move(u));
+      r.sub_volumes[std::min(a, b)] = std::move(sv);
+      r.sub_volumes.erase(r.sub_volumes.begin() + std::max(a, b));
+      merged = true;
+      break;
+    }
+    if (merged) {
+      build_topology(solid, tol, r);
+      for (std::size_t i = 0; i < r.sub_volumes.size(); ++i)
+        type_sub_volume(g, r, int(i), r.sub_volumes[i]);
+    }
+  }
+
+  r.stats.sub_volumes = int(r.sub_volumes.size());
+  bool complete = true;
+  for (std::size_t i = 0; i < r.sub_volumes.size(); ++i) {
+    const SubVolume& sv = r.sub_volumes[i];
+    if (sv.scheme != Scheme::none) continue;
+    complete = false;
+    r.diagnostics.push_back(core::make_warning(
+        "no_scheme", "Sub-volume " + std::to_string(i) + " (" + sub_volume_type_name(sv.type) +
+                         ") has no meshing scheme: " + sv.reason));
+  }
+  for (const auto& d : r.diagnostics)
+    if (d.code == "open_vertex_gap") complete = false;
+  r.status = complete ? DecompositionStatus::ok : DecompositionStatus::partial;
+  r.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
+}  // namespace vorohex::decompose

@@ -1,0 +1,145 @@
+// Decomposition of a solid into sweepable and mappable sub-volumes from its embedded
+// Voronoi graph (paper §4): Voronoi edges are classified ([0] [1] [1s] [2] [3] [1e] [0e]
+// [C]), the edges of interest and their end vertices are projected onto their governors
+// (one point per governor face at a vertex, closing rectangles v, pi_a(v), pi_ab(v),
+// pi_b(v)), the resulting quadrilaterals split a copy of the solid (the input is never
+// modified), coplanar pieces are unified, and each sub-volume is typed Vs (holds an f_s
+// face) or Ve and given a meshing scheme. A merge pass (paper §7) then unites adjacent
+// sub-volumes whose union is sweepable. The rule table is in docs/decomposition.md.
+#pragma once
+
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/diagnostic.h"
+#include "decompose/detail/rules.h"
+#include "occ/solid.h"
+#include "voronoi/voronoi_graph.h"
+
+namespace vorohex::decompose {
+
+using core::Vec3;
+using detail::EdgeType;
+using model::EntityRef;
+
+struct DecomposeOptions {
+  // A [1] Voronoi edge whose two adjacent governor faces meet at an interior dihedral angle
+  // below this is [1s] (projected onto both faces instead of their common edge). Degrees,
+  // in (0, 180].
+  double sharp_angle = 60;
+  // Unite adjacent sub-volumes whose union is sweepable (the paper's §7 proposal).
+  bool merge = true;
+  // Geometric tolerance (coincident points, coplanarity, faces on faces), relative to the
+  // bounding-box diagonal; (0, 0.01].
+  double tolerance = 1e-6;
+  // Decomposition quads whose planes differ by less than this (and 5 degrees) are moved
+  // onto one plane before the split: the embedding places Voronoi elements to about
+  // VoronoiOptions::delta, so nominally coplanar quads are slightly tilted. Relative to
+  // the bounding-box diagonal; [0, 0.05].
+  double plane_snap = 0.005;
+  // Empty if valid, else the reason.
+  std::string validate() const;
+};
+
+// A Voronoi edge and what the decomposition does with it.
+struct ClassifiedEdge {
+  int element = -1;  // index in the VoronoiGraph
+  EdgeType type = EdgeType::none;
+  bool interest = false;
+  std::vector<detail::Target> targets;  // what it is projected onto (empty: not projected)
+};
+
+// A Voronoi vertex with its vertex-table row and closing rectangles.
+struct TreatedVertex {
+  int element = -1;
+  std::string row;  // e.g. "[2,2,C,C]"
+  std::vector<detail::Rectangle> rectangles;
+  std::vector<std::pair<EntityRef, EntityRef>> points;  // (governor face, entity projected on)
+  std::vector<EntityRef> open;                          // governor faces left with a gap (reported)
+};
+
+// A generated quadrilateral before merging (3 points when two corners coincide).
+struct DecompositionQuad {
+  std::vector<Vec3> points;
+  std::vector<bool> anchored;        // per point: on an edge governor (the plane snap keeps it)
+  std::vector<EntityRef> supports;   // per point: the model face or edge it lies on (id 0: inside)
+  int element = -1;                  // the generating Voronoi edge or vertex
+  std::string kind;                  // "edge" or "rectangle"
+  std::vector<EntityRef> governors;  // edge: the target's faces; rectangle: the two faces
+  EntityRef target;                  // edge: the entity projected onto; rectangle: the shared edge
+};
+
+// A decomposition face as it bounds the final sub-volumes (quads merged where coplanar).
+struct DecompositionFace {
+  std::array<int, 2> sub_volumes{-1, -1};  // the sub-volumes on either side (-1: none)
+  int num_edges = 0;
+  double area = 0;
+  Vec3 point{0, 0, 0};        // a point inside it
+  std::vector<int> quads;     // the generating quads lying on it
+  std::vector<int> elements;  // their Voronoi elements (sorted, unique)
+};
+
+// Virtual topology: every face of every sub-volume knows where it lies.
+struct VirtualFace {
+  int sub_volume = -1;
+  core::FaceId face;            // the face in the sub-volume's solid
+  core::FaceId original;        // the original face it lies on (invalid if none)
+  int decomposition_face = -1;  // index in DecompositionResult::faces (or -1)
+  int num_edges = 0;
+  double area = 0;
+};
+struct VirtualTopology {
+  std::vector<VirtualFace> faces;
+};
+
+enum class SubVolumeType { vs, ve };
+enum class Scheme { sweep, map, none };
+const char* sub_volume_type_name(SubVolumeType t);  // "Vs", "Ve"
+const char* scheme_name(Scheme s);                  // "sweep", "map", "none"
+
+struct SubVolume {
+  std::shared_ptr<const occ::Solid> solid;
+  SubVolumeType type = SubVolumeType::ve;
+  int fs_face = -1;  // the Voronoi f_s face it holds (Vs)
+  Scheme scheme = Scheme::none;
+  std::string reason;           // why this scheme (or why none)
+  core::FaceId source, target;  // sweep source and target in `solid` (sweep)
+  double volume = 0;
+  int merged_from = 1;  // how many sub-volumes of the first split it unites
+};
+
+struct DecompositionStats {
+  int edges_of_interest = 0;
+  int projected_edges = 0;
+  int vertices_treated = 0;
+  int quads = 0;
+  int decomposition_faces = 0;
+  int sub_volumes_before_merge = 0;
+  int sub_volumes = 0;
+  double seconds = 0;
+};
+
+enum class DecompositionStatus { ok, partial, failed };
+
+struct DecompositionResult {
+  std::vector<ClassifiedEdge> edges;    // every Voronoi edge
+  std::vector<TreatedVertex> vertices;  // every Voronoi vertex touching an edge of interest
+  std::vector<DecompositionQuad> quads;
+  std::vector<DecompositionFace> faces;
+  std::vector<SubVolume> sub_volumes;
+  VirtualTopology topology;
+  DecompositionStatus status = DecompositionStatus::failed;
+  std::vector<core::Diagnostic> diagnostics;
+  DecompositionStats stats;
+  bool ok() const { return status != DecompositionStatus::failed; }
+};
+
+// `voronoi` must be the graph of `solid` (its model gives the governors' relations).
+// partial: some sub-volume has no scheme or some vertex gap stayed open (diagnostics say
+// which); failed: invalid options, no model, or OCCT could not split.
+DecompositionResult decompose(const occ::Solid& solid, const voronoi::VoronoiResult& voronoi,
+                              const DecomposeOptions& options = {});
+
+}  // namespace vorohex::decompose

@@ -1,0 +1,33 @@
+// Output of a decomposition: the sub-volumes as one compound in a BREP file, and a JSON
+// report for people and scripts.
+//
+// JSON layout:
+//   {"status": "ok"|"partial"|"failed",
+//    "counts": {"sub_volumes_before_merge": n, "sub_volumes": n, "decomposition_faces": n,
+//               "quads": n, "edges_of_interest": n, "projected_edges": n},
+//    "sub_volumes": [{"id": i, "type": "Vs"|"Ve", "scheme": "sweep"|"map"|"none",
+//                     "reason": "...", "volume": v, "merged_from": n,
+//                     "f_s_face": voronoi id or null, "source": "Face3", "target": "Face5"}],
+//    "decomposition_faces": [{"id": i, "sub_volumes": [a, b], "edges": n, "area": a,
+//                             "voronoi_elements": [ids], "governors": ["Face1", ...]}],
+//    "edges": [{"voronoi_id": i, "type": "[1e]", "targets": ["Face2", "Edge7"]}]
+//             (edges of interest and [C] edges only),
+//    "vertices": [{"voronoi_id": i, "row": "[2,2,2,2]", "rectangles": [["Face1","Face3"]]}],
+//    "diagnostics": [...], "stats": {"seconds": s}}
+#pragma once
+
+#include <string>
+
+#include "decompose/decompose.h"
+
+namespace vorohex::decompose {
+
+// The report as JSON text (indented).
+std::string decomposition_json(const DecompositionResult& result);
+
+// Writes the sub-volumes compound (`brep_path`, skipped if empty) and the JSON report
+// (`json_path`, skipped if empty). False with `error` when a file cannot be written.
+bool write_decomposition(const DecompositionResult& result, const std::string& brep_path,
+                         const std::string& json_path, std::string* error);
+
+}  // namespace vorohex::decompose

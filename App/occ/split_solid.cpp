@@ -1,0 +1,237 @@
+#include "occ/split_solid.h"
+
+#include <BRepAlgoAPI_Common.hxx>
+#include <BRepAlgoAPI_Fuse.hxx>
+#include <BRepAlgoAPI_Splitter.hxx>
+#include <BRepBuilderAPI_MakeEdge.hxx>
+#include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepBuilderAPI_MakePolygon.hxx>
+#include <BRepFill.hxx>
+#include <BRepGProp.hxx>
+#include <BRepLProp_SLProps.hxx>
+#include <BRepMesh_IncrementalMesh.hxx>
+#include <BRepTools.hxx>
+#include <BRep_Builder.hxx>
+#include <BRep_Tool.hxx>
+#include <GProp_GProps.hxx>
+#include <Poly_Triangulation.hxx>
+#include <ShapeUpgrade_UnifySameDomain.hxx>
+#include <Standard_Failure.hxx>
+#include <TopExp.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
+#include <TopTools_ListOfShape.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Compound.hxx>
+#include <TopoDS_Shell.hxx>
+#include <TopoDS_Solid.hxx>
+#include <gp_Pln.hxx>
+
+#include <Eigen/Geometry>
+#include <cmath>
+
+#include "occ/solid_impl.h"
+
+namespace vorohex::occ {
+namespace {
+
+gp_Pnt pnt(const Vec3& p) {
+  return gp_Pnt(p.x(), p.y(), p.z());
+}
+
+// The tool face of a polygon; null shape when degenerate.
+TopoDS_Shape tool_face(const std::vector<Vec3>& pts, double tol) {
+  std::vector<Vec3> p;
+  for (const Vec3& q : pts)
+    if (p.empty() || (q - p.back()).norm() > tol) p.push_back(q);
+  if (p.size() > 1 && (p.front() - p.back()).norm() <= tol) p.pop_back();
+  if (p.size() < 3) return {};
+  Vec3 n(0, 0, 0);
+  for (std::size_t i = 0; i < p.size(); ++i) n += p[i].cross(p[(i + 1) % p.size()]);
+  if (0.5 * n.norm() < tol * tol) return {};
+  n.normalize();
+  bool planar = true;
+  for (const Vec3& q : p) planar = planar && std::abs((q - p[0]).dot(n)) <= tol;
+  if (planar) {
+    BRepBuilderAPI_MakePolygon poly;
+    for (const Vec3& q : p) poly.Add(pnt(q));
+    poly.Close();
+    gp_Pln plane(pnt(p[0]), gp_Dir(n.x(), n.y(), n.z()));
+    BRepBuilderAPI_MakeFace mf(plane, poly.Wire(), true);
+    if (!mf.IsDone()) return TopoDS_Shape();
+    return mf.Face();
+  }
+  // A non-planar quadrilateral: the ruled surface between sides 0-1 and 3-2.
+  const TopoDS_Edge e1 = BRepBuilderAPI_MakeEdge(pnt(p[0]), pnt(p[1]));
+  const TopoDS_Edge e2 = BRepBuilderAPI_MakeEdge(pnt(p[3 % p.size()]), pnt(p[2]));
+  return BRepFill::Face(e1, e2);
+}
+
+// Keeps only the faces of a solid that bound it (drops INTERNAL tool faces).
+TopoDS_Solid without_internal_faces(const TopoDS_Solid& solid, int* dropped) {
+  bool any = false;
+  for (TopExp_Explorer ex(solid, TopAbs_FACE); ex.More(); ex.Next())
+    any = any || ex.Current().Orientation() == TopAbs_INTERNAL;
+  if (!any) return solid;
+  BRep_Builder b;
+  TopoDS_Solid out;
+  b.MakeSolid(out);
+  for (TopExp_Explorer sh(solid, TopAbs_SHELL); sh.More(); sh.Next()) {
+    TopoDS_Shell shell;
+    b.MakeShell(shell);
+    for (TopExp_Explorer ex(sh.Current(), TopAbs_FACE); ex.More(); ex.Next()) {
+      if (ex.Current().Orientation() == TopAbs_INTERNAL) {
+        ++*dropped;
+        continue;
+      }
+      b.Add(shell, ex.Current());
+    }
+    shell.Closed(true);
+    b.Add(out, shell);
+  }
+  return out;
+}
+
+TopoDS_Shape unified(const TopoDS_Shape& s) {
+  ShapeUpgrade_UnifySameDomain unify(s, true, true, true);
+  unify.Build();
+  return unify.Shape();
+}
+
+}  // namespace
+
+SplitResult split_solid(const Solid& solid, const std::vector<std::vector<Vec3>>& tools,
+                        double tolerance) {
+  SplitResult out;
+  try {
+    TopTools_ListOfShape args, tool_list;
+    args.Append(solid.impl().solid);
+    for (const auto& t : tools) {
+      const TopoDS_Shape f = tool_face(t, tolerance);
+      if (!f.IsNull()) tool_list.Append(f);
+    }
+    TopoDS_Shape result = solid.impl().solid;
+    if (!tool_list.IsEmpty()) {
+      BRepAlgoAPI_Splitter splitter;
+      splitter.SetArguments(args);
+      splitter.SetTools(tool_list);
+      splitter.SetFuzzyValue(0.01 * tolerance);
+      splitter.SetNonDestructive(true);
+      splitter.Build();
+      if (!splitter.IsDone()) {
+        out.diagnostics.push_back(core::make_error("split_failed",
+                                                   "OCCT could not split the solid by the "
+                                                   "decomposition faces"));
+        return out;
+      }
+      result = splitter.Shape();
+    }
+    for (TopExp_Explorer ex(result, TopAbs_SOLID); ex.More(); ex.Next()) {
+      TopoDS_Solid s =
+          without_internal_faces(TopoDS::Solid(ex.Current()), &out.dropped_internal_faces);
+      const TopoDS_Shape u = unified(s);
+      for (TopExp_Explorer ey(u, TopAbs_SOLID); ey.More(); ey.Next())
+        out.pieces.push_back(make_solid(TopoDS::Solid(ey.Current())));
+    }
+    out.ok = !out.pieces.empty();
+    if (!out.ok)
+      out.diagnostics.push_back(core::make_error("split_empty", "The split gave no solid"));
+  } catch (const Standard_Failure& e) {
+    out.pieces.clear();
+    out.diagnostics.push_back(core::make_error(
+        "split_failed", std::string("OCCT failed splitting the solid: ") +
+                            (e.GetMessageString() ? e.GetMessageString() : "unknown")));
+  }
+  return out;
+}
+
+std::vector<FaceSample> sample_faces(const Solid& solid) {
+  std::vector<FaceSample> out;
+  const auto& impl = solid.impl();
+  BRepMesh_IncrementalMesh mesher(impl.solid, 0.05 * solid.diagonal(), false, 0.5);
+  for (int i = 1; i <= impl.faces.Extent(); ++i) {
+    const TopoDS_Face& face = TopoDS::Face(impl.faces(i));
+    FaceSample s;
+    s.face = FaceId(i);
+    GProp_GProps props;
+    BRepGProp::SurfaceProperties(face, props);
+    s.area = props.Mass();
+    TopTools_IndexedMapOfShape edges, wires;
+    TopExp::MapShapes(face, TopAbs_EDGE, edges);
+    TopExp::MapShapes(face, TopAbs_WIRE, wires);
+    s.num_edges = edges.Extent();
+    s.num_wires = wires.Extent();
+    TopLoc_Location loc;
+    const Handle(Poly_Triangulation) tri = BRep_Tool::Triangulation(face, loc);
+    if (!tri.IsNull() && tri->NbTriangles() > 0) {
+      // Centroid of the largest triangle: inside the face.
+      double best = -1;
+      for (int t = 1; t <= tri->NbTriangles(); ++t) {
+        int a, b, c;
+        tri->Triangle(t).Get(a, b, c);
+        const gp_Pnt pa = tri->Node(a).Transformed(loc), pb = tri->Node(b).Transformed(loc),
+                     pc = tri->Node(c).Transformed(loc);
+        const double area = gp_Vec(pa, pb).Crossed(gp_Vec(pa, pc)).Magnitude();
+        if (area > best) {
+          best = area;
+          s.point = Vec3((pa.X() + pb.X() + pc.X()) / 3, (pa.Y() + pb.Y() + pc.Y()) / 3,
+                         (pa.Z() + pb.Z() + pc.Z()) / 3);
+        }
+      }
+    } else {
+      const gp_Pnt c = props.CentreOfMass();
+      s.point = Vec3(c.X(), c.Y(), c.Z());
+    }
+    s.normal = solid.face_normal(s.face, s.point);
+    out.push_back(s);
+  }
+  return out;
+}
+
+std::unique_ptr<Solid> fuse_solids(const Solid& a, const Solid& b) {
+  try {
+    BRepAlgoAPI_Fuse fuse(a.impl().solid, b.impl().solid);
+    if (!fuse.IsDone()) return nullptr;
+    const TopoDS_Shape u = unified(fuse.Shape());
+    TopoDS_Solid only;
+    int n = 0;
+    for (TopExp_Explorer ex(u, TopAbs_SOLID); ex.More(); ex.Next(), ++n)
+      only = TopoDS::Solid(ex.Current());
+    if (n != 1) return nullptr;
+    return std::make_unique<Solid>(make_solid(only));
+  } catch (const Standard_Failure&) {
+    return nullptr;
+  }
+}
+
+double common_volume(const Solid& a, const Solid& b) {
+  try {
+    BRepAlgoAPI_Common common(a.impl().solid, b.impl().solid);
+    if (!common.IsDone()) return -1;
+    GProp_GProps props;
+    BRepGProp::VolumeProperties(common.Shape(), props);
+    return std::abs(props.Mass());
+  } catch (const Standard_Failure&) {
+    return -1;
+  }
+}
+
+bool write_compound_brep(const std::vector<const Solid*>& solids, const std::string& path,
+                         std::string* error) {
+  try {
+    BRep_Builder b;
+    TopoDS_Compound c;
+    b.MakeCompound(c);
+    for (const Solid* s : solids) b.Add(c, s->impl().solid);
+    if (!BRepTools::Write(c, path.c_str())) {
+      if (error) *error = "cannot write " + path;
+      return false;
+    }
+    return true;
+  } catch (const Standard_Failure& e) {
+    if (error) *error = e.GetMessageString() ? e.GetMessageString() : "OCCT failure";
+    return false;
+  }
+}
+
+}  // namespace vorohex::occ

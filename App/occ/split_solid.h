@@ -1,0 +1,50 @@
+// Splitting a solid by decomposition faces (BOPAlgo splitter), and the few OCCT operations
+// the decomposition stage needs on the pieces. The input solid is never modified: the
+// pieces are new solids whose coplanar faces and collinear edges are unified.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/diagnostic.h"
+#include "occ/solid.h"
+
+namespace vorohex::occ {
+
+struct SplitResult {
+  std::vector<Solid> pieces;
+  std::vector<core::Diagnostic> diagnostics;
+  int dropped_internal_faces = 0;  // tool faces that ended inside a piece (removed)
+  bool ok = false;
+};
+
+// Splits `solid` by tool faces, each a closed polygon of 3 or 4 points (planar when its
+// points are within `tolerance`, else a ruled surface between its first and last sides).
+// Degenerate tools (area below tolerance^2) are ignored. `tolerance`: model units.
+SplitResult split_solid(const Solid& solid, const std::vector<std::vector<Vec3>>& tools,
+                        double tolerance);
+
+// A point strictly inside a face (from its triangulation), its outward normal there, its
+// area and number of boundary edges (all wires).
+struct FaceSample {
+  FaceId face;
+  Vec3 point{0, 0, 0};
+  Vec3 normal{0, 0, 0};
+  double area = 0;
+  int num_edges = 0;
+  int num_wires = 0;
+};
+std::vector<FaceSample> sample_faces(const Solid& solid);
+
+// The union of two solids as one solid with unified faces, or null if it is not one solid.
+std::unique_ptr<Solid> fuse_solids(const Solid& a, const Solid& b);
+
+// Volume of the common part of two solids (0 when disjoint or touching).
+double common_volume(const Solid& a, const Solid& b);
+
+// Writes the solids as one compound in a BREP file. False with `error` on failure.
+bool write_compound_brep(const std::vector<const Solid*>& solids, const std::string& path,
+                         std::string* error);
+
+}  // namespace vorohex::occ

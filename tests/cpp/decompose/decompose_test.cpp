@@ -1,0 +1,147 @@
+// The "Must show" list of issue 5 on the paper's own examples, built with OCCT.
+#include "decompose/decompose.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include "decompose/decomposition_io.h"
+#include "occ/primitives.h"
+#include "occ/split_solid.h"
+
+namespace vorohex::decompose {
+namespace {
+
+struct Decomposed {
+  voronoi::VoronoiResult voronoi;
+  DecompositionResult result;
+};
+
+std::string describe(const Decomposed& run) {
+  std::ostringstream s;
+  for (const ClassifiedEdge& e : run.result.edges) {
+    if (e.type == EdgeType::none) continue;
+    s << "edge " << e.element << " " << detail::edge_type_name(e.type) << ":";
+    for (const auto& g : run.voronoi.graph.elements[e.element].governors) s << " " << g.name();
+    s << " ->";
+    for (const auto& t : e.targets) s << " " << t.entity.name();
+    s << "\n";
+  }
+  for (const TreatedVertex& v : run.result.vertices)
+    s << "vertex " << v.element << " " << v.row << " rects " << v.rectangles.size() << "\n";
+  for (const SubVolume& sv : run.result.sub_volumes)
+    s << sub_volume_type_name(sv.type) << " " << scheme_name(sv.scheme) << " vol " << sv.volume
+      << " (" << sv.reason << ")\n";
+  for (const auto& d : run.result.diagnostics) s << core::format(d) << "\n";
+  if (std::getenv("DECOMP_DEBUG"))
+    for (const auto& q : run.result.quads) {
+      s << "quad " << q.kind << " " << q.element << ":";
+      for (const auto& p : q.points) s << " (" << p.transpose() << ")";
+      s << "\n";
+    }
+  return s.str();
+}
+
+Decomposed run(const occ::Solid& solid, DecomposeOptions opt = {}) {
+  Decomposed r;
+  r.voronoi = voronoi::compute_voronoi_graph(solid);
+  EXPECT_TRUE(r.voronoi.ok());
+  r.result = decompose(solid, r.voronoi, opt);
+  EXPECT_TRUE(r.result.ok()) << describe(r);
+  return r;
+}
+
+// Closed, disjoint sub-volumes filling the solid; quadrilateral decomposition faces.
+void expect_valid(const occ::Solid& solid, const Decomposed& run) {
+  const DecompositionResult& r = run.result;
+  double sum = 0;
+  for (const SubVolume& sv : r.sub_volumes) {
+    EXPECT_GT(sv.volume, 0);
+    EXPECT_NEAR(sv.solid->volume(), sv.volume, 1e-12 * solid.volume());
+    sum += sv.volume;
+  }
+  EXPECT_NEAR(sum, solid.volume(), 1e-9 * solid.volume()) << describe(run);
+  for (std::size_t i = 0; i < r.sub_volumes.size(); ++i)
+    for (std::size_t j = i + 1; j < r.sub_volumes.size(); ++j) {
+      const double c = occ::common_volume(*r.sub_volumes[i].solid, *r.sub_volumes[j].solid);
+      EXPECT_GE(c, 0);
+      EXPECT_LT(c, 1e-9 * solid.volume()) << i << " " << j;
+    }
+  for (const DecompositionFace& f : r.faces) {
+    EXPECT_EQ(f.num_edges, 4) << describe(run);
+    EXPECT_GE(f.sub_volumes[0], 0);
+    EXPECT_GE(f.sub_volumes[1], 0);  // a decomposition face separates two sub-volumes
+    EXPECT_FALSE(f.quads.empty());
+  }
+  for (const VirtualFace& vf : r.topology.faces)
+    EXPECT_TRUE(vf.original.valid() != (vf.decomposition_face >= 0));
+}
+
+occ::Solid make_l(double depth) {
+  return occ::make_prism({{0, 0}, {4, 0}, {4, 1}, {1, 1}, {1, 3}, {0, 3}}, depth);
+}
+
+TEST(Decompose, Brick321IsOneSweepBetweenItsLargestFaces) {
+  const occ::Solid box = occ::make_box(3, 2, 1);
+  const Decomposed r = run(box);
+  ASSERT_EQ(r.result.sub_volumes.size(), 1u) << describe(r);
+  const SubVolume& sv = r.result.sub_volumes[0];
+  EXPECT_EQ(sv.type, SubVolumeType::vs);
+  ASSERT_EQ(sv.scheme, Scheme::sweep) << describe(r);
+  EXPECT_NEAR(sv.solid->area(sv.source), 6.0, 1e-9);
+  EXPECT_NEAR(sv.solid->area(sv.target), 6.0, 1e-9);
+  EXPECT_TRUE(r.result.faces.empty());
+  expect_valid(box, r);
+}
+
+TEST(Decompose, CubeIsOneMappedBlock) {
+  const occ::Solid cube = occ::make_box(1, 1, 1);
+  const Decomposed r = run(cube);
+  ASSERT_EQ(r.result.sub_volumes.size(), 1u) << describe(r);
+  EXPECT_EQ(r.result.sub_volumes[0].type, SubVolumeType::ve);
+  EXPECT_EQ(r.result.sub_volumes[0].scheme, Scheme::map) << describe(r);
+  expect_valid(cube, r);
+}
+
+TEST(Decompose, ThickLIsThreeBeforeMerging) {
+  const occ::Solid l = make_l(3);
+  DecomposeOptions opt;
+  opt.merge = false;
+  const Decomposed r = run(l, opt);
+  ASSERT_EQ(r.result.sub_volumes.size(), 3u) << describe(r);
+  int vs = 0, ve = 0;
+  for (const SubVolume& sv : r.result.sub_volumes) {
+    (sv.type == SubVolumeType::vs ? vs : ve)++;
+    EXPECT_NE(sv.scheme, Scheme::none) << describe(r);
+  }
+  EXPECT_EQ(vs, 2) << describe(r);
+  EXPECT_EQ(ve, 1) << describe(r);
+  EXPECT_EQ(r.result.faces.size(), 2u) << describe(r);
+  expect_valid(l, r);
+}
+
+TEST(Decompose, ThinLIsOneSweepAfterMerging) {
+  const occ::Solid l = make_l(0.4);
+  const Decomposed r = run(l);
+  ASSERT_EQ(r.result.sub_volumes.size(), 1u) << describe(r);
+  EXPECT_EQ(r.result.sub_volumes[0].scheme, Scheme::sweep);
+  EXPECT_GE(r.result.stats.sub_volumes_before_merge, 1);
+  expect_valid(l, r);
+  std::printf("thin L: %d before merging\n%s", r.result.stats.sub_volumes_before_merge,
+              describe(r).c_str());
+}
+
+TEST(Decompose, TaperedBrickIsAtMostTwo) {
+  const occ::Solid t = occ::make_tapered_brick(4, 2, 1.5, 0.4);
+  const Decomposed r = run(t);
+  EXPECT_LE(r.result.sub_volumes.size(), 2u) << describe(r);
+  expect_valid(t, r);
+  std::printf("tapered: %d before merging\n%s", r.result.stats.sub_volumes_before_merge,
+              describe(r).c_str());
+}
+
+}  // namespace
+}  // namespace vorohex::decompose
