@@ -130,8 +130,6 @@ TEST(Decompose, ThinLIsOneSweepAfterMerging) {
   EXPECT_EQ(r.result.sub_volumes[0].scheme, Scheme::sweep);
   EXPECT_GE(r.result.stats.sub_volumes_before_merge, 1);
   expect_valid(l, r);
-  std::printf("thin L: %d before merging\n%s", r.result.stats.sub_volumes_before_merge,
-              describe(r).c_str());
 }
 
 TEST(Decompose, TaperedBrickIsAtMostTwo) {
@@ -139,8 +137,38 @@ TEST(Decompose, TaperedBrickIsAtMostTwo) {
   const Decomposed r = run(t);
   EXPECT_LE(r.result.sub_volumes.size(), 2u) << describe(r);
   expect_valid(t, r);
-  std::printf("tapered: %d before merging\n%s", r.result.stats.sub_volumes_before_merge,
-              describe(r).c_str());
+}
+
+TEST(Decompose, WritesCompoundAndReport) {
+  const occ::Solid l = make_l(3);
+  DecomposeOptions opt;
+  opt.merge = false;
+  const Decomposed r = run(l, opt);
+  const std::string brep = ::testing::TempDir() + "decompose_parts.brep";
+  const std::string json = ::testing::TempDir() + "decompose_report.json";
+  std::string error;
+  ASSERT_TRUE(write_decomposition(r.result, brep, json, &error)) << error;
+  std::ifstream in(json);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("\"sub_volumes_before_merge\": 3"), std::string::npos) << text;
+  EXPECT_NE(text.find("\"[1e]\""), std::string::npos);
+  EXPECT_NE(text.find("\"Vs\""), std::string::npos);
+  std::ifstream b(brep);
+  EXPECT_TRUE(b.good());
+  std::remove(brep.c_str());
+  std::remove(json.c_str());
+}
+
+TEST(Decompose, RejectsBadOptions) {
+  DecomposeOptions opt;
+  opt.sharp_angle = 0;
+  EXPECT_FALSE(opt.validate().empty());
+  const occ::Solid box = occ::make_box(1, 2, 3);
+  const voronoi::VoronoiResult v = voronoi::compute_voronoi_graph(box);
+  const DecompositionResult r = decompose(box, v, opt);
+  EXPECT_FALSE(r.ok());
+  ASSERT_FALSE(r.diagnostics.empty());
+  EXPECT_EQ(r.diagnostics[0].code, "invalid_options");
 }
 
 }  // namespace
