@@ -211,6 +211,13 @@ class Smoother {
   // One Laplacian move of node n: 0 = none, 1 = accepted but below the tolerance,
   // 2 = accepted and larger.
   int laplacian_step(std::size_t n, std::vector<double>& trial) {
+    if (options_.active_below < 1) {
+      bool active = false;
+      for (std::int64_t k = topology_.node_hexes.begin(n);
+           k < topology_.node_hexes.end(n) && !active; ++k)
+        active = sj_[topology_.node_hexes.items[k] / 8] < options_.active_below;
+      if (!active) return 0;
+    }
     const auto& nb = topology_.neighbours;
     const auto& pts = mesh_.points();
     const Vec3 x = pts[n];
@@ -459,6 +466,7 @@ void SmoothOptions::validate() const {
     fail("quality_target", "in (0, 1]", quality_target);
   if (!(relaxation > 0 && relaxation <= 1)) fail("relaxation", "in (0, 1]", relaxation);
   if (!(tolerance >= 0) || !std::isfinite(tolerance)) fail("tolerance", ">= 0", tolerance);
+  if (!(active_below > 0 && active_below <= 1)) fail("active_below", "in (0, 1]", active_below);
 }
 
 const char* status_name(SmoothStatus s) {
