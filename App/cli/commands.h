@@ -14,9 +14,11 @@ constexpr int kExitBadInput = 2;
 int run_mesh(const std::vector<std::string>& args);
 int run_check(const std::vector<std::string>& args);
 int run_voronoi(const std::vector<std::string>& args);
+int run_decompose(const std::vector<std::string>& args);
 
 extern const char* const kMeshUsage;
 extern const char* const kCheckUsage;
 extern const char* const kVoronoiUsage;
+extern const char* const kDecomposeUsage;
 
 }  // namespace vorohex::cli

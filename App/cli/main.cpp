@@ -16,6 +16,7 @@ const char* const kUsage =
     "  mesh IN -o OUT [--size H] [--report R.json]   mesh a STEP/BREP/IGES solid\n"
     "  check MESH [--cad IN] [--report R.json]       validity and quality of a hex mesh\n"
     "  voronoi IN -o GRAPH.json [--vtp G.vtp]        the embedded Voronoi graph of a solid\n"
+    "  decompose IN -o PARTS.brep [--report D.json]  its sub-volumes (sweep/map/...)\n"
     "  --help, -h                                    this text; `vorohex <command> --help`\n"
     "  --version                                     the version\n";
 
@@ -51,6 +52,10 @@ int main(int argc, char** argv) {
     if (command == "voronoi") {
       if (help) return std::cout << kVoronoiUsage, kExitOk;
       return run_voronoi(rest);
+    }
+    if (command == "decompose") {
+      if (help) return std::cout << kDecomposeUsage, kExitOk;
+      return run_decompose(rest);
     }
     std::cerr << "vorohex: unknown command '" << command << "'\n" << kUsage;
     return kExitBadInput;

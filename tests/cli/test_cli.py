@@ -192,6 +192,58 @@ class MeshCommand(unittest.TestCase):
         self.assertEqual(code, 2)
 
 
+class InspectCommands(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.dir = self.tmp.name
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def test_voronoi_graph_of_the_box(self):
+        out, vtp = os.path.join(self.dir, "g.json"), os.path.join(self.dir, "g.vtp")
+        code, stdout, stderr = run("voronoi", os.path.join(EXAMPLES, "box_3x2x1.step"), "-o", out,
+                                   "--vtp", vtp)
+        self.assertEqual(code, 0, stdout + stderr)
+        with open(out) as f:
+            g = json.load(f)
+        fs = [e for e in g["elements"] if e.get("f_s")]
+        self.assertEqual(len(fs), 1)
+        # The two 3x2 faces of FreeCAD's box are Face5 (z = 0) and Face6 (z = 1).
+        self.assertEqual(sorted(fs[0]["governors"]), ["Face5", "Face6"])
+        with open(vtp) as f:
+            self.assertIn("PolyData", f.read())
+
+    def test_decompose_l_shape(self):
+        sys.path.append("/usr/lib/freecad-python3/lib")
+        import FreeCAD
+        import Part
+        V = FreeCAD.Vector
+        pts = [(0, 0), (4, 0), (4, 1), (1, 1), (1, 3), (0, 3), (0, 0)]
+        solid = Part.Face(Part.makePolygon([V(x, y, 0) for x, y in pts])).extrude(V(0, 0, 3))
+        step = os.path.join(self.dir, "l.step")
+        solid.exportStep(step)
+        parts, rep = os.path.join(self.dir, "parts.brep"), os.path.join(self.dir, "d.json")
+        code, stdout, stderr = run("decompose", step, "-o", parts, "--report", rep, "--no-merge")
+        self.assertEqual(code, 0, stdout + stderr)
+        compound = Part.read(parts)
+        self.assertEqual(len(compound.Solids), 3)
+        self.assertAlmostEqual(sum(s.Volume for s in compound.Solids), solid.Volume, places=6)
+        code, stdout, stderr = run("decompose", step, "-o", parts)
+        self.assertEqual(code, 0, stdout + stderr)
+        self.assertIn("1 after", stdout)  # the whole L is one sweep along its depth
+
+    def test_inspect_bad_input(self):
+        code, _, stderr = run("voronoi", os.path.join(self.dir, "missing.step"), "-o", "x.json")
+        self.assertEqual(code, 2)
+        code, _, stderr = run("voronoi", os.path.join(EXAMPLES, "box_3x2x1.step"), "-o",
+                              os.path.join(self.dir, "g.json"), "--eps", "-1")
+        self.assertEqual(code, 2)
+        code, _, stderr = run("decompose", os.path.join(EXAMPLES, "box_3x2x1.step"))
+        self.assertEqual(code, 2)
+        self.assertIn("-o", stderr)
+
+
 class CheckCommand(unittest.TestCase):
     def setUp(self):
         self.tmp = tempfile.TemporaryDirectory()

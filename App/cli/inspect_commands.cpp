@@ -1,0 +1,200 @@
+// The inspection commands, which show the method's intermediate results:
+//   vorohex voronoi IN -o GRAPH.json [--vtp G.vtp]          the embedded Voronoi graph
+//   vorohex decompose IN -o PARTS.brep [--report D.json]    the sub-volumes
+#include <cmath>
+#include <functional>
+#include <iostream>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "cli/commands.h"
+#include "decompose/decompose.h"
+#include "decompose/decomposition_io.h"
+#include "occ/shape_io.h"
+#include "voronoi/graph_io.h"
+#include "voronoi/voronoi_graph.h"
+
+namespace vorohex::cli {
+
+#define VOROHEX_GRAPH_OPTIONS_HELP                                                     \
+  "  --eps E                merge tolerance, x bounding-box diagonal (default 0.01)\n" \
+  "  --delta D              embedding accuracy, x bounding-box diagonal (0.001)\n"     \
+  "  --max-depth N          maximum octree depth, 1..12 (default 9)\n"                 \
+  "  --linear-tolerance T   chord tolerance for curved entities, x diagonal (0.005)\n"
+
+const char* const kVoronoiUsage =
+    "usage: vorohex voronoi IN -o GRAPH.json [--vtp GRAPH.vtp] [graph options]\n"
+    "  IN    a solid as STEP, BREP or IGES\n"
+    "  -o    the graph as JSON: every Voronoi vertex, edge and face with its governors\n"
+    "        (FreeCAD names such as Face3, Edge5), kind, geometry and f_s flag\n"
+    "  --vtp FILE             the graph as VTK PolyData for ParaView\n" VOROHEX_GRAPH_OPTIONS_HELP
+    "exit: 0 graph written, 1 graph could not be computed, 2 bad input\n";
+
+const char* const kDecomposeUsage =
+    "usage: vorohex decompose IN -o PARTS.brep [--report DECOMPOSITION.json]\n"
+    "                         [--sharp-angle DEG] [--no-merge] [graph options]\n"
+    "  IN    a solid as STEP, BREP or IGES\n"
+    "  -o    the sub-volumes as solids in one BREP compound (open it in FreeCAD)\n"
+    "  --report FILE          edge types, vertex rules, decomposition faces, sub-volumes\n"
+    "                         with type (Vs/Ve), scheme and reason, counts before/after merging\n"
+    "  --sharp-angle DEG      dihedral angle below which a [1] edge becomes [1s] (60)\n"
+    "  --no-merge             keep the sub-volumes of the first split\n" VOROHEX_GRAPH_OPTIONS_HELP
+    "exit: 0 written, 1 decomposition failed, 2 bad input\n";
+
+#undef VOROHEX_GRAPH_OPTIONS_HELP
+
+namespace {
+
+// A tiny option table: each option either takes a value (a handler that returns false
+// when the value is wrong) or is a flag.
+struct OptionTable {
+  std::map<std::string, std::function<bool(const std::string&)>> values;
+  std::map<std::string, std::function<void()>> flags;
+};
+
+bool parse_number(const std::string& text, double* out) {
+  std::size_t used = 0;
+  try {
+    *out = std::stod(text, &used);
+  } catch (const std::exception&) {
+    return false;
+  }
+  return used == text.size() && std::isfinite(*out);
+}
+
+// Returns an empty string on success, else the usage error; the one positional argument
+// goes to *input.
+std::string parse(const std::vector<std::string>& args, const OptionTable& table,
+                  std::string* input) {
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    if (auto f = table.flags.find(a); f != table.flags.end()) {
+      f->second();
+    } else if (auto v = table.values.find(a); v != table.values.end()) {
+      if (i + 1 >= args.size()) return "option " + a + " needs a value";
+      if (!v->second(args[++i])) return "bad value for " + a + ": '" + args[i] + "'";
+    } else if (!a.empty() && a[0] == '-') {
+      return "unknown option " + a;
+    } else if (input->empty()) {
+      *input = a;
+    } else {
+      return "expected exactly one input file";
+    }
+  }
+  if (input->empty()) return "missing the input file";
+  return {};
+}
+
+void add_graph_options(OptionTable& t, voronoi::VoronoiOptions& o) {
+  auto number = [](double* field) {
+    return [field](const std::string& s) { return parse_number(s, field); };
+  };
+  t.values["--eps"] = number(&o.eps);
+  t.values["--delta"] = number(&o.delta);
+  t.values["--linear-tolerance"] = number(&o.linear_tolerance);
+  t.values["--max-depth"] = [&o](const std::string& s) {
+    double d = 0;
+    if (!parse_number(s, &d) || d != std::floor(d) || d < 1 || d > 12) return false;
+    o.max_depth = static_cast<int>(d);
+    return true;
+  };
+}
+
+int usage_error(const std::string& message, const char* usage) {
+  std::cerr << "vorohex: " << message << "\n" << usage;
+  return kExitBadInput;
+}
+
+void print_problems(const std::vector<core::Diagnostic>& diagnostics) {
+  for (const auto& d : diagnostics)
+    if (d.severity != core::Severity::info) std::cerr << "vorohex: " << core::format(d) << "\n";
+}
+
+// Reads the solid and computes its graph; returns an exit code, or -1 to go on.
+int read_and_graph(const std::string& input, const voronoi::VoronoiOptions& options,
+                   std::unique_ptr<occ::Solid>* solid, voronoi::VoronoiResult* graph) {
+  occ::ReadResult read = occ::read_solid(input);
+  if (!read.ok()) {
+    print_problems(read.diagnostics);
+    return kExitBadInput;
+  }
+  *solid = std::move(read.solid);
+  *graph = voronoi::compute_voronoi_graph(**solid, options);
+  print_problems(graph->diagnostics);
+  return graph->ok() ? -1 : kExitInvalid;
+}
+
+}  // namespace
+
+int run_voronoi(const std::vector<std::string>& args) {
+  std::string input, json_path, vtp_path;
+  voronoi::VoronoiOptions options;
+  OptionTable t;
+  add_graph_options(t, options);
+  t.values["-o"] =
+      t.values["--output"] = [&](const std::string& s) { return !(json_path = s).empty(); };
+  t.values["--vtp"] = [&](const std::string& s) { return !(vtp_path = s).empty(); };
+  if (std::string e = parse(args, t, &input); !e.empty()) return usage_error(e, kVoronoiUsage);
+  if (json_path.empty()) return usage_error("missing -o GRAPH.json", kVoronoiUsage);
+  if (std::string why = options.validate(); !why.empty()) return usage_error(why, kVoronoiUsage);
+
+  std::unique_ptr<occ::Solid> solid;
+  voronoi::VoronoiResult result;
+  if (int code = read_and_graph(input, options, &solid, &result); code >= 0) return code;
+  std::string error;
+  if (!voronoi::write_voronoi_graph(result, json_path, vtp_path, &error)) {
+    std::cerr << "vorohex: " << error << "\n";
+    return kExitBadInput;
+  }
+  std::size_t counts[3] = {0, 0, 0};
+  for (const auto& e : result.graph.elements) ++counts[static_cast<int>(e.kind)];
+  std::cout << "Voronoi graph of " << input << ": " << counts[2] << " vertices, " << counts[1]
+            << " edges, " << counts[0] << " faces (" << result.graph.fs_faces().size() << " f_s), "
+            << result.stats.cells << " octree cells, " << result.stats.seconds << " s\nwrote "
+            << json_path << (vtp_path.empty() ? "" : " and " + vtp_path) << "\n";
+  return kExitOk;
+}
+
+int run_decompose(const std::vector<std::string>& args) {
+  std::string input, brep_path, json_path;
+  voronoi::VoronoiOptions graph_options;
+  decompose::DecomposeOptions options;
+  OptionTable t;
+  add_graph_options(t, graph_options);
+  t.values["-o"] =
+      t.values["--output"] = [&](const std::string& s) { return !(brep_path = s).empty(); };
+  t.values["--report"] = [&](const std::string& s) { return !(json_path = s).empty(); };
+  t.values["--sharp-angle"] = [&](const std::string& s) {
+    return parse_number(s, &options.sharp_angle);
+  };
+  t.flags["--no-merge"] = [&] { options.merge = false; };
+  if (std::string e = parse(args, t, &input); !e.empty()) return usage_error(e, kDecomposeUsage);
+  if (brep_path.empty()) return usage_error("missing -o PARTS.brep", kDecomposeUsage);
+  if (std::string why = graph_options.validate(); !why.empty())
+    return usage_error(why, kDecomposeUsage);
+  if (std::string why = options.validate(); !why.empty()) return usage_error(why, kDecomposeUsage);
+
+  std::unique_ptr<occ::Solid> solid;
+  voronoi::VoronoiResult graph;
+  if (int code = read_and_graph(input, graph_options, &solid, &graph); code >= 0) return code;
+  const decompose::DecompositionResult result = decompose::decompose(*solid, graph, options);
+  print_problems(result.diagnostics);
+  if (!result.ok()) return kExitInvalid;
+  std::string error;
+  if (!decompose::write_decomposition(result, brep_path, json_path, &error)) {
+    std::cerr << "vorohex: " << error << "\n";
+    return kExitBadInput;
+  }
+  std::cout << "decomposition of " << input << ": " << result.stats.sub_volumes_before_merge
+            << " sub-volumes before merging, " << result.stats.sub_volumes << " after, "
+            << result.stats.decomposition_faces << " decomposition faces\n";
+  for (std::size_t i = 0; i < result.sub_volumes.size(); ++i) {
+    const auto& sv = result.sub_volumes[i];
+    std::cout << "  sub-volume " << i << ": " << sv.reason << "\n";
+  }
+  std::cout << "wrote " << brep_path << (json_path.empty() ? "" : " and " + json_path) << "\n";
+  return kExitOk;
+}
+
+}  // namespace vorohex::cli
