@@ -21,7 +21,8 @@ void print_check_report(std::ostream& out, const quality::CheckReport& r) {
     out << sj.histogram[i] << (i + 1 < quality::QualityStats::kBins ? " " : "");
   out << "  (bins of 0.1 from 0 to 1)\n";
   out << "conformity           " << r.interior_quads << " inner quads, " << r.boundary_quads
-      << " boundary quads, " << r.non_manifold_quads << " shared by more than two hexes\n";
+      << " boundary quads, " << r.non_manifold_quads << " shared by more than two hexes, "
+      << r.folded_quads << " folded\n";
   out << "boundary             " << (r.open_boundary_edges == 0 ? "closed" : "OPEN") << " ("
       << r.open_boundary_edges << " open edges)\n";
   if (r.has_cad) {
@@ -60,11 +61,10 @@ nlohmann::json check_report_json(const quality::CheckReport& r) {
                           {"fraction_below_0_2", sj.fraction_below_0_2},
                           {"histogram_bins", "20 bins of 0.1 from -1 to 1"},
                           {"histogram", sj.histogram}};
-  j["conformity"] = {{"interior_quads", r.interior_quads},
-                     {"boundary_quads", r.boundary_quads},
-                     {"non_manifold_quads", r.non_manifold_quads},
-                     {"open_boundary_edges", r.open_boundary_edges},
-                     {"unused_nodes", r.unused_nodes}};
+  j["conformity"] = {
+      {"interior_quads", r.interior_quads},           {"boundary_quads", r.boundary_quads},
+      {"non_manifold_quads", r.non_manifold_quads},   {"folded_quads", r.folded_quads},
+      {"open_boundary_edges", r.open_boundary_edges}, {"unused_nodes", r.unused_nodes}};
   if (r.has_cad) {
     j["cad"] = {{"mesh_volume", r.mesh_volume},
                 {"cad_volume", r.cad_volume},

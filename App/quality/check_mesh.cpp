@@ -69,11 +69,20 @@ std::array<std::int32_t, 4> quad_nodes(const HexMesh& mesh, std::uint32_t quad) 
   return {h[f[0]], h[f[1]], h[f[2]], h[f[3]]};
 }
 
+// The direction in which a hex traverses one of its quads, as seen from the quad's smallest
+// node: +1 when the following node is smaller than the preceding one, else -1.
+int quad_turn(const HexMesh& mesh, std::uint32_t quad) {
+  const auto n = quad_nodes(mesh, quad);
+  const int p = static_cast<int>(std::min_element(n.begin(), n.end()) - n.begin());
+  return n[(p + 1) % 4] < n[(p + 3) % 4] ? 1 : -1;
+}
+
 // Conformity: every quad keyed by its sorted node ids. Bucketing by the smallest id (a
 // counting sort) leaves only tiny per-node sorts, so millions of quads take well under 1 s.
 // Returns the boundary quads (hex * 6 + face); quads with a repeated node are no faces.
 std::vector<std::uint32_t> classify_quads(const HexMesh& mesh, CheckReport& report,
-                                          std::vector<std::size_t>& non_manifold_hexes) {
+                                          std::vector<std::size_t>& non_manifold_hexes,
+                                          std::vector<std::size_t>& folded_hexes) {
   const auto& hexes = mesh.hexes();
   const std::size_t num_nodes = mesh.num_nodes();
   auto sorted_quad = [&](std::uint32_t q) {
@@ -114,6 +123,12 @@ std::vector<std::uint32_t> classify_quads(const HexMesh& mesh, CheckReport& repo
         boundary.push_back(run->quad);
       } else if (shared == 2) {
         ++report.interior_quads;
+        // Two hexes on opposite sides of a quad traverse it in opposite directions; the
+        // same direction means they overlap (a fold that scaled Jacobians cannot see).
+        if (quad_turn(mesh, run->quad) == quad_turn(mesh, (run + 1)->quad)) {
+          ++report.folded_quads;
+          if (folded_hexes.size() < kListHexes) folded_hexes.push_back(run->quad / 6);
+        }
       } else {
         ++report.non_manifold_quads;
         for (auto it = run; it != end && non_manifold_hexes.size() < kListHexes; ++it)
@@ -353,8 +368,16 @@ CheckReport check_mesh(const HexMesh& mesh, const occ::Solid* cad, const CheckOp
   }
 
   // Conformity and a closed boundary.
-  std::vector<std::size_t> non_manifold_hexes;
-  const std::vector<std::uint32_t> boundary = classify_quads(mesh, report, non_manifold_hexes);
+  std::vector<std::size_t> non_manifold_hexes, folded_hexes;
+  const std::vector<std::uint32_t> boundary =
+      classify_quads(mesh, report, non_manifold_hexes, folded_hexes);
+  if (report.folded_quads)
+    diags.push_back(core::make_error(
+        "overlapping_elements",
+        std::to_string(report.folded_quads) +
+            " inner quads are shared by two hexahedra lying on the same side of them: the "
+            "elements overlap (hexes " +
+            list_indices(folded_hexes, report.folded_quads) + ")"));
   if (report.non_manifold_quads)
     diags.push_back(core::make_error(
         "non_manifold_faces", std::to_string(report.non_manifold_quads) +

@@ -27,19 +27,20 @@ struct CheckOptions {
 struct CheckReport {
   bool valid = false;
   std::size_t nodes = 0, hexes = 0;
-  QualityStats scaled_jacobian;       // Verdict scaled Jacobian statistics
-  std::size_t non_positive = 0;       // hexes with scaled Jacobian <= 0
-  std::size_t interior_quads = 0;     // quads shared by exactly two hexes
-  std::size_t boundary_quads = 0;     // quads of exactly one hex
-  std::size_t non_manifold_quads = 0; // quads shared by more than two hexes
-  std::size_t open_boundary_edges = 0;     // boundary edges not in exactly two boundary quads
+  QualityStats scaled_jacobian;         // Verdict scaled Jacobian statistics
+  std::size_t non_positive = 0;         // hexes with scaled Jacobian <= 0
+  std::size_t interior_quads = 0;       // quads shared by exactly two hexes
+  std::size_t boundary_quads = 0;       // quads of exactly one hex
+  std::size_t non_manifold_quads = 0;   // quads shared by more than two hexes
+  std::size_t folded_quads = 0;         // quads shared by two hexes on the same side (overlap)
+  std::size_t open_boundary_edges = 0;  // boundary edges not in exactly two boundary quads
   std::size_t unused_nodes = 0;
   bool has_cad = false;
   double mesh_volume = 0, cad_volume = 0;
-  double volume_rel_error = 0;        // |mesh - CAD| / CAD
-  double volume_allowance = 0;        // the absolute tolerance applied (see CheckOptions)
-  double max_boundary_distance = 0;   // absolute, model units
-  double max_boundary_distance_rel = 0;  // relative to the CAD diagonal
+  double volume_rel_error = 0;                // |mesh - CAD| / CAD
+  double volume_allowance = 0;                // the absolute tolerance applied (see CheckOptions)
+  double max_boundary_distance = 0;           // absolute, model units
+  double max_boundary_distance_rel = 0;       // relative to the CAD diagonal
   std::vector<core::Diagnostic> diagnostics;  // one per violated invariant
 };
 

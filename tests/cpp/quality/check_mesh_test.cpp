@@ -5,8 +5,8 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -41,6 +41,32 @@ HexMesh without_hex(const HexMesh& m, std::size_t removed) {
   for (std::size_t h = 0; h < m.num_hexes(); ++h)
     if (h != removed) out.add_hex(m.hexes()[h]);
   return out;
+}
+
+TEST(CheckMesh, HexesOnTheSameSideOfASharedQuadAreOverlapping) {
+  // A unit cube and a positive hex below its top face: both have positive scaled
+  // Jacobians and share one quad, but lie on the same side of it.
+  HexMesh m;
+  for (int i = 0; i < 8; ++i)
+    m.add_node(Vec3((i == 1 || i == 2 || i == 5 || i == 6), (i % 4 >= 2), i / 4));
+  for (int i = 0; i < 4; ++i) m.add_node(Vec3(m.points()[i].x(), m.points()[i].y(), 0.5));
+  m.add_hex({0, 1, 2, 3, 4, 5, 6, 7});
+  m.add_hex({8, 9, 10, 11, 4, 5, 6, 7});
+  const CheckReport r = check_mesh(m, nullptr);
+  EXPECT_EQ(r.scaled_jacobian.inverted, 0u);
+  EXPECT_EQ(r.interior_quads, 1u);
+  EXPECT_EQ(r.folded_quads, 1u);
+  EXPECT_FALSE(r.valid);
+  ASSERT_NE(find(r, "overlapping_elements"), nullptr);
+  // The same two hexes stacked properly are fine.
+  HexMesh ok;
+  for (int i = 0; i < 8; ++i) ok.add_node(m.points()[i]);
+  for (int i = 0; i < 4; ++i) ok.add_node(m.points()[i + 4] + Vec3(0, 0, 1));
+  ok.add_hex({0, 1, 2, 3, 4, 5, 6, 7});
+  ok.add_hex({4, 5, 6, 7, 8, 9, 10, 11});
+  const CheckReport r_ok = check_mesh(ok, nullptr);
+  EXPECT_EQ(r_ok.folded_quads, 0u);
+  EXPECT_TRUE(r_ok.valid);
 }
 
 TEST(CheckMesh, StructuredGridIsValidWithExactQuadCounts) {
