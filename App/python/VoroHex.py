@@ -6,12 +6,14 @@
 #   r.to_femmesh()                          # Fem.FemMesh, SMESH node order
 #   r.write("part.vtu")                     # .vtu / .msh / .inp
 #   VoroHex.check(r, shape)                 # validity and quality of any hex mesh
+#   g = VoroHex.voronoi_graph(shape)        # embedded Voronoi graph: g.elements, g.counts
 #
 # Why two modules: the compiled _VoroHexCore knows only plain values (BREP strings, byte
 # buffers) and no FreeCAD type, so it can be built and tested without FreeCAD; this file is
 # the thin FreeCAD side (Part.Shape checks, Fem.FemMesh, numpy when present).
 """VoroHex all-hexahedral mesher (Sheffer et al., embedded Voronoi graph)."""
 
+import json
 import math
 import numbers
 import os
@@ -24,8 +26,8 @@ try:  # numpy is optional: without it node and hex arrays are lists of tuples
 except ImportError:  # pragma: no cover - numpy is installed with FreeCAD on Debian
     _np = None
 
-__all__ = ["mesh", "check", "MeshResult", "MeshStats", "CancelToken", "OPTIONS",
-           "ShapeError", "from_femmesh", "SMESH_FROM_VTK"]
+__all__ = ["mesh", "check", "voronoi_graph", "MeshResult", "MeshStats", "VoronoiGraph",
+           "CancelToken", "OPTIONS", "ShapeError", "from_femmesh", "SMESH_FROM_VTK"]
 
 MOD_DIR = os.path.dirname(os.path.abspath(__file__))
 CancelToken = _core.CancelToken
@@ -41,15 +43,24 @@ class ShapeError(ValueError):
 
 
 class _Option:
-    """One pipeline option: its keyword, the FreeCAD property that carries it, and how."""
+    """One pipeline option: its keyword, the FreeCAD property that carries it, and how.
 
-    def __init__(self, name, prop, prop_type, group, doc, kind, auto_zero=False):
+    kind decides the check: "length" > 0, "count" whole >= 1, "iterations" whole >= 0,
+    "fraction" in (0, 1], "tolerance" >= 0. limits = (min, max, step) of a constraint
+    property (App::PropertyIntegerConstraint / PropertyFloatConstraint), else None."""
+
+    def __init__(self, name, prop, prop_type, group, doc, kind, auto_zero=False, limits=None):
         self.name, self.prop, self.prop_type = name, prop, prop_type
         self.group, self.doc, self.kind, self.auto_zero = group, doc, kind, auto_zero
+        self.limits = limits
 
     @property
     def default(self):
         return getattr(_core.MeshOptions(), self.name)
+
+    @property
+    def integer(self):
+        return self.kind in ("count", "iterations")
 
 
 # The single table mapping keyword options <-> MeshOptions fields <-> document properties.
@@ -60,6 +71,15 @@ OPTIONS = (
             auto_zero=True),
     _Option("max_hexes", "MaxHexes", "App::PropertyInteger", "Mesh",
             "Refuse to mesh when more hexahedra than this are predicted", "count"),
+    _Option("smooth_iterations", "SmoothIterations", "App::PropertyIntegerConstraint",
+            "Smoothing", "Laplacian smoothing sweeps (0 and SmoothPasses 0 = no smoothing)",
+            "iterations", limits=(0, 100000, 1)),
+    _Option("smooth_passes", "SmoothPasses", "App::PropertyIntegerConstraint", "Smoothing",
+            "Untangling and worst-element optimisation passes (0 = none)", "iterations",
+            limits=(0, 100000, 1)),
+    _Option("smooth_quality_target", "SmoothQualityTarget", "App::PropertyFloatConstraint",
+            "Smoothing", "Scaled Jacobian in (0, 1]: hexes below it are optimised, and no "
+            "smoothing move may push a hex below it", "fraction", limits=(0.01, 1.0, 0.05)),
     _Option("volume_rel_tol", "VolumeTolerance", "App::PropertyPrecision", "Check",
             "Allowed relative volume error of the mesh against the solid", "tolerance"),
     _Option("distance_rel_tol", "DistanceTolerance", "App::PropertyPrecision", "Check",
@@ -85,6 +105,21 @@ def _number(name, value, integer=False):
     return value
 
 
+def _check_range(option, value):
+    """Raises ValueError naming the option unless value suits option.kind."""
+    kind, name = option.kind, option.name
+    if kind in ("length", "count") and value <= 0:
+        raise ValueError("VoroHex: option '{}' must be > 0, got {}{}".format(
+            name, value, " (leave it out or pass None for automatic)"
+            if option.auto_zero else ""))
+    if kind == "fraction" and not 0 < value <= 1:
+        raise ValueError("VoroHex: option '{}' must be in (0, 1], got {}".format(name, value))
+    if value < 0:
+        raise ValueError("VoroHex: option '{}' must be >= 0, got {}".format(name, value))
+    if option.integer and value > 2**31 - 1 and kind != "count":
+        raise ValueError("VoroHex: option '{}' is too large: {}".format(name, value))
+
+
 def _make_options(kwargs):
     unknown = sorted(set(kwargs) - set(_OPTION_BY_NAME))
     if unknown:
@@ -95,13 +130,8 @@ def _make_options(kwargs):
         if value is None:
             continue  # None = keep the default (for size: automatic)
         option = _OPTION_BY_NAME[name]
-        value = _number(name, value, integer=option.kind == "count")
-        if value <= 0 and option.kind != "tolerance":
-            raise ValueError("VoroHex: option '{}' must be > 0, got {}{}".format(
-                name, value, " (leave it out or pass None for automatic)"
-                if option.auto_zero else ""))
-        if value < 0:
-            raise ValueError("VoroHex: option '{}' must be >= 0, got {}".format(name, value))
+        value = _number(name, value, integer=option.integer)
+        _check_range(option, value)
         setattr(opts, name, value)
     opts.validate()
     return opts
@@ -186,8 +216,14 @@ class MeshStats:
         self.sub_volumes = s.sub_volumes
         self.size_used = s.size_used
         self.intervals = tuple(s.intervals)
-        self.scheme = s.scheme
-        self.seconds = s.seconds_meshing + s.seconds_checking
+        self.scheme = s.scheme  # "map" (mapped block) or "sweep" (one-to-one sweep)
+        # Quality before global smoothing (equal to the final one when smoothing is off).
+        self.min_scaled_jacobian_before_smoothing = s.min_sj_before_smoothing
+        self.mean_scaled_jacobian_before_smoothing = s.mean_sj_before_smoothing
+        self.seconds_meshing = s.seconds_meshing
+        self.seconds_smoothing = s.seconds_smoothing
+        self.seconds_checking = s.seconds_checking
+        self.seconds = s.seconds_meshing + s.seconds_smoothing + s.seconds_checking
 
     def as_dict(self):
         return dict(vars(self))
@@ -361,3 +397,85 @@ def check(mesh_or_path, shape=None, volume_rel_tol=None, distance_rel_tol=None):
     dt = defaults.distance_rel_tol if distance_rel_tol is None else _number(
         "distance_rel_tol", distance_rel_tol)
     return _core.check_mesh(m, solid, vt, dt)
+
+
+class VoronoiGraph:
+    """The embedded Voronoi graph of a solid (what VoroHex.voronoi_graph returns).
+
+    elements: list of dicts, one per Voronoi vertex, edge and face, with
+      "id" (its index), "kind" ("vertex", "edge" or "face"), "governors" (FreeCAD names of
+      the nearest model entities, e.g. ["Face1", "Face3"]), "point" (x, y, z; a face's is
+      one point of it, an edge's its middle), "radius" (distance to the governors),
+      "verified", "incident" (ids of incident elements), "f_s" (faces: governed by two
+      unconnected model faces) and "polyline" (edges: list of (x, y, z)).
+    counts: {"vertices", "edges", "faces", "f_s"}; status: "ok", "partial" or "failed";
+    diagnostics: list of dicts (severity, code, message, entities); stats: octree figures.
+    """
+
+    def __init__(self, data):
+        self.data = data
+        self.elements = data.get("elements", [])
+        for e in self.elements:
+            e["point"] = tuple(e["point"])
+            e.setdefault("f_s", False)
+            if "polyline" in e:
+                e["polyline"] = [tuple(p) for p in e["polyline"]]
+        self.counts = data.get("counts", {})
+        self.stats = data.get("stats", {})
+        self.status = data.get("status", "failed")
+        self.diagnostics = data.get("diagnostics", [])
+
+    ok = property(lambda self: self.status != "failed",
+                  doc="False when no graph could be computed (see diagnostics)")
+
+    def of_kind(self, kind):
+        """Elements of one kind: "vertex", "edge" or "face"."""
+        return [e for e in self.elements if e["kind"] == kind]
+
+    def fs_faces(self):
+        """Voronoi faces governed by two unconnected model faces (the paper's f_s)."""
+        return [e for e in self.elements if e["kind"] == "face" and e["f_s"]]
+
+    def find(self, governors):
+        """Elements governed by exactly these entities (names, any order)."""
+        want = sorted(governors)
+        return [e for e in self.elements if sorted(e["governors"]) == want]
+
+    def as_dict(self):
+        return self.data
+
+    def __repr__(self):
+        return "<VoroHex.VoronoiGraph {} {}>".format(self.status, self.counts)
+
+
+def _voronoi_options(eps, delta, max_depth, linear_tolerance):
+    opts = _core.VoronoiOptions()
+    given = dict(eps=eps, delta=delta, max_depth=max_depth, linear_tolerance=linear_tolerance)
+    for name, value in given.items():
+        if value is None:
+            continue
+        value = _number(name, value, integer=name == "max_depth")
+        if name == "max_depth" and not 1 <= value <= 12:
+            raise ValueError("VoroHex: option 'max_depth' must be in 1..12, got {}".format(
+                value))
+        if value <= 0:
+            raise ValueError("VoroHex: option '{}' must be > 0, got {}".format(name, value))
+        setattr(opts, name, value)
+    try:
+        opts.validate()
+    except ValueError as e:
+        raise ValueError("VoroHex: " + str(e)) from None
+    return opts
+
+
+def voronoi_graph(shape, eps=None, delta=None, max_depth=None, linear_tolerance=None):
+    """The embedded Voronoi graph of the one solid in `shape` (a Part.Shape or feature).
+
+    eps: merge tolerance / finest cell, delta: embedding accuracy, linear_tolerance: chord
+    tolerance of curved entities, all relative to the bounding-box diagonal; max_depth:
+    octree depth 1..12. None keeps the default (VoroHex's C++ VoronoiOptions). Returns a
+    VoronoiGraph; bad values raise ValueError naming the option, bad shapes ShapeError.
+    """
+    opts = _voronoi_options(eps, delta, max_depth, linear_tolerance)
+    solid = _read_solid(check_shape(shape))
+    return VoronoiGraph(json.loads(_core.voronoi_graph_json(solid, opts)))

@@ -17,6 +17,11 @@ RESULTS = (
     ("SubVolumeCount", "App::PropertyInteger", "Number of sub-volumes of the decomposition"),
     ("MinScaledJacobian", "App::PropertyFloat", "Smallest scaled Jacobian (1 = cube)"),
     ("MeanScaledJacobian", "App::PropertyFloat", "Mean scaled Jacobian"),
+    ("MinScaledJacobianBeforeSmoothing", "App::PropertyFloat",
+     "Smallest scaled Jacobian before global smoothing"),
+    ("MeanScaledJacobianBeforeSmoothing", "App::PropertyFloat",
+     "Mean scaled Jacobian before global smoothing"),
+    ("Scheme", "App::PropertyString", "How the solid was meshed: map (block) or sweep"),
     ("VolumeError", "App::PropertyFloat", "Relative volume error of the mesh vs the solid"),
     ("ScaledJacobianHistogram", "App::PropertyIntegerList",
      "Hexes per scaled Jacobian bin of 0.1 from -1 to 1"),
@@ -68,13 +73,19 @@ class HexMesh:
         for o in VoroHex.OPTIONS:
             if not hasattr(obj, o.prop):
                 obj.addProperty(o.prop_type, o.prop, o.group, o.doc)
-                setattr(obj, o.prop, 0 if o.auto_zero else o.default)
+                value = 0 if o.auto_zero else o.default
+                setattr(obj, o.prop, (value,) + o.limits if o.limits else value)
         for name, prop_type, doc in RESULTS:
             if not hasattr(obj, name):
                 obj.addProperty(prop_type, name, "Result", doc)
                 obj.setEditorMode(name, 1)  # read-only in the property editor
 
     def onDocumentRestored(self, obj):
+        # Files older than an option lack its property; add it with the default. FreeCAD
+        # does not save the limits of constraint properties, so set them again.
+        for o in VoroHex.OPTIONS:
+            if o.limits and hasattr(obj, o.prop):
+                setattr(obj, o.prop, (getattr(obj, o.prop),) + o.limits)
         self.add_properties(obj)
 
     def __getstate__(self):
@@ -105,6 +116,9 @@ class HexMesh:
         obj.HexCount, obj.NodeCount, obj.SubVolumeCount = s.hexes, s.nodes, s.sub_volumes
         obj.MinScaledJacobian, obj.MeanScaledJacobian = s.min_scaled_jacobian, \
             s.mean_scaled_jacobian
+        obj.MinScaledJacobianBeforeSmoothing = s.min_scaled_jacobian_before_smoothing
+        obj.MeanScaledJacobianBeforeSmoothing = s.mean_scaled_jacobian_before_smoothing
+        obj.Scheme = s.scheme
         obj.VolumeError = s.volume_rel_error
         obj.ScaledJacobianHistogram = [int(c) for c in s.histogram]
         obj.Status, obj.Message = "ok", result.message

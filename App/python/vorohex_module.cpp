@@ -20,6 +20,8 @@
 #include "pipeline/generate_mesh.h"
 #include "quality/check_mesh.h"
 #include "quality/scaled_jacobian.h"
+#include "voronoi/graph_io.h"
+#include "voronoi/voronoi_graph.h"
 
 namespace py = pybind11;
 using namespace vorohex;
@@ -137,7 +139,10 @@ void bind_types(py::module_& m) {
       .def_readonly("size_used", &S::size_used)
       .def_readonly("intervals", &S::intervals)
       .def_readonly("seconds_meshing", &S::seconds_meshing)
+      .def_readonly("seconds_smoothing", &S::seconds_smoothing)
       .def_readonly("seconds_checking", &S::seconds_checking)
+      .def_readonly("min_sj_before_smoothing", &S::min_sj_before_smoothing)
+      .def_readonly("mean_sj_before_smoothing", &S::mean_sj_before_smoothing)
       .def_readonly("sub_volumes", &S::sub_volumes)
       .def_readonly("scheme", &S::scheme);
 
@@ -148,6 +153,26 @@ void bind_types(py::module_& m) {
       .def_readwrite("size", &O::size, "target edge length, model units; 0 = diagonal / 20")
       .def_readwrite("max_hexes", &O::max_hexes, "refuse up front above this predicted count")
       .def_property(
+          "smooth_iterations", [](const O& o) { return o.smoothing.laplacian_iterations; },
+          [](O& o, int v) { o.smoothing.laplacian_iterations = v; },
+          "smoothing: Laplacian sweeps (>= 0; 0 and smooth_passes 0 = no smoothing)")
+      .def_property(
+          "smooth_passes", [](const O& o) { return o.smoothing.optimisation_passes; },
+          [](O& o, int v) { o.smoothing.optimisation_passes = v; },
+          "smoothing: untangling and worst-element optimisation passes (>= 0)")
+      .def_property(
+          "smooth_quality_target", [](const O& o) { return o.smoothing.quality_target; },
+          [](O& o, double v) { o.smoothing.quality_target = v; },
+          "smoothing: hexes below this scaled Jacobian are optimised, in (0, 1]")
+      .def_property(
+          "smooth_relaxation", [](const O& o) { return o.smoothing.relaxation; },
+          [](O& o, double v) { o.smoothing.relaxation = v; },
+          "smoothing: fraction of the Laplacian step taken, in (0, 1]")
+      .def_property(
+          "smooth_tolerance", [](const O& o) { return o.smoothing.tolerance; },
+          [](O& o, double v) { o.smoothing.tolerance = v; },
+          "smoothing: convergence, node move relative to its mean edge length (>= 0)")
+      .def_property(
           "volume_rel_tol", [](const O& o) { return o.check.volume_rel_tol; },
           [](O& o, double v) { o.check.volume_rel_tol = v; },
           "check: allowed relative volume error vs the CAD solid")
@@ -156,6 +181,21 @@ void bind_types(py::module_& m) {
           [](O& o, double v) { o.check.distance_rel_tol = v; },
           "check: allowed boundary node distance, relative to the diagonal")
       .def("validate", &O::validate, "raises ValueError naming the bad option");
+
+  using V = voronoi::VoronoiOptions;
+  py::class_<V>(m, "VoronoiOptions")
+      .def(py::init<>())
+      .def_readwrite("eps", &V::eps, "merge tolerance and finest cell, x bounding-box diagonal")
+      .def_readwrite("delta", &V::delta, "embedding accuracy, x bounding-box diagonal")
+      .def_readwrite("max_depth", &V::max_depth, "maximum octree depth, 1..12")
+      .def_readwrite("linear_tolerance", &V::linear_tolerance,
+                     "chord tolerance of curved entities, x bounding-box diagonal")
+      .def(
+          "validate",
+          [](const V& o) {
+            if (std::string why = o.validate(); !why.empty()) throw std::invalid_argument(why);
+          },
+          "raises ValueError naming the bad option");
 
   py::class_<CancelToken, std::shared_ptr<CancelToken>>(m, "CancelToken")
       .def(py::init<>())
@@ -263,6 +303,14 @@ std::shared_ptr<pipeline::MeshResult> generate(SolidPtr solid, const pipeline::M
   return result;
 }
 
+// The embedded Voronoi graph as JSON text (graph_io.h layout); VoroHex.py parses it.
+std::string voronoi_json(SolidPtr solid, const voronoi::VoronoiOptions& options) {
+  if (!solid) throw std::invalid_argument("no solid given");
+  if (std::string why = options.validate(); !why.empty()) throw std::invalid_argument(why);
+  py::gil_scoped_release nogil;
+  return voronoi::voronoi_graph_json(voronoi::compute_voronoi_graph(*solid, options));
+}
+
 quality::CheckReport check(const core::HexMesh& mesh, SolidPtr solid, double volume_rel_tol,
                            double distance_rel_tol) {
   quality::CheckOptions o;
@@ -284,6 +332,8 @@ PYBIND11_MODULE(_VoroHexCore, m) {
   m.def("generate_mesh", &generate, py::arg("solid"), py::arg("options"),
         py::arg("progress") = py::none(), py::arg("cancel") = nullptr,
         "mesh a solid; progress(stage, fraction) may return False to cancel");
+  m.def("voronoi_graph_json", &voronoi_json, py::arg("solid"), py::arg("options"),
+        "the embedded Voronoi graph of a solid as JSON text");
   m.def("check_mesh", &check, py::arg("mesh"), py::arg("solid") = nullptr,
         py::arg("volume_rel_tol") = quality::CheckOptions{}.volume_rel_tol,
         py::arg("distance_rel_tol") = quality::CheckOptions{}.distance_rel_tol);

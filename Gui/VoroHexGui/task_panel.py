@@ -13,6 +13,9 @@ from VoroHexGui.histogram import HistogramWidget
 WIDGETS = {
     "size": "sb_size",
     "max_hexes": "sb_max_hexes",
+    "smooth_iterations": "sb_smooth_iterations",
+    "smooth_passes": "sb_smooth_passes",
+    "smooth_quality_target": "sb_smooth_quality_target",
     "volume_rel_tol": "le_volume_rel_tol",
     "distance_rel_tol": "le_distance_rel_tol",
 }
@@ -29,10 +32,15 @@ def summary_text(obj):
         return "Error: " + obj.Message
     if obj.Status != "ok":
         return "Not meshed yet: press Run or OK."
-    return ("{} hexahedra, {} nodes, {} sub-volume(s)\n"
+    return ("{} hexahedra, {} nodes\n"
+            "Scheme: {}, {} sub-volume(s)\n"
             "Scaled Jacobian: min {:.3f}, mean {:.3f}\n"
-            "Volume error: {:.2e}").format(obj.HexCount, obj.NodeCount, obj.SubVolumeCount,
-                                           obj.MinScaledJacobian, obj.MeanScaledJacobian,
+            "Before smoothing: min {:.3f}, mean {:.3f}\n"
+            "Volume error: {:.2e}").format(obj.HexCount, obj.NodeCount, obj.Scheme or "?",
+                                           obj.SubVolumeCount, obj.MinScaledJacobian,
+                                           obj.MeanScaledJacobian,
+                                           obj.MinScaledJacobianBeforeSmoothing,
+                                           obj.MeanScaledJacobianBeforeSmoothing,
                                            obj.VolumeError)
 
 

@@ -87,6 +87,12 @@ def main():
     size_box = mw.findChild(QtGui.QDoubleSpinBox, "sb_size")
     check(size_box is not None, "size field in the task panel")
     size_box.setValue(2.5)
+    for name, value in (("sb_smooth_iterations", 5), ("sb_smooth_passes", 4)):
+        spin = mw.findChild(QtGui.QSpinBox, name)
+        check(spin is not None and spin.minimum() == 0, name + " in the task panel, min 0")
+        spin.setValue(value)
+    target = mw.findChild(QtGui.QDoubleSpinBox, "sb_smooth_quality_target")
+    check(target is not None and target.value() == 0.5, "quality target shows the default")
     ok = task_ok_button(mw)
     check(ok is not None, "task panel OK button")
     ok.click()
@@ -95,6 +101,8 @@ def main():
     check(mesh.isValid() and mesh.Status == "ok", "mesh valid: " + mesh.Message)
     check(mesh.HexCount == 16 * 8 * 4, "hex count {} == 512".format(mesh.HexCount))
     check(mesh.FemMesh.VolumeCount == mesh.HexCount, "FemMesh filled")
+    check((mesh.SmoothIterations, mesh.SmoothPasses) == (5, 4), "smoothing options stored")
+    check(mesh.Scheme == "map", "scheme recorded")
     import VoroHex
 
     check(VoroHex.check(mesh.FemMesh, box.Shape).valid, "VoroHex.check valid")
@@ -131,6 +139,7 @@ def main():
     check(hist is not None and sum(hist.counts) == mesh.HexCount, "histogram shows all hexes")
     status = mw.findChild(QtGui.QLabel, "lbl_status")
     check(status is not None and "512 hexahedra" in status.text(), "quality summary shown")
+    check("Before smoothing: min 1.000" in status.text(), "before/after quality shown")
     panel_shot = os.path.splitext(SHOT)[0] + "_panel.png"
     check(QtGui.QGuiApplication.primaryScreen().grabWindow(0).save(panel_shot),
           "panel screenshot saved to " + panel_shot)

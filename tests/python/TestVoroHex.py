@@ -198,6 +198,123 @@ class TestVoroHexApi(unittest.TestCase):
             with self.assertRaises(RuntimeError):
                 r.write(os.path.join(d, "box.unknown"))
 
+    def test_smoothing_off_keeps_quality(self):
+        cyl = Part.makeCylinder(5, 10)
+        r = VoroHex.mesh(cyl, size=1.5, smooth_iterations=0, smooth_passes=0)
+        self.assertTrue(r.ok, r.message)
+        s = r.stats
+        self.assertEqual(s.scheme, "sweep")
+        self.assertEqual(s.min_scaled_jacobian_before_smoothing, s.min_scaled_jacobian)
+        self.assertEqual(s.mean_scaled_jacobian_before_smoothing, s.mean_scaled_jacobian)
+        self.assertGreaterEqual(s.seconds_smoothing, 0.0)
+        self.assertAlmostEqual(s.seconds, s.seconds_meshing + s.seconds_smoothing +
+                               s.seconds_checking)
+
+    def test_smoothing_never_lowers_minimum(self):
+        cyl = Part.makeCylinder(5, 10)
+        off = VoroHex.mesh(cyl, size=1.5, smooth_iterations=0, smooth_passes=0)
+        on = VoroHex.mesh(cyl, size=1.5)
+        self.assertTrue(on.ok, on.message)
+        s = on.stats
+        self.assertEqual((on.hex_count, on.node_count), (off.hex_count, off.node_count))
+        # The mesh before smoothing is the unsmoothed mesh of the run with smoothing off.
+        self.assertAlmostEqual(s.min_scaled_jacobian_before_smoothing,
+                               off.stats.min_scaled_jacobian, places=12)
+        self.assertAlmostEqual(s.mean_scaled_jacobian_before_smoothing,
+                               off.stats.mean_scaled_jacobian, places=12)
+        self.assertGreaterEqual(s.min_scaled_jacobian,
+                                s.min_scaled_jacobian_before_smoothing - 1e-12)
+        self.assertGreater(s.seconds_smoothing, 0.0)
+        self.assertTrue(VoroHex.check(on, cyl).valid)
+        # The options reach the core: smoothing moved nodes, Laplacian-only too.
+        moved = max(abs(a - b) for p, q in zip(on.nodes, off.nodes) for a, b in zip(p, q))
+        self.assertGreater(moved, 1e-6)
+        lap = VoroHex.mesh(cyl, size=1.5, smooth_iterations=3, smooth_passes=0,
+                           smooth_quality_target=0.9)
+        self.assertTrue(lap.ok, lap.message)
+        self.assertGreaterEqual(lap.stats.min_scaled_jacobian,
+                                lap.stats.min_scaled_jacobian_before_smoothing - 1e-12)
+
+    def test_smoothing_option_errors(self):
+        for name, bad in (("smooth_iterations", -1), ("smooth_passes", -2),
+                          ("smooth_iterations", 1.5), ("smooth_passes", float("nan")),
+                          ("smooth_quality_target", 0), ("smooth_quality_target", -0.5),
+                          ("smooth_quality_target", 1.5),
+                          ("smooth_quality_target", float("nan"))):
+            with self.assertRaisesRegex(ValueError, name, msg="{}={}".format(name, bad)):
+                VoroHex.mesh(self.box, size=5, **{name: bad})
+        with self.assertRaisesRegex(TypeError, "smooth_iterations"):
+            VoroHex.mesh(self.box, size=5, smooth_iterations="many")
+        names = [o.name for o in VoroHex.OPTIONS]
+        for name in ("smooth_iterations", "smooth_passes", "smooth_quality_target"):
+            self.assertIn(name, names)
+        defaults = {o.name: o.default for o in VoroHex.OPTIONS}
+        self.assertEqual((defaults["smooth_iterations"], defaults["smooth_passes"]), (20, 10))
+        self.assertEqual(defaults["smooth_quality_target"], 0.5)
+
+    def test_l_shape_is_swept(self):
+        pts = [(0, 0, 0), (20, 0, 0), (20, 6, 0), (6, 6, 0), (6, 16, 0), (0, 16, 0), (0, 0, 0)]
+        face = Part.Face(Part.makePolygon([FreeCAD.Vector(*p) for p in pts]))
+        solid = face.extrude(FreeCAD.Vector(0, 0, 5))
+        r = VoroHex.mesh(solid, size=1.5)
+        self.assertTrue(r.ok, r.message)
+        self.assertEqual(r.stats.scheme, "sweep")
+        report = VoroHex.check(r, solid)
+        self.assertTrue(report.valid, [str(d) for d in report.diagnostics])
+        self.assertEqual(report.non_positive, 0)
+        nodes = r.nodes
+        vols = [hex_volume([tuple(nodes[i]) for i in h]) for h in r.hexes]
+        self.assertTrue(all(v > 0 for v in vols), min(vols))
+        self.assertTrue(all(v > 0 for v in r.core_mesh.hex_volumes()))
+        self.assertTrue(math.isclose(sum(vols), solid.Volume, rel_tol=1e-6))
+        self.assertTrue(all(v > 0 for v in femmesh_hex_volumes(r.to_femmesh())))
+
+    def test_voronoi_graph_box(self):
+        box = Part.makeBox(3, 2, 1)
+        by_area = sorted(range(len(box.Faces)), key=lambda i: box.Faces[i].Area)
+        largest = sorted("Face{}".format(i + 1) for i in by_area[-2:])
+        self.assertGreater(box.Faces[by_area[-2]].Area, box.Faces[by_area[-3]].Area)
+        g = VoroHex.voronoi_graph(box)
+        self.assertTrue(g.ok, g.diagnostics)
+        self.assertEqual(g.counts["f_s"], 1)
+        fs = g.fs_faces()
+        self.assertEqual(len(fs), 1)
+        self.assertEqual(sorted(fs[0]["governors"]), largest)
+        self.assertEqual(fs[0]["kind"], "face")
+        self.assertEqual(len(g.find(largest)), 1)
+        # f_s lies midway between the two largest faces (z = 0 and z = 1).
+        self.assertAlmostEqual(fs[0]["point"][2], 0.5, places=3)
+        self.assertEqual(g.counts["faces"], len(g.of_kind("face")))
+        self.assertEqual(g.counts["edges"], len(g.of_kind("edge")))
+        self.assertEqual(g.counts["vertices"], len(g.of_kind("vertex")))
+        for e in g.of_kind("edge"):
+            self.assertGreaterEqual(len(e["polyline"]), 2)
+            self.assertEqual(len(e["polyline"][0]), 3)
+        for e in g.elements:
+            self.assertTrue(all(re.match(r"(Face|Edge|Vertex)\d+$", n) for n in e["governors"]))
+            self.assertTrue(all(0 <= i < len(g.elements) for i in e["incident"]))
+
+    def test_voronoi_graph_cube_centre(self):
+        g = VoroHex.voronoi_graph(Part.makeBox(2, 2, 2), eps=0.01)
+        centre = [e for e in g.of_kind("vertex") if len(e["governors"]) == 6]
+        self.assertEqual(len(centre), 1, g.of_kind("vertex"))
+        self.assertEqual(sorted(centre[0]["governors"]),
+                         sorted("Face{}".format(i) for i in range(1, 7)))
+        for c in centre[0]["point"]:
+            self.assertAlmostEqual(c, 1.0, places=2)
+        # Opposite faces of a cube meet only at its centre: no f_s face.
+        self.assertEqual(g.counts["f_s"], 0)
+
+    def test_voronoi_graph_errors(self):
+        for kwargs, name in (({"eps": -1}, "eps"), ({"eps": float("nan")}, "eps"),
+                             ({"delta": 0}, "delta"), ({"eps": 0.01, "delta": 0.1}, "delta"),
+                             ({"max_depth": 13}, "max_depth"), ({"max_depth": 2.5}, "max_depth"),
+                             ({"linear_tolerance": 0.7}, "linear_tolerance")):
+            with self.assertRaisesRegex(ValueError, name, msg=repr(kwargs)):
+                VoroHex.voronoi_graph(self.box, **kwargs)
+        with self.assertRaises(VoroHex.ShapeError):
+            VoroHex.voronoi_graph(Part.makeShell(self.box.Faces[:5]))
+
     def test_check_detects_inverted_hex(self):
         pts = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]
         good = VoroHex.check((pts, [list(range(8))]))
@@ -328,6 +445,75 @@ class TestVoroHexObject(unittest.TestCase):
             self.doc.recompute()
             self.assertTrue(o2.isValid(), o2.getStatusString())
             self.assertEqual(o2.HexCount, 48)
+
+    def test_smoothing_properties(self):
+        obj = self.make_mesh(size=10)
+        for o in VoroHex.OPTIONS:  # every option has its property, in its group
+            self.assertIn(o.prop, obj.PropertiesList)
+            self.assertEqual(obj.getGroupOfProperty(o.prop), o.group)
+        self.assertEqual(obj.getGroupOfProperty("SmoothIterations"), "Smoothing")
+        self.assertEqual((obj.SmoothIterations, obj.SmoothPasses), (20, 10))
+        self.assertAlmostEqual(obj.SmoothQualityTarget, 0.5)
+        self.assertEqual(obj.Scheme, "map")
+        for name in ("MinScaledJacobianBeforeSmoothing", "MeanScaledJacobianBeforeSmoothing",
+                     "Scheme"):
+            self.assertEqual(obj.getGroupOfProperty(name), "Result")
+            self.assertIn("ReadOnly", obj.getEditorMode(name))
+        obj.SmoothIterations, obj.SmoothPasses, obj.SmoothQualityTarget = 7, 0, 0.8
+        opts = VoroHexObjects.options_of(obj)
+        self.assertEqual((opts["smooth_iterations"], opts["smooth_passes"]), (7, 0))
+        self.assertAlmostEqual(opts["smooth_quality_target"], 0.8)
+        obj.SmoothIterations = -5  # the constraint keeps it >= 0
+        self.assertEqual(obj.SmoothIterations, 0)
+
+    def test_recompute_with_smoothing_off_and_on(self):
+        cyl = self.doc.addObject("Part::Cylinder", "Cylinder")
+        cyl.Radius, cyl.Height = 5, 10
+        self.doc.recompute()
+        obj = VoroHexObjects.makeHexMesh(self.doc, cyl, size=1.5)
+        obj.SmoothIterations, obj.SmoothPasses = 0, 0
+        self.doc.recompute()
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        self.assertEqual(obj.Scheme, "sweep")
+        self.assertEqual(obj.MinScaledJacobianBeforeSmoothing, obj.MinScaledJacobian)
+        self.assertEqual(obj.MeanScaledJacobianBeforeSmoothing, obj.MeanScaledJacobian)
+        unsmoothed = obj.MinScaledJacobian
+        obj.SmoothIterations, obj.SmoothPasses = 20, 10
+        self.doc.recompute()
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        self.assertAlmostEqual(obj.MinScaledJacobianBeforeSmoothing, unsmoothed, places=12)
+        self.assertGreaterEqual(obj.MinScaledJacobian, unsmoothed - 1e-12)
+        self.assertTrue(VoroHex.check(obj.FemMesh, cyl.Shape).valid)
+        self.assertTrue(all(v > 0 for v in femmesh_hex_volumes(obj.FemMesh)))
+
+    def test_old_document_gains_new_properties(self):
+        obj = self.make_mesh(size=10)
+        obj.SmoothIterations = 3
+        name = obj.Name
+        new = ("SmoothPasses", "SmoothQualityTarget", "MinScaledJacobianBeforeSmoothing",
+               "MeanScaledJacobianBeforeSmoothing", "Scheme")
+        for prop in new:  # as written before these existed
+            obj.removeProperty(prop)
+        self.assertNotIn("SmoothPasses", obj.PropertiesList)
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "old.FCStd")
+            self.doc.saveAs(path)
+            FreeCAD.closeDocument(self.doc.Name)
+            self.doc = FreeCAD.openDocument(path)
+            o2 = self.doc.getObject(name)
+            for prop in new:
+                self.assertIn(prop, o2.PropertiesList)
+            self.assertEqual(o2.SmoothIterations, 3)  # kept from the file
+            self.assertEqual(o2.SmoothPasses, 10)  # the default
+            self.assertAlmostEqual(o2.SmoothQualityTarget, 0.5)
+            o2.SmoothIterations = -1  # limits are set again after restore
+            self.assertEqual(o2.SmoothIterations, 0)
+            o2.SmoothQualityTarget = 2.0
+            self.assertAlmostEqual(o2.SmoothQualityTarget, 1.0)
+            o2.TargetSize = 5
+            self.doc.recompute()
+            self.assertTrue(o2.isValid(), o2.getStatusString())
+            self.assertEqual((o2.HexCount, o2.Scheme), (48, "map"))
 
     def test_femmesh_export_inp(self):
         import Fem
