@@ -12,6 +12,7 @@ import os
 import subprocess
 import sys
 import tempfile
+import threading
 import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -24,7 +25,10 @@ def measure(cmd, timeout=1800):
     t0 = time.perf_counter()
     with tempfile.TemporaryFile() as err:
         p = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=err)
+        timer = threading.Timer(timeout, p.kill)  # a hung run is killed, not waited for
+        timer.start()
         _, status, usage = os.wait4(p.pid, 0)
+        timer.cancel()
         seconds = time.perf_counter() - t0
         err.seek(0)
         text = err.read().decode(errors="replace")

@@ -1,0 +1,139 @@
+#!/usr/bin/python3
+"""Every HexMe model through VoroHex (mesh and decompose) beside Gmsh's automatic all-hex.
+
+For each model of ../shared/models/hexme: `vorohex mesh` at the default size (bounding-box
+diagonal / 20), Gmsh's subdivision all-hex at the same size (both judged by `vorohex check`
+against the CAD), and `vorohex decompose` (sub-volumes before/after merging and schemes).
+Writes bench/results/hexme.md.
+
+usage: run_hexme.py [--build BUILD] [--no-gmsh] [--only PREFIX]
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+
+from run_bench import HEXME, HERE, REPO, measure
+
+
+def load(path):
+    try:
+        with open(path) as f:
+            return json.load(f)
+    except (OSError, ValueError):
+        return None
+
+
+def errors(diagnostics):
+    return ", ".join(sorted({d["code"] for d in diagnostics if d["severity"] == "error"})) or "?"
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--build", default=os.path.join(REPO, "build"))
+    ap.add_argument("--no-gmsh", action="store_true")
+    ap.add_argument("--only", default="")
+    args = ap.parse_args()
+    vorohex = os.path.join(args.build, "vorohex")
+    work = os.path.join(HERE, "work", "hexme")
+    os.makedirs(work, exist_ok=True)
+    models = sorted(f for f in os.listdir(HEXME) if f.endswith(".step") and f.startswith(args.only))
+    rows = []
+    for model in models:
+        step = os.path.join(HEXME, model)
+        name = model[:-5]
+        rep = os.path.join(work, name + ".json")
+        code, sec, mb, err = measure([vorohex, "mesh", step, "-o", os.path.join(work, name + ".vtu"),
+                                      "--report", rep, "--quiet"], timeout=600)
+        r = load(rep)
+        row = {"model": name, "v_sec": sec, "v_mb": mb}
+        if r is None:
+            row["v"] = "crash (exit %d)" % code
+            rows.append(row)
+            continue
+        size = r["size"]
+        row["size"] = size
+        if r["ok"]:
+            c = r["check"]
+            row.update(v="valid " + r["scheme"], v_hexes=c["hexes"],
+                       v_min_before=r["smoothing"]["min_scaled_jacobian_before"],
+                       v_min=c["scaled_jacobian"]["min"], v_mean=c["scaled_jacobian"]["mean"])
+        else:
+            row["v"] = errors(r["diagnostics"])
+        drep = os.path.join(work, name + ".decomposition.json")
+        code, dsec, _, derr = measure([vorohex, "decompose", step, "-o",
+                                       os.path.join(work, name + ".parts.brep"), "--report", drep],
+                                      timeout=600)
+        d = load(drep) if code == 0 else None
+        if d is not None:
+            subs = d.get("sub_volumes", [])
+            schemes = {}
+            for sv in subs:
+                schemes[sv.get("scheme", "?")] = schemes.get(sv.get("scheme", "?"), 0) + 1
+            counts = d.get("counts", d.get("stats", {}))
+            row["d"] = "%s -> %s (%s)" % (counts.get("sub_volumes_before_merge", "?"),
+                                          counts.get("sub_volumes", len(subs)),
+                                          ", ".join("%d %s" % (n, s) for s, n in sorted(schemes.items())))
+        else:
+            last = [l for l in derr.strip().split("\n") if l][-1:] or ["exit %d" % code]
+            row["d"] = "failed: " + last[0].replace("vorohex: ", "")[:90].replace("|", "/")
+        row["d_sec"] = dsec
+        if not args.no_gmsh:
+            msh = os.path.join(work, name + ".gmsh.msh")
+            code, gsec, gmb, gerr = measure([sys.executable, os.path.join(HERE, "gmsh_allhex.py"),
+                                             step, msh, str(size)], timeout=900)
+            row["g_sec"] = gsec
+            if code != 0:
+                row["g"] = "gmsh failed"
+            else:
+                crep = os.path.join(work, name + ".gmsh.json")
+                subprocess.run([vorohex, "check", msh, "--cad", step, "--report", crep],
+                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, timeout=900)
+                g = load(crep)
+                if g is None:
+                    row["g"] = "check failed"
+                else:
+                    row.update(g="valid" if g["valid"] else "invalid: " + errors(g["diagnostics"]),
+                               g_hexes=g["hexes"], g_min=g["scaled_jacobian"]["min"],
+                               g_mean=g["scaled_jacobian"]["mean"],
+                               g_inv=g["scaled_jacobian"]["inverted"])
+                os.remove(msh)
+        rows.append(row)
+        print(row, flush=True)
+
+    def f(v, fmt="%.3f"):
+        return fmt % v if isinstance(v, (int, float)) else (v if v is not None else "")
+
+    valid = sum(1 for r in rows if r.get("v", "").startswith("valid"))
+    lines = [
+        "# HexMe: VoroHex beside Gmsh's automatic all-hex, and VoroHex's decomposition",
+        "",
+        "Generated by `bench/run_hexme.py` on this machine (2 cores, shared with other work while",
+        "measuring, so seconds are noisy). Size: bounding-box diagonal / 20 for both tools. SJ =",
+        "Verdict scaled Jacobian computed by VoroHex's checker for both; VoroHex's min SJ is shown",
+        "before -> after smoothing. A VoroHex result is either `valid <scheme>` or the error codes",
+        "of its diagnostics (never an invalid mesh reported as success). Gmsh:",
+        "`Mesh.SubdivisionAlgorithm=2`, `Mesh.RecombineAll=1`. Decomposition: sub-volumes",
+        "before -> after merging (schemes), or why it failed.",
+        "",
+        "VoroHex meshes %d of %d models today." % (valid, len(rows)),
+        "",
+        "| model | VoroHex | hexes | min SJ | mean SJ | s | Gmsh | hexes | min SJ | mean SJ | inverted | s | decomposition | s |",
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|",
+    ]
+    for r in rows:
+        vmin = ("%.3f -> %.3f" % (r["v_min_before"], r["v_min"])) if "v_min" in r else ""
+        lines.append("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
+            r["model"], r.get("v", ""), f(r.get("v_hexes"), "%d"), vmin, f(r.get("v_mean")),
+            f(r.get("v_sec"), "%.2f"), r.get("g", ""), f(r.get("g_hexes"), "%d"),
+            f(r.get("g_min")), f(r.get("g_mean")), f(r.get("g_inv"), "%d"),
+            f(r.get("g_sec"), "%.2f"), r.get("d", ""), f(r.get("d_sec"), "%.2f")))
+    out = os.path.join(HERE, "results", "hexme.md")
+    with open(out, "w") as fh:
+        fh.write("\n".join(lines) + "\n")
+    print("wrote", out)
+
+
+if __name__ == "__main__":
+    main()
