@@ -101,27 +101,37 @@ class Builder {
                    Vec3(0.0123, 0.0071, 0.0047) * extent;
     level_ = std::clamp(int(std::ceil(std::log2(sub_.size_ / eps_))), 1, opt.max_depth);
     h_ = sub_.size_ / double(1 << level_);
+    field_tie_ = 1e-9 * diag;
     result_.stats.finest_level = level_;
   }
 
   void run() {
     arena_ = field_.governing();
+    // Nothing known about the root's candidates yet: no lower bounds.
+    dist_.assign(arena_.size(), 0.0);
+    zone_.assign(arena_.size(), 0.0);
     sub_.nodes_.emplace_back();
-    visit(0, sub_.origin_, sub_.size_, 0, 0, int(arena_.size()));
+    visit(0, sub_.origin_, sub_.size_, 0, 0, int(arena_.size()), kInf);
     extract();
   }
 
  private:
-  // Candidates of the cell from its parent's, then leaf or split.
-  void visit(int node, const Vec3& lo, double size, int depth, int pbeg, int pcount) {
+  // Candidates of the cell from its parent's, then leaf or split. `bound` is at least the
+  // boundary distance of the centre (the parent's plus the distance between the centres).
+  // arena_[pbeg, pbeg + pcount) are the parent's candidates, with their distance and zone
+  // distance from the parent's centre in dist_ and zone_ (lower bounds for the child's).
+  void visit(int node, const Vec3& lo, double size, int depth, int pbeg, int pcount, double bound) {
     ++result_.stats.cells;
     const Vec3 c = lo + Vec3::Constant(0.5 * size);
     const double r = 0.5 * std::sqrt(3.0) * size;
-    const double D = field_.boundary_distance(c);
+    const double D = field_.boundary_distance(c, bound);
+    // Parent centre to child centre is r; both distances are 1-Lipschitz.
+    const double slack = depth > 0 ? r + field_tie_ : kInf;
     const int beg = int(arena_.size());
     int ents[4];
     int nent = 0;
     for (int k = pbeg; k < pbeg + pcount; ++k) {
+      if (dist_[k] - slack > D + 2 * r || zone_[k] - slack > r) continue;
       const int i = arena_[k];
       const Prim& pr = field_.prim(i);
       const Vec3 d = (pr.lo - c).cwiseMax(c - pr.hi).cwiseMax(0.0);
@@ -130,31 +140,43 @@ class Builder {
       field_.bounds(i, c, D + 2 * r, &dist, &zone);
       if (dist > D + 2 * r || zone > r) continue;
       arena_.push_back(i);
+      dist_.push_back(dist);
+      zone_.push_back(zone);
       if (nent < 4 && std::find(ents, ents + nent, pr.entity) == ents + nent)
         ents[nent++] = pr.entity;
       else if (nent == 4 && std::find(ents, ents + 4, pr.entity) == ents + 4)
         nent = 5;
     }
     const int count = int(arena_.size()) - beg;
-    OctNode& self = sub_.nodes_[node];
-    if (count == 0 ||
-        (D > r && field_.owner(c, arena_.data() + beg, count) < 0)) {  // wholly outside
-      ++result_.stats.leaves;
+    auto pop = [&] {
       arena_.resize(beg);
+      dist_.resize(beg);
+      zone_.resize(beg);
+    };
+    OctNode& self = sub_.nodes_[node];
+    if (count == 0) {
+      ++result_.stats.leaves;
+      pop();
+      return;
+    }
+    sort_candidates(beg, count);
+    if (D > r && owner(c, 0.0) < 0) {  // wholly outside
+      ++result_.stats.leaves;
+      pop();
       return;
     }
     if (nent == 1) {
       self.entity = ents[0];
       ++result_.stats.leaves;
-      arena_.resize(beg);
+      pop();
       return;
     }
     if (nent == 2 && depth > 0) {
       // Only two regions can meet here: at most a piece of their Voronoi face.
-      LabelSet labels = sample(lo, size, beg, count, 2);
-      if (labels.n == 2) add_pair(labels, c);
+      LabelSet labels = sample(lo, size, 2);
+      if (labels.n == 2) add_pair(labels, c, D);
       store_leaf(node, beg, count);
-      arena_.resize(beg);
+      pop();
       return;
     }
     if (depth < level_) {
@@ -164,22 +186,45 @@ class Builder {
       const double half = 0.5 * size;
       for (int q = 0; q < 8; ++q) {
         const Vec3 clo = lo + half * Vec3(q & 1, (q >> 1) & 1, (q >> 2) & 1);
-        visit(first + q, clo, half, depth + 1, beg, count);
+        visit(first + q, clo, half, depth + 1, beg, count, D + 0.5 * r);
       }
-      arena_.resize(beg);
+      pop();
       return;
     }
     ++result_.stats.finest_cells;
-    LabelSet labels = sample(lo, size, beg, count, 3);
+    LabelSet labels = sample(lo, size, 3);
     labels.sort();
-    if (labels.n == 2) add_pair(labels, c);
+    if (labels.n == 2) add_pair(labels, c, D);
     if (labels.n >= 3) {
       const Vec3 rel = (lo - sub_.origin_) / h_;
       fine_.push_back({int(std::lround(rel.x())), int(std::lround(rel.y())),
                        int(std::lround(rel.z())), labels});
     }
     store_leaf(node, beg, count);
-    arena_.resize(beg);
+    pop();
+  }
+
+  // The cell's candidates arena_[beg, beg + count) ordered by distance from its centre c_,
+  // for owner_sorted.
+  void sort_candidates(int beg, int count) {
+    pos_.resize(count);
+    std::iota(pos_.begin(), pos_.end(), 0);
+    std::sort(pos_.begin(), pos_.end(), [&](int a, int b) {
+      const double da = dist_[beg + a], db = dist_[beg + b];
+      return da != db ? da < db : a < b;
+    });
+    sorted_.resize(count);
+    sorted_dist_.resize(count);
+    for (int k = 0; k < count; ++k) {
+      sorted_[k] = arena_[beg + pos_[k]];
+      sorted_dist_[k] = dist_[beg + pos_[k]];
+    }
+  }
+
+  // Owner of p, at most `reach` from the centre of the cell of the last sort_candidates.
+  int owner(const Vec3& p, double reach) const {
+    return field_.owner_sorted(p, sorted_.data(), pos_.data(), sorted_dist_.data(),
+                               int(sorted_.size()), reach);
   }
 
   void store_leaf(int node, int beg, int count) {
@@ -191,20 +236,20 @@ class Builder {
   }
 
   // Owners at an s x s x s grid of points of the cell (corners included).
-  LabelSet sample(const Vec3& lo, double size, int beg, int count, int s) {
+  LabelSet sample(const Vec3& lo, double size, int s) {
     LabelSet labels;
     const double step = size / (s - 1 > 0 ? s - 1 : 1);
+    const double reach = 0.5 * std::sqrt(3.0) * size;
     for (int a = 0; a < s; ++a)
       for (int b = 0; b < s; ++b)
-        for (int c = 0; c < s; ++c)
-          labels.add(field_.owner(lo + step * Vec3(a, b, c), arena_.data() + beg, count));
+        for (int c = 0; c < s; ++c) labels.add(owner(lo + step * Vec3(a, b, c), reach));
     return labels;
   }
 
-  void add_pair(LabelSet labels, const Vec3& c) {
+  // `depth`: the boundary distance of c.
+  void add_pair(LabelSet labels, const Vec3& c, double depth) {
     labels.sort();
     const auto key = std::make_pair(labels.v[0], labels.v[1]);
-    const double depth = field_.boundary_distance(c);
     auto it = pairs_.find(key);
     if (it == pairs_.end() || it->second.second < depth) pairs_[key] = {c, depth};
   }
@@ -312,6 +357,10 @@ class Builder {
   double eps_ = 0, delta_ = 0, h_ = 0;
   int level_ = 1;
   std::vector<int> arena_;
+  std::vector<double> dist_, zone_;  // per arena_ entry: from its cell's centre
+  std::vector<int> pos_, sorted_;    // candidates of the current cell by distance
+  std::vector<double> sorted_dist_;
+  double field_tie_ = 0;
   std::vector<FineCell> fine_;
   std::map<std::pair<int, int>, std::pair<Vec3, double>> pairs_;  // evidence, its depth
 };

@@ -258,20 +258,32 @@ void DistanceField::bounds(int i, const Vec3& p, double limit, double* dist, dou
   *zone = std::sqrt(d2);
 }
 
-double DistanceField::boundary_distance(const Vec3& p) const {
+double DistanceField::boundary_distance(const Vec3& p, double bound) const {
   if (nodes_.empty()) return kInf;
+  if (bound < kInf) {
+    // Searching below a slightly widened bound finds the same nearest polygon; if nothing
+    // is found (the bound was wrong), search again without it.
+    const double d = boundary_distance_below(p, bound * (1 + 1e-9) + tie_);
+    if (d < kInf) return d;
+  }
+  return boundary_distance_below(p, kInf);
+}
+
+double DistanceField::boundary_distance_below(const Vec3& p, double limit) const {
   double best = kInf;
+  double prune = limit;  // nodes at least this far are skipped
   int stack[128];
   int top = 0;
   stack[top++] = 0;
   while (top > 0) {
     const Node& n = nodes_[stack[--top]];
-    if (box_distance2(n.lo, n.hi, p) >= best * best) continue;
+    if (box_distance2(n.lo, n.hi, p) >= prune * prune) continue;
     if (n.left < 0) {
       for (int k = n.first; k < n.first + n.count; ++k) {
         const Prim& pr = prims_[order_[k]];
-        if (box_distance2(pr.lo, pr.hi, p) >= best * best) continue;
+        if (box_distance2(pr.lo, pr.hi, p) >= prune * prune) continue;
         best = std::min(best, distance(order_[k], p));
+        prune = std::min(prune, best);
       }
       continue;
     }
@@ -335,6 +347,42 @@ int DistanceField::owner(const Vec3& p, const int* candidates, int n, double* di
   if (who < 0 || best > closed + tie_ + 1e-9 * best) return -1;
   if (distance_out) *distance_out = best;
   if (margin) *margin = second - best;
+  return who;
+}
+
+int DistanceField::owner_sorted(const Vec3& p, const int* sorted, const int* pos,
+                                const double* dist0, int n, double reach) const {
+  double closed = kInf, best = kInf;
+  int who = -1, best_pos = -1;
+  for (int k = 0; k < n; ++k) {
+    // Triangle inequality: no nearer than dist0 - reach, and the rest are no nearer.
+    // Skipped primitives can neither own p nor be nearer than the owner, so neither the
+    // owner nor the outside test changes.
+    if (dist0[k] - reach - tie_ > best) break;
+    const int i = sorted[k];
+    const Prim& pr = prims_[i];
+    double r;
+    if (pr.type == Prim::polygon) {
+      const Poly& q = polys_[pr.source];
+      if (std::abs((p - q.origin).dot(q.normal)) > best) continue;  // the plane alone
+      ++evaluations_;
+      double h;
+      bool in;
+      const double d2 = poly_query(q, p, &h, &in, nullptr);
+      closed = std::min(closed, std::sqrt(h * h + d2));
+      r = in && h <= tie_ ? std::abs(h) : kInf;
+    } else {
+      closed = std::min(closed, distance(i, p));
+      r = restricted(i, p);
+    }
+    // owner() keeps the first of equal restricted distances in list order.
+    if (r < best || (r == best && r < kInf && pos[k] < best_pos)) {
+      best = r;
+      best_pos = pos[k];
+      who = pr.entity;
+    }
+  }
+  if (who < 0 || best > closed + tie_ + 1e-9 * best) return -1;
   return who;
 }
 

@@ -60,8 +60,9 @@ class DistanceField {
   // once the distance is known to exceed `limit`.
   void bounds(int i, const Vec3& p, double limit, double* distance, double* zone) const;
   // Distance from p to the whole boundary (all polygons), through a bounding-volume
-  // hierarchy.
-  double boundary_distance(const Vec3& p) const;
+  // hierarchy. `bound`, if given, is known to be at least the distance (e.g. a neighbour's
+  // distance plus the gap): the search then skips farther nodes; same result.
+  double boundary_distance(const Vec3& p, double bound = kInf) const;
   // Distance to an entity's governing primitives (closed) and the nearest point.
   double entity_distance(int entity, const Vec3& p, Vec3* nearest = nullptr) const;
   // Owner of p among the candidate primitives: the dense entity index, or -1 when p is
@@ -69,6 +70,12 @@ class DistanceField {
   // `margin` gets the gap to the nearest other entity (restricted distances).
   int owner(const Vec3& p, const int* candidates, int n, double* distance = nullptr,
             double* margin = nullptr) const;
+  // owner(p, candidates, n) when only the entity is needed, faster: the candidates come
+  // sorted by their closed distance `dist0` from a point within `reach` of p (ties by
+  // `pos`, their place in the candidate list owner() would get); those that cannot be
+  // nearer than the best so far are skipped. Same answer as owner().
+  int owner_sorted(const Vec3& p, const int* sorted, const int* pos, const double* dist0, int n,
+                   double reach) const;
   // The same over all governing primitives (brute force, for tests and checks).
   int owner(const Vec3& p, double* distance = nullptr, double* margin = nullptr) const;
 
@@ -93,6 +100,7 @@ class DistanceField {
     int left = -1, right = -1, first = 0, count = 0;
   };
   int build(int first, int count, int depth);
+  double boundary_distance_below(const Vec3& p, double limit) const;
   // 2-D: squared distance to the loops and whether the point is inside.
   double poly_query(const Poly& q, const Vec3& p, double* h, bool* inside,
                     Eigen::Vector2d* nearest2) const;
