@@ -4,10 +4,12 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <map>
 #include <numeric>
+#include <thread>
 #include <unordered_map>
 
 #include "voronoi/detail/distance_field.h"
@@ -85,35 +87,55 @@ class Subdivision final : public RegionLocator {
   std::vector<int> pool_;
 };
 
-class Builder {
+// Builds the octree below one cell (a task): candidates, leaves and the finest cells'
+// labels. Each thread has its own; node and pool indices are local to the walker and
+// fine_ / pairs_ list the findings in depth-first order (merged by Builder in task order).
+class Walker {
  public:
-  Builder(Subdivision& sub, const VoronoiOptions& opt, VoronoiResult& result)
-      : sub_(sub), field_(sub.field_), model_(*sub.model_), opt_(opt), result_(result) {
-    const double diag = model_.diagonal();
-    eps_ = opt.eps * diag;
-    delta_ = opt.delta * diag;
-    const core::BoundingBox box = model_.bounding_box();
-    const double extent = (box.max - box.min).maxCoeff();
-    // A little larger than the box, shifted off-centre so that symmetry planes of the solid
-    // do not fall on cell faces and sample points.
-    sub_.size_ = extent * 1.0731 + 1e-12;
-    sub_.origin_ = 0.5 * (box.min + box.max) - Vec3::Constant(0.5 * sub_.size_) +
-                   Vec3(0.0123, 0.0071, 0.0047) * extent;
-    level_ = std::clamp(int(std::ceil(std::log2(sub_.size_ / eps_))), 1, opt.max_depth);
-    h_ = sub_.size_ / double(1 << level_);
-    field_tie_ = 1e-9 * diag;
-    result_.stats.finest_level = level_;
+  struct Params {
+    Vec3 origin{0, 0, 0};
+    double h = 0, tie = 0;
+    int level = 1;
+    int task_depth = 99;  // cells at this depth are not visited but queued as tasks
+  };
+  struct Task {
+    int node = 0;  // in the caller's numbering
+    Vec3 lo{0, 0, 0};
+    double size = 0, bound = 0;
+    int depth = 0;
+    std::vector<int> cands;  // the parent's candidates, their distance and zone distance
+    std::vector<double> dist, zone;
+    size_t fine_mark = 0, pair_mark = 0;  // where its findings go among the caller's
+  };
+  struct Pair {
+    std::pair<int, int> key;
+    Vec3 c;
+    double depth;
+  };
+
+  Walker(const DistanceField& field, const Params& p)
+      : field_(field),
+        origin_(p.origin),
+        h_(p.h),
+        field_tie_(p.tie),
+        level_(p.level),
+        task_depth_(p.task_depth) {}
+
+  // The whole subtree of the task's cell; its root is local node 0.
+  void run(const Task& t) {
+    arena_ = t.cands;
+    dist_ = t.dist;
+    zone_ = t.zone;
+    nodes_.emplace_back();
+    visit(0, t.lo, t.size, t.depth, 0, int(arena_.size()), t.bound);
   }
 
-  void run() {
-    arena_ = field_.governing();
-    // Nothing known about the root's candidates yet: no lower bounds.
-    dist_.assign(arena_.size(), 0.0);
-    zone_.assign(arena_.size(), 0.0);
-    sub_.nodes_.emplace_back();
-    visit(0, sub_.origin_, sub_.size_, 0, 0, int(arena_.size()), kInf);
-    extract();
-  }
+  std::vector<OctNode> nodes_;
+  std::vector<int> pool_;
+  std::vector<FineCell> fine_;
+  std::vector<Pair> pairs_;
+  std::vector<Task> tasks_;
+  VoronoiStats stats_;
 
  private:
   // Candidates of the cell from its parent's, then leaf or split. `bound` is at least the
@@ -121,7 +143,7 @@ class Builder {
   // arena_[pbeg, pbeg + pcount) are the parent's candidates, with their distance and zone
   // distance from the parent's centre in dist_ and zone_ (lower bounds for the child's).
   void visit(int node, const Vec3& lo, double size, int depth, int pbeg, int pcount, double bound) {
-    ++result_.stats.cells;
+    ++stats_.cells;
     const Vec3 c = lo + Vec3::Constant(0.5 * size);
     const double r = 0.5 * std::sqrt(3.0) * size;
     const double D = field_.boundary_distance(c, bound);
@@ -153,50 +175,67 @@ class Builder {
       dist_.resize(beg);
       zone_.resize(beg);
     };
-    OctNode& self = sub_.nodes_[node];
+    OctNode& self = nodes_[node];
     if (count == 0) {
-      ++result_.stats.leaves;
+      ++stats_.leaves;
       pop();
       return;
     }
-    sort_candidates(beg, count);
-    if (D > r && owner(c, 0.0) < 0) {  // wholly outside
-      ++result_.stats.leaves;
-      pop();
-      return;
+    if (D > r) {
+      sort_candidates(beg, count);
+      if (owner(c, 0.0) < 0) {  // wholly outside
+        ++stats_.leaves;
+        pop();
+        return;
+      }
     }
     if (nent == 1) {
       self.entity = ents[0];
-      ++result_.stats.leaves;
+      ++stats_.leaves;
       pop();
       return;
     }
     if (nent == 2 && depth > 0) {
-      // Only two regions can meet here: at most a piece of their Voronoi face.
-      LabelSet labels = sample(lo, size, 2);
-      if (labels.n == 2) add_pair(labels, c, D);
+      // Only two regions can meet here: at most a piece of their Voronoi face. Its evidence
+      // only counts if deeper than what this walker has seen before (the first of equal
+      // depths is kept), so the sampling is skipped otherwise.
+      const std::pair<int, int> key(std::min(ents[0], ents[1]), std::max(ents[0], ents[1]));
+      auto seen = deepest_.find(key);
+      if (seen == deepest_.end() || seen->second < D) {
+        if (!(D > r)) sort_candidates(beg, count);
+        LabelSet labels = sample(lo, size, 2, nent);
+        if (labels.n == 2) add_pair(labels, c, D);
+      }
       store_leaf(node, beg, count);
       pop();
       return;
     }
     if (depth < level_) {
-      const int first = int(sub_.nodes_.size());
-      sub_.nodes_[node].child = first;
-      sub_.nodes_.resize(first + 8);
+      const int first = int(nodes_.size());
+      nodes_[node].child = first;
+      nodes_.resize(first + 8);
       const double half = 0.5 * size;
       for (int q = 0; q < 8; ++q) {
         const Vec3 clo = lo + half * Vec3(q & 1, (q >> 1) & 1, (q >> 2) & 1);
-        visit(first + q, clo, half, depth + 1, beg, count, D + 0.5 * r);
+        if (depth + 1 == task_depth_)
+          tasks_.push_back({first + q, clo, half, D + 0.5 * r, depth + 1,
+                            std::vector<int>(arena_.begin() + beg, arena_.end()),
+                            std::vector<double>(dist_.begin() + beg, dist_.end()),
+                            std::vector<double>(zone_.begin() + beg, zone_.end()), fine_.size(),
+                            pairs_.size()});
+        else
+          visit(first + q, clo, half, depth + 1, beg, count, D + 0.5 * r);
       }
       pop();
       return;
     }
-    ++result_.stats.finest_cells;
-    LabelSet labels = sample(lo, size, 3);
+    ++stats_.finest_cells;
+    if (!(D > r)) sort_candidates(beg, count);
+    LabelSet labels = sample(lo, size, 3, nent);
     labels.sort();
     if (labels.n == 2) add_pair(labels, c, D);
     if (labels.n >= 3) {
-      const Vec3 rel = (lo - sub_.origin_) / h_;
+      const Vec3 rel = (lo - origin_) / h_;
       fine_.push_back({int(std::lround(rel.x())), int(std::lround(rel.y())),
                        int(std::lround(rel.z())), labels});
     }
@@ -228,21 +267,27 @@ class Builder {
   }
 
   void store_leaf(int node, int beg, int count) {
-    ++result_.stats.leaves;
-    OctNode& n = sub_.nodes_[node];
-    n.cand_begin = int(sub_.pool_.size());
+    ++stats_.leaves;
+    OctNode& n = nodes_[node];
+    n.cand_begin = int(pool_.size());
     n.cand_count = count;
-    sub_.pool_.insert(sub_.pool_.end(), arena_.begin() + beg, arena_.begin() + beg + count);
+    pool_.insert(pool_.end(), arena_.begin() + beg, arena_.begin() + beg + count);
   }
 
-  // Owners at an s x s x s grid of points of the cell (corners included).
-  LabelSet sample(const Vec3& lo, double size, int s) {
+  // Owners at an s x s x s grid of points of the cell (corners included). The labels are
+  // among the candidates' `nent` entities (5: more than 4): once all are seen, no other
+  // sample can add one.
+  LabelSet sample(const Vec3& lo, double size, int s, int nent) {
     LabelSet labels;
     const double step = size / (s - 1 > 0 ? s - 1 : 1);
-    const double reach = 0.5 * std::sqrt(3.0) * size;
+    const Vec3 c = lo + Vec3::Constant(0.5 * size);
     for (int a = 0; a < s; ++a)
       for (int b = 0; b < s; ++b)
-        for (int c = 0; c < s; ++c) labels.add(owner(lo + step * Vec3(a, b, c), reach));
+        for (int k = 0; k < s; ++k) {
+          const Vec3 p = lo + step * Vec3(a, b, k);
+          labels.add(owner(p, (p - c).norm()));
+          if (labels.n == nent && nent <= 4) return labels;
+        }
     return labels;
   }
 
@@ -250,10 +295,45 @@ class Builder {
   void add_pair(LabelSet labels, const Vec3& c, double depth) {
     labels.sort();
     const auto key = std::make_pair(labels.v[0], labels.v[1]);
-    auto it = pairs_.find(key);
-    if (it == pairs_.end() || it->second.second < depth) pairs_[key] = {c, depth};
+    pairs_.push_back({key, c, depth});
+    double& d = deepest_.try_emplace(key, depth).first->second;
+    d = std::max(d, depth);
   }
 
+  const DistanceField& field_;
+  Vec3 origin_;
+  double h_, field_tie_;
+  int level_, task_depth_;
+  std::vector<int> arena_;
+  std::vector<double> dist_, zone_;  // per arena_ entry: from its cell's centre
+  std::vector<int> pos_, sorted_;    // candidates of the current cell by distance
+  std::vector<double> sorted_dist_;
+  std::map<std::pair<int, int>, double> deepest_;  // deepest evidence of each pair so far
+};
+
+class Builder {
+ public:
+  Builder(Subdivision& sub, const VoronoiOptions& opt, VoronoiResult& result)
+      : sub_(sub), field_(sub.field_), model_(*sub.model_), opt_(opt), result_(result) {
+    const double diag = model_.diagonal();
+    eps_ = opt.eps * diag;
+    delta_ = opt.delta * diag;
+    const core::BoundingBox box = model_.bounding_box();
+    const double extent = (box.max - box.min).maxCoeff();
+    // A little larger than the box, shifted off-centre so that symmetry planes of the solid
+    // do not fall on cell faces and sample points.
+    sub_.size_ = extent * 1.0731 + 1e-12;
+    sub_.origin_ = 0.5 * (box.min + box.max) - Vec3::Constant(0.5 * sub_.size_) +
+                   Vec3(0.0123, 0.0071, 0.0047) * extent;
+    level_ = std::clamp(int(std::ceil(std::log2(sub_.size_ / eps_))), 1, opt.max_depth);
+    h_ = sub_.size_ / double(1 << level_);
+    field_tie_ = 1e-9 * diag;
+    result_.stats.finest_level = level_;
+  }
+
+  void run();
+
+ private:
   // Extended distance to an entity (the supporting plane / line / point of its nearest
   // governing primitive) and its gradient: smooth, and equal to the true distance where
   // the entity is nearest.
@@ -356,14 +436,87 @@ class Builder {
   VoronoiResult& result_;
   double eps_ = 0, delta_ = 0, h_ = 0;
   int level_ = 1;
-  std::vector<int> arena_;
-  std::vector<double> dist_, zone_;  // per arena_ entry: from its cell's centre
-  std::vector<int> pos_, sorted_;    // candidates of the current cell by distance
-  std::vector<double> sorted_dist_;
   double field_tie_ = 0;
   std::vector<FineCell> fine_;
   std::map<std::pair<int, int>, std::pair<Vec3, double>> pairs_;  // evidence, its depth
 };
+
+void Builder::run() {
+  // Subtrees below depth 2 are independent tasks, spread over the threads; their findings
+  // are merged in depth-first order, so the result does not depend on the thread count.
+  Walker::Params params{sub_.origin_, h_, field_tie_, level_, 2};
+  const std::vector<int>& all = field_.governing();
+  Walker top(field_, params);
+  // Nothing known about the root's candidates yet: no lower bounds.
+  top.run({0, sub_.origin_, sub_.size_, kInf, 0, all, std::vector<double>(all.size(), 0.0),
+           std::vector<double>(all.size(), 0.0), 0, 0});
+  const std::vector<Walker::Task>& tasks = top.tasks_;
+  std::vector<std::unique_ptr<Walker>> walkers(tasks.size());
+  std::atomic<int> next{0};
+  std::atomic<long long> evaluations{0};
+  auto work = [&] {
+    // A private copy of the field: its evaluation counter is not shared.
+    const DistanceField field(field_);
+    const long long before = field.evaluations();
+    for (int t; (t = next++) < int(tasks.size());) {
+      walkers[t] = std::make_unique<Walker>(field, params);
+      walkers[t]->run(tasks[t]);
+    }
+    evaluations += field.evaluations() - before;
+  };
+  int threads = opt_.threads > 0 ? opt_.threads : int(std::thread::hardware_concurrency());
+  threads = std::clamp(threads, 1, std::max(1, int(tasks.size())));
+  std::vector<std::thread> pool;
+  for (int i = 1; i < threads; ++i) pool.emplace_back(work);
+  work();
+  for (std::thread& t : pool) t.join();
+  result_.stats.distance_evaluations += evaluations;
+
+  // Merge: the top walker's nodes keep their numbers; each task's subtree is appended.
+  sub_.nodes_ = std::move(top.nodes_);
+  sub_.pool_ = std::move(top.pool_);
+  std::vector<Walker::Pair> events;
+  size_t fine_done = 0, pairs_done = 0;
+  auto add_stats = [&](const VoronoiStats& s) {
+    result_.stats.cells += s.cells;
+    result_.stats.leaves += s.leaves;
+    result_.stats.finest_cells += s.finest_cells;
+  };
+  add_stats(top.stats_);
+  for (size_t t = 0; t < tasks.size(); ++t) {
+    Walker& w = *walkers[t];
+    fine_.insert(fine_.end(), top.fine_.begin() + fine_done,
+                 top.fine_.begin() + tasks[t].fine_mark);
+    events.insert(events.end(), top.pairs_.begin() + pairs_done,
+                  top.pairs_.begin() + tasks[t].pair_mark);
+    fine_done = tasks[t].fine_mark;
+    pairs_done = tasks[t].pair_mark;
+    fine_.insert(fine_.end(), w.fine_.begin(), w.fine_.end());
+    events.insert(events.end(), w.pairs_.begin(), w.pairs_.end());
+    add_stats(w.stats_);
+    const int offset = int(sub_.nodes_.size()) - 1;  // local node k > 0 becomes offset + k
+    const int pool_offset = int(sub_.pool_.size());
+    for (size_t k = 0; k < w.nodes_.size(); ++k) {
+      OctNode n = w.nodes_[k];
+      if (n.child >= 0) n.child += offset;
+      n.cand_begin += pool_offset;
+      if (k == 0)
+        sub_.nodes_[tasks[t].node] = n;
+      else
+        sub_.nodes_.push_back(n);
+    }
+    sub_.pool_.insert(sub_.pool_.end(), w.pool_.begin(), w.pool_.end());
+    walkers[t].reset();
+  }
+  fine_.insert(fine_.end(), top.fine_.begin() + fine_done, top.fine_.end());
+  events.insert(events.end(), top.pairs_.begin() + pairs_done, top.pairs_.end());
+  // The deepest evidence of each pair (the first of equal depths).
+  for (const Walker::Pair& e : events) {
+    auto it = pairs_.find(e.key);
+    if (it == pairs_.end() || it->second.second < e.depth) pairs_[e.key] = {e.c, e.depth};
+  }
+  extract();
+}
 
 bool subset(const std::vector<int>& a, const std::vector<int>& b) {  // a in b, both sorted
   return std::includes(b.begin(), b.end(), a.begin(), a.end());
@@ -642,6 +795,7 @@ std::string VoronoiOptions::validate() const {
   if (!(delta > 0 && delta <= eps))
     return "delta must be in (0, eps] (relative to the bounding-box diagonal)";
   if (max_depth < 1 || max_depth > 12) return "max_depth must be in 1..12";
+  if (threads < 0) return "threads must be 0 (automatic) or more";
   if (!(linear_tolerance > 0 && linear_tolerance < 0.5))
     return "linear_tolerance must be in (0, 0.5) (relative to the bounding-box diagonal)";
   return {};
@@ -699,7 +853,7 @@ VoronoiResult compute_voronoi_graph(std::shared_ptr<const model::BRepModel> mode
   auto sub = std::make_shared<Subdivision>(model);
   Builder builder(*sub, options, result);
   builder.run();
-  result.stats.distance_evaluations = sub->field_.evaluations();
+  result.stats.distance_evaluations += sub->field_.evaluations();
   result.model = model;
   result.locator = sub;
   result.status = core::has_error(result.diagnostics) ? VoronoiStatus::failed

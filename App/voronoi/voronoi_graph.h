@@ -44,6 +44,9 @@ struct VoronoiOptions {
   // Chord tolerance of the linearisation of curved faces and edges, relative to the
   // bounding-box diagonal (ModelOptions::linear_tolerance).
   double linear_tolerance = 0.005;
+  // Threads for the subdivision (independent subtrees); 0: one per hardware thread. The
+  // result does not depend on it.
+  int threads = 0;
   // Empty if valid, else the reason.
   std::string validate() const;
 };

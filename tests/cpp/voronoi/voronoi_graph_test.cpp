@@ -263,6 +263,40 @@ TEST(VoronoiGraph, ConcaveVertexGovernsARegion) {
   expect_regions_agree(cut, [](const Vec3& p) { return !(p.x() > 1 && p.y() > 1 && p.z() > 1); });
 }
 
+// Subtrees are built by several threads and merged in a fixed order: the graph, the
+// statistics and the regions do not depend on the thread count.
+TEST(VoronoiGraph, ThreadCountDoesNotChangeTheResult) {
+  const occ::Solid cut = make_cut_cube();
+  VoronoiOptions one, three;
+  one.threads = 1;
+  three.threads = 3;
+  const VoronoiResult a = compute_voronoi_graph(cut, one);
+  const VoronoiResult b = compute_voronoi_graph(cut, three);
+  ASSERT_TRUE(a.ok() && b.ok());
+  EXPECT_EQ(a.stats.cells, b.stats.cells);
+  EXPECT_EQ(a.stats.finest_cells, b.stats.finest_cells);
+  EXPECT_EQ(a.stats.distance_evaluations, b.stats.distance_evaluations);
+  ASSERT_EQ(a.graph.elements.size(), b.graph.elements.size());
+  for (size_t i = 0; i < a.graph.elements.size(); ++i) {
+    const VoronoiElement &x = a.graph.elements[i], &y = b.graph.elements[i];
+    EXPECT_EQ(x.kind, y.kind);
+    EXPECT_EQ(x.governors, y.governors);
+    EXPECT_EQ(x.point, y.point);
+    EXPECT_EQ(x.polyline, y.polyline);
+    EXPECT_EQ(x.verified, y.verified);
+    EXPECT_EQ(x.incident, y.incident);
+  }
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(0, 2);
+  for (int k = 0; k < 2000; ++k) {
+    const Vec3 p(u(rng), u(rng), u(rng));
+    EXPECT_EQ(a.locator->region(p), b.locator->region(p));
+  }
+  VoronoiOptions bad;
+  bad.threads = -1;
+  EXPECT_FALSE(compute_voronoi_graph(cut, bad).ok());
+}
+
 TEST(VoronoiGraph, InvalidOptionsAreReported) {
   VoronoiOptions opt;
   opt.eps = -1;
