@@ -9,6 +9,7 @@ usage: run_bench.py [--build BUILD] [--out bench/results/mesh.md]
 import argparse
 import json
 import os
+import resource
 import subprocess
 import sys
 import tempfile
@@ -20,11 +21,20 @@ REPO = os.path.dirname(HERE)
 HEXME = os.path.join(REPO, "..", "shared", "models", "hexme")
 
 
-def measure(cmd, timeout=1800):
+def limit_memory(gigabytes):
+    """A preexec_fn capping the child's address space, so a runaway run fails alone."""
+    def apply():
+        limit = int(gigabytes * 2**30)
+        resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
+    return apply
+
+
+def measure(cmd, timeout=1800, memory_gb=8):
     """Runs cmd; returns (exit code, seconds, peak RSS in MB, stderr text)."""
     t0 = time.perf_counter()
     with tempfile.TemporaryFile() as err:
-        p = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=err)
+        p = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=err,
+                             preexec_fn=limit_memory(memory_gb))
         timer = threading.Timer(timeout, p.kill)  # a hung run is killed, not waited for
         timer.start()
         _, status, usage = os.wait4(p.pid, 0)

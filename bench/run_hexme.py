@@ -45,7 +45,7 @@ def main():
         name = model[:-5]
         rep = os.path.join(work, name + ".json")
         code, sec, mb, err = measure([vorohex, "mesh", step, "-o", os.path.join(work, name + ".vtu"),
-                                      "--report", rep, "--quiet"], timeout=600)
+                                      "--report", rep, "--quiet"], timeout=300)
         r = load(rep)
         row = {"model": name, "v_sec": sec, "v_mb": mb}
         if r is None:
@@ -64,7 +64,7 @@ def main():
         drep = os.path.join(work, name + ".decomposition.json")
         code, dsec, _, derr = measure([vorohex, "decompose", step, "-o",
                                        os.path.join(work, name + ".parts.brep"), "--report", drep],
-                                      timeout=600)
+                                      timeout=30, memory_gb=3)
         d = load(drep) if code == 0 else None
         if d is not None:
             subs = d.get("sub_volumes", [])
@@ -77,6 +77,8 @@ def main():
                                           ", ".join("%d %s" % (n, s) for s, n in sorted(schemes.items())))
         else:
             last = [l for l in derr.strip().split("\n") if l][-1:] or ["exit %d" % code]
+            if code < 0 or dsec >= 29.5:
+                last = ["killed after %.0f s (30 s or 3 GB limit)" % dsec]
             row["d"] = "failed: " + last[0].replace("vorohex: ", "")[:90].replace("|", "/")
         row["d_sec"] = dsec
         if not args.no_gmsh:
