@@ -1,5 +1,7 @@
 #include "mesh/map_block.h"
 
+#include "core/option_checks.h"
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
@@ -17,14 +19,8 @@ using core::Vec3;
 using core::VertexId;
 
 void MapBlockOptions::validate() const {
-  if (!std::isfinite(size) || size <= 0) {
-    std::ostringstream s;
-    s << "MapBlockOptions.size must be finite and > 0, got " << size;
-    throw std::invalid_argument(s.str());
-  }
-  if (max_intervals <= 0)
-    throw std::invalid_argument("MapBlockOptions.max_intervals must be > 0, got " +
-                                std::to_string(max_intervals));
+  core::require_positive("MapBlockOptions.size", size);
+  core::require_at_least("MapBlockOptions.max_intervals", max_intervals, 1);
 }
 
 namespace {

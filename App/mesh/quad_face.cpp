@@ -4,6 +4,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/option_checks.h"
 #include "mesh/detail/quad_mesh_2d.h"
 #include "occ/face_chart.h"
 
@@ -13,14 +14,8 @@ using core::Vec3;
 using detail::Vec2;
 
 void QuadFaceOptions::validate() const {
-  if (!std::isfinite(size) || size <= 0) {
-    std::ostringstream s;
-    s << "QuadFaceOptions.size must be finite and > 0, got " << size;
-    throw std::invalid_argument(s.str());
-  }
-  if (smoothing_passes < 0)
-    throw std::invalid_argument("QuadFaceOptions.smoothing_passes must be >= 0, got " +
-                                std::to_string(smoothing_passes));
+  core::require_positive("QuadFaceOptions.size", size);
+  core::require_at_least("QuadFaceOptions.smoothing_passes", smoothing_passes, 0);
 }
 
 QuadFaceMesh quad_face(const occ::Solid& solid, core::FaceId face,

@@ -1,5 +1,7 @@
 #include "mesh/sweep.h"
 
+#include "core/option_checks.h"
+
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -23,17 +25,9 @@ using occ::OrientedEdge;
 using occ::Solid;
 
 void SweepOptions::validate() const {
-  if (!std::isfinite(size) || size <= 0) {
-    std::ostringstream s;
-    s << "SweepOptions.size must be finite and > 0, got " << size;
-    throw std::invalid_argument(s.str());
-  }
-  if (max_intervals <= 0)
-    throw std::invalid_argument("SweepOptions.max_intervals must be > 0, got " +
-                                std::to_string(max_intervals));
-  if (smoothing_passes < 0)
-    throw std::invalid_argument("SweepOptions.smoothing_passes must be >= 0, got " +
-                                std::to_string(smoothing_passes));
+  core::require_positive("SweepOptions.size", size);
+  core::require_at_least("SweepOptions.max_intervals", max_intervals, 1);
+  core::require_at_least("SweepOptions.smoothing_passes", smoothing_passes, 0);
 }
 
 namespace {
