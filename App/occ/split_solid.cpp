@@ -14,6 +14,7 @@
 #include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
 #include <GProp_GProps.hxx>
+#include <Message_ProgressIndicator.hxx>
 #include <Poly_Triangulation.hxx>
 #include <ShapeUpgrade_UnifySameDomain.hxx>
 #include <Standard_Failure.hxx>
@@ -28,6 +29,7 @@
 #include <gp_Pln.hxx>
 
 #include <Eigen/Geometry>
+#include <chrono>
 #include <cmath>
 
 #include "occ/solid_impl.h"
@@ -92,6 +94,20 @@ TopoDS_Solid without_internal_faces(const TopoDS_Solid& solid, int* dropped) {
   return out;
 }
 
+// Asks OCCT to stop once a deadline has passed (checked at its progress points).
+class Deadline : public Message_ProgressIndicator {
+ public:
+  explicit Deadline(double seconds)
+      : end_(std::chrono::steady_clock::now() +
+             std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                 std::chrono::duration<double>(seconds))) {}
+  Standard_Boolean UserBreak() override { return std::chrono::steady_clock::now() > end_; }
+  void Show(const Message_ProgressScope&, const Standard_Boolean) override {}
+
+ private:
+  std::chrono::steady_clock::time_point end_;
+};
+
 TopoDS_Shape unified(const TopoDS_Shape& s) {
   ShapeUpgrade_UnifySameDomain unify(s, true, true, true);
   unify.Build();
@@ -101,7 +117,7 @@ TopoDS_Shape unified(const TopoDS_Shape& s) {
 }  // namespace
 
 SplitResult split_solid(const Solid& solid, const std::vector<std::vector<Vec3>>& tools,
-                        double tolerance) {
+                        double tolerance, double time_limit) {
   SplitResult out;
   try {
     TopTools_ListOfShape args, tool_list;
@@ -117,7 +133,16 @@ SplitResult split_solid(const Solid& solid, const std::vector<std::vector<Vec3>>
       splitter.SetTools(tool_list);
       splitter.SetFuzzyValue(0.01 * tolerance);
       splitter.SetNonDestructive(true);
-      splitter.Build();
+      Handle(Deadline) deadline = time_limit > 0 ? new Deadline(time_limit) : nullptr;
+      splitter.Build(deadline.IsNull() ? Message_ProgressRange() : deadline->Start());
+      if (!deadline.IsNull() && deadline->UserBreak()) {
+        out.timed_out = true;
+        out.diagnostics.push_back(core::make_error(
+            "split_timeout", "OCCT did not split the solid by " + std::to_string(tools.size()) +
+                                 " decomposition faces within " +
+                                 std::to_string(int(std::lround(time_limit))) + " s"));
+        return out;
+      }
       if (!splitter.IsDone()) {
         out.diagnostics.push_back(core::make_error("split_failed",
                                                    "OCCT could not split the solid by the "
@@ -143,6 +168,17 @@ SplitResult split_solid(const Solid& solid, const std::vector<std::vector<Vec3>>
                             (e.GetMessageString() ? e.GetMessageString() : "unknown")));
   }
   return out;
+}
+
+bool is_closed(const Solid& solid) {
+  try {
+    int shells = 0;
+    for (TopExp_Explorer ex(solid.impl().solid, TopAbs_SHELL); ex.More(); ex.Next(), ++shells)
+      if (!BRep_Tool::IsClosed(ex.Current())) return false;
+    return shells > 0;
+  } catch (const Standard_Failure&) {
+    return false;
+  }
 }
 
 std::vector<FaceSample> sample_faces(const Solid& solid) {

@@ -16,14 +16,21 @@ struct SplitResult {
   std::vector<Solid> pieces;
   std::vector<core::Diagnostic> diagnostics;
   int dropped_internal_faces = 0;  // tool faces that ended inside a piece (removed)
+  bool timed_out = false;          // stopped at `time_limit` (then not ok)
   bool ok = false;
 };
 
 // Splits `solid` by tool faces, each a closed polygon of 3 or 4 points (planar when its
 // points are within `tolerance`, else a ruled surface between its first and last sides).
 // Degenerate tools (area below tolerance^2) are ignored. `tolerance`: model units.
+// `time_limit` (seconds, <= 0: none) stops OCCT's boolean through its progress break, so
+// that tools OCCT cannot intersect in reasonable time give a diagnostic, not a hang.
 SplitResult split_solid(const Solid& solid, const std::vector<std::vector<Vec3>>& tools,
-                        double tolerance);
+                        double tolerance, double time_limit = 0);
+
+// Whether every shell of the solid is closed (each edge bounds two of its faces with
+// opposite orientations).
+bool is_closed(const Solid& solid);
 
 // A point strictly inside a face (from its triangulation), its outward normal there, its
 // area and number of boundary edges (all wires).
