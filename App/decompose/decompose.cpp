@@ -39,6 +39,10 @@ std::string DecomposeOptions::validate() const {
   if (!(sharp_angle > 0 && sharp_angle <= 180)) return "sharp_angle must be in (0, 180] degrees";
   if (!(tolerance > 0 && tolerance <= 0.01)) return "tolerance must be in (0, 0.01]";
   if (!(plane_snap >= 0 && plane_snap <= 0.05)) return "plane_snap must be in [0, 0.05]";
+  if (!(polyline_tolerance >= 0 && polyline_tolerance <= 0.05))
+    return "polyline_tolerance must be in [0, 0.05]";
+  if (!(max_quads_per_face >= 1)) return "max_quads_per_face must be at least 1";
+  if (!(split_time_limit >= 0)) return "split_time_limit must be >= 0 seconds";
   return {};
 }
 
@@ -109,8 +113,51 @@ void classify_all(const VoronoiGraph& g, const detail::Relations& rel, double sh
   r.stats.vertices_treated = int(r.vertices.size());
 }
 
+// Douglas-Peucker: the polyline points needed to stay within `tol` of it. The embedding
+// samples a Voronoi edge densely (a straight edge between planes can have dozens of
+// points); one quad per sample gave thousands of sliver tools that the OCCT splitter
+// intersects pairwise (i01: 4000 quads, > 9 GB).
+std::vector<Vec3> simplified(const std::vector<Vec3>& line, double tol) {
+  if (line.size() <= 2) return line;
+  std::vector<bool> keep(line.size(), false);
+  keep.front() = keep.back() = true;
+  std::vector<std::pair<std::size_t, std::size_t>> stack{{0, line.size() - 1}};
+  while (!stack.empty()) {
+    const auto [a, b] = stack.back();
+    stack.pop_back();
+    const Vec3 d = line[b] - line[a];
+    const double len2 = d.squaredNorm();
+    double worst = -1;
+    std::size_t at = a;
+    for (std::size_t i = a + 1; i < b; ++i) {
+      const Vec3 w = line[i] - line[a];
+      const double t = len2 > 0 ? std::clamp(w.dot(d) / len2, 0.0, 1.0) : 0.0;
+      const double dist = (w - t * d).norm();
+      if (dist > worst) worst = dist, at = i;
+    }
+    if (worst <= tol) continue;
+    keep[at] = true;
+    stack.push_back({a, at});
+    stack.push_back({at, b});
+  }
+  std::vector<Vec3> out;
+  for (std::size_t i = 0; i < line.size(); ++i)
+    if (keep[i]) out.push_back(line[i]);
+  return out;
+}
+
+// Whether an unverified polyline (cell centres) is a chain: no step longer than `jump`.
+// A degenerate cluster can give centres in no usable order (i01: 539 points, 48 diagonals
+// long), which would make hundreds of crossing quads.
+bool chain_like(const std::vector<Vec3>& line, double jump) {
+  for (std::size_t i = 0; i + 1 < line.size(); ++i)
+    if ((line[i + 1] - line[i]).norm() > jump) return false;
+  return true;
+}
+
 // Step 3: the quadrilaterals of the projected edges and of the closing rectangles.
-void build_quads(const occ::Solid& solid, const VoronoiGraph& g, DecompositionResult& r) {
+void build_quads(const occ::Solid& solid, const VoronoiGraph& g, double line_tol,
+                 DecompositionResult& r) {
   std::map<int, const TreatedVertex*> treated;
   for (const TreatedVertex& t : r.vertices) treated[t.element] = &t;
   // The vertex's single point for the faces a target stands for.
@@ -126,6 +173,14 @@ void build_quads(const occ::Solid& solid, const VoronoiGraph& g, DecompositionRe
     const auto& el = g.elements[ce.element];
     std::vector<Vec3> line = el.polyline;
     if (line.size() < 2) continue;
+    if (!el.verified && !chain_like(line, 0.05 * solid.diagonal())) {
+      r.diagnostics.push_back(core::make_warning(
+          "unusable_voronoi_edge",
+          "Voronoi edge " + std::to_string(ce.element) + " (" + detail::edge_type_name(ce.type) +
+              ") is a scatter of cell centres, not a curve; its decomposition faces are left out",
+          names(el.governors)));
+      continue;
+    }
     // Snap the polyline ends to the edge's vertices (the one point per governor face).
     std::array<int, 2> end_vertex{-1, -1};
     for (int v : g.edge_vertices(ce.element)) {
@@ -134,6 +189,9 @@ void build_quads(const occ::Solid& solid, const VoronoiGraph& g, DecompositionRe
       end_vertex[k] = v;
       (k == 0 ? line.front() : line.back()) = p;
     }
+    // Unverified edges are cell-centre chains, accurate only to the subdivision's cells:
+    // simplify them more coarsely (they zig-zag by about a cell).
+    line = simplified(line, el.verified ? line_tol : 5 * line_tol);
     for (const detail::Target& t : ce.targets) {
       std::vector<Vec3> proj(line.size());
       for (std::size_t i = 0; i < line.size(); ++i) proj[i] = project(solid, t.entity, line[i]);
@@ -370,11 +428,101 @@ void type_sub_volume(const VoronoiGraph& g, const DecompositionResult& r, int in
   }
 }
 
+using Clock = std::chrono::steady_clock;
+
+DecompositionResult& finish(DecompositionResult& r, Clock::time_point t0) {
+  r.stats.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  return r;
+}
+
+// The Voronoi elements generating the most quads, for the too-many-quads diagnostic.
+std::string most_prolific(const std::vector<DecompositionQuad>& quads) {
+  std::map<int, int> count;
+  for (const auto& q : quads) ++count[q.element];
+  std::vector<std::pair<int, int>> by(count.begin(), count.end());
+  std::sort(by.begin(), by.end(), [](auto a, auto b) { return a.second > b.second; });
+  std::string s;
+  for (std::size_t i = 0; i < by.size() && i < 5; ++i)
+    s += (i ? ", " : "") + std::to_string(by[i].first) + " (" + std::to_string(by[i].second) + ")";
+  return s;
+}
+
+bool boxes_overlap(const core::BoundingBox& a, const core::BoundingBox& b, double tol) {
+  for (int k = 0; k < 3; ++k)
+    if (a.min[k] > b.max[k] + tol || b.min[k] > a.max[k] + tol) return false;
+  return true;
+}
+
+// The invariants of a decomposition (docs/decomposition.md): closed sub-volumes, pairwise
+// disjoint, volumes summing to the solid's, every decomposition face a quadrilateral
+// between two sub-volumes. A violation downgrades the status: never an invalid "ok".
+// `pairs`: also the pairwise booleans (the costly part).
+void self_check(const occ::Solid& solid, double tol, bool pairs, DecompositionResult& r) {
+  const double total = solid.volume();
+  bool partition = true, faces_ok = true;
+  double sum = 0;
+  for (std::size_t i = 0; i < r.sub_volumes.size(); ++i) {
+    const SubVolume& sv = r.sub_volumes[i];
+    sum += sv.volume;
+    if (!(sv.volume > 0) || !occ::is_closed(*sv.solid)) {
+      partition = false;
+      r.diagnostics.push_back(
+          core::make_error("invalid_sub_volume", "Sub-volume " + std::to_string(i) +
+                                                     " is not a closed solid "
+                                                     "of positive volume (" +
+                                                     std::to_string(sv.volume) + ")"));
+    }
+  }
+  if (std::abs(sum - total) > 1e-9 * total) {
+    partition = false;
+    r.diagnostics.push_back(core::make_error(
+        "volume_mismatch", "The sub-volumes sum to " + std::to_string(sum) +
+                               " but the solid's volume is " + std::to_string(total) +
+                               " (relative error " + std::to_string(std::abs(sum - total) / total) +
+                               ")"));
+  }
+  // Disjointness: a boolean per pair whose boxes meet (pieces of one split and their
+  // unions are disjoint by construction; this catches OCCT slips).
+  std::vector<core::BoundingBox> box;
+  for (const SubVolume& sv : r.sub_volumes) box.push_back(sv.solid->bounding_box());
+  for (std::size_t i = 0; pairs && i < r.sub_volumes.size(); ++i)
+    for (std::size_t j = i + 1; j < r.sub_volumes.size(); ++j) {
+      if (!boxes_overlap(box[i], box[j], tol)) continue;
+      const double c = occ::common_volume(*r.sub_volumes[i].solid, *r.sub_volumes[j].solid);
+      if (c >= 0 && c < 1e-9 * total) continue;
+      partition = false;
+      r.diagnostics.push_back(core::make_error("overlapping_sub_volumes",
+                                               "Sub-volumes " + std::to_string(i) + " and " +
+                                                   std::to_string(j) + " overlap (common volume " +
+                                                   std::to_string(c) + ")"));
+    }
+  for (std::size_t f = 0; f < r.faces.size(); ++f) {
+    const DecompositionFace& df = r.faces[f];
+    std::string why;
+    if (df.num_edges != 4)
+      why = std::to_string(df.num_edges) + " edges, not 4";
+    else if (df.sub_volumes[0] < 0 || df.sub_volumes[1] < 0)
+      why = "it bounds only sub-volume " +
+            std::to_string(std::max(df.sub_volumes[0], df.sub_volumes[1]));
+    if (why.empty()) continue;
+    faces_ok = false;
+    std::vector<std::string> elements;
+    for (int e : df.elements) elements.push_back("Voronoi element " + std::to_string(e));
+    r.diagnostics.push_back(core::make_warning(
+        "invalid_decomposition_face",
+        "Decomposition face " + std::to_string(f) + " is invalid: " + why, elements));
+  }
+  if (!partition)
+    r.status = DecompositionStatus::failed;
+  else if (!faces_ok && r.status == DecompositionStatus::ok)
+    r.status = DecompositionStatus::partial;
+}
+
 }  // namespace
 
 DecompositionResult decompose(const occ::Solid& solid, const voronoi::VoronoiResult& voronoi,
                               const DecomposeOptions& options) {
-  const auto t0 = std::chrono::steady_clock::now();
+  const auto t0 = Clock::now();
   DecompositionResult r;
   if (const std::string why = options.validate(); !why.empty()) {
     r.diagnostics.push_back(core::make_error("invalid_options", why));
@@ -388,14 +536,25 @@ DecompositionResult decompose(const occ::Solid& solid, const voronoi::VoronoiRes
   const double tol = options.tolerance * solid.diagonal();
   const detail::ModelRelations rel(*voronoi.model);
   classify_all(g, rel, options.sharp_angle * kPi / 180, r);
-  build_quads(solid, g, r);
+  build_quads(solid, g, options.polyline_tolerance * solid.diagonal(), r);
   snap_coplanar(solid, r.quads, options.plane_snap * solid.diagonal());
+
+  const int max_quads = options.max_quads_per_face * std::max(solid.num_faces(), 1);
+  if (r.stats.quads > max_quads) {
+    r.diagnostics.push_back(core::make_error(
+        "too_many_decomposition_faces",
+        std::to_string(r.stats.quads) + " decomposition quads for " +
+            std::to_string(solid.num_faces()) + " model faces (limit " + std::to_string(max_quads) +
+            "); the most prolific Voronoi elements: " + most_prolific(r.quads)));
+    return finish(r, t0);
+  }
 
   std::vector<std::vector<Vec3>> tools;
   for (const auto& q : r.quads) tools.push_back(q.points);
-  occ::SplitResult split = occ::split_solid(solid, tools, std::max(tol, 1e-7));
+  occ::SplitResult split =
+      occ::split_solid(solid, tools, std::max(tol, 1e-7), options.split_time_limit);
   for (auto& d : split.diagnostics) r.diagnostics.push_back(d);
-  if (!split.ok) return r;
+  if (!split.ok) return finish(r, t0);
   if (split.dropped_internal_faces > 0)
     r.diagnostics.push_back(
         core::make_info("dangling_decomposition_faces",
@@ -411,18 +570,47 @@ DecompositionResult decompose(const occ::Solid& solid, const voronoi::VoronoiRes
   for (std::size_t i = 0; i < r.sub_volumes.size(); ++i)
     type_sub_volume(g, r, int(i), r.sub_volumes[i]);
   r.stats.sub_volumes_before_merge = int(r.sub_volumes.size());
+  // Pieces that are not closed or lose volume cannot be repaired by merging: report now.
+  r.status = DecompositionStatus::ok;
+  self_check(solid, tol, false, r);
+  if (r.status == DecompositionStatus::failed) {
+    r.stats.sub_volumes = int(r.sub_volumes.size());
+    return finish(r, t0);
+  }
+  r.diagnostics.erase(std::remove_if(r.diagnostics.begin(), r.diagnostics.end(),
+                                     [](const core::Diagnostic& d) {
+                                       return d.code == "invalid_decomposition_face";
+                                     }),
+                      r.diagnostics.end());
 
   // Merge pass (§7): unite two sub-volumes sharing a decomposition face when the union is
   // sweepable; repeat until no pair qualifies.
+  // A rejected pair is not fused again after other merges (its solids are unchanged), and
+  // the pass stops at the split's time limit: each try is an OCCT fuse.
+  std::set<std::pair<const occ::Solid*, const occ::Solid*>> rejected;
+  const auto merge_start = Clock::now();
   bool merged = options.merge;
   while (merged) {
     merged = false;
     for (const DecompositionFace& df : r.faces) {
       const int a = df.sub_volumes[0], b = df.sub_volumes[1];
       if (a < 0 || b < 0) continue;
+      const auto key = std::minmax(r.sub_volumes[a].solid.get(), r.sub_volumes[b].solid.get());
+      if (rejected.count(key)) continue;
+      if (options.split_time_limit > 0 &&
+          std::chrono::duration<double>(Clock::now() - merge_start).count() >
+              options.split_time_limit) {
+        r.diagnostics.push_back(core::make_info(
+            "merge_stopped", "The merge pass stopped at the time limit (" +
+                                 std::to_string(r.sub_volumes.size()) + " sub-volumes left)"));
+        break;
+      }
       std::unique_ptr<occ::Solid> u =
           occ::fuse_solids(*r.sub_volumes[a].solid, *r.sub_volumes[b].solid);
-      if (!u || !mesh::sweep_applicable(*u).ok) continue;
+      if (!u || !mesh::sweep_applicable(*u).ok) {
+        rejected.insert(key);
+        continue;
+      }
       SubVolume sv;
       sv.volume = u->volume();
       sv.merged_from = r.sub_volumes[a].merged_from + r.sub_volumes[b].merged_from;
@@ -450,10 +638,10 @@ DecompositionResult decompose(const occ::Solid& solid, const voronoi::VoronoiRes
                          ") has no meshing scheme: " + sv.reason));
   }
   for (const auto& d : r.diagnostics)
-    if (d.code == "open_vertex_gap") complete = false;
+    if (d.code == "open_vertex_gap" || d.code == "unusable_voronoi_edge") complete = false;
   r.status = complete ? DecompositionStatus::ok : DecompositionStatus::partial;
-  r.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  return r;
+  self_check(solid, tol, true, r);
+  return finish(r, t0);
 }
 
 }  // namespace vorohex::decompose

@@ -39,6 +39,15 @@ struct DecomposeOptions {
   // VoronoiOptions::delta, so nominally coplanar quads are slightly tilted. Relative to
   // the bounding-box diagonal; [0, 0.05].
   double plane_snap = 0.005;
+  // Voronoi edge polylines are simplified to within this before their quads are built
+  // (one quad per remaining segment and target): the embedding samples edges densely.
+  // Relative to the bounding-box diagonal; [0, 0.05].
+  double polyline_tolerance = 0.002;
+  // Safety nets (reported as errors, never silent): more decomposition quads than this
+  // times the model's face count, or an OCCT split running longer than split_time_limit
+  // seconds (0: no limit), fails the decomposition instead of growing without bound.
+  int max_quads_per_face = 40;
+  double split_time_limit = 30;
   // Empty if valid, else the reason.
   std::string validate() const;
 };
@@ -137,8 +146,11 @@ struct DecompositionResult {
 };
 
 // `voronoi` must be the graph of `solid` (its model gives the governors' relations).
-// partial: some sub-volume has no scheme or some vertex gap stayed open (diagnostics say
-// which); failed: invalid options, no model, or OCCT could not split.
+// partial: some sub-volume has no scheme, some vertex gap stayed open, a Voronoi edge was
+// unusable, or some decomposition face is not a quadrilateral between two sub-volumes
+// (diagnostics say which); failed: invalid options, no model, too many quads, OCCT could
+// not split (or not in time), or the final self-check found the sub-volumes not closed,
+// overlapping or not summing to the solid's volume (1e-9 relative).
 DecompositionResult decompose(const occ::Solid& solid, const voronoi::VoronoiResult& voronoi,
                               const DecomposeOptions& options = {});
 

@@ -57,6 +57,7 @@ Decomposed run(const occ::Solid& solid, DecomposeOptions opt = {}) {
 // Closed, disjoint sub-volumes filling the solid; quadrilateral decomposition faces.
 void expect_valid(const occ::Solid& solid, const Decomposed& run) {
   const DecompositionResult& r = run.result;
+  EXPECT_EQ(r.status, DecompositionStatus::ok) << describe(run);  // the self-check agrees
   double sum = 0;
   for (const SubVolume& sv : r.sub_volumes) {
     EXPECT_GT(sv.volume, 0);
