@@ -13,40 +13,18 @@
 #include <unordered_map>
 
 #include "voronoi/detail/distance_field.h"
+#include "voronoi/detail/octree_walker.h"
 
 namespace vorohex::voronoi {
 namespace {
 
 using detail::DistanceField;
+using detail::FineCell;
 using detail::kInf;
+using detail::LabelSet;
+using detail::OctNode;
 using detail::Prim;
-
-constexpr int kMaxLabels = 12;
-
-struct LabelSet {
-  std::array<int, kMaxLabels> v{};
-  int n = 0;
-  void add(int e) {
-    if (e < 0) return;
-    for (int i = 0; i < n; ++i)
-      if (v[i] == e) return;
-    if (n < kMaxLabels) v[n++] = e;
-  }
-  void sort() { std::sort(v.begin(), v.begin() + n); }
-  std::vector<int> vec() const { return std::vector<int>(v.begin(), v.begin() + n); }
-};
-
-struct FineCell {
-  int i, j, k;
-  LabelSet labels;
-};
-
-struct OctNode {
-  int child = -1;      // first of 8 children, or -1 for a leaf
-  int entity = -1;     // uniform leaf: the owning entity; -1 outside or mixed
-  int cand_begin = 0;  // mixed leaf: candidates in the pool
-  int cand_count = 0;
-};
+using detail::Walker;
 
 unsigned long long cell_key(long long i, long long j, long long k) {
   return (static_cast<unsigned long long>(i & 0x1fffff) << 42) |
@@ -87,230 +65,6 @@ class Subdivision final : public RegionLocator {
   std::vector<int> pool_;
 };
 
-// Builds the octree below one cell (a task): candidates, leaves and the finest cells'
-// labels. Each thread has its own; node and pool indices are local to the walker and
-// fine_ / pairs_ list the findings in depth-first order (merged by Builder in task order).
-class Walker {
- public:
-  struct Params {
-    Vec3 origin{0, 0, 0};
-    double h = 0, tie = 0;
-    int level = 1;
-    int task_depth = 99;  // cells at this depth are not visited but queued as tasks
-  };
-  struct Task {
-    int node = 0;  // in the caller's numbering
-    Vec3 lo{0, 0, 0};
-    double size = 0, bound = 0;
-    int depth = 0;
-    std::vector<int> cands;  // the parent's candidates, their distance and zone distance
-    std::vector<double> dist, zone;
-    size_t fine_mark = 0, pair_mark = 0;  // where its findings go among the caller's
-  };
-  struct Pair {
-    std::pair<int, int> key;
-    Vec3 c;
-    double depth;
-  };
-
-  Walker(const DistanceField& field, const Params& p)
-      : field_(field),
-        origin_(p.origin),
-        h_(p.h),
-        field_tie_(p.tie),
-        level_(p.level),
-        task_depth_(p.task_depth) {}
-
-  // The whole subtree of the task's cell; its root is local node 0.
-  void run(const Task& t) {
-    arena_ = t.cands;
-    dist_ = t.dist;
-    zone_ = t.zone;
-    nodes_.emplace_back();
-    visit(0, t.lo, t.size, t.depth, 0, int(arena_.size()), t.bound);
-  }
-
-  std::vector<OctNode> nodes_;
-  std::vector<int> pool_;
-  std::vector<FineCell> fine_;
-  std::vector<Pair> pairs_;
-  std::vector<Task> tasks_;
-  VoronoiStats stats_;
-
- private:
-  // Candidates of the cell from its parent's, then leaf or split. `bound` is at least the
-  // boundary distance of the centre (the parent's plus the distance between the centres).
-  // arena_[pbeg, pbeg + pcount) are the parent's candidates, with their distance and zone
-  // distance from the parent's centre in dist_ and zone_ (lower bounds for the child's).
-  void visit(int node, const Vec3& lo, double size, int depth, int pbeg, int pcount, double bound) {
-    ++stats_.cells;
-    const Vec3 c = lo + Vec3::Constant(0.5 * size);
-    const double r = 0.5 * std::sqrt(3.0) * size;
-    const double D = field_.boundary_distance(c, bound);
-    // Parent centre to child centre is r; both distances are 1-Lipschitz.
-    const double slack = depth > 0 ? r + field_tie_ : kInf;
-    const int beg = int(arena_.size());
-    int ents[4];
-    int nent = 0;
-    for (int k = pbeg; k < pbeg + pcount; ++k) {
-      if (dist_[k] - slack > D + 2 * r || zone_[k] - slack > r) continue;
-      const int i = arena_[k];
-      const Prim& pr = field_.prim(i);
-      const Vec3 d = (pr.lo - c).cwiseMax(c - pr.hi).cwiseMax(0.0);
-      if (d.norm() > D + 2 * r) continue;
-      double dist, zone;
-      field_.bounds(i, c, D + 2 * r, &dist, &zone);
-      if (dist > D + 2 * r || zone > r) continue;
-      arena_.push_back(i);
-      dist_.push_back(dist);
-      zone_.push_back(zone);
-      if (nent < 4 && std::find(ents, ents + nent, pr.entity) == ents + nent)
-        ents[nent++] = pr.entity;
-      else if (nent == 4 && std::find(ents, ents + 4, pr.entity) == ents + 4)
-        nent = 5;
-    }
-    const int count = int(arena_.size()) - beg;
-    auto pop = [&] {
-      arena_.resize(beg);
-      dist_.resize(beg);
-      zone_.resize(beg);
-    };
-    OctNode& self = nodes_[node];
-    if (count == 0) {
-      ++stats_.leaves;
-      pop();
-      return;
-    }
-    if (D > r) {
-      sort_candidates(beg, count);
-      if (owner(c, 0.0) < 0) {  // wholly outside
-        ++stats_.leaves;
-        pop();
-        return;
-      }
-    }
-    if (nent == 1) {
-      self.entity = ents[0];
-      ++stats_.leaves;
-      pop();
-      return;
-    }
-    if (nent == 2 && depth > 0) {
-      // Only two regions can meet here: at most a piece of their Voronoi face. Its evidence
-      // only counts if deeper than what this walker has seen before (the first of equal
-      // depths is kept), so the sampling is skipped otherwise.
-      const std::pair<int, int> key(std::min(ents[0], ents[1]), std::max(ents[0], ents[1]));
-      auto seen = deepest_.find(key);
-      if (seen == deepest_.end() || seen->second < D) {
-        if (!(D > r)) sort_candidates(beg, count);
-        LabelSet labels = sample(lo, size, 2, nent);
-        if (labels.n == 2) add_pair(labels, c, D);
-      }
-      store_leaf(node, beg, count);
-      pop();
-      return;
-    }
-    if (depth < level_) {
-      const int first = int(nodes_.size());
-      nodes_[node].child = first;
-      nodes_.resize(first + 8);
-      const double half = 0.5 * size;
-      for (int q = 0; q < 8; ++q) {
-        const Vec3 clo = lo + half * Vec3(q & 1, (q >> 1) & 1, (q >> 2) & 1);
-        if (depth + 1 == task_depth_)
-          tasks_.push_back({first + q, clo, half, D + 0.5 * r, depth + 1,
-                            std::vector<int>(arena_.begin() + beg, arena_.end()),
-                            std::vector<double>(dist_.begin() + beg, dist_.end()),
-                            std::vector<double>(zone_.begin() + beg, zone_.end()), fine_.size(),
-                            pairs_.size()});
-        else
-          visit(first + q, clo, half, depth + 1, beg, count, D + 0.5 * r);
-      }
-      pop();
-      return;
-    }
-    ++stats_.finest_cells;
-    if (!(D > r)) sort_candidates(beg, count);
-    LabelSet labels = sample(lo, size, 3, nent);
-    labels.sort();
-    if (labels.n == 2) add_pair(labels, c, D);
-    if (labels.n >= 3) {
-      const Vec3 rel = (lo - origin_) / h_;
-      fine_.push_back({int(std::lround(rel.x())), int(std::lround(rel.y())),
-                       int(std::lround(rel.z())), labels});
-    }
-    store_leaf(node, beg, count);
-    pop();
-  }
-
-  // The cell's candidates arena_[beg, beg + count) ordered by distance from its centre c_,
-  // for owner_sorted.
-  void sort_candidates(int beg, int count) {
-    pos_.resize(count);
-    std::iota(pos_.begin(), pos_.end(), 0);
-    std::sort(pos_.begin(), pos_.end(), [&](int a, int b) {
-      const double da = dist_[beg + a], db = dist_[beg + b];
-      return da != db ? da < db : a < b;
-    });
-    sorted_.resize(count);
-    sorted_dist_.resize(count);
-    for (int k = 0; k < count; ++k) {
-      sorted_[k] = arena_[beg + pos_[k]];
-      sorted_dist_[k] = dist_[beg + pos_[k]];
-    }
-  }
-
-  // Owner of p, at most `reach` from the centre of the cell of the last sort_candidates.
-  int owner(const Vec3& p, double reach) const {
-    return field_.owner_sorted(p, sorted_.data(), pos_.data(), sorted_dist_.data(),
-                               int(sorted_.size()), reach);
-  }
-
-  void store_leaf(int node, int beg, int count) {
-    ++stats_.leaves;
-    OctNode& n = nodes_[node];
-    n.cand_begin = int(pool_.size());
-    n.cand_count = count;
-    pool_.insert(pool_.end(), arena_.begin() + beg, arena_.begin() + beg + count);
-  }
-
-  // Owners at an s x s x s grid of points of the cell (corners included). The labels are
-  // among the candidates' `nent` entities (5: more than 4): once all are seen, no other
-  // sample can add one.
-  LabelSet sample(const Vec3& lo, double size, int s, int nent) {
-    LabelSet labels;
-    const double step = size / (s - 1 > 0 ? s - 1 : 1);
-    const Vec3 c = lo + Vec3::Constant(0.5 * size);
-    for (int a = 0; a < s; ++a)
-      for (int b = 0; b < s; ++b)
-        for (int k = 0; k < s; ++k) {
-          const Vec3 p = lo + step * Vec3(a, b, k);
-          labels.add(owner(p, (p - c).norm()));
-          if (labels.n == nent && nent <= 4) return labels;
-        }
-    return labels;
-  }
-
-  // `depth`: the boundary distance of c.
-  void add_pair(LabelSet labels, const Vec3& c, double depth) {
-    labels.sort();
-    const auto key = std::make_pair(labels.v[0], labels.v[1]);
-    pairs_.push_back({key, c, depth});
-    double& d = deepest_.try_emplace(key, depth).first->second;
-    d = std::max(d, depth);
-  }
-
-  const DistanceField& field_;
-  Vec3 origin_;
-  double h_, field_tie_;
-  int level_, task_depth_;
-  std::vector<int> arena_;
-  std::vector<double> dist_, zone_;  // per arena_ entry: from its cell's centre
-  std::vector<int> pos_, sorted_;    // candidates of the current cell by distance
-  std::vector<double> sorted_dist_;
-  std::map<std::pair<int, int>, double> deepest_;  // deepest evidence of each pair so far
-};
-
 class Builder {
  public:
   Builder(Subdivision& sub, const VoronoiOptions& opt, VoronoiResult& result)
@@ -328,6 +82,7 @@ class Builder {
     level_ = std::clamp(int(std::ceil(std::log2(sub_.size_ / eps_))), 1, opt.max_depth);
     h_ = sub_.size_ / double(1 << level_);
     field_tie_ = 1e-9 * diag;
+    threads_ = opt.threads > 0 ? opt.threads : int(std::thread::hardware_concurrency());
     result_.stats.finest_level = level_;
   }
 
@@ -337,29 +92,29 @@ class Builder {
   // Extended distance to an entity (the supporting plane / line / point of its nearest
   // governing primitive) and its gradient: smooth, and equal to the true distance where
   // the entity is nearest.
-  double extended(int entity, const Vec3& x, Vec3* grad) const {
+  double extended(const DistanceField& field, int entity, const Vec3& x, Vec3* grad) const {
     Vec3 near;
     double best = kInf;
     int which = -1;
-    for (int i : field_.entity_prims(entity)) {
-      const Prim& pr = field_.prim(i);
+    for (int i : field.entity_prims(entity)) {
+      const Prim& pr = field.prim(i);
       if ((pr.lo - x).cwiseMax(x - pr.hi).cwiseMax(0.0).norm() >= best) continue;
-      const double d = field_.distance(i, x, nullptr);
+      const double d = field.distance(i, x, nullptr);
       if (d < best) {
         best = d;
         which = i;
       }
     }
     if (which < 0) return kInf;
-    field_.distance(which, x, &near);
-    const Prim& pr = field_.prim(which);
+    field.distance(which, x, &near);
+    const Prim& pr = field.prim(which);
     const model::Linearization& lin = model_.linear();
     Vec3 w;
     if (pr.type == Prim::polygon) {
       // Distance to the supporting plane (exact where the projection is on the polygon, a
       // smooth continuation elsewhere).
       Vec3 o, n;
-      field_.plane(which, &o, &n);
+      field.plane(which, &o, &n);
       const double hp = (x - o).dot(n);
       *grad = hp >= 0 ? n : Vec3(-n);
       return std::abs(hp);
@@ -378,7 +133,8 @@ class Builder {
 
   // Gauss-Newton on "equidistant from all governors": unknowns x and the distance t.
   // Returns the residual (max |d_i - t|) and updates x, t.
-  double solve(const std::vector<int>& govs, Vec3& x, double& t, int iterations) const {
+  double solve(const DistanceField& field, const std::vector<int>& govs, Vec3& x, double& t,
+               int iterations) const {
     const int m = int(govs.size());
     Eigen::MatrixXd J(m, 4);
     Eigen::VectorXd f(m);
@@ -387,7 +143,7 @@ class Builder {
       Vec3 g;
       res = 0;
       for (int i = 0; i < m; ++i) {
-        const double d = extended(govs[i], x, &g);
+        const double d = extended(field, govs[i], x, &g);
         if (!std::isfinite(d)) return kInf;
         f[i] = d - t;
         J.row(i) << g.x(), g.y(), g.z(), -1.0;
@@ -414,10 +170,31 @@ class Builder {
   }
 
   // Equidistant within delta and no other entity nearer than delta.
-  bool verify(const std::vector<int>& govs, const Vec3& x, double t) const {
+  bool verify(const DistanceField& field, const std::vector<int>& govs, const Vec3& x,
+              double t) const {
     for (int g : govs)
-      if (std::abs(field_.entity_distance(g, x) - t) > delta_) return false;
-    return field_.boundary_distance(x) >= t - delta_;
+      if (std::abs(field.entity_distance(g, x) - t) > delta_) return false;
+    return field.boundary_distance(x) >= t - delta_;
+  }
+
+  // Runs fn(field, i) for i in [0, n) on all threads, each with a private copy of the
+  // field (its evaluation counter is not shared).
+  template <class Fn>
+  void parallel_for(int n, const Fn& fn) {
+    std::atomic<int> next{0};
+    std::atomic<long long> evaluations{0};
+    auto work = [&] {
+      const DistanceField field(field_);
+      const long long before = field.evaluations();
+      for (int i; (i = next++) < n;) fn(field, i);
+      evaluations += field.evaluations() - before;
+    };
+    const int threads = std::clamp(threads_, 1, std::max(1, n / 16));
+    std::vector<std::thread> pool;
+    for (int i = 1; i < threads; ++i) pool.emplace_back(work);
+    work();
+    for (std::thread& t : pool) t.join();
+    result_.stats.distance_evaluations += evaluations;
   }
 
   std::vector<EntityRef> refs(const std::vector<int>& govs) const {
@@ -437,6 +214,7 @@ class Builder {
   double eps_ = 0, delta_ = 0, h_ = 0;
   int level_ = 1;
   double field_tie_ = 0;
+  int threads_ = 1;
   std::vector<FineCell> fine_;
   std::map<std::pair<int, int>, std::pair<Vec3, double>> pairs_;  // evidence, its depth
 };
@@ -464,8 +242,7 @@ void Builder::run() {
     }
     evaluations += field.evaluations() - before;
   };
-  int threads = opt_.threads > 0 ? opt_.threads : int(std::thread::hardware_concurrency());
-  threads = std::clamp(threads, 1, std::max(1, int(tasks.size())));
+  const int threads = std::clamp(threads_, 1, std::max(1, int(tasks.size())));
   std::vector<std::thread> pool;
   for (int i = 1; i < threads; ++i) pool.emplace_back(work);
   work();
@@ -583,9 +360,9 @@ void Builder::extract() {
     Vec3 x = el.point;
     double t = field_.boundary_distance(x);
     if (!elongated) {
-      const double res = solve(vgov[v], x, t, 12);
+      const double res = solve(field_, vgov[v], x, t, 12);
       if (res <= delta_ && (x - el.point).norm() <= 3 * std::max(eps_, h_) &&
-          verify(vgov[v], x, t)) {
+          verify(field_, vgov[v], x, t)) {
         el.point = x;
         el.verified = true;
       }
@@ -652,6 +429,32 @@ void Builder::extract() {
   std::map<int, std::vector<int>> merged;  // root -> pieces
   for (int e = 0; e < int(ecomps.size()); ++e) merged[root(e)].push_back(e);
   std::vector<std::pair<int, int>> arcs;
+  // Points on the edges: each cell centre moved onto the equidistant curve (independent
+  // solves, on all threads).
+  struct Placement {
+    int cell;
+    const std::vector<int>* triple;
+    Vec3 x;
+    bool ok = false;
+  };
+  std::vector<Placement> placed;
+  std::vector<std::vector<int>> triples;
+  triples.reserve(merged.size());
+  for (const auto& [r, pieces] : merged) {
+    triples.push_back(fine_[ecomps[r][0]].labels.vec());
+    for (int e : pieces)
+      for (int s : ecomps[e]) placed.push_back({s, &triples.back(), Vec3::Zero()});
+  }
+  parallel_for(int(placed.size()), [&](const DistanceField& field, int i) {
+    Placement& q = placed[i];
+    Vec3 x = centre(fine_[q.cell]);
+    double t = field.boundary_distance(x);
+    const double res = solve(field, *q.triple, x, t, 8);
+    q.ok = res <= delta_ && t > delta_ && (x - centre(fine_[q.cell])).norm() <= 2 * h_ &&
+           verify(field, *q.triple, x, t);
+    q.x = x;
+  });
+  size_t next_placed = 0;
   for (const auto& [r, pieces] : merged) {
     const std::vector<int> triple = fine_[ecomps[r][0]].labels.vec();
     std::vector<int> cells, vends;
@@ -663,19 +466,9 @@ void Builder::extract() {
     VoronoiElement el;
     el.kind = ElementKind::edge;
     el.governors = refs(triple);
-    // Points on the edge: each cell centre moved onto the equidistant curve.
     std::vector<Vec3> pts;
-    int failed = 0;
-    for (int s : cells) {
-      Vec3 x = centre(fine_[s]);
-      double t = field_.boundary_distance(x);
-      const double res = solve(triple, x, t, 8);
-      if (res <= delta_ && t > delta_ && (x - centre(fine_[s])).norm() <= 2 * h_ &&
-          verify(triple, x, t))
-        pts.push_back(x);
-      else
-        ++failed;
-    }
+    for (size_t k = 0; k < cells.size(); ++k, ++next_placed)
+      if (placed[next_placed].ok) pts.push_back(placed[next_placed].x);
     // Cells along a boundary edge see the regions meeting there; no interior point of such
     // a piece is equidistant: it is not a Voronoi edge.
     if (pts.empty()) {
@@ -730,17 +523,27 @@ void Builder::extract() {
 
   // Faces: pairs of regions seen side by side.
   std::map<std::pair<int, int>, int> face_of;
-  for (const auto& [pair, evidence] : pairs_) {
+  std::vector<std::pair<std::pair<int, int>, std::pair<Vec3, double>>> evidences(pairs_.begin(),
+                                                                                 pairs_.end());
+  std::vector<Placement> face_points(evidences.size());
+  parallel_for(int(evidences.size()), [&](const DistanceField& field, int i) {
+    const std::vector<int> govs{evidences[i].first.first, evidences[i].first.second};
+    Vec3 x = evidences[i].second.first;
+    double t = field.boundary_distance(x);
+    face_points[i].ok =
+        solve(field, govs, x, t, 8) <= delta_ && t > delta_ && verify(field, govs, x, t);
+    face_points[i].x = x;
+  });
+  for (size_t i = 0; i < evidences.size(); ++i) {
+    const auto& [pair, evidence] = evidences[i];
     const Vec3 c = evidence.first;
     VoronoiElement el;
     el.kind = ElementKind::face;
     const std::vector<int> govs{pair.first, pair.second};
     el.governors = refs(govs);
-    Vec3 x = c;
-    double t = field_.boundary_distance(x);
     el.point = c;
-    if (solve(govs, x, t, 8) <= delta_ && t > delta_ && verify(govs, x, t)) {
-      el.point = x;
+    if (face_points[i].ok) {
+      el.point = face_points[i].x;
       el.verified = true;
     }
     // Seen only at the boundary (two faces meeting at a concave edge): not a Voronoi face.
