@@ -92,7 +92,10 @@ class Builder {
   // Extended distance to an entity (the supporting plane / line / point of its nearest
   // governing primitive) and its gradient: smooth, and equal to the true distance where
   // the entity is nearest.
-  double extended(const DistanceField& field, int entity, const Vec3& x, Vec3* grad) const {
+  // With `closed`, the distance to the nearest primitive itself (what verify() checks; its
+  // gradient turns at facet edges), for a second attempt where the smooth one fails.
+  double extended(const DistanceField& field, int entity, const Vec3& x, Vec3* grad,
+                  bool closed = false) const {
     Vec3 near;
     double best = kInf;
     int which = -1;
@@ -106,8 +109,12 @@ class Builder {
       }
     }
     if (which < 0) return kInf;
-    field.distance(which, x, &near);
+    const double dn = field.distance(which, x, &near);
     const Prim& pr = field.prim(which);
+    if (closed) {
+      *grad = dn > 0 ? Vec3((x - near) / dn) : Vec3(0, 0, 0);
+      return dn;
+    }
     const model::Linearization& lin = model_.linear();
     Vec3 w;
     if (pr.type == Prim::polygon) {
@@ -134,7 +141,7 @@ class Builder {
   // Gauss-Newton on "equidistant from all governors": unknowns x and the distance t.
   // Returns the residual (max |d_i - t|) and updates x, t.
   double solve(const DistanceField& field, const std::vector<int>& govs, Vec3& x, double& t,
-               int iterations) const {
+               int iterations, bool closed = false) const {
     const int m = int(govs.size());
     Eigen::MatrixXd J(m, 4);
     Eigen::VectorXd f(m);
@@ -143,7 +150,7 @@ class Builder {
       Vec3 g;
       res = 0;
       for (int i = 0; i < m; ++i) {
-        const double d = extended(field, govs[i], x, &g);
+        const double d = extended(field, govs[i], x, &g, closed);
         if (!std::isfinite(d)) return kInf;
         f[i] = d - t;
         J.row(i) << g.x(), g.y(), g.z(), -1.0;
@@ -361,10 +368,27 @@ void Builder::extract() {
     double t = field_.boundary_distance(x);
     if (!elongated) {
       const double res = solve(field_, vgov[v], x, t, 12);
-      if (res <= delta_ && (x - el.point).norm() <= 3 * std::max(eps_, h_) &&
-          verify(field_, vgov[v], x, t)) {
+      const double reach = 3 * std::max(eps_, h_);
+      if (res <= delta_ && (x - el.point).norm() <= reach && verify(field_, vgov[v], x, t)) {
         el.point = x;
         el.verified = true;
+      } else {
+        // The plane continuation can stall where the nearest facet changes; retry on the
+        // closed distances (what verify checks), from the cluster centre and from each of
+        // its cells.
+        std::vector<Vec3> starts{el.point};
+        for (int s : vcomps[v])
+          if (starts.size() < 4) starts.push_back(centre(fine_[s]));
+        for (const Vec3& start : starts) {
+          x = start;
+          t = field_.boundary_distance(x);
+          if (solve(field_, vgov[v], x, t, 30, true) <= delta_ && (x - el.point).norm() <= reach &&
+              verify(field_, vgov[v], x, t)) {
+            el.point = x;
+            el.verified = true;
+            break;
+          }
+        }
       }
     } else {
       for (int s : vcomps[v]) el.polyline.push_back(centre(fine_[s]));
