@@ -7,7 +7,6 @@
 
 #include "mesh/map_block.h"
 #include "mesh/sweep.h"
-#include "quality/scaled_jacobian.h"
 
 namespace vorohex::pipeline {
 namespace {
@@ -129,12 +128,11 @@ MeshResult generate_mesh(const occ::Solid& solid, const MeshOptions& options,
   // Never hand over an unchecked mesh: the validity check runs on every result.
   progress.report("check", 0.0);
   const auto t1 = std::chrono::steady_clock::now();
-  result.check = quality::check_mesh(result.mesh, &solid, options.check);
+  result.check = quality::check_mesh(result.mesh, &solid, options.check, &result.scaled_jacobian);
   if (options.smoothing.laplacian_iterations == 0 && options.smoothing.optimisation_passes == 0) {
     result.stats.min_sj_before_smoothing = result.check.scaled_jacobian.min;
     result.stats.mean_sj_before_smoothing = result.check.scaled_jacobian.mean;
   }
-  result.scaled_jacobian = quality::scaled_jacobians(result.mesh);
   result.stats.seconds_checking = seconds_since(t1);
   progress.report("check", 1.0);
   append(result.diagnostics, result.check.diagnostics);

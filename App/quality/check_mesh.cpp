@@ -312,7 +312,8 @@ void CheckOptions::validate() const {
   check(distance_rel_tol, "distance_rel_tol");
 }
 
-CheckReport check_mesh(const HexMesh& mesh, const occ::Solid* cad, const CheckOptions& options) {
+CheckReport check_mesh(const HexMesh& mesh, const occ::Solid* cad, const CheckOptions& options,
+                       std::vector<double>* scaled_jacobian_out) {
   options.validate();
   CheckReport report;
   report.nodes = mesh.num_nodes();
@@ -341,7 +342,9 @@ CheckReport check_mesh(const HexMesh& mesh, const occ::Solid* cad, const CheckOp
   }
 
   // Element quality.
-  const std::vector<double> sj = scaled_jacobians(mesh);
+  std::vector<double> local_sj;
+  std::vector<double>& sj = scaled_jacobian_out ? *scaled_jacobian_out : local_sj;
+  sj = scaled_jacobians(mesh);
   report.scaled_jacobian = quality_stats(sj);
   report.non_positive = report.scaled_jacobian.inverted;
   if (report.non_positive) {

@@ -46,7 +46,10 @@ struct CheckReport {
 
 // cad may be null: then only the mesh-intrinsic invariants are checked. Nodes classified on
 // an entity are measured against that entity, other boundary nodes against the nearest face.
+// If scaled_jacobian is given, it receives the per-hex values the check computed (so callers
+// that also need them, e.g. for writing, do not compute them twice).
 CheckReport check_mesh(const core::HexMesh& mesh, const occ::Solid* cad,
-                       const CheckOptions& options = {});
+                       const CheckOptions& options = {},
+                       std::vector<double>* scaled_jacobian = nullptr);
 
 }  // namespace vorohex::quality
