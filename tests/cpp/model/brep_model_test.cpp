@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "fixtures/solids.h"
+
 #include <cmath>
 
 #include "occ/primitives.h"
@@ -90,24 +92,8 @@ TEST(BRepModel, LShapeHasOneConcaveEdgeAndNoConcaveVertex) {
   EXPECT_EQ(hexagons, 2);
 }
 
-occ::Solid make_cut_cube() {
-  // The cube [0,2]^3 without the corner cube [1,2]^3: (1,1,1) is a concave vertex.
-  const std::vector<Vec3> p = {{0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0}, {0, 0, 2},
-                               {2, 0, 2}, {0, 2, 2}, {2, 2, 1}, {2, 1, 1}, {2, 1, 2},
-                               {1, 2, 1}, {1, 2, 2}, {1, 1, 2}, {1, 1, 1}};
-  return occ::make_polyhedron(p, {{0, 1, 2, 3},
-                                  {0, 3, 6, 4},
-                                  {0, 4, 5, 1},
-                                  {1, 2, 7, 8, 9, 5},
-                                  {3, 2, 7, 10, 11, 6},
-                                  {4, 5, 9, 12, 11, 6},
-                                  {13, 10, 11, 12},
-                                  {13, 12, 9, 8},
-                                  {13, 8, 7, 10}});
-}
-
 TEST(BRepModel, CornerCutFromACubeIsAConcaveVertex) {
-  const ModelResult r = build_model(make_cut_cube());
+  const ModelResult r = build_model(vorohex::testing::make_cut_cube());
   ASSERT_TRUE(r.ok());
   const BRepModel& m = *r.model;
   int concave_vertices = 0, concave_edges = 0;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "fixtures/diagnostics.h"
 #include "occ/primitives.h"
 #include "quality/check_mesh.h"
 #include "quality/grid_fixture.h"
@@ -18,9 +19,7 @@ using core::Vec3;
 using testing::structured_grid;
 
 const core::Diagnostic* find(const CheckReport& r, const std::string& code) {
-  for (const auto& d : r.diagnostics)
-    if (d.code == code) return &d;
-  return nullptr;
+  return vorohex::testing::find_diagnostic(r.diagnostics, code);
 }
 
 // Classifies every node on the lowest-dimensional entity it lies on, as a mesher would.

@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "fixtures/diagnostics.h"
 #include "quality/grid_fixture.h"
 
 namespace vorohex::quality {
@@ -21,9 +22,7 @@ using core::Vec3;
 using testing::structured_grid;
 
 const core::Diagnostic* find(const CheckReport& r, const std::string& code) {
-  for (const auto& d : r.diagnostics)
-    if (d.code == code) return &d;
-  return nullptr;
+  return vorohex::testing::find_diagnostic(r.diagnostics, code);
 }
 
 // Interior and boundary quad counts of an nx x ny x nz structured grid.

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include "fixtures/solids.h"
+
 #include <functional>
 #include <random>
 #include <set>
@@ -225,24 +227,8 @@ TEST(VoronoiGraph, RegionsAgreeWithBruteForceNearestEntity) {
   expect_regions_agree(make_l_shape(), [](const Vec3& p) { return p.x() < 1 || p.y() < 1; });
 }
 
-occ::Solid make_cut_cube() {
-  // The cube [0,2]^3 without the corner cube [1,2]^3: (1,1,1) is a concave vertex.
-  const std::vector<Vec3> p = {{0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0}, {0, 0, 2},
-                               {2, 0, 2}, {0, 2, 2}, {2, 2, 1}, {2, 1, 1}, {2, 1, 2},
-                               {1, 2, 1}, {1, 2, 2}, {1, 1, 2}, {1, 1, 1}};
-  return occ::make_polyhedron(p, {{0, 1, 2, 3},
-                                  {0, 3, 6, 4},
-                                  {0, 4, 5, 1},
-                                  {1, 2, 7, 8, 9, 5},
-                                  {3, 2, 7, 10, 11, 6},
-                                  {4, 5, 9, 12, 11, 6},
-                                  {13, 10, 11, 12},
-                                  {13, 12, 9, 8},
-                                  {13, 8, 7, 10}});
-}
-
 TEST(VoronoiGraph, ConcaveVertexGovernsARegion) {
-  const occ::Solid cut = make_cut_cube();
+  const occ::Solid cut = vorohex::testing::make_cut_cube();
   // Several Voronoi vertices lie within a few eps of each other near (0.6, 0.6, 0.6) and
   // the extraction merges some of them into one degenerate element (a warning, known
   // limitation); the regions themselves must still be right.
@@ -266,7 +252,7 @@ TEST(VoronoiGraph, ConcaveVertexGovernsARegion) {
 // Subtrees are built by several threads and merged in a fixed order: the graph, the
 // statistics and the regions do not depend on the thread count.
 TEST(VoronoiGraph, ThreadCountDoesNotChangeTheResult) {
-  const occ::Solid cut = make_cut_cube();
+  const occ::Solid cut = vorohex::testing::make_cut_cube();
   VoronoiOptions one, three;
   one.threads = 1;
   three.threads = 3;
