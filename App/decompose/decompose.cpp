@@ -155,6 +155,42 @@ bool chain_like(const std::vector<Vec3>& line, double jump) {
   return true;
 }
 
+// Extension towards the boundary (§4.3) where a vertex closes nothing: a cut onto a
+// straight model edge that ends at an inner Voronoi vertex while its polyline runs along
+// the edge (a degenerate edge at a T-junction stops short of the end faces) is prolonged,
+// with its projection, to the edge's end: the rectangle end, end + s t, X, pi_E(end) where
+// X is the edge's vertex ahead. It is the closing rectangle of the pair (E, face at X).
+void extend_to_edge_end(const occ::Solid& solid, const ClassifiedEdge& ce,
+                        const detail::Target& t, const Vec3& end, const Vec3& before,
+                        const Vec3& projected, std::vector<DecompositionQuad>& quads) {
+  if (t.entity.kind != EntityKind::edge) return;
+  const EdgeId e(t.entity.id);
+  const std::vector<Vec3> pts = solid.edge_points_by_length(e, 2);
+  const Vec3 a = pts.front(), b = pts.back(), mid = pts[1];
+  const double len = (b - a).norm(), tol = 1e-6 * solid.diagonal();
+  if (len <= tol || (0.5 * (a + b) - mid).norm() > 1e-3 * len) return;  // straight only
+  const Vec3 along = (b - a) / len;
+  if ((end - before).norm() <= tol) return;
+  const Vec3 dir = (end - before).normalized();
+  if (std::abs(dir.dot(along)) < std::cos(10 * kPi / 180)) return;
+  const Vec3 ahead = dir.dot(along) > 0 ? b : a;
+  const double s = (ahead - projected).dot(dir.dot(along) > 0 ? along : Vec3(-along));
+  if (s <= 1e-3 * len) return;
+  const Vec3 step = s * (dir.dot(along) > 0 ? along : Vec3(-along));
+  // The prolonged side must stay inside the solid (it ends on the boundary).
+  if (solid.distance_to_boundary(end + 0.5 * step) <= tol) return;
+  DecompositionQuad q;
+  q.points = {end, end + step, ahead, projected};
+  q.anchored = {false, false, true, true};
+  q.supports = {EntityRef{EntityKind::face, 0}, EntityRef{EntityKind::face, 0}, t.entity,
+                t.entity};
+  q.element = ce.element;
+  q.kind = "extension";
+  q.governors = t.faces;
+  q.target = t.entity;
+  quads.push_back(std::move(q));
+}
+
 // Step 3: the quadrilaterals of the projected edges and of the closing rectangles.
 void build_quads(const occ::Solid& solid, const VoronoiGraph& g, double line_tol,
                  DecompositionResult& r) {
@@ -167,6 +203,24 @@ void build_quads(const occ::Solid& solid, const VoronoiGraph& g, double line_tol
       for (const auto& [f, entity] : it->second->points)
         if (!t.faces.empty() && f == t.faces[0]) return entity;
     return t.entity;
+  };
+  // Whether the cut of `edge` onto `entity` is continued at vertex v: by a closing
+  // rectangle on the entity or by another projected edge of v onto it.
+  auto closed_at = [&](int v, int edge, EntityRef entity) {
+    const auto it = treated.find(v);
+    if (it != treated.end())
+      for (const auto& [f, on] : it->second->points) {
+        (void)f;
+        for (const detail::Rectangle& rect : it->second->rectangles)
+          if ((rect.a == f || rect.b == f || rect.edge == entity) && on == entity) return true;
+      }
+    for (int e : g.elements[v].incident)
+      if (e != edge && e < int(r.edges.size()))
+        for (const ClassifiedEdge& other : r.edges)
+          if (other.element == e)
+            for (const detail::Target& t : other.targets)
+              if (t.entity == entity) return true;
+    return false;
   };
   for (const ClassifiedEdge& ce : r.edges) {
     if (ce.targets.empty()) continue;
@@ -212,6 +266,11 @@ void build_quads(const occ::Solid& solid, const VoronoiGraph& g, double line_tol
         q.target = t.entity;
         r.quads.push_back(std::move(q));
       }
+      for (int k = 0; k < 2; ++k)
+        if (end_vertex[k] < 0 || !closed_at(end_vertex[k], ce.element, t.entity))
+          extend_to_edge_end(solid, ce, t, k == 0 ? line[0] : line.back(),
+                             k == 0 ? line[1] : line[line.size() - 2],
+                             k == 0 ? proj.front() : proj.back(), r.quads);
     }
   }
   for (const TreatedVertex& tv : r.vertices) {
@@ -260,10 +319,26 @@ void snap_coplanar(const occ::Solid& solid, std::vector<DecompositionQuad>& quad
     bool flat = true;
     for (const Vec3& q : p) flat = flat && std::abs((q - c).dot(n)) <= snap;
     if (!flat) continue;
-    if (n.x() + 1e-9 * n.y() + 1e-18 * n.z() < 0) n = -n;  // one orientation per plane
     planes[i] = {n, n.dot(c), area, true};
   }
+  // The planes of the model's planar faces: a decomposition face that nearly extends one
+  // (the usual cut at a concave edge) is put exactly on it.
+  std::vector<std::pair<Vec3, double>> model_planes;
+  for (const occ::FaceSample& f : occ::sample_faces(solid))
+    if (solid.face_is_planar(f.face)) model_planes.emplace_back(f.normal, f.normal.dot(f.point));
   const double cos_max = std::cos(5 * kPi / 180);
+  // Quads share corners (a vertex's point, its projections): remember them, so that a
+  // corner moved with one quad's plane moves in every quad that has it.
+  std::map<std::array<double, 3>, std::vector<std::pair<std::size_t, std::size_t>>> corners;
+  for (std::size_t i = 0; i < quads.size(); ++i)
+    for (std::size_t k = 0; k < quads[i].points.size(); ++k) {
+      const Vec3& p = quads[i].points[k];
+      corners[{p.x(), p.y(), p.z()}].emplace_back(i, k);
+    }
+  // How firmly each point was placed: 0 not moved, 1 onto a fitted plane, 2 onto a plane
+  // through exact anchors, 3 onto a model face's plane. A shared corner takes the firmest.
+  std::vector<std::vector<int>> firmness(quads.size());
+  for (std::size_t i = 0; i < quads.size(); ++i) firmness[i].assign(quads[i].points.size(), 0);
   std::vector<int> cluster(quads.size(), -1);
   for (std::size_t i = 0; i < quads.size(); ++i) {
     if (!planes[i].ok || cluster[i] >= 0) continue;
@@ -273,24 +348,41 @@ void snap_coplanar(const occ::Solid& solid, std::vector<DecompositionQuad>& quad
     double d = planes[i].d * planes[i].area, w = planes[i].area;
     for (std::size_t j = i + 1; j < quads.size(); ++j) {
       if (!planes[j].ok || cluster[j] >= 0) continue;
-      if (planes[i].n.dot(planes[j].n) < cos_max || std::abs(planes[i].d - planes[j].d) > snap)
+      // Either orientation: the quads of one cut need not agree on a normal.
+      const double sign = planes[i].n.dot(planes[j].n) < 0 ? -1.0 : 1.0;
+      if (sign * planes[i].n.dot(planes[j].n) < cos_max ||
+          std::abs(planes[i].d - sign * planes[j].d) > snap)
         continue;
       cluster[j] = int(i);
       members.push_back(j);
-      n += planes[j].n * planes[j].area;
-      d += planes[j].d * planes[j].area;
+      n += sign * planes[j].n * planes[j].area;
+      d += sign * planes[j].d * planes[j].area;
       w += planes[j].area;
     }
-    if (members.size() < 2) continue;
     n.normalize();
     d /= w;
+    const std::pair<Vec3, double>* extended = nullptr;
+    double best = snap;
+    for (const auto& mp : model_planes) {
+      const double sign = mp.first.dot(n) < 0 ? -1.0 : 1.0;
+      if (sign * mp.first.dot(n) < cos_max) continue;
+      double worst = 0;
+      for (std::size_t m : members)
+        for (const Vec3& q : quads[m].points)
+          worst = std::max(worst, std::abs(q.dot(mp.first) - mp.second));
+      if (worst <= best) best = worst, extended = &mp;
+    }
+    if (members.size() < 2 && !extended) continue;
     // Points on edge governors (concave edges) are exact: the plane goes through them.
     std::vector<Vec3> anchors;
     for (std::size_t m : members)
       for (std::size_t k = 0; k < quads[m].points.size(); ++k)
         if (k < quads[m].anchored.size() && quads[m].anchored[k])
           anchors.push_back(quads[m].points[k]);
-    if (!anchors.empty()) {
+    if (extended) {
+      n = extended->first;
+      d = extended->second;
+    } else if (!anchors.empty()) {
       Vec3 c(0, 0, 0);
       for (const Vec3& a : anchors) c += a;
       c /= double(anchors.size());
@@ -321,7 +413,17 @@ void snap_coplanar(const occ::Solid& solid, std::vector<DecompositionQuad>& quad
         }
         if (std::abs(dir.dot(n)) < 0.2) dir = n;  // support nearly parallel to the plane
         q -= off / dir.dot(n) * dir;
+        firmness[m][k] = extended ? 3 : anchors.empty() ? 1 : 2;
       }
+  }
+  for (const auto& entry : corners) {
+    const auto& uses = entry.second;
+    int firmest = 0;
+    Vec3 to(0, 0, 0);
+    for (const auto& [i, k] : uses)
+      if (firmness[i][k] > firmest) firmest = firmness[i][k], to = quads[i].points[k];
+    if (firmest == 0) continue;
+    for (const auto& [i, k] : uses) quads[i].points[k] = to;
   }
 }
 
@@ -429,6 +531,94 @@ void type_sub_volume(const VoronoiGraph& g, const DecompositionResult& r, int in
 }
 
 using Clock = std::chrono::steady_clock;
+
+// Decomposition faces that are not a quadrilateral between two sub-volumes.
+int invalid_faces(const DecompositionResult& r) {
+  int n = 0;
+  for (const DecompositionFace& df : r.faces)
+    n += df.num_edges != 4 || df.sub_volumes[0] < 0 || df.sub_volumes[1] < 0;
+  return n;
+}
+
+// Merge pass (§7): unite sub-volumes whose union is sweepable. Candidates, largest first:
+// all sub-volumes, each one with all its neighbours across decomposition faces, each
+// neighbouring pair. A union is kept only if no decomposition face becomes invalid: a
+// union whose face is partly a model face and partly the interface to a neighbour would
+// leave a T-shaped, non-conforming interface (the thick L's corner with one leg). Repeats
+// until nothing qualifies. A rejected group is not fused again (its solids are unchanged),
+// and the pass stops at the time limit: each try is an OCCT fuse.
+void merge_pass(const occ::Solid& solid, const VoronoiGraph& g, double tol, double time_limit,
+                DecompositionResult& r) {
+  std::set<std::vector<const occ::Solid*>> rejected;
+  const auto start = Clock::now();
+  for (bool merged = true; merged;) {
+    merged = false;
+    const int n = int(r.sub_volumes.size());
+    if (n < 2) return;
+    std::vector<std::set<int>> around(n);
+    for (const DecompositionFace& df : r.faces)
+      if (df.sub_volumes[0] >= 0 && df.sub_volumes[1] >= 0) {
+        around[df.sub_volumes[0]].insert(df.sub_volumes[1]);
+        around[df.sub_volumes[1]].insert(df.sub_volumes[0]);
+      }
+    std::vector<std::vector<int>> groups;
+    std::vector<int> all(n);
+    for (int i = 0; i < n; ++i) all[i] = i;
+    groups.push_back(all);
+    for (int i = 0; i < n; ++i) {
+      std::vector<int> star{i};
+      star.insert(star.end(), around[i].begin(), around[i].end());
+      std::sort(star.begin(), star.end());
+      if (star.size() > 1) groups.push_back(star);
+      for (int j : around[i])
+        if (i < j) groups.push_back({i, j});
+    }
+    std::stable_sort(groups.begin(), groups.end(),
+                     [](const auto& a, const auto& b) { return a.size() > b.size(); });
+    groups.erase(std::unique(groups.begin(), groups.end()), groups.end());
+    const int invalid_now = invalid_faces(r);
+    for (const std::vector<int>& group : groups) {
+      std::vector<const occ::Solid*> key;
+      for (int i : group) key.push_back(r.sub_volumes[i].solid.get());
+      std::sort(key.begin(), key.end());
+      if (rejected.count(key)) continue;
+      if (time_limit > 0 &&
+          std::chrono::duration<double>(Clock::now() - start).count() > time_limit) {
+        r.diagnostics.push_back(core::make_info(
+            "merge_stopped", "The merge pass stopped at the time limit (" +
+                                 std::to_string(r.sub_volumes.size()) + " sub-volumes left)"));
+        return;
+      }
+      std::unique_ptr<occ::Solid> u = occ::fuse_solids(*r.sub_volumes[group[0]].solid,
+                                                       *r.sub_volumes[group[1]].solid);
+      for (std::size_t k = 2; u && k < group.size(); ++k)
+        u = occ::fuse_solids(*u, *r.sub_volumes[group[k]].solid);
+      if (!u || !mesh::sweep_applicable(*u).ok) {
+        rejected.insert(key);
+        continue;
+      }
+      DecompositionResult trial = r;
+      SubVolume sv;
+      sv.volume = u->volume();
+      sv.merged_from = 0;
+      for (int i : group) sv.merged_from += r.sub_volumes[i].merged_from;
+      sv.solid = std::shared_ptr<const occ::Solid>(std::move(u));
+      trial.sub_volumes[group[0]] = std::move(sv);
+      for (auto it = group.rbegin(); it + 1 != group.rend(); ++it)
+        trial.sub_volumes.erase(trial.sub_volumes.begin() + *it);
+      build_topology(solid, tol, trial);
+      if (invalid_faces(trial) > invalid_now) {
+        rejected.insert(key);
+        continue;
+      }
+      r = std::move(trial);
+      for (std::size_t i = 0; i < r.sub_volumes.size(); ++i)
+        type_sub_volume(g, r, int(i), r.sub_volumes[i]);
+      merged = true;
+      break;
+    }
+  }
+}
 
 DecompositionResult& finish(DecompositionResult& r, Clock::time_point t0) {
   r.stats.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
@@ -583,49 +773,7 @@ DecompositionResult decompose(const occ::Solid& solid, const voronoi::VoronoiRes
                                      }),
                       r.diagnostics.end());
 
-  // Merge pass (§7): unite two sub-volumes sharing a decomposition face when the union is
-  // sweepable; repeat until no pair qualifies.
-  // A rejected pair is not fused again after other merges (its solids are unchanged), and
-  // the pass stops at the split's time limit: each try is an OCCT fuse.
-  std::set<std::pair<const occ::Solid*, const occ::Solid*>> rejected;
-  const auto merge_start = Clock::now();
-  bool merged = options.merge;
-  while (merged) {
-    merged = false;
-    for (const DecompositionFace& df : r.faces) {
-      const int a = df.sub_volumes[0], b = df.sub_volumes[1];
-      if (a < 0 || b < 0) continue;
-      const auto key = std::minmax(r.sub_volumes[a].solid.get(), r.sub_volumes[b].solid.get());
-      if (rejected.count(key)) continue;
-      if (options.split_time_limit > 0 &&
-          std::chrono::duration<double>(Clock::now() - merge_start).count() >
-              options.split_time_limit) {
-        r.diagnostics.push_back(core::make_info(
-            "merge_stopped", "The merge pass stopped at the time limit (" +
-                                 std::to_string(r.sub_volumes.size()) + " sub-volumes left)"));
-        break;
-      }
-      std::unique_ptr<occ::Solid> u =
-          occ::fuse_solids(*r.sub_volumes[a].solid, *r.sub_volumes[b].solid);
-      if (!u || !mesh::sweep_applicable(*u).ok) {
-        rejected.insert(key);
-        continue;
-      }
-      SubVolume sv;
-      sv.volume = u->volume();
-      sv.merged_from = r.sub_volumes[a].merged_from + r.sub_volumes[b].merged_from;
-      sv.solid = std::shared_ptr<const occ::Solid>(std::move(u));
-      r.sub_volumes[std::min(a, b)] = std::move(sv);
-      r.sub_volumes.erase(r.sub_volumes.begin() + std::max(a, b));
-      merged = true;
-      break;
-    }
-    if (merged) {
-      build_topology(solid, tol, r);
-      for (std::size_t i = 0; i < r.sub_volumes.size(); ++i)
-        type_sub_volume(g, r, int(i), r.sub_volumes[i]);
-    }
-  }
+  if (options.merge) merge_pass(solid, g, tol, options.split_time_limit, r);
 
   r.stats.sub_volumes = int(r.sub_volumes.size());
   bool complete = true;
