@@ -6,6 +6,7 @@
 #include <cmath>
 #include <map>
 #include <set>
+#include <cstdio>
 
 #include "mesh/map_block.h"
 #include "mesh/sweep.h"
@@ -155,33 +156,54 @@ bool chain_like(const std::vector<Vec3>& line, double jump) {
   return true;
 }
 
-// Extension towards the boundary (§4.3) where a vertex closes nothing: a cut onto a
-// straight model edge that ends at an inner Voronoi vertex while its polyline runs along
-// the edge (a degenerate edge at a T-junction stops short of the end faces) is prolonged,
-// with its projection, to the edge's end: the rectangle end, end + s t, X, pi_E(end) where
-// X is the edge's vertex ahead. It is the closing rectangle of the pair (E, face at X).
-void extend_to_edge_end(const occ::Solid& solid, const ClassifiedEdge& ce,
-                        const detail::Target& t, const Vec3& end, const Vec3& before,
-                        const Vec3& projected, std::vector<DecompositionQuad>& quads) {
-  if (t.entity.kind != EntityKind::edge) return;
-  const EdgeId e(t.entity.id);
-  const std::vector<Vec3> pts = solid.edge_points_by_length(e, 2);
-  const Vec3 a = pts.front(), b = pts.back(), mid = pts[1];
-  const double len = (b - a).norm(), tol = 1e-6 * solid.diagonal();
-  if (len <= tol || (0.5 * (a + b) - mid).norm() > 1e-3 * len) return;  // straight only
-  const Vec3 along = (b - a) / len;
-  if ((end - before).norm() <= tol) return;
+// Extension towards the boundary (§4.3) where a vertex closes nothing. A cut whose
+// polyline ends at an inner point while running along its target (a degenerate edge at a
+// T-junction stops short of the end faces; its Voronoi vertices treat nothing) is
+// prolonged to the boundary: the polyline's end moves on along its direction to where it
+// leaves the solid (`exit`, shared by all the edge's targets so that the prolonged cuts
+// meet), and the target side follows: the rectangle end, exit, pi_T(exit), pi_T(end). For
+// a straight target edge this is the closing rectangle of the pair (edge, face at its end).
+void extend_cut(const occ::Solid& solid, const ClassifiedEdge& ce, const detail::Target& t,
+                const Vec3& end, const Vec3& before, const Vec3& projected,
+                std::vector<DecompositionQuad>& quads) {
+  const double diag = solid.diagonal(), tol = 1e-6 * diag;
+  if ((end - before).norm() <= tol || solid.distance_to_boundary(end) <= 1e-3 * diag) return;
   const Vec3 dir = (end - before).normalized();
-  if (std::abs(dir.dot(along)) < std::cos(10 * kPi / 180)) return;
-  const Vec3 ahead = dir.dot(along) > 0 ? b : a;
-  const double s = (ahead - projected).dot(dir.dot(along) > 0 ? along : Vec3(-along));
-  if (s <= 1e-3 * len) return;
-  const Vec3 step = s * (dir.dot(along) > 0 ? along : Vec3(-along));
-  // The prolonged side must stay inside the solid (it ends on the boundary).
-  if (solid.distance_to_boundary(end + 0.5 * step) <= tol) return;
+  const double parallel = std::sin(10 * kPi / 180);
+  if (t.entity.kind == EntityKind::face) {
+    const FaceId f(t.entity.id);
+    if (!solid.face_is_planar(f) ||
+        std::abs(dir.dot(solid.face_normal(f, projected))) > parallel)
+      return;
+  } else if (t.entity.kind == EntityKind::edge) {
+    const std::vector<Vec3> pts = solid.edge_points_by_length(EdgeId(t.entity.id), 2);
+    const double len = (pts.back() - pts.front()).norm();
+    if (len <= tol || (0.5 * (pts.front() + pts.back()) - pts[1]).norm() > 1e-3 * len)
+      return;  // straight edges only
+    if (std::abs(dir.dot((pts.back() - pts.front()) / len)) < std::cos(10 * kPi / 180)) return;
+  } else {
+    return;
+  }
+  // Sphere tracing from the inner end: converges to the first boundary point ahead.
+  Vec3 exit = end;
+  for (int i = 0; i < 500; ++i) {
+    const double d = solid.distance_to_boundary(exit);
+    if (d <= 1e-12 * diag) break;
+    exit += d * dir;
+  }
+  if (solid.distance_to_boundary(exit) > 1e-4 * diag || (exit - end).norm() <= 1e-3 * diag) return;
+  Vec3 far = project(solid, t.entity, exit);
+  if (t.entity.kind == EntityKind::edge)
+    for (core::VertexId v : {solid.edge_first_vertex(EdgeId(t.entity.id)),
+                             solid.edge_last_vertex(EdgeId(t.entity.id))})
+      if ((solid.vertex_point(v) - far).norm() <= 1e-3 * diag) far = solid.vertex_point(v);
+  if (t.entity.kind == EntityKind::face &&
+      solid.distance_to_face(FaceId(t.entity.id), far) > 1e-4 * diag)
+    return;
   DecompositionQuad q;
-  q.points = {end, end + step, ahead, projected};
-  q.anchored = {false, false, true, true};
+  q.points = {end, exit, far, projected};
+  const bool on_edge = t.entity.kind == EntityKind::edge;
+  q.anchored = {false, false, on_edge, on_edge};
   q.supports = {EntityRef{EntityKind::face, 0}, EntityRef{EntityKind::face, 0}, t.entity,
                 t.entity};
   q.element = ce.element;
@@ -268,7 +290,7 @@ void build_quads(const occ::Solid& solid, const VoronoiGraph& g, double line_tol
       }
       for (int k = 0; k < 2; ++k)
         if (end_vertex[k] < 0 || !closed_at(end_vertex[k], ce.element, t.entity))
-          extend_to_edge_end(solid, ce, t, k == 0 ? line[0] : line.back(),
+          extend_cut(solid, ce, t, k == 0 ? line[0] : line.back(),
                              k == 0 ? line[1] : line[line.size() - 2],
                              k == 0 ? proj.front() : proj.back(), r.quads);
     }
@@ -665,11 +687,12 @@ void self_check(const occ::Solid& solid, double tol, bool pairs, DecompositionRe
   }
   if (std::abs(sum - total) > 1e-9 * total) {
     partition = false;
-    r.diagnostics.push_back(core::make_error(
-        "volume_mismatch", "The sub-volumes sum to " + std::to_string(sum) +
-                               " but the solid's volume is " + std::to_string(total) +
-                               " (relative error " + std::to_string(std::abs(sum - total) / total) +
-                               ")"));
+    char text[160];
+    std::snprintf(text, sizeof text,
+                  "The sub-volumes sum to %.12g but the solid's volume is %.12g (relative error "
+                  "%.2e, allowed 1e-9)",
+                  sum, total, std::abs(sum - total) / total);
+    r.diagnostics.push_back(core::make_error("volume_mismatch", text));
   }
   // Disjointness: a boolean per pair whose boxes meet (pieces of one split and their
   // unions are disjoint by construction; this catches OCCT slips).

@@ -140,6 +140,73 @@ TEST(Decompose, TaperedBrickIsAtMostTwo) {
   expect_valid(t, r);
 }
 
+// Extrusions and a stepped block (issue 5's list): cut where the Voronoi graph says, then
+// merged back into the one sweep each of them is (all are prisms along some axis).
+struct Case {
+  const char* name;
+  occ::Solid solid;
+  std::size_t before;  // sub-volumes without merging (why: see each comment)
+  bool unmerged_valid = true;
+};
+
+// The L profile x-z {0,0},{4,0},{4,1},{2,1},{2,2},{0,2} extruded along y by 3 (as a user
+// would model it: a box with a box on its left half), not along z as make_prism would.
+occ::Solid stepped_block() {
+  const std::vector<std::array<double, 2>> xz{{0, 0}, {4, 0}, {4, 1}, {2, 1}, {2, 2}, {0, 2}};
+  std::vector<Vec3> p;
+  for (double y : {0.0, 3.0})
+    for (const auto& q : xz) p.emplace_back(q[0], y, q[1]);
+  std::vector<std::vector<int>> faces{{0, 1, 2, 3, 4, 5}, {11, 10, 9, 8, 7, 6}};
+  for (int i = 0; i < 6; ++i) faces.push_back({i, i + 6, (i + 1) % 6 + 6, (i + 1) % 6});
+  return occ::make_polyhedron(p, faces);
+}
+
+std::vector<Case> extrusions() {
+  std::vector<Case> out;
+  // T: left arm, right arm, the junction block under the stem, the stem.
+  out.push_back({"T", occ::make_prism({{0, 0}, {5, 0}, {5, 1}, {3, 1}, {3, 4}, {2, 4}, {2, 1},
+                                       {0, 1}},
+                                      2),
+                 4});
+  // U: two uprights, two bottom corners, the bottom's middle.
+  out.push_back({"U", occ::make_prism({{0, 0}, {5, 0}, {5, 4}, {4, 4}, {4, 1}, {1, 1}, {1, 4},
+                                       {0, 4}},
+                                      2),
+                 5});
+  // Plate with two square holes: the 3x3 grid of blocks the hole edges' planes cut.
+  out.push_back({"plate", occ::make_prism({{0, 0}, {8, 0}, {8, 4}, {0, 4}}, 0.5,
+                                          {{{1, 1}, {3, 1}, {3, 3}, {1, 3}},
+                                           {{5, 1}, {7, 1}, {7, 3}, {5, 3}}}),
+                 9});
+  // Stepped block (a 4x3x1 base, a 2x3x1 step on its left half): the base's right half,
+  // and the left 2x2 column quartered by the cuts of its degenerate (square) medial edge.
+  // Open: before merging, two quarters keep a 6-edge decomposition face (the quartering
+  // cuts cross at the approximate, slightly tilted degenerate edge), so only the merged
+  // result is a valid decomposition.
+  out.push_back({"step", stepped_block(), 5, false});
+  return out;
+}
+
+TEST(Decompose, ExtrusionsAreCutThenMergedIntoOneSweep) {
+  for (const Case& c : extrusions()) {
+    SCOPED_TRACE(c.name);
+    DecomposeOptions opt;
+    opt.merge = false;
+    const Decomposed cut = run(c.solid, opt);
+    EXPECT_EQ(cut.result.sub_volumes.size(), c.before) << describe(cut);
+    if (c.unmerged_valid) {
+      expect_valid(c.solid, cut);
+      for (const SubVolume& sv : cut.result.sub_volumes)
+        EXPECT_NE(sv.scheme, Scheme::none) << describe(cut);
+    }
+    const Decomposed merged = run(c.solid);
+    ASSERT_EQ(merged.result.sub_volumes.size(), 1u) << describe(merged);
+    EXPECT_EQ(merged.result.sub_volumes[0].scheme, Scheme::sweep);
+    EXPECT_EQ(merged.result.sub_volumes[0].merged_from, int(c.before));
+    expect_valid(c.solid, merged);
+  }
+}
+
 TEST(Decompose, WritesCompoundAndReport) {
   const occ::Solid l = make_l(3);
   DecomposeOptions opt;
