@@ -7,6 +7,9 @@ against the CAD), and `vorohex decompose` (sub-volumes before/after merging and 
 Writes bench/results/hexme.md.
 
 usage: run_hexme.py [--build BUILD] [--no-gmsh] [--only PREFIX]
+
+--no-gmsh keeps the Gmsh columns of the existing table (Gmsh's result does not change
+with VoroHex; it takes most of the run's time).
 """
 import argparse
 import json
@@ -29,6 +32,20 @@ def errors(diagnostics):
     return ", ".join(sorted({d["code"] for d in diagnostics if d["severity"] == "error"})) or "?"
 
 
+def previous_gmsh(path):
+    """Gmsh columns per model from an existing table (for --no-gmsh)."""
+    out = {}
+    try:
+        with open(path) as fh:
+            for line in fh:
+                cells = [c.strip() for c in line.strip().strip("|").split("|")]
+                if len(cells) == 14 and cells[0] not in ("model", "---"):
+                    out[cells[0]] = cells[6:12]
+    except OSError:
+        pass
+    return out
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--build", default=os.path.join(REPO, "build"))
@@ -40,6 +57,7 @@ def main():
     os.makedirs(work, exist_ok=True)
     models = sorted(f for f in os.listdir(HEXME) if f.endswith(".step") and f.startswith(args.only))
     rows = []
+    kept = previous_gmsh(os.path.join(HERE, "results", "hexme.md")) if args.no_gmsh else {}
     for model in models:
         step = os.path.join(HEXME, model)
         name = model[:-5]
@@ -81,6 +99,8 @@ def main():
                 last = ["killed after %.0f s (30 s or 3 GB limit)" % dsec]
             row["d"] = "failed: " + last[0].replace("vorohex: ", "")[:90].replace("|", "/")
         row["d_sec"] = dsec
+        if name in kept:
+            row["g_kept"] = kept[name]
         if not args.no_gmsh:
             msh = os.path.join(work, name + ".gmsh.msh")
             code, gsec, gmb, gerr = measure([sys.executable, os.path.join(HERE, "gmsh_allhex.py"),
@@ -126,11 +146,12 @@ def main():
     ]
     for r in rows:
         vmin = ("%.3f -> %.3f" % (r["v_min_before"], r["v_min"])) if "v_min" in r else ""
-        lines.append("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
-            r["model"], r.get("v", ""), f(r.get("v_hexes"), "%d"), vmin, f(r.get("v_mean")),
-            f(r.get("v_sec"), "%.2f"), r.get("g", ""), f(r.get("g_hexes"), "%d"),
-            f(r.get("g_min")), f(r.get("g_mean")), f(r.get("g_inv"), "%d"),
-            f(r.get("g_sec"), "%.2f"), r.get("d", ""), f(r.get("d_sec"), "%.2f")))
+        gmsh = r.get("g_kept") or [r.get("g", ""), f(r.get("g_hexes"), "%d"), f(r.get("g_min")),
+                                   f(r.get("g_mean")), f(r.get("g_inv"), "%d"),
+                                   f(r.get("g_sec"), "%.2f")]
+        lines.append("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |" % tuple(
+            [r["model"], r.get("v", ""), f(r.get("v_hexes"), "%d"), vmin, f(r.get("v_mean")),
+             f(r.get("v_sec"), "%.2f")] + gmsh + [r.get("d", ""), f(r.get("d_sec"), "%.2f")]))
     out = os.path.join(HERE, "results", "hexme.md")
     with open(out, "w") as fh:
         fh.write("\n".join(lines) + "\n")

@@ -2,9 +2,11 @@
 
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 
+#include "decompose/decompose.h"
 #include "mesh/map_block.h"
 #include "mesh/sweep.h"
 
@@ -17,6 +19,32 @@ void append(std::vector<core::Diagnostic>& to, const std::vector<core::Diagnosti
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// What the decomposition makes of a solid that is neither a block nor a sweep: the user
+// sees where it would be cut even though several sub-volumes are not meshed together yet.
+std::string decomposition_summary(const occ::Solid& solid, const core::Progress& progress) {
+  progress.report("decompose", 0.0);
+  const voronoi::VoronoiResult graph = voronoi::compute_voronoi_graph(solid);
+  if (!graph.ok()) return "Its Voronoi graph could not be computed.";
+  decompose::DecomposeOptions options;
+  options.split_time_limit = 10;  // a summary for a refusal: do not keep the user waiting
+  const decompose::DecompositionResult d = decompose::decompose(solid, graph, options);
+  progress.report("decompose", 1.0);
+  if (!d.ok()) {
+    for (const core::Diagnostic& diag : d.diagnostics)
+      if (diag.severity == core::Severity::error)
+        return "Its decomposition failed: " + diag.message + ".";
+    return "Its decomposition failed.";
+  }
+  std::map<std::string, int> schemes;
+  for (const decompose::SubVolume& sv : d.sub_volumes) ++schemes[decompose::scheme_name(sv.scheme)];
+  std::ostringstream s;
+  s << "Its decomposition (vorohex decompose) has " << d.sub_volumes.size() << " sub-volumes (";
+  bool first = true;
+  for (const auto& [name, n] : schemes) s << (first ? "" : ", ") << n << " " << name, first = false;
+  s << "); meshing several sub-volumes into one conforming mesh is not implemented yet.";
+  return s.str();
 }
 
 }  // namespace
@@ -51,9 +79,10 @@ MeshResult generate_mesh(const occ::Solid& solid, const MeshOptions& options,
   if (!map.ok && !sweepable.ok) {
     result.diagnostics.push_back(core::make_error(
         "not_supported_yet",
-        "This solid is not supported yet: this version meshes topological hexahedra (mapped) "
-        "and one-to-one sweeps. Not a block: " +
-            map.reason + ". Not a sweep: " + sweepable.reason + "."));
+        "This solid is not supported yet: this version meshes solids that are one topological "
+        "hexahedron (mapped) or one one-to-one sweep. Not a block: " +
+            map.reason + ". Not a sweep: " + sweepable.reason + ". " +
+            decomposition_summary(solid, progress)));
     return result;
   }
 

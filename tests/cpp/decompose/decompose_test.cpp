@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "decompose/decomposition_io.h"
+#include "fixtures/solids.h"
 #include "occ/primitives.h"
 #include "occ/split_solid.h"
 
@@ -81,9 +82,7 @@ void expect_valid(const occ::Solid& solid, const Decomposed& run) {
     EXPECT_TRUE(vf.original.valid() != (vf.decomposition_face >= 0));
 }
 
-occ::Solid make_l(double depth) {
-  return occ::make_prism({{0, 0}, {4, 0}, {4, 1}, {1, 1}, {1, 3}, {0, 3}}, depth);
-}
+using testing::make_l;
 
 TEST(Decompose, Brick321IsOneSweepBetweenItsLargestFaces) {
   const occ::Solid box = occ::make_box(3, 2, 1);
@@ -149,41 +148,20 @@ struct Case {
   bool unmerged_valid = true;
 };
 
-// The L profile x-z {0,0},{4,0},{4,1},{2,1},{2,2},{0,2} extruded along y by 3 (as a user
-// would model it: a box with a box on its left half), not along z as make_prism would.
-occ::Solid stepped_block() {
-  const std::vector<std::array<double, 2>> xz{{0, 0}, {4, 0}, {4, 1}, {2, 1}, {2, 2}, {0, 2}};
-  std::vector<Vec3> p;
-  for (double y : {0.0, 3.0})
-    for (const auto& q : xz) p.emplace_back(q[0], y, q[1]);
-  std::vector<std::vector<int>> faces{{0, 1, 2, 3, 4, 5}, {11, 10, 9, 8, 7, 6}};
-  for (int i = 0; i < 6; ++i) faces.push_back({i, i + 6, (i + 1) % 6 + 6, (i + 1) % 6});
-  return occ::make_polyhedron(p, faces);
-}
-
 std::vector<Case> extrusions() {
   std::vector<Case> out;
   // T: left arm, right arm, the junction block under the stem, the stem.
-  out.push_back({"T", occ::make_prism({{0, 0}, {5, 0}, {5, 1}, {3, 1}, {3, 4}, {2, 4}, {2, 1},
-                                       {0, 1}},
-                                      2),
-                 4});
+  out.push_back({"T", testing::make_t(), 4});
   // U: two uprights, two bottom corners, the bottom's middle.
-  out.push_back({"U", occ::make_prism({{0, 0}, {5, 0}, {5, 4}, {4, 4}, {4, 1}, {1, 1}, {1, 4},
-                                       {0, 4}},
-                                      2),
-                 5});
+  out.push_back({"U", testing::make_u(), 5});
   // Plate with two square holes: the 3x3 grid of blocks the hole edges' planes cut.
-  out.push_back({"plate", occ::make_prism({{0, 0}, {8, 0}, {8, 4}, {0, 4}}, 0.5,
-                                          {{{1, 1}, {3, 1}, {3, 3}, {1, 3}},
-                                           {{5, 1}, {7, 1}, {7, 3}, {5, 3}}}),
-                 9});
+  out.push_back({"plate", testing::make_plate_with_square_holes(), 9});
   // Stepped block (a 4x3x1 base, a 2x3x1 step on its left half): the base's right half,
   // and the left 2x2 column quartered by the cuts of its degenerate (square) medial edge.
   // Open: before merging, two quarters keep a 6-edge decomposition face (the quartering
   // cuts cross at the approximate, slightly tilted degenerate edge), so only the merged
   // result is a valid decomposition.
-  out.push_back({"step", stepped_block(), 5, false});
+  out.push_back({"step", testing::make_stepped_block(), 5, false});
   return out;
 }
 
