@@ -4,9 +4,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <set>
-#include <cstdio>
 
 #include "mesh/map_block.h"
 #include "mesh/sweep.h"
@@ -156,6 +156,21 @@ bool chain_like(const std::vector<Vec3>& line, double jump) {
   return true;
 }
 
+// A quad between a cut's inner side (points 0, 1) and its target (points 2, 3, on the
+// target entity; `anchored` when they are exact, on an edge governor).
+DecompositionQuad target_quad(const ClassifiedEdge& ce, const detail::Target& t,
+                              std::vector<Vec3> points, bool anchored, const char* kind) {
+  DecompositionQuad q;
+  q.points = std::move(points);
+  q.anchored = {false, false, anchored, anchored};
+  q.supports = {EntityRef{EntityKind::face, 0}, EntityRef{EntityKind::face, 0}, t.entity, t.entity};
+  q.element = ce.element;
+  q.kind = kind;
+  q.governors = t.faces;
+  q.target = t.entity;
+  return q;
+}
+
 // Extension towards the boundary (§4.3) where a vertex closes nothing. A cut whose
 // polyline ends at an inner point while running along its target (a degenerate edge at a
 // T-junction stops short of the end faces; its Voronoi vertices treat nothing) is
@@ -172,8 +187,7 @@ void extend_cut(const occ::Solid& solid, const ClassifiedEdge& ce, const detail:
   const double parallel = std::sin(10 * kPi / 180);
   if (t.entity.kind == EntityKind::face) {
     const FaceId f(t.entity.id);
-    if (!solid.face_is_planar(f) ||
-        std::abs(dir.dot(solid.face_normal(f, projected))) > parallel)
+    if (!solid.face_is_planar(f) || std::abs(dir.dot(solid.face_normal(f, projected))) > parallel)
       return;
   } else if (t.entity.kind == EntityKind::edge) {
     const std::vector<Vec3> pts = solid.edge_points_by_length(EdgeId(t.entity.id), 2);
@@ -200,17 +214,8 @@ void extend_cut(const occ::Solid& solid, const ClassifiedEdge& ce, const detail:
   if (t.entity.kind == EntityKind::face &&
       solid.distance_to_face(FaceId(t.entity.id), far) > 1e-4 * diag)
     return;
-  DecompositionQuad q;
-  q.points = {end, exit, far, projected};
-  const bool on_edge = t.entity.kind == EntityKind::edge;
-  q.anchored = {false, false, on_edge, on_edge};
-  q.supports = {EntityRef{EntityKind::face, 0}, EntityRef{EntityKind::face, 0}, t.entity,
-                t.entity};
-  q.element = ce.element;
-  q.kind = "extension";
-  q.governors = t.faces;
-  q.target = t.entity;
-  quads.push_back(std::move(q));
+  quads.push_back(target_quad(ce, t, {end, exit, far, projected}, t.entity.kind == EntityKind::edge,
+                              "extension"));
 }
 
 // Step 3: the quadrilaterals of the projected edges and of the closing rectangles.
@@ -276,23 +281,15 @@ void build_quads(const occ::Solid& solid, const VoronoiGraph& g, double line_tol
       if (end_vertex[1] >= 0)
         proj.back() = project(solid, vertex_target(end_vertex[1], t), line.back());
       for (std::size_t i = 0; i + 1 < line.size(); ++i) {
-        DecompositionQuad q;
-        q.points = {line[i], line[i + 1], proj[i + 1], proj[i]};
         const bool on_edge = t.entity.kind == EntityKind::edge && t.faces.size() == 1;
-        q.anchored = {false, false, on_edge, on_edge};
-        q.supports = {EntityRef{EntityKind::face, 0}, EntityRef{EntityKind::face, 0}, t.entity,
-                      t.entity};
-        q.element = ce.element;
-        q.kind = "edge";
-        q.governors = t.faces;
-        q.target = t.entity;
-        r.quads.push_back(std::move(q));
+        r.quads.push_back(
+            target_quad(ce, t, {line[i], line[i + 1], proj[i + 1], proj[i]}, on_edge, "edge"));
       }
       for (int k = 0; k < 2; ++k)
         if (end_vertex[k] < 0 || !closed_at(end_vertex[k], ce.element, t.entity))
           extend_cut(solid, ce, t, k == 0 ? line[0] : line.back(),
-                             k == 0 ? line[1] : line[line.size() - 2],
-                             k == 0 ? proj.front() : proj.back(), r.quads);
+                     k == 0 ? line[1] : line[line.size() - 2], k == 0 ? proj.front() : proj.back(),
+                     r.quads);
     }
   }
   for (const TreatedVertex& tv : r.vertices) {
@@ -611,8 +608,8 @@ void merge_pass(const occ::Solid& solid, const VoronoiGraph& g, double tol, doub
                                  std::to_string(r.sub_volumes.size()) + " sub-volumes left)"));
         return;
       }
-      std::unique_ptr<occ::Solid> u = occ::fuse_solids(*r.sub_volumes[group[0]].solid,
-                                                       *r.sub_volumes[group[1]].solid);
+      std::unique_ptr<occ::Solid> u =
+          occ::fuse_solids(*r.sub_volumes[group[0]].solid, *r.sub_volumes[group[1]].solid);
       for (std::size_t k = 2; u && k < group.size(); ++k)
         u = occ::fuse_solids(*u, *r.sub_volumes[group[k]].solid);
       if (!u || !mesh::sweep_applicable(*u).ok) {
