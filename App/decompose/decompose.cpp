@@ -233,20 +233,21 @@ void build_quads(const occ::Solid& solid, const VoronoiGraph& g, double line_tol
   };
   // Whether the cut of `edge` onto `entity` is continued at vertex v: by a closing
   // rectangle on the entity or by another projected edge of v onto it.
+  std::map<int, const ClassifiedEdge*> classified;
+  for (const ClassifiedEdge& ce : r.edges) classified[ce.element] = &ce;
   auto closed_at = [&](int v, int edge, EntityRef entity) {
     const auto it = treated.find(v);
     if (it != treated.end())
-      for (const auto& [f, on] : it->second->points) {
-        (void)f;
-        for (const detail::Rectangle& rect : it->second->rectangles)
-          if ((rect.a == f || rect.b == f || rect.edge == entity) && on == entity) return true;
-      }
-    for (int e : g.elements[v].incident)
-      if (e != edge && e < int(r.edges.size()))
-        for (const ClassifiedEdge& other : r.edges)
-          if (other.element == e)
-            for (const detail::Target& t : other.targets)
-              if (t.entity == entity) return true;
+      for (const auto& [f, on] : it->second->points)
+        if (on == entity)
+          for (const detail::Rectangle& rect : it->second->rectangles)
+            if (rect.a == f || rect.b == f || rect.edge == entity) return true;
+    for (int e : g.elements[v].incident) {
+      const auto other = classified.find(e);
+      if (e == edge || other == classified.end()) continue;
+      for (const detail::Target& t : other->second->targets)
+        if (t.entity == entity) return true;
+    }
     return false;
   };
   for (const ClassifiedEdge& ce : r.edges) {
