@@ -30,8 +30,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
 
 #include "occ/solid_impl.h"
 
@@ -334,6 +337,28 @@ double Solid::distance_to_vertex(VertexId v, const Vec3& p) const {
 
 namespace {
 
+// A surface projector per face and thread, initialised once: OCCT's point-on-surface
+// extremum samples the surface on a grid when initialised, which dominates a projection
+// (smoothing projects every boundary node many times). Keyed by the surface and the
+// face's parameter bounds; the handle keeps the surface alive, so a key is never reused.
+GeomAPI_ProjectPointOnSurf& projector(const FaceCache& c) {
+  struct Entry {
+    Handle(Geom_Surface) surface;
+    std::unique_ptr<GeomAPI_ProjectPointOnSurf> projector;
+  };
+  using Key = std::tuple<const Geom_Surface*, double, double, double, double>;
+  thread_local std::map<Key, Entry> cache;
+  const Key key{c.surface.get(), c.umin, c.umax, c.vmin, c.vmax};
+  auto it = cache.find(key);
+  if (it == cache.end()) {
+    if (cache.size() >= 4096) cache.clear();  // bounded: solids come and go
+    auto proj = std::make_unique<GeomAPI_ProjectPointOnSurf>();
+    proj->Init(c.surface, c.umin, c.umax, c.vmin, c.vmax, Extrema_ExtAlgo_Tree);
+    it = cache.emplace(key, Entry{c.surface, std::move(proj)}).first;
+  }
+  return *it->second.projector;
+}
+
 struct FacePoint {
   Vec3 point;
   double u = 0, v = 0;
@@ -358,7 +383,8 @@ FacePoint nearest_on_face(const Solid& solid, const Solid::Impl& impl, int f, co
         return best;
       }
     } else {
-      GeomAPI_ProjectPointOnSurf proj(to_pnt(p), c.surface, c.umin, c.umax, c.vmin, c.vmax);
+      GeomAPI_ProjectPointOnSurf& proj = projector(c);
+      proj.Perform(to_pnt(p));
       for (int i = 1; i <= proj.NbPoints(); ++i) {
         const double d = proj.Distance(i);
         if (d >= best_d) continue;
@@ -428,7 +454,8 @@ Vec3 Solid::face_normal(FaceId f, const Vec3& p) const {
   gp_Vec n;
   try {
     if (!fp.has_uv) {
-      GeomAPI_ProjectPointOnSurf proj(to_pnt(fp.point), c.surface, c.umin, c.umax, c.vmin, c.vmax);
+      GeomAPI_ProjectPointOnSurf& proj = projector(c);
+      proj.Perform(to_pnt(fp.point));
       if (proj.NbPoints() > 0) proj.LowerDistanceParameters(fp.u, fp.v);
     }
     gp_Pnt q;

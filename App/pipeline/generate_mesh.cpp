@@ -8,6 +8,7 @@
 
 #include "decompose/decompose.h"
 #include "mesh/map_block.h"
+#include "mesh/midpoint.h"
 #include "mesh/sweep.h"
 
 namespace vorohex::pipeline {
@@ -72,31 +73,40 @@ MeshResult generate_mesh(const occ::Solid& solid, const MeshOptions& options,
 
   progress.report("scheme", 0.0);
   // Scheme choice: a mapped block where the solid is a topological hexahedron, else a
-  // one-to-one sweep where two faces are joined by four-sided linking faces.
+  // one-to-one sweep where two faces are joined by four-sided linking faces, else midpoint
+  // subdivision where it is a convex polyhedron.
   const mesh::Applicability map = mesh::map_block_applicable(solid);
   const mesh::SweepApplicability sweepable =
       map.ok ? mesh::SweepApplicability{} : mesh::sweep_applicable(solid);
-  if (!map.ok && !sweepable.ok) {
+  const mesh::Applicability midpoint =
+      map.ok || sweepable.ok ? mesh::Applicability{} : mesh::midpoint_applicable(solid);
+  if (!map.ok && !sweepable.ok && !midpoint.ok) {
     result.diagnostics.push_back(core::make_error(
         "not_supported_yet",
         "This solid is not supported yet: this version meshes solids that are one topological "
-        "hexahedron (mapped) or one one-to-one sweep. Not a block: " +
-            map.reason + ". Not a sweep: " + sweepable.reason + ". " +
-            decomposition_summary(solid, progress)));
+        "hexahedron (mapped), one one-to-one sweep or one convex polyhedron (midpoint "
+        "subdivision). Not a block: " +
+            map.reason + ". Not a sweep: " + sweepable.reason + ". No midpoint subdivision: " +
+            midpoint.reason + ". " + decomposition_summary(solid, progress)));
     return result;
   }
 
   std::size_t predicted = 0;
   mesh::MapBlockOptions map_options;
   mesh::SweepOptions sweep_options;
-  map_options.size = sweep_options.size = size;
+  mesh::MidpointOptions midpoint_options;
+  map_options.size = sweep_options.size = midpoint_options.size = size;
   if (map.ok) {
     const mesh::MapBlockEstimate estimate = mesh::map_block_evaluate(solid, map_options);
     result.stats.intervals = estimate.intervals;
     predicted = estimate.hexes;
-  } else {
+  } else if (sweepable.ok) {
     const mesh::SweepEstimate estimate = mesh::sweep_evaluate(solid, sweep_options);
     result.stats.intervals = {0, 0, estimate.layers};
+    predicted = estimate.hexes;
+  } else {
+    const mesh::MidpointEstimate estimate = mesh::midpoint_evaluate(solid, midpoint_options);
+    result.stats.intervals = {estimate.subdivisions, estimate.subdivisions, estimate.subdivisions};
     predicted = estimate.hexes;
   }
   if (predicted > options.max_hexes) {
@@ -115,7 +125,7 @@ MeshResult generate_mesh(const occ::Solid& solid, const MeshOptions& options,
     result.stats.intervals = mapped.intervals;
     result.stats.scheme = "map";
     if ((meshed = mapped.ok)) result.mesh = std::move(mapped.mesh);
-  } else {
+  } else if (sweepable.ok) {
     mesh::SweepResult swept = mesh::sweep(solid, sweep_options, progress);
     append(result.diagnostics, swept.diagnostics);
     result.stats.intervals = {0, 0, swept.layers};
@@ -127,6 +137,19 @@ MeshResult generate_mesh(const occ::Solid& solid, const MeshOptions& options,
           "Swept from " + core::entity_name(swept.source) + " to " +
               core::entity_name(swept.target) + " in " + std::to_string(swept.layers) + " layers.",
           {core::entity_name(swept.source), core::entity_name(swept.target)}));
+    }
+  } else {
+    mesh::MidpointResult sub = mesh::midpoint_subdivide(solid, midpoint_options, progress);
+    append(result.diagnostics, sub.diagnostics);
+    result.stats.scheme = "midpoint";
+    if ((meshed = sub.ok)) {
+      result.mesh = std::move(sub.mesh);
+      result.diagnostics.push_back(core::make_info(
+          "midpoint",
+          std::string("Midpoint subdivision of a convex polyhedron (") +
+              (sub.per_vertex ? "one hexahedron per vertex"
+                              : "four hexahedra per tetrahedron of centre, face centre and edge") +
+              "), refined " + std::to_string(sub.subdivisions) + " times per direction."));
     }
   }
   result.stats.seconds_meshing = seconds_since(t0);

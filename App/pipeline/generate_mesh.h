@@ -33,7 +33,7 @@ struct MeshStats {
   // Scaled Jacobian before and after smoothing (equal when smoothing is off).
   double min_sj_before_smoothing = 0, mean_sj_before_smoothing = 0;
   int sub_volumes = 0;
-  std::string scheme;  // "map" (mapped block) or "sweep" (one-to-one sweep)
+  std::string scheme;  // "map" (mapped block), "sweep" (one-to-one sweep) or "midpoint"
 };
 
 struct MeshResult {

@@ -216,7 +216,7 @@ class MeshStats:
         self.sub_volumes = s.sub_volumes
         self.size_used = s.size_used
         self.intervals = tuple(s.intervals)
-        self.scheme = s.scheme  # "map" (mapped block) or "sweep" (one-to-one sweep)
+        self.scheme = s.scheme  # "map" (mapped block), "sweep" (one-to-one) or "midpoint"
         # Quality before global smoothing (equal to the final one when smoothing is off).
         self.min_scaled_jacobian_before_smoothing = s.min_sj_before_smoothing
         self.mean_scaled_jacobian_before_smoothing = s.mean_sj_before_smoothing

@@ -1,0 +1,49 @@
+// Midpoint subdivision of a convex polyhedron (planar faces, straight edges). Nodes: the
+// model vertices, a midpoint per edge, a centre per face and the cell centre. Where every
+// vertex has three edges (tetrahedron, cube, dodecahedron, prisms) each vertex gets one
+// hexahedron (vertex, its three edge midpoints, its three face centres, the cell centre);
+// otherwise the cell is split into tetrahedra (cell centre, face centre, one edge) and each
+// tetrahedron into four hexahedra. The coarse hexahedra are then refined n x n x n by
+// trilinear interpolation to reach the target size (one n for all, so the mesh conforms).
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "core/diagnostic.h"
+#include "core/hex_mesh.h"
+#include "core/progress.h"
+#include "mesh/map_block.h"
+#include "occ/solid.h"
+
+namespace vorohex::mesh {
+
+struct MidpointOptions {
+  double size = 1.0;         // target edge length, model units (> 0)
+  int max_intervals = 1000;  // refinement factor n limit; more is refused (> 0)
+  void validate() const;     // throws std::invalid_argument naming the bad field
+};
+
+// Convex with planar faces, straight edges and one wire per face; the reason names the
+// first entity that is not.
+Applicability midpoint_applicable(const occ::Solid& solid);
+
+struct MidpointEstimate {
+  bool per_vertex = false;  // one coarse hexahedron per vertex (else via tetrahedra)
+  int subdivisions = 0;     // n
+  std::size_t coarse_hexes = 0, nodes = 0, hexes = 0;  // exactly what midpoint() produces
+};
+MidpointEstimate midpoint_evaluate(const occ::Solid& solid, const MidpointOptions& options);
+
+struct MidpointResult {
+  core::HexMesh mesh;
+  bool per_vertex = false;
+  int subdivisions = 0;
+  bool ok = false;
+  std::vector<core::Diagnostic> diagnostics;
+};
+
+MidpointResult midpoint_subdivide(const occ::Solid& solid, const MidpointOptions& options,
+                                  const core::Progress& progress = {});
+
+}  // namespace vorohex::mesh
