@@ -20,7 +20,7 @@ namespace vorohex::cli {
 const char* const kMeshUsage =
     "usage: vorohex mesh IN -o OUT [--size H] [--report REPORT.json] [--max-hexes N]\n"
     "                    [--smooth-iterations N] [--smooth-passes N] [--no-smooth]\n"
-    "                    [--keep-invalid] [--quiet]\n"
+    "                    [--no-fallback] [--keep-invalid] [--quiet]\n"
     "  IN    a solid as STEP (.step/.stp), BREP (.brep/.brp) or IGES (.iges/.igs)\n"
     "  OUT   the hex mesh: .vtu (ParaView), .msh (Gmsh 4.1) or .inp (Abaqus/CalculiX)\n"
     "  --size H        target edge length in model units (default: diagonal / 20)\n"
@@ -29,6 +29,8 @@ const char* const kMeshUsage =
     "  --smooth-iterations N  Laplacian sweeps of the global smoothing (default 20)\n"
     "  --smooth-passes N      untangling/optimisation passes of the smoothing (default 10)\n"
     "  --no-smooth     no smoothing (same as both counts 0)\n"
+    "  --no-fallback   refuse a solid no structured scheme (map, sweep, midpoint) accepts\n"
+    "                  instead of meshing it as tetrahedra split into hexahedra\n"
     "  --keep-invalid  write the mesh even when it fails the validity check\n"
     "  --quiet         no progress lines\n"
     "exit: 0 valid mesh written, 1 meshing failed or mesh invalid, 2 bad input\n";
@@ -163,8 +165,10 @@ bool known_mesh_extension(const std::string& path) {
 }
 
 int mesh_command(const std::vector<std::string>& argv) {
-  const Args args = parse(argv, {"-o", "--output", "--size", "--report", "--max-hexes"},
-                          {"--keep-invalid", "--quiet"});
+  const Args args = parse(argv,
+                          {"-o", "--output", "--size", "--report", "--max-hexes",
+                           "--smooth-iterations", "--smooth-passes"},
+                          {"--no-smooth", "--no-fallback", "--keep-invalid", "--quiet"});
   if (args.positional.size() != 1)
     throw UsageError("expected exactly one input file, got " +
                      std::to_string(args.positional.size()));
@@ -188,6 +192,7 @@ int mesh_command(const std::vector<std::string>& argv) {
         parse_count_or_zero("--smooth-passes", args.values.at("--smooth-passes"));
   if (args.flags.count("--no-smooth"))
     options.smoothing.laplacian_iterations = options.smoothing.optimisation_passes = 0;
+  options.fallback = args.flags.count("--no-fallback") == 0;
   const bool quiet = args.flags.count("--quiet") > 0;
 
   const auto t0 = std::chrono::steady_clock::now();
@@ -209,6 +214,10 @@ int mesh_command(const std::vector<std::string>& argv) {
     std::cout << "before smoothing     min " << result.stats.min_sj_before_smoothing << "  mean "
               << result.stats.mean_sj_before_smoothing << "\n";
     print_check_report(std::cout, result.check);
+    std::vector<core::Diagnostic> notable;  // warnings and errors (the fallback, ...)
+    for (const core::Diagnostic& d : all)
+      if (d.severity != core::Severity::info) notable.push_back(d);
+    print_diagnostics(notable);
   } else {
     print_diagnostics(all);
   }

@@ -8,6 +8,7 @@
 
 #include "core/option_checks.h"
 #include "mesh/detail/refine.h"
+#include "mesh/detail/tet_to_hex.h"
 
 namespace vorohex::mesh {
 
@@ -138,16 +139,6 @@ CoarseBase add_base_nodes(const Polyhedron& p, HexMesh& m) {
   return b;
 }
 
-void add_oriented_hex(HexMesh& m, core::HexNodes h) {
-  const Vec3 o = m.point(core::NodeId(h[0]));
-  if (det3(m.point(core::NodeId(h[1])) - o, m.point(core::NodeId(h[3])) - o,
-           m.point(core::NodeId(h[4])) - o) < 0) {
-    std::swap(h[1], h[3]);
-    std::swap(h[5], h[7]);
-  }
-  m.add_hex(h);
-}
-
 // One hexahedron per vertex of a polyhedron whose vertices all have three edges.
 HexMesh per_vertex_cells(const Polyhedron& p) {
   HexMesh m;
@@ -171,8 +162,8 @@ HexMesh per_vertex_cells(const Polyhedron& p) {
       if (p.edge[e][0] == static_cast<int>(v) || p.edge[e][1] == static_cast<int>(v))
         at.push_back(static_cast<int>(e));
     const int a = at[0], bb = at[1], c = at[2];
-    add_oriented_hex(m, {static_cast<int>(v), mid[a], face_with(a, bb), mid[bb], mid[c],
-                         face_with(c, a), b.centre, face_with(bb, c)});
+    detail::add_hex_positive_at_corner0(m, {static_cast<int>(v), mid[a], face_with(a, bb), mid[bb],
+                                            mid[c], face_with(c, a), b.centre, face_with(bb, c)});
   }
   return m;
 }
@@ -182,35 +173,11 @@ HexMesh per_vertex_cells(const Polyhedron& p) {
 HexMesh tetrahedral_cells(const Polyhedron& p) {
   HexMesh m;
   const CoarseBase b = add_base_nodes(p, m);
-  std::map<std::array<int, 2>, int> mids;
-  std::map<std::array<int, 3>, int> centroids;
-  auto pt = [&](int n) { return m.point(core::NodeId(n)); };
-  auto mid = [&](int x, int y) {
-    std::array<int, 2> k{std::min(x, y), std::max(x, y)};
-    auto it = mids.find(k);
-    if (it != mids.end()) return it->second;
-    const int n = static_cast<int>(m.add_node((pt(x) + pt(y)) / 2).value());
-    return mids[k] = n;
-  };
-  auto centroid = [&](int x, int y, int z) {
-    std::array<int, 3> k{x, y, z};
-    std::sort(k.begin(), k.end());
-    auto it = centroids.find(k);
-    if (it != centroids.end()) return it->second;
-    const int n = static_cast<int>(m.add_node((pt(x) + pt(y) + pt(z)) / 3).value());
-    return centroids[k] = n;
-  };
+  std::vector<std::array<int, 4>> tets;
   for (std::size_t f = 0; f < p.face_edges.size(); ++f)
-    for (int e : p.face_edges[f]) {
-      const std::array<int, 4> t{b.centre, b.face_node[f], p.edge[e][0], p.edge[e][1]};
-      const int tc =
-          static_cast<int>(m.add_node((pt(t[0]) + pt(t[1]) + pt(t[2]) + pt(t[3])) / 4).value());
-      for (int i = 0; i < 4; ++i) {
-        const int j = t[(i + 1) % 4], k = t[(i + 2) % 4], l = t[(i + 3) % 4], c = t[i];
-        add_oriented_hex(m, {c, mid(c, j), centroid(c, j, k), mid(c, k), mid(c, l),
-                             centroid(c, j, l), tc, centroid(c, k, l)});
-      }
-    }
+    for (int e : p.face_edges[f])
+      tets.push_back({b.centre, b.face_node[f], p.edge[e][0], p.edge[e][1]});
+  detail::split_tetrahedra(m, tets);
   return m;
 }
 

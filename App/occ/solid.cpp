@@ -433,6 +433,33 @@ double Solid::distance_to_face(FaceId f, const Vec3& p) const {
   return (project_to_face(f, p) - p).norm();
 }
 
+FaceId Solid::nearest_face(const Vec3& p) const {
+  const int nf = num_faces();
+  std::vector<std::pair<double, int>> order;
+  order.reserve(nf);
+  for (int f = 1; f <= nf; ++f) order.emplace_back(box_distance(impl_->face(f).box, p), f);
+  std::sort(order.begin(), order.end());
+  double best = std::numeric_limits<double>::infinity();
+  int best_f = 0;
+  for (const auto& [lower, f] : order) {
+    if (lower >= best) break;
+    const double d = (nearest_on_face(*this, *impl_, f, p).point - p).norm();
+    if (d < best) best = d, best_f = f;
+  }
+  return FaceId(best_f);
+}
+
+EdgeId Solid::nearest_edge(const Vec3& p) const {
+  double best = std::numeric_limits<double>::infinity();
+  int best_e = 0;
+  for (int e = 1; e <= num_edges(); ++e) {
+    if (box_distance(impl_->edge(e).box, p) >= best) continue;
+    const double d = distance_to_edge(EdgeId(e), p);
+    if (d < best) best = d, best_e = e;
+  }
+  return EdgeId(best_e);
+}
+
 double Solid::distance_to_boundary(const Vec3& p) const {
   const int nf = num_faces();
   std::vector<std::pair<double, int>> order;

@@ -48,15 +48,15 @@ struct Solid {
   // The wires of a face: outer first, each a closed cycle of oriented edges in order,
   // oriented so that the face material lies on the left seen from outside the solid.
   std::vector<std::vector<OrientedEdge>> face_wires(FaceId f) const;
-  std::vector<FaceId> edge_faces(EdgeId e) const;    // faces an edge bounds
-  VertexId edge_first_vertex(EdgeId e) const;        // in the edge's own orientation
+  std::vector<FaceId> edge_faces(EdgeId e) const;  // faces an edge bounds
+  VertexId edge_first_vertex(EdgeId e) const;      // in the edge's own orientation
   VertexId edge_last_vertex(EdgeId e) const;
-  bool edge_is_degenerated(EdgeId e) const;          // e.g. a sphere's pole
+  bool edge_is_degenerated(EdgeId e) const;  // e.g. a sphere's pole
 
   // Geometry ------------------------------------------------------------------------
   double volume() const;
   double area(FaceId f) const;
-  BoundingBox bounding_box() const;                  // tight (optimal) box
+  BoundingBox bounding_box() const;  // tight (optimal) box
   double diagonal() const { return bounding_box().diagonal(); }
   bool face_is_planar(FaceId f) const;
 
@@ -74,6 +74,9 @@ struct Solid {
   double distance_to_vertex(VertexId v, const Vec3& p) const;
   // Distance to the whole boundary (nearest face), for meshes made by other tools.
   double distance_to_boundary(const Vec3& p) const;
+  // The face / edge nearest to p (ties: the lowest index).
+  FaceId nearest_face(const Vec3& p) const;
+  EdgeId nearest_edge(const Vec3& p) const;
   // Outward unit normal of face f at the point of the face nearest to p.
   Vec3 face_normal(FaceId f, const Vec3& p) const;
 

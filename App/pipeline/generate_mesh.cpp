@@ -10,6 +10,7 @@
 #include "mesh/map_block.h"
 #include "mesh/midpoint.h"
 #include "mesh/sweep.h"
+#include "mesh/tet_split.h"
 
 namespace vorohex::pipeline {
 namespace {
@@ -48,6 +49,70 @@ std::string decomposition_summary(const occ::Solid& solid, const core::Progress&
   return s.str();
 }
 
+// Smoothing and the validity check every result goes through.
+void finish(MeshResult& result, const occ::Solid& solid, const MeshOptions& options,
+            const core::Progress& progress) {
+  result.stats.sub_volumes = 1;
+
+  if (progress.cancelled()) {
+    result.diagnostics.push_back(core::make_error("cancelled", "Meshing was cancelled."));
+    return;
+  }
+
+  // Global smoothing with nodes kept on their CAD entities; it never lowers the minimum
+  // scaled Jacobian and never inverts an element.
+  const auto ts = std::chrono::steady_clock::now();
+  if (options.smoothing.laplacian_iterations > 0 || options.smoothing.optimisation_passes > 0) {
+    const smooth::SmoothResult smoothed =
+        smooth::smooth_mesh(result.mesh, solid, options.smoothing, progress);
+    append(result.diagnostics, smoothed.diagnostics);
+    result.stats.min_sj_before_smoothing = smoothed.min_before;
+    result.stats.mean_sj_before_smoothing = smoothed.mean_before;
+    if (smoothed.status == smooth::SmoothStatus::cancelled) {
+      result.mesh = core::HexMesh();  // a cancelled run hands over nothing
+      return;
+    }
+  }
+  result.stats.seconds_smoothing = seconds_since(ts);
+
+  // Never hand over an unchecked mesh: the validity check runs on every result.
+  progress.report("check", 0.0);
+  const auto t1 = std::chrono::steady_clock::now();
+  result.check = quality::check_mesh(result.mesh, &solid, options.check, &result.scaled_jacobian);
+  if (options.smoothing.laplacian_iterations == 0 && options.smoothing.optimisation_passes == 0) {
+    result.stats.min_sj_before_smoothing = result.check.scaled_jacobian.min;
+    result.stats.mean_sj_before_smoothing = result.check.scaled_jacobian.mean;
+  }
+  result.stats.seconds_checking = seconds_since(t1);
+  progress.report("check", 1.0);
+  append(result.diagnostics, result.check.diagnostics);
+  result.ok = result.check.valid && !core::has_error(result.diagnostics);
+}
+
+// No structured scheme: tetrahedra split into hexahedra, said so in a warning.
+MeshResult fallback(const occ::Solid& solid, const MeshOptions& options, double size,
+                    const std::string& why, const core::Progress& progress,
+                    std::chrono::steady_clock::time_point t0) {
+  MeshResult result;
+  result.stats.size_used = size;
+  result.stats.scheme = "tet-split";
+  mesh::TetSplitOptions tet_options;
+  tet_options.size = size;
+  tet_options.max_hexes = options.max_hexes;
+  mesh::TetSplitResult split = mesh::tet_split(solid, tet_options, progress);
+  append(result.diagnostics, split.diagnostics);
+  result.stats.seconds_meshing = seconds_since(t0);
+  if (!split.ok) return result;
+  result.mesh = std::move(split.mesh);
+  result.diagnostics.push_back(core::make_warning(
+      "fallback", "No structured scheme applies (" + why +
+                      ") Meshed by the fallback instead: " + std::to_string(split.tetrahedra) +
+                      " tetrahedra, each split into four hexahedra; expect poorer elements than a "
+                      "structured mesh."));
+  finish(result, solid, options, progress);
+  return result;
+}
+
 }  // namespace
 
 void MeshOptions::validate() const {
@@ -80,16 +145,20 @@ MeshResult generate_mesh(const occ::Solid& solid, const MeshOptions& options,
       map.ok ? mesh::SweepApplicability{} : mesh::sweep_applicable(solid);
   const mesh::Applicability midpoint =
       map.ok || sweepable.ok ? mesh::Applicability{} : mesh::midpoint_applicable(solid);
-  if (!map.ok && !sweepable.ok && !midpoint.ok) {
+  const bool structured = map.ok || sweepable.ok || midpoint.ok;
+  const std::string why_not_structured = "Not a block: " + map.reason +
+                                         ". Not a sweep: " + sweepable.reason +
+                                         ". No midpoint subdivision: " + midpoint.reason + ".";
+  if (!structured && !options.fallback) {
     result.diagnostics.push_back(core::make_error(
         "not_supported_yet",
         "This solid is not supported yet: this version meshes solids that are one topological "
         "hexahedron (mapped), one one-to-one sweep or one convex polyhedron (midpoint "
-        "subdivision). Not a block: " +
-            map.reason + ". Not a sweep: " + sweepable.reason + ". No midpoint subdivision: " +
-            midpoint.reason + ". " + decomposition_summary(solid, progress)));
+        "subdivision). " +
+            why_not_structured + " " + decomposition_summary(solid, progress)));
     return result;
   }
+  if (!structured) return fallback(solid, options, size, why_not_structured, progress, t0);
 
   std::size_t predicted = 0;
   mesh::MapBlockOptions map_options;
@@ -154,41 +223,7 @@ MeshResult generate_mesh(const occ::Solid& solid, const MeshOptions& options,
   }
   result.stats.seconds_meshing = seconds_since(t0);
   if (!meshed) return result;
-  result.stats.sub_volumes = 1;
-
-  if (progress.cancelled()) {
-    result.diagnostics.push_back(core::make_error("cancelled", "Meshing was cancelled."));
-    return result;
-  }
-
-  // Global smoothing with nodes kept on their CAD entities; it never lowers the minimum
-  // scaled Jacobian and never inverts an element.
-  const auto ts = std::chrono::steady_clock::now();
-  if (options.smoothing.laplacian_iterations > 0 || options.smoothing.optimisation_passes > 0) {
-    const smooth::SmoothResult smoothed =
-        smooth::smooth_mesh(result.mesh, solid, options.smoothing, progress);
-    append(result.diagnostics, smoothed.diagnostics);
-    result.stats.min_sj_before_smoothing = smoothed.min_before;
-    result.stats.mean_sj_before_smoothing = smoothed.mean_before;
-    if (smoothed.status == smooth::SmoothStatus::cancelled) {
-      result.mesh = core::HexMesh();  // a cancelled run hands over nothing
-      return result;
-    }
-  }
-  result.stats.seconds_smoothing = seconds_since(ts);
-
-  // Never hand over an unchecked mesh: the validity check runs on every result.
-  progress.report("check", 0.0);
-  const auto t1 = std::chrono::steady_clock::now();
-  result.check = quality::check_mesh(result.mesh, &solid, options.check, &result.scaled_jacobian);
-  if (options.smoothing.laplacian_iterations == 0 && options.smoothing.optimisation_passes == 0) {
-    result.stats.min_sj_before_smoothing = result.check.scaled_jacobian.min;
-    result.stats.mean_sj_before_smoothing = result.check.scaled_jacobian.mean;
-  }
-  result.stats.seconds_checking = seconds_since(t1);
-  progress.report("check", 1.0);
-  append(result.diagnostics, result.check.diagnostics);
-  result.ok = result.check.valid && !core::has_error(result.diagnostics);
+  finish(result, solid, options, progress);
   return result;
 }
 

@@ -21,7 +21,10 @@ struct MeshOptions {
   std::size_t max_hexes = 50'000'000;  // refused up front when the prediction exceeds it
   smooth::SmoothOptions smoothing;     // global smoothing; 0 iterations and 0 passes = off
   quality::CheckOptions check;         // tolerances of the final validity check
-  void validate() const;               // throws std::invalid_argument naming the bad option
+  // Where no structured scheme applies: a tetrahedral mesh split into hexahedra (poorer
+  // elements, reported as a warning); false refuses such solids instead.
+  bool fallback = true;
+  void validate() const;  // throws std::invalid_argument naming the bad option
 };
 
 struct MeshStats {
@@ -33,7 +36,9 @@ struct MeshStats {
   // Scaled Jacobian before and after smoothing (equal when smoothing is off).
   double min_sj_before_smoothing = 0, mean_sj_before_smoothing = 0;
   int sub_volumes = 0;
-  std::string scheme;  // "map" (mapped block), "sweep" (one-to-one sweep) or "midpoint"
+  // "map" (mapped block), "sweep" (one-to-one sweep), "midpoint" (convex polyhedron) or
+  // "tet-split" (the fallback)
+  std::string scheme;
 };
 
 struct MeshResult {

@@ -46,7 +46,7 @@ class _Option:
     """One pipeline option: its keyword, the FreeCAD property that carries it, and how.
 
     kind decides the check: "length" > 0, "count" whole >= 1, "iterations" whole >= 0,
-    "fraction" in (0, 1], "tolerance" >= 0. limits = (min, max, step) of a constraint
+    "fraction" in (0, 1], "tolerance" >= 0, "flag" True or False. limits = (min, max, step) of a constraint
     property (App::PropertyIntegerConstraint / PropertyFloatConstraint), else None."""
 
     def __init__(self, name, prop, prop_type, group, doc, kind, auto_zero=False, limits=None):
@@ -71,6 +71,10 @@ OPTIONS = (
             auto_zero=True),
     _Option("max_hexes", "MaxHexes", "App::PropertyInteger", "Mesh",
             "Refuse to mesh when more hexahedra than this are predicted", "count"),
+    _Option("fallback", "Fallback", "App::PropertyBool", "Mesh",
+            "Where no structured scheme (map, sweep, midpoint) applies, mesh tetrahedra split "
+            "into hexahedra (poorer elements, reported as a warning); false refuses instead",
+            "flag"),
     _Option("smooth_iterations", "SmoothIterations", "App::PropertyIntegerConstraint",
             "Smoothing", "Laplacian smoothing sweeps (0 and SmoothPasses 0 = no smoothing)",
             "iterations", limits=(0, 100000, 1)),
@@ -130,6 +134,12 @@ def _make_options(kwargs):
         if value is None:
             continue  # None = keep the default (for size: automatic)
         option = _OPTION_BY_NAME[name]
+        if option.kind == "flag":
+            if not isinstance(value, bool):
+                raise TypeError("VoroHex: option '{}' must be True or False, got {!r}".format(
+                    name, value))
+            setattr(opts, name, value)
+            continue
         value = _number(name, value, integer=option.integer)
         _check_range(option, value)
         setattr(opts, name, value)

@@ -152,6 +152,9 @@ void bind_types(py::module_& m) {
       .def(py::init<>())
       .def_readwrite("size", &O::size, "target edge length, model units; 0 = diagonal / 20")
       .def_readwrite("max_hexes", &O::max_hexes, "refuse up front above this predicted count")
+      .def_readwrite("fallback", &O::fallback,
+                     "where no structured scheme applies: tetrahedra split into hexahedra "
+                     "(reported as a warning); False refuses such solids")
       .def_property(
           "smooth_iterations", [](const O& o) { return o.smoothing.laplacian_iterations; },
           [](O& o, int v) { o.smoothing.laplacian_iterations = v; },

@@ -176,10 +176,33 @@ class MeshCommand(unittest.TestCase):
         path = os.path.join(self.dir, "sphere.step")
         Part.makeSphere(1).exportStep(path)
         out = os.path.join(self.dir, "sphere.vtu")
-        code, stdout, stderr = run("mesh", path, "-o", out)
+        code, stdout, stderr = run("mesh", path, "-o", out, "--no-fallback")
         self.assertEqual(code, 1)
         self.assertIn("not supported yet", stderr)
         self.assertFalse(os.path.exists(out))
+
+    def test_fallback_meshes_what_no_scheme_accepts_and_says_so(self):
+        sys.path.append("/usr/lib/freecad-python3/lib")
+        import FreeCAD  # noqa: F401  (FreeCAD must be imported before Part)
+        import Part
+        path = os.path.join(self.dir, "sphere.step")
+        Part.makeSphere(1).exportStep(path)
+        out = os.path.join(self.dir, "sphere.vtu")
+        rep = os.path.join(self.dir, "sphere.json")
+        code, stdout, stderr = run("mesh", path, "-o", out, "--size", "0.3", "--report", rep,
+                                   "--smooth-iterations", "5", "--smooth-passes", "2")
+        self.assertEqual(code, 0, stdout + stderr)
+        self.assertIn("warning [fallback]", stderr)
+        with open(rep) as f:
+            r = json.load(f)
+        self.assertEqual(r["scheme"], "tet-split")
+        self.assertTrue(r["check"]["valid"])
+        self.assertGreater(r["check"]["scaled_jacobian"]["min"], 0)
+        self.assertEqual(r["smoothing"]["laplacian_iterations"], 5)
+        self.assertIn("fallback", [d["code"] for d in r["diagnostics"]])
+        # The written mesh passes the independent check against the CAD.
+        code, stdout, stderr = run("check", out, "--cad", path)
+        self.assertEqual(code, 0, stdout + stderr)
 
     def test_help_and_version(self):
         code, stdout, _ = run("--help")

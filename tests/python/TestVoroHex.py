@@ -119,13 +119,24 @@ class TestVoroHexApi(unittest.TestCase):
         self.assertEqual(r.stats.scheme, "sweep")
         self.assertTrue(VoroHex.check(r, cyl).valid)
 
-    def test_sphere_is_diagnosed(self):
-        r = VoroHex.mesh(Part.makeSphere(5))
+    def test_sphere_is_diagnosed_without_the_fallback(self):
+        r = VoroHex.mesh(Part.makeSphere(5), fallback=False)
         self.assertFalse(r.ok)
         self.assertTrue(r.errors)
         self.assertIn("not_supported_yet", [d.code for d in r.errors])
         self.assertTrue(r.message)
         self.assertEqual(r.hex_count, 0)
+
+    def test_sphere_is_meshed_by_the_fallback_with_a_warning(self):
+        sphere = Part.makeSphere(5)
+        r = VoroHex.mesh(sphere, size=1.5, smooth_passes=2)
+        self.assertTrue(r.ok, r.message)
+        self.assertEqual(r.stats.scheme, "tet-split")
+        self.assertIn("fallback", [d.code for d in r.diagnostics])
+        self.assertGreater(r.stats.min_scaled_jacobian, 0)
+        self.assertTrue(VoroHex.check(r, sphere).valid)
+        with self.assertRaisesRegex(TypeError, "fallback"):
+            VoroHex.mesh(sphere, fallback="no")
 
     def test_tapered_brick_meshes(self):
         bottom = Part.makePolygon([FreeCAD.Vector(*p) for p in
@@ -387,6 +398,7 @@ class TestVoroHexObject(unittest.TestCase):
         before = obj.FemMesh.VolumeCount
         sphere = self.doc.addObject("Part::Sphere", "Sphere")
         obj.Part = sphere
+        obj.Fallback = False  # the sphere is refused instead of meshed by the fallback
         self.doc.recompute()
         self.assertFalse(obj.isValid())
         self.assertEqual(obj.Status, "error")

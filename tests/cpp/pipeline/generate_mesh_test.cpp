@@ -8,6 +8,7 @@
 #include "fixtures/diagnostics.h"
 #include "fixtures/solids.h"
 #include "occ/primitives.h"
+#include "occ/split_solid.h"
 
 namespace vorohex::pipeline {
 namespace {
@@ -43,10 +44,11 @@ TEST(GenerateMesh, PlanarSolidsAreValidAndGoodBeforeSmoothing) {
   }
 }
 
-TEST(GenerateMesh, SolidsThatNeedSeveralSubVolumesAreRefusedWithTheirDecomposition) {
+TEST(GenerateMesh, WithoutTheFallbackSolidsThatNeedSeveralSubVolumesAreRefused) {
   const occ::Solid cut_cube = testing::make_cut_cube();
   MeshOptions opt;
   opt.size = 0.25;
+  opt.fallback = false;
   const MeshResult r = generate_mesh(cut_cube, opt);
   EXPECT_FALSE(r.ok);
   EXPECT_EQ(r.mesh.num_hexes(), 0u);
@@ -56,6 +58,50 @@ TEST(GenerateMesh, SolidsThatNeedSeveralSubVolumesAreRefusedWithTheirDecompositi
   // The user learns where it would be cut (the cut cube: three blocks around the notch).
   EXPECT_NE(d->message.find("Its decomposition"), std::string::npos) << d->message;
   EXPECT_NE(d->message.find("sub-volumes"), std::string::npos) << d->message;
+}
+
+// Convex polyhedra that are neither blocks nor sweeps go through midpoint subdivision.
+TEST(GenerateMesh, ConvexPolyhedraAreMidpointSubdivided) {
+  const occ::Solid tetrahedron =
+      occ::make_polyhedron({{0, 0, 0}, {2, 0, 0}, {1, 1.7, 0}, {1, 0.6, 1.6}},
+                           {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {2, 0, 3}});
+  MeshOptions opt;
+  opt.size = 0.2;
+  const MeshResult r = generate_mesh(tetrahedron, opt);
+  ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics[0]));
+  EXPECT_EQ(r.stats.scheme, "midpoint");
+  EXPECT_NE(testing::find_diagnostic(r.diagnostics, "midpoint"), nullptr);
+  EXPECT_GE(r.check.scaled_jacobian.min, 0.5);
+  EXPECT_NEAR(r.check.mesh_volume, tetrahedron.volume(), 1e-9 * tetrahedron.volume());
+}
+
+// What no structured scheme accepts (here a cube with a corner notch, and a curved solid)
+// is meshed by the tetrahedral fallback: valid against the CAD, and said so in a warning.
+TEST(GenerateMesh, TheFallbackMeshesWhatNoSchemeAcceptsAndSaysSo) {
+  std::vector<Named> solids;
+  solids.push_back({"cut cube", testing::make_cut_cube()});
+  // A box with a cylinder through one corner: curved and neither block nor sweep.
+  const std::unique_ptr<occ::Solid> box_cyl =
+      occ::fuse_solids(occ::make_box(2, 2, 1), occ::make_cylinder(0.6, 2));
+  ASSERT_NE(box_cyl, nullptr);
+  solids.push_back({"box with cylinder", box_cyl->clone()});
+  for (const Named& s : solids) {
+    SCOPED_TRACE(s.name);
+    MeshOptions opt;
+    opt.size = 0.2;
+    opt.smoothing.optimisation_passes = 2;
+    const MeshResult r = generate_mesh(s.solid, opt);
+    ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics[0]));
+    EXPECT_TRUE(r.check.valid);
+    EXPECT_GT(r.check.scaled_jacobian.min, 0);
+    const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "fallback");
+    ASSERT_NE(d, nullptr);
+    EXPECT_EQ(d->severity, core::Severity::warning);
+    EXPECT_NE(d->message.find("Not a block"), std::string::npos) << d->message;
+    EXPECT_EQ(r.stats.scheme, "tet-split");
+    // Every boundary node lies on the CAD (the check measures it against its entity).
+    EXPECT_LT(r.check.max_boundary_distance_rel, 1e-7);
+  }
 }
 
 }  // namespace

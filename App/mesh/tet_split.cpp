@@ -1,0 +1,237 @@
+#include "mesh/tet_split.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Mesh_complex_3_in_triangulation_3.h>
+#include <CGAL/Mesh_criteria_3.h>
+#include <CGAL/Mesh_triangulation_3.h>
+#include <CGAL/Polyhedral_mesh_domain_with_features_3.h>
+#include <CGAL/Polyhedron_incremental_builder_3.h>
+#include <CGAL/make_mesh_3.h>
+
+#include <algorithm>
+#include <map>
+#include <set>
+#include <sstream>
+#include <tuple>
+
+#include "core/option_checks.h"
+#include "mesh/detail/tet_to_hex.h"
+#include "occ/tessellate.h"
+
+namespace vorohex::mesh {
+
+void TetSplitOptions::validate() const {
+  core::require_positive("TetSplitOptions.size", size);
+  core::require_at_least("TetSplitOptions.max_hexes", static_cast<long long>(max_hexes), 1);
+}
+
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Polyhedron = CGAL::Mesh_polyhedron_3<K>::type;
+using Domain = CGAL::Polyhedral_mesh_domain_with_features_3<K>;
+using Tr = CGAL::Mesh_triangulation_3<Domain, CGAL::Default, CGAL::Sequential_tag>::type;
+using C3t3 = CGAL::Mesh_complex_3_in_triangulation_3<Tr, Domain::Corner_index, Domain::Curve_index>;
+using Criteria = CGAL::Mesh_criteria_3<Tr>;
+using core::NodeClass;
+using core::Vec3;
+
+// The boundary triangulation as one closed polyhedron, each facet's patch id the model
+// face it approximates (nodes shared between faces are merged: tessellate() shares them).
+struct Surface {
+  std::vector<Vec3> points;
+  std::vector<std::array<int, 3>> triangles;
+  std::vector<int> patch;
+};
+
+Surface merge(const occ::Tessellation& t) {
+  Surface s;
+  std::map<std::tuple<double, double, double>, int> index;
+  for (const occ::FaceTriangulation& f : t.faces) {
+    if (!f.face.valid() || f.face.value() == 0) continue;
+    std::vector<int> local(f.nodes.size());
+    for (std::size_t i = 0; i < f.nodes.size(); ++i) {
+      const Vec3& p = f.nodes[i];
+      auto [it, added] =
+          index.emplace(std::make_tuple(p.x(), p.y(), p.z()), static_cast<int>(s.points.size()));
+      if (added) s.points.push_back(p);
+      local[i] = it->second;
+    }
+    for (const auto& tri : f.triangles) {
+      const std::array<int, 3> g{local[tri[0]], local[tri[1]], local[tri[2]]};
+      if (g[0] == g[1] || g[1] == g[2] || g[0] == g[2]) continue;  // collapsed by merging
+      s.triangles.push_back(g);
+      s.patch.push_back(f.face.value());
+    }
+  }
+  return s;
+}
+
+class Builder : public CGAL::Modifier_base<Polyhedron::HalfedgeDS> {
+ public:
+  explicit Builder(const Surface& s) : s_(s) {}
+  void operator()(Polyhedron::HalfedgeDS& hds) override {
+    CGAL::Polyhedron_incremental_builder_3<Polyhedron::HalfedgeDS> b(hds, true);
+    b.begin_surface(s_.points.size(), s_.triangles.size());
+    for (const Vec3& p : s_.points) b.add_vertex(K::Point_3(p.x(), p.y(), p.z()));
+    for (std::size_t i = 0; i < s_.triangles.size(); ++i) {
+      const auto& t = s_.triangles[i];
+      if (!b.test_facet(t.begin(), t.end())) {
+        error = "the boundary triangulation is not a manifold surface";
+        b.rollback();
+        return;
+      }
+      auto h = b.add_facet(t.begin(), t.end());
+      h->facet()->set_patch_id(s_.patch[i]);
+    }
+    b.end_surface();
+    if (b.error()) error = "the boundary triangulation could not be built";
+  }
+  std::string error;
+
+ private:
+  const Surface& s_;
+};
+
+}  // namespace
+
+TetSplitResult tet_split(const occ::Solid& solid, const TetSplitOptions& options,
+                         const core::Progress& progress) {
+  options.validate();
+  TetSplitResult r;
+  auto fail = [&](const std::string& message) {
+    r.diagnostics.push_back(
+        core::make_error("tet_split_failed", "The tetrahedral fallback failed: " + message + "."));
+    return std::move(r);
+  };
+  progress.report("tetrahedra", 0.0);
+  // A split halves the edges; a size coarser than the solid still gets a few tetrahedra
+  // across it (Delaunay refinement needs them to see the volume at all).
+  const double tet_size = std::min(2 * options.size, solid.diagonal() / 6);
+  if (tet_size < 2 * options.size) {
+    std::ostringstream s;
+    s << "The size " << options.size << " is coarse for this solid; the fallback used "
+      << tet_size / 2 << " (a sixth of the diagonal per tetrahedron).";
+    r.diagnostics.push_back(core::make_info("size_reduced", s.str()));
+  }
+  occ::TessellationOptions topt;
+  topt.linear_deflection = std::min(0.05 * tet_size, 0.01 * solid.diagonal());
+  const occ::Tessellation tess = occ::tessellate(solid, topt);
+  if (!tess.ok()) return fail(tess.error);
+  const Surface surface = merge(tess);
+  Polyhedron poly;
+  Builder builder(surface);
+  poly.delegate(builder);
+  if (!builder.error.empty()) return fail(builder.error);
+  if (!poly.is_closed()) return fail("the boundary triangulation is not closed");
+
+  // Every model edge is a feature the tetrahedra keep (their polylines share the nodes).
+  std::vector<std::vector<K::Point_3>> polylines;
+  for (std::size_t e = 1; e < tess.edge_polylines.size(); ++e) {
+    const auto& pl = tess.edge_polylines[e];
+    if (pl.size() < 2) continue;
+    std::vector<K::Point_3> line;
+    for (const Vec3& p : pl) line.emplace_back(p.x(), p.y(), p.z());
+    polylines.push_back(std::move(line));
+  }
+  Domain domain(poly);
+  domain.add_features(polylines.begin(), polylines.end());
+  namespace params = CGAL::parameters;
+  Criteria criteria(params::edge_size = tet_size, params::facet_angle = 25,
+                    params::facet_size = tet_size, params::facet_distance = 0.1 * tet_size,
+                    params::cell_radius_edge_ratio = 2.5, params::cell_size = tet_size);
+  C3t3 c3t3;
+  try {
+    c3t3 = CGAL::make_mesh_3<C3t3>(domain, criteria, params::no_perturb(), params::exude());
+  } catch (const std::exception& ex) {
+    return fail(std::string("CGAL could not mesh the volume: ") + ex.what());
+  }
+  progress.report("tetrahedra", 0.6);
+  if (progress.cancelled()) {
+    r.diagnostics.push_back(core::make_error("cancelled", "Meshing was cancelled."));
+    return r;
+  }
+  r.tetrahedra = c3t3.number_of_cells_in_complex();
+  if (r.tetrahedra == 0) return fail("no tetrahedron was generated");
+  if (4 * r.tetrahedra > options.max_hexes) {
+    std::ostringstream s;
+    s << "the split would give " << 4 * r.tetrahedra
+      << " hexahedra, more than max_hexes = " << options.max_hexes;
+    r.diagnostics.push_back(core::make_error("too_many_hexes", s.str()));
+    return r;
+  }
+
+  // Tetrahedron nodes with the dimension of the complex entity they lie on.
+  std::map<Tr::Vertex_handle, int> index;
+  std::vector<int> dimension;
+  std::vector<std::array<int, 4>> tets;
+  auto node = [&](Tr::Vertex_handle v) {
+    auto [it, added] = index.emplace(v, static_cast<int>(r.mesh.num_nodes()));
+    if (added) {
+      const auto& p = v->point().point();
+      r.mesh.add_node(Vec3(p.x(), p.y(), p.z()));
+      dimension.push_back(c3t3.in_dimension(v));
+    }
+    return it->second;
+  };
+  for (auto c = c3t3.cells_in_complex_begin(); c != c3t3.cells_in_complex_end(); ++c)
+    tets.push_back(
+        {node(c->vertex(0)), node(c->vertex(1)), node(c->vertex(2)), node(c->vertex(3))});
+  std::set<std::array<int, 2>> feature_edges;
+  for (auto e = c3t3.edges_in_complex_begin(); e != c3t3.edges_in_complex_end(); ++e) {
+    const auto a = index.find(e->first->vertex(e->second));
+    const auto b = index.find(e->first->vertex(e->third));
+    if (a == index.end() || b == index.end()) continue;
+    feature_edges.insert({std::min(a->second, b->second), std::max(a->second, b->second)});
+  }
+  const detail::TetSplitNodes split = detail::split_tetrahedra(r.mesh, tets);
+  progress.report("tetrahedra", 0.8);
+
+  // Boundary nodes: those of quadrilaterals that belong to one hexahedron only.
+  std::map<std::array<int, 4>, int> quads;
+  for (const core::HexNodes& h : r.mesh.hexes())
+    for (const auto& f : core::kHexFaces) {
+      std::array<int, 4> k{h[f[0]], h[f[1]], h[f[2]], h[f[3]]};
+      std::sort(k.begin(), k.end());
+      ++quads[k];
+    }
+  std::vector<char> boundary(r.mesh.num_nodes(), 0);
+  for (const auto& [k, n] : quads)
+    if (n == 1)
+      for (int v : k) boundary[v] = 1;
+
+  // Onto the CAD: corners to the nearest model vertex, feature nodes to the nearest model
+  // edge, other boundary nodes to the nearest model face.
+  for (std::size_t i = 0; i < r.mesh.num_nodes(); ++i) {
+    if (!boundary[i]) continue;
+    const core::NodeId id(static_cast<std::int32_t>(i));
+    const Vec3 p = r.mesh.point(id);
+    int dim = 2;
+    if (i < split.first_new) {
+      dim = std::min(dimension[i], 2);
+    } else {
+      const auto& of = split.midpoint_of[i - split.first_new];
+      if (of[0] >= 0 && feature_edges.count(of)) dim = 1;
+    }
+    if (dim == 0) {
+      core::VertexId best(1);
+      for (core::VertexId v : solid.vertices())
+        if (solid.distance_to_vertex(v, p) < solid.distance_to_vertex(best, p)) best = v;
+      r.mesh.set_point(id, solid.vertex_point(best));
+      r.mesh.set_node_class(id, NodeClass::on(best));
+    } else if (dim == 1) {
+      const core::EdgeId e = solid.nearest_edge(p);
+      r.mesh.set_point(id, solid.project_to_edge(e, p));
+      r.mesh.set_node_class(id, NodeClass::on(e));
+    } else {
+      const core::FaceId f = solid.nearest_face(p);
+      r.mesh.set_point(id, solid.project_to_face(f, p));
+      r.mesh.set_node_class(id, NodeClass::on(f));
+    }
+  }
+  r.ok = true;
+  progress.report("tetrahedra", 1.0);
+  return r;
+}
+
+}  // namespace vorohex::mesh
