@@ -138,11 +138,11 @@ TetSplitResult tet_split(const occ::Solid& solid, const TetSplitOptions& options
   domain.add_features(polylines.begin(), polylines.end());
   namespace params = CGAL::parameters;
   Criteria criteria(params::edge_size = tet_size, params::facet_angle = 25,
-                    params::facet_size = tet_size, params::facet_distance = 0.1 * tet_size,
+                    params::facet_size = tet_size, params::facet_distance = 0.03 * tet_size,
                     params::cell_radius_edge_ratio = 2.5, params::cell_size = tet_size);
   C3t3 c3t3;
   try {
-    c3t3 = CGAL::make_mesh_3<C3t3>(domain, criteria, params::no_perturb(), params::exude());
+    c3t3 = CGAL::make_mesh_3<C3t3>(domain, criteria, params::perturb(), params::exude());
   } catch (const std::exception& ex) {
     return fail(std::string("CGAL could not mesh the volume: ") + ex.what());
   }
@@ -184,6 +184,29 @@ TetSplitResult tet_split(const occ::Solid& solid, const TetSplitOptions& options
     if (a == index.end() || b == index.end()) continue;
     feature_edges.insert({std::min(a->second, b->second), std::max(a->second, b->second)});
   }
+  // The model face of every boundary triangle (its surface patch), and through them of
+  // boundary tetrahedron edges and nodes.
+  std::map<std::array<int, 3>, int> facet_face;
+  std::map<std::array<int, 2>, int> edge_face;
+  std::vector<int> node_face(r.mesh.num_nodes(), 0);
+  for (auto f = c3t3.facets_in_complex_begin(); f != c3t3.facets_in_complex_end(); ++f) {
+    std::array<int, 3> k;
+    bool known = true;
+    for (int j = 0; j < 3; ++j) {
+      const auto it = index.find(f->first->vertex((f->second + 1 + j) % 4));
+      if (it == index.end())
+        known = false;
+      else
+        k[j] = it->second;
+    }
+    if (!known) continue;
+    std::sort(k.begin(), k.end());
+    const int face = static_cast<int>(c3t3.surface_patch_index(*f));
+    if (face < 1 || face > solid.num_faces()) continue;
+    facet_face[k] = face;
+    edge_face[{k[0], k[1]}] = edge_face[{k[1], k[2]}] = edge_face[{k[0], k[2]}] = face;
+    for (int j = 0; j < 3; ++j) node_face[k[j]] = face;
+  }
   const detail::TetSplitNodes split = detail::split_tetrahedra(r.mesh, tets);
   progress.report("tetrahedra", 0.8);
 
@@ -201,17 +224,26 @@ TetSplitResult tet_split(const occ::Solid& solid, const TetSplitOptions& options
       for (int v : k) boundary[v] = 1;
 
   // Onto the CAD: corners to the nearest model vertex, feature nodes to the nearest model
-  // edge, other boundary nodes to the nearest model face.
+  // edge, other boundary nodes to the model face of their boundary triangle (the nearest
+  // face where that is unknown).
   for (std::size_t i = 0; i < r.mesh.num_nodes(); ++i) {
     if (!boundary[i]) continue;
     const core::NodeId id(static_cast<std::int32_t>(i));
     const Vec3 p = r.mesh.point(id);
-    int dim = 2;
+    int dim = 2, face = 0;
     if (i < split.first_new) {
       dim = std::min(dimension[i], 2);
+      face = node_face[i];
     } else {
-      const auto& of = split.midpoint_of[i - split.first_new];
-      if (of[0] >= 0 && feature_edges.count(of)) dim = 1;
+      const auto& o = split.origin[i - split.first_new];
+      if (o[2] >= 0) {
+        const auto it = facet_face.find(o);
+        if (it != facet_face.end()) face = it->second;
+      } else if (o[0] >= 0) {
+        if (feature_edges.count({o[0], o[1]})) dim = 1;
+        const auto it = edge_face.find({o[0], o[1]});
+        if (it != edge_face.end()) face = it->second;
+      }
     }
     if (dim == 0) {
       core::VertexId best(1);
@@ -224,7 +256,7 @@ TetSplitResult tet_split(const occ::Solid& solid, const TetSplitOptions& options
       r.mesh.set_point(id, solid.project_to_edge(e, p));
       r.mesh.set_node_class(id, NodeClass::on(e));
     } else {
-      const core::FaceId f = solid.nearest_face(p);
+      const core::FaceId f = face > 0 ? core::FaceId(face) : solid.nearest_face(p);
       r.mesh.set_point(id, solid.project_to_face(f, p));
       r.mesh.set_node_class(id, NodeClass::on(f));
     }

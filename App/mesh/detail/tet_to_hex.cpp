@@ -26,25 +26,25 @@ TetSplitNodes split_tetrahedra(core::HexMesh& m, const std::vector<std::array<in
   std::map<std::array<int, 2>, int> mids;
   std::map<std::array<int, 3>, int> centroids;
   auto pt = [&](int n) { return m.point(NodeId(n)); };
-  auto add = [&](const Vec3& p, std::array<int, 2> origin) {
-    out.midpoint_of.push_back(origin);
+  auto add = [&](const Vec3& p, std::array<int, 3> origin) {
+    out.origin.push_back(origin);
     return static_cast<int>(m.add_node(p).value());
   };
   auto mid = [&](int x, int y) {
     const std::array<int, 2> k{std::min(x, y), std::max(x, y)};
     auto it = mids.find(k);
     if (it != mids.end()) return it->second;
-    return mids[k] = add((pt(x) + pt(y)) / 2, k);
+    return mids[k] = add((pt(x) + pt(y)) / 2, {k[0], k[1], -1});
   };
   auto centroid = [&](int x, int y, int z) {
     std::array<int, 3> k{x, y, z};
     std::sort(k.begin(), k.end());
     auto it = centroids.find(k);
     if (it != centroids.end()) return it->second;
-    return centroids[k] = add((pt(x) + pt(y) + pt(z)) / 3, {-1, -1});
+    return centroids[k] = add((pt(x) + pt(y) + pt(z)) / 3, k);
   };
   for (const std::array<int, 4>& t : tets) {
-    const int tc = add((pt(t[0]) + pt(t[1]) + pt(t[2]) + pt(t[3])) / 4, {-1, -1});
+    const int tc = add((pt(t[0]) + pt(t[1]) + pt(t[2]) + pt(t[3])) / 4, {-1, -1, -1});
     for (int i = 0; i < 4; ++i) {
       const int c = t[i], j = t[(i + 1) % 4], k = t[(i + 2) % 4], l = t[(i + 3) % 4];
       add_hex_positive_at_corner0(m, {c, mid(c, j), centroid(c, j, k), mid(c, k), mid(c, l),

@@ -12,10 +12,11 @@
 namespace vorohex::mesh::detail {
 
 struct TetSplitNodes {
-  // For every node the split created (index - first_new): the tetrahedron edge it is the
-  // midpoint of, or {-1, -1} for face and cell centroids.
+  // For every node the split created (index - first_new): the sorted nodes of the
+  // tetrahedron edge {a, b, -1} or face {a, b, c} it is the midpoint or centroid of;
+  // {-1, -1, -1} for a tetrahedron's centroid.
   std::size_t first_new = 0;
-  std::vector<std::array<int, 2>> midpoint_of;
+  std::vector<std::array<int, 3>> origin;
 };
 
 // tets: node indices into mesh (any orientation). New nodes are interior; the caller
