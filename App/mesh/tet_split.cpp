@@ -93,6 +93,152 @@ class Builder : public CGAL::Modifier_base<Polyhedron::HalfedgeDS> {
   const Surface& s_;
 };
 
+using FacetFaces = std::map<std::array<int, 3>, int>;
+using EdgeFaces = std::map<std::array<int, 2>, int>;
+using EdgeSet = std::set<std::array<int, 2>>;
+
+std::array<int, 3> facet_of(const std::array<int, 4>& t, int skip) {
+  std::array<int, 3> k;
+  for (int j = 0, n = 0; j < 4; ++j)
+    if (j != skip) k[n++] = t[j];
+  std::sort(k.begin(), k.end());
+  return k;
+}
+
+// Leaves out tetrahedra with two or three faces on one model face and no feature edge
+// between those faces: they lie flat on a curved face (the boundary triangles there are
+// coarse next to its curvature) and moving their nodes onto the face would flatten and
+// invert them. Their other faces become boundary faces of the same model face.
+std::size_t remove_caps(std::vector<std::array<int, 4>>& tets, const EdgeSet& features,
+                        FacetFaces& facet_face, EdgeFaces& edge_face) {
+  std::map<std::array<int, 3>, int> count;
+  for (const auto& t : tets)
+    for (int j = 0; j < 4; ++j) ++count[facet_of(t, j)];
+  std::vector<std::array<int, 4>> kept;
+  std::size_t removed = 0;
+  for (const auto& t : tets) {
+    int on_boundary = 0, face = 0;
+    bool same_face = true;
+    for (int j = 0; j < 4; ++j) {
+      const std::array<int, 3> k = facet_of(t, j);
+      if (count[k] != 1) continue;
+      ++on_boundary;
+      const auto it = facet_face.find(k);
+      const int f = it == facet_face.end() ? 0 : it->second;
+      if (f == 0 || (face != 0 && f != face)) same_face = false;
+      face = f;
+    }
+    bool crosses_feature = false;
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j)
+        crosses_feature |= features.count({std::min(t[i], t[j]), std::max(t[i], t[j])}) > 0;
+    if (on_boundary < 2 || on_boundary > 3 || !same_face || crosses_feature) {
+      kept.push_back(t);
+      continue;
+    }
+    ++removed;
+    for (int j = 0; j < 4; ++j) {
+      const std::array<int, 3> k = facet_of(t, j);
+      if (count[k] == 1) continue;
+      facet_face[k] = face;  // exposed: now on the model face
+      edge_face[{k[0], k[1]}] = edge_face[{k[1], k[2]}] = edge_face[{k[0], k[2]}] = face;
+      --count[k];
+    }
+  }
+  tets.swap(kept);
+  return removed;
+}
+
+// Moves boundary nodes onto the CAD and places the others as on quadratic (P2)
+// tetrahedra whose edge midpoints are the moved ones: corners to the nearest model
+// vertex, feature nodes to the nearest model edge, other boundary nodes onto the model
+// face of their boundary triangle; face and cell centroids follow the curved edges (a
+// face centroid is -1/9 of its corners plus 4/9 of its edge midpoints, a cell centroid
+// -1/8 and 1/4), so interior nodes keep their place relative to a curved boundary.
+void place_on_cad(core::HexMesh& m, const occ::Solid& solid,
+                  const std::vector<std::array<int, 4>>& tets, const detail::TetSplitNodes& split,
+                  const std::vector<int>& dimension, const std::vector<int>& node_face,
+                  const EdgeSet& features, const FacetFaces& facet_face,
+                  const EdgeFaces& edge_face) {
+  std::map<std::array<int, 4>, int> quads;
+  for (const core::HexNodes& h : m.hexes())
+    for (const auto& f : core::kHexFaces) {
+      std::array<int, 4> k{h[f[0]], h[f[1]], h[f[2]], h[f[3]]};
+      std::sort(k.begin(), k.end());
+      ++quads[k];
+    }
+  std::vector<char> boundary(m.num_nodes(), 0);
+  for (const auto& [k, n] : quads)
+    if (n == 1)
+      for (int v : k) boundary[v] = 1;
+
+  std::map<std::array<int, 2>, int> midpoint;
+  std::vector<int> tet_centroid;
+  for (std::size_t i = 0; i < split.origin.size(); ++i) {
+    const auto& o = split.origin[i];
+    const int node = static_cast<int>(split.first_new + i);
+    if (o[0] < 0)
+      tet_centroid.push_back(node);
+    else if (o[2] < 0)
+      midpoint[{o[0], o[1]}] = node;
+  }
+  auto pt = [&](int n) { return m.point(core::NodeId(n)); };
+  auto mid = [&](int a, int b) { return pt(midpoint.at({std::min(a, b), std::max(a, b)})); };
+  auto put = [&](int i, const Vec3& p, int dim, int face) {
+    const core::NodeId id(i);
+    if (dim == 0) {
+      core::VertexId best(1);
+      for (core::VertexId v : solid.vertices())
+        if (solid.distance_to_vertex(v, p) < solid.distance_to_vertex(best, p)) best = v;
+      m.set_point(id, solid.vertex_point(best));
+      m.set_node_class(id, NodeClass::on(best));
+    } else if (dim == 1) {
+      const core::EdgeId e = solid.nearest_edge(p);
+      m.set_point(id, solid.project_to_edge(e, p));
+      m.set_node_class(id, NodeClass::on(e));
+    } else {
+      const core::FaceId f = face > 0 ? core::FaceId(face) : solid.nearest_face(p);
+      m.set_point(id, solid.project_to_face(f, p));
+      m.set_node_class(id, NodeClass::on(f));
+    }
+  };
+  // Corners and edge midpoints first: the centroids are placed from them.
+  for (std::size_t i = 0; i < m.num_nodes(); ++i) {
+    if (!boundary[i]) continue;
+    if (i < split.first_new) {
+      put(static_cast<int>(i), pt(static_cast<int>(i)), std::min(dimension[i], 2), node_face[i]);
+      continue;
+    }
+    const auto& o = split.origin[i - split.first_new];
+    if (o[0] < 0 || o[2] >= 0) continue;
+    const auto it = edge_face.find({o[0], o[1]});
+    put(static_cast<int>(i), pt(static_cast<int>(i)), features.count({o[0], o[1]}) ? 1 : 2,
+        it == edge_face.end() ? 0 : it->second);
+  }
+  for (std::size_t i = 0; i < split.origin.size(); ++i) {
+    const auto& o = split.origin[i];
+    if (o[2] < 0) continue;
+    const int node = static_cast<int>(split.first_new + i);
+    const Vec3 p = -(pt(o[0]) + pt(o[1]) + pt(o[2])) / 9.0 +
+                   4.0 / 9.0 * (mid(o[0], o[1]) + mid(o[1], o[2]) + mid(o[0], o[2]));
+    if (!boundary[node]) {
+      m.set_point(core::NodeId(node), p);
+      continue;
+    }
+    const auto it = facet_face.find(o);
+    put(node, p, 2, it == facet_face.end() ? 0 : it->second);
+  }
+  for (std::size_t t = 0; t < tets.size(); ++t) {
+    const auto& v = tets[t];
+    Vec3 corners = Vec3::Zero(), mids = Vec3::Zero();
+    for (int i = 0; i < 4; ++i) {
+      corners += pt(v[i]);
+      for (int j = i + 1; j < 4; ++j) mids += mid(v[i], v[j]);
+    }
+    m.set_point(core::NodeId(tet_centroid[t]), -corners / 8.0 + mids / 4.0);
+  }
+}
+
 }  // namespace
 
 TetSplitResult tet_split(const occ::Solid& solid, const TetSplitOptions& options,
@@ -207,60 +353,18 @@ TetSplitResult tet_split(const occ::Solid& solid, const TetSplitOptions& options
     edge_face[{k[0], k[1]}] = edge_face[{k[1], k[2]}] = edge_face[{k[0], k[2]}] = face;
     for (int j = 0; j < 3; ++j) node_face[k[j]] = face;
   }
+  const std::size_t caps = remove_caps(tets, feature_edges, facet_face, edge_face);
+  if (caps > 0)
+    r.diagnostics.push_back(core::make_info(
+        "caps_removed", std::to_string(caps) +
+                            " tetrahedra lying flat on a curved face (two or three of their "
+                            "faces on it) were left out; the face is followed by their "
+                            "neighbours."));
+  r.tetrahedra = tets.size();
   const detail::TetSplitNodes split = detail::split_tetrahedra(r.mesh, tets);
   progress.report("tetrahedra", 0.8);
-
-  // Boundary nodes: those of quadrilaterals that belong to one hexahedron only.
-  std::map<std::array<int, 4>, int> quads;
-  for (const core::HexNodes& h : r.mesh.hexes())
-    for (const auto& f : core::kHexFaces) {
-      std::array<int, 4> k{h[f[0]], h[f[1]], h[f[2]], h[f[3]]};
-      std::sort(k.begin(), k.end());
-      ++quads[k];
-    }
-  std::vector<char> boundary(r.mesh.num_nodes(), 0);
-  for (const auto& [k, n] : quads)
-    if (n == 1)
-      for (int v : k) boundary[v] = 1;
-
-  // Onto the CAD: corners to the nearest model vertex, feature nodes to the nearest model
-  // edge, other boundary nodes to the model face of their boundary triangle (the nearest
-  // face where that is unknown).
-  for (std::size_t i = 0; i < r.mesh.num_nodes(); ++i) {
-    if (!boundary[i]) continue;
-    const core::NodeId id(static_cast<std::int32_t>(i));
-    const Vec3 p = r.mesh.point(id);
-    int dim = 2, face = 0;
-    if (i < split.first_new) {
-      dim = std::min(dimension[i], 2);
-      face = node_face[i];
-    } else {
-      const auto& o = split.origin[i - split.first_new];
-      if (o[2] >= 0) {
-        const auto it = facet_face.find(o);
-        if (it != facet_face.end()) face = it->second;
-      } else if (o[0] >= 0) {
-        if (feature_edges.count({o[0], o[1]})) dim = 1;
-        const auto it = edge_face.find({o[0], o[1]});
-        if (it != edge_face.end()) face = it->second;
-      }
-    }
-    if (dim == 0) {
-      core::VertexId best(1);
-      for (core::VertexId v : solid.vertices())
-        if (solid.distance_to_vertex(v, p) < solid.distance_to_vertex(best, p)) best = v;
-      r.mesh.set_point(id, solid.vertex_point(best));
-      r.mesh.set_node_class(id, NodeClass::on(best));
-    } else if (dim == 1) {
-      const core::EdgeId e = solid.nearest_edge(p);
-      r.mesh.set_point(id, solid.project_to_edge(e, p));
-      r.mesh.set_node_class(id, NodeClass::on(e));
-    } else {
-      const core::FaceId f = face > 0 ? core::FaceId(face) : solid.nearest_face(p);
-      r.mesh.set_point(id, solid.project_to_face(f, p));
-      r.mesh.set_node_class(id, NodeClass::on(f));
-    }
-  }
+  place_on_cad(r.mesh, solid, tets, split, dimension, node_face, feature_edges, facet_face,
+               edge_face);
   r.ok = true;
   progress.report("tetrahedra", 1.0);
   return r;
