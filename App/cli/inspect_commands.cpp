@@ -32,12 +32,13 @@ const char* const kVoronoiUsage =
     "exit: 0 graph written, 1 graph could not be computed, 2 bad input\n";
 
 const char* const kDecomposeUsage =
-    "usage: vorohex decompose IN -o PARTS.brep [--report DECOMPOSITION.json]\n"
+    "usage: vorohex decompose IN -o PARTS.brep [--report DECOMPOSITION.json] [--vtp FACES.vtp]\n"
     "                         [--sharp-angle DEG] [--no-merge] [graph options]\n"
     "  IN    a solid as STEP, BREP or IGES\n"
     "  -o    the sub-volumes as solids in one BREP compound (open it in FreeCAD)\n"
     "  --report FILE          edge types, vertex rules, decomposition faces, sub-volumes\n"
     "                         with type (Vs/Ve), scheme and reason, counts before/after merging\n"
+    "  --vtp FILE             the decomposition faces as VTK PolyData for ParaView\n"
     "  --sharp-angle DEG      dihedral angle below which a [1] edge becomes [1s] (60)\n"
     "  --no-merge             keep the sub-volumes of the first split\n" VOROHEX_GRAPH_OPTIONS_HELP
     "exit: 0 written, 1 decomposition failed, 2 bad input\n";
@@ -157,7 +158,7 @@ int run_voronoi(const std::vector<std::string>& args) {
 }
 
 int run_decompose(const std::vector<std::string>& args) {
-  std::string input, brep_path, json_path;
+  std::string input, brep_path, json_path, vtp_path;
   voronoi::VoronoiOptions graph_options;
   decompose::DecomposeOptions options;
   OptionTable t;
@@ -165,6 +166,7 @@ int run_decompose(const std::vector<std::string>& args) {
   t.values["-o"] =
       t.values["--output"] = [&](const std::string& s) { return !(brep_path = s).empty(); };
   t.values["--report"] = [&](const std::string& s) { return !(json_path = s).empty(); };
+  t.values["--vtp"] = [&](const std::string& s) { return !(vtp_path = s).empty(); };
   t.values["--sharp-angle"] = [&](const std::string& s) {
     return parse_number(s, &options.sharp_angle);
   };
@@ -182,7 +184,7 @@ int run_decompose(const std::vector<std::string>& args) {
   print_problems(result.diagnostics);
   if (!result.ok()) return kExitInvalid;
   std::string error;
-  if (!decompose::write_decomposition(result, brep_path, json_path, &error)) {
+  if (!decompose::write_decomposition(result, brep_path, json_path, &error, vtp_path)) {
     std::cerr << "vorohex: " << error << "\n";
     return kExitBadInput;
   }
@@ -193,7 +195,8 @@ int run_decompose(const std::vector<std::string>& args) {
     const auto& sv = result.sub_volumes[i];
     std::cout << "  sub-volume " << i << ": " << sv.reason << "\n";
   }
-  std::cout << "wrote " << brep_path << (json_path.empty() ? "" : " and " + json_path) << "\n";
+  std::cout << "wrote " << brep_path << (json_path.empty() ? "" : ", " + json_path)
+            << (vtp_path.empty() ? "" : ", " + vtp_path) << "\n";
   return kExitOk;
 }
 

@@ -3,6 +3,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <set>
+#include <sstream>
 
 #include "occ/split_solid.h"
 
@@ -92,8 +93,53 @@ std::string decomposition_json(const DecompositionResult& r) {
   return j.dump(2);
 }
 
+std::string decomposition_vtp(const DecompositionResult& r) {
+  std::ostringstream pts, conn, offs, face, side_a, side_b, element, kind;
+  pts.precision(12);
+  int np = 0, cells = 0;
+  for (std::size_t f = 0; f < r.faces.size(); ++f)
+    for (int q : r.faces[f].quads) {
+      if (q < 0 || q >= static_cast<int>(r.quads.size())) continue;
+      const DecompositionQuad& quad = r.quads[q];
+      if (quad.points.size() < 3) continue;
+      for (const Vec3& p : quad.points) {
+        pts << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
+        conn << np++ << ' ';
+      }
+      offs << np << ' ';
+      face << f << ' ';
+      side_a << r.faces[f].sub_volumes[0] << ' ';
+      side_b << r.faces[f].sub_volumes[1] << ' ';
+      element << quad.element << ' ';
+      kind << (quad.kind == "rectangle" ? 1 : 0) << ' ';
+      ++cells;
+    }
+  auto array = [](const char* name, const std::ostringstream& values) {
+    return std::string("<DataArray type=\"Int32\" Name=\"") + name + "\" format=\"ascii\">" +
+           values.str() + "</DataArray>\n";
+  };
+  std::ostringstream out;
+  out << "<?xml version=\"1.0\"?>\n"
+      << "<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+      << "<PolyData>\n"
+      << "<Piece NumberOfPoints=\"" << np << "\" NumberOfVerts=\"0\" NumberOfLines=\"0\" "
+      << "NumberOfStrips=\"0\" NumberOfPolys=\"" << cells << "\">\n"
+      << "<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n"
+      << pts.str() << "</DataArray></Points>\n"
+      << "<Polys>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">" << conn.str()
+      << "</DataArray>\n"
+      << "<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">" << offs.str()
+      << "</DataArray>\n</Polys>\n"
+      << "<CellData Scalars=\"face\">\n"
+      << array("face", face) << array("sub_volume_a", side_a) << array("sub_volume_b", side_b)
+      << array("voronoi_element", element) << array("rectangle", kind)
+      << "</CellData>\n</Piece>\n</PolyData>\n</VTKFile>\n";
+  return out.str();
+}
+
 bool write_decomposition(const DecompositionResult& r, const std::string& brep_path,
-                         const std::string& json_path, std::string* error) {
+                         const std::string& json_path, std::string* error,
+                         const std::string& vtp_path) {
   if (!brep_path.empty()) {
     std::vector<const occ::Solid*> solids;
     for (const SubVolume& sv : r.sub_volumes) solids.push_back(sv.solid.get());
@@ -104,6 +150,14 @@ bool write_decomposition(const DecompositionResult& r, const std::string& brep_p
     out << decomposition_json(r) << "\n";
     if (!out) {
       if (error) *error = "cannot write " + json_path;
+      return false;
+    }
+  }
+  if (!vtp_path.empty()) {
+    std::ofstream out(vtp_path);
+    out << decomposition_vtp(r);
+    if (!out) {
+      if (error) *error = "cannot write " + vtp_path;
       return false;
     }
   }

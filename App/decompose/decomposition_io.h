@@ -25,9 +25,17 @@ namespace vorohex::decompose {
 // The report as JSON text (indented).
 std::string decomposition_json(const DecompositionResult& result);
 
-// Writes the sub-volumes compound (`brep_path`, skipped if empty) and the JSON report
-// (`json_path`, skipped if empty). False with `error` when a file cannot be written.
+// The decomposition faces as VTK XML PolyData (ASCII): one polygon per quad of each final
+// decomposition face, with cell data `face` (index in result.faces), `sub_volume_a` and
+// `sub_volume_b` (the sub-volumes on either side, -1 for none), `voronoi_element` (the
+// generating Voronoi edge or vertex) and `rectangle` (1 for a vertex's closing rectangle).
+std::string decomposition_vtp(const DecompositionResult& result);
+
+// Writes the sub-volumes compound (`brep_path`), the JSON report (`json_path`) and the
+// decomposition faces as VTP (`vtp_path`); each is skipped if its path is empty. False
+// with `error` when a file cannot be written.
 bool write_decomposition(const DecompositionResult& result, const std::string& brep_path,
-                         const std::string& json_path, std::string* error);
+                         const std::string& json_path, std::string* error,
+                         const std::string& vtp_path = "");
 
 }  // namespace vorohex::decompose

@@ -284,7 +284,7 @@ TetSplitResult tet_split(const occ::Solid& solid, const TetSplitOptions& options
   domain.add_features(polylines.begin(), polylines.end());
   namespace params = CGAL::parameters;
   Criteria criteria(params::edge_size = tet_size, params::facet_angle = 25,
-                    params::facet_size = tet_size, params::facet_distance = 0.03 * tet_size,
+                    params::facet_size = tet_size, params::facet_distance = 0.1 * tet_size,
                     params::cell_radius_edge_ratio = 2.5, params::cell_size = tet_size);
   C3t3 c3t3;
   try {

@@ -27,7 +27,8 @@ except ImportError:  # pragma: no cover - numpy is installed with FreeCAD on Deb
     _np = None
 
 __all__ = ["mesh", "check", "voronoi_graph", "MeshResult", "MeshStats", "VoronoiGraph",
-           "CancelToken", "OPTIONS", "ShapeError", "from_femmesh", "SMESH_FROM_VTK"]
+           "CancelToken", "OPTIONS", "ShapeError", "from_femmesh", "SMESH_FROM_VTK",
+           "decompose", "Decomposition"]
 
 MOD_DIR = os.path.dirname(os.path.abspath(__file__))
 CancelToken = _core.CancelToken
@@ -489,3 +490,60 @@ def voronoi_graph(shape, eps=None, delta=None, max_depth=None, linear_tolerance=
     opts = _voronoi_options(eps, delta, max_depth, linear_tolerance)
     solid = _read_solid(check_shape(shape))
     return VoronoiGraph(json.loads(_core.voronoi_graph_json(solid, opts)))
+
+
+class Decomposition:
+    """The decomposition of a solid into sub-volumes (what VoroHex.decompose returns).
+
+    status: "ok", "partial" or "failed"; counts: {"sub_volumes_before_merge",
+    "sub_volumes", "decomposition_faces", "quads", ...}; sub_volumes: list of dicts with
+    "id", "type" ("Vs"/"Ve"), "scheme" ("sweep"/"map"/"none"), "reason", "volume",
+    "merged_from", "source"/"target" (sweeps); faces: the decomposition faces ("id",
+    "sub_volumes", "edges", "area", "voronoi_elements", "governors"); diagnostics: list of
+    dicts; shapes: the sub-volumes as Part.Solid, in the order of sub_volumes (empty when
+    the decomposition failed).
+    """
+
+    def __init__(self, data, shapes):
+        self.data = data
+        self.status = data.get("status", "failed")
+        self.counts = data.get("counts", {})
+        self.sub_volumes = data.get("sub_volumes", [])
+        self.faces = data.get("decomposition_faces", [])
+        self.diagnostics = data.get("diagnostics", [])
+        self.shapes = shapes
+
+    ok = property(lambda self: self.status != "failed",
+                  doc="False when the solid could not be cut (see diagnostics)")
+
+    def as_dict(self):
+        return self.data
+
+    def __repr__(self):
+        return "<VoroHex.Decomposition {} {}>".format(self.status, self.counts)
+
+
+def decompose(shape, sharp_angle=None, merge=True, vtp=None, eps=None, delta=None,
+              max_depth=None, linear_tolerance=None):
+    """Cuts the one solid in `shape` into sweepable and mappable sub-volumes along its
+    embedded Voronoi graph (vorohex decompose). sharp_angle: degrees in (0, 180] below
+    which a dihedral counts as sharp (default 60); merge: unite neighbours whose union is
+    a sweep; vtp: a path to write the decomposition faces to (VTK PolyData); the graph
+    options are those of voronoi_graph. Returns a Decomposition."""
+    import tempfile
+    if not isinstance(merge, bool):
+        raise TypeError("VoroHex: option 'merge' must be True or False, got {!r}".format(merge))
+    angle = 60.0 if sharp_angle is None else _number("sharp_angle", sharp_angle)
+    if not 0 < angle <= 180:
+        raise ValueError("VoroHex: option 'sharp_angle' must be in (0, 180], got {}".format(
+            angle))
+    opts = _voronoi_options(eps, delta, max_depth, linear_tolerance)
+    solid = _read_solid(check_shape(shape))
+    with tempfile.TemporaryDirectory(prefix="vorohex-") as tmp:
+        brep = os.path.join(tmp, "parts.brep")
+        text = _core.decomposition_json(solid, opts, angle, merge, brep, vtp or "")
+        shapes = []
+        if os.path.exists(brep):
+            import Part
+            shapes = list(Part.read(brep).Solids)
+    return Decomposition(json.loads(text), shapes)

@@ -15,6 +15,7 @@
 #include "core/diagnostic.h"
 #include "core/hex_mesh.h"
 #include "core/progress.h"
+#include "decompose/decomposition_io.h"
 #include "io/mesh_io.h"
 #include "occ/shape_io.h"
 #include "pipeline/generate_mesh.h"
@@ -314,6 +315,26 @@ std::string voronoi_json(SolidPtr solid, const voronoi::VoronoiOptions& options)
   return voronoi::voronoi_graph_json(voronoi::compute_voronoi_graph(*solid, options));
 }
 
+// The decomposition as JSON text (decomposition_io.h layout), writing the sub-volumes as a
+// BREP compound and the decomposition faces as VTP where paths are given.
+std::string decomposition_json(SolidPtr solid, const voronoi::VoronoiOptions& graph_options,
+                               double sharp_angle, bool merge, const std::string& brep_path,
+                               const std::string& vtp_path) {
+  if (!solid) throw std::invalid_argument("no solid given");
+  if (std::string why = graph_options.validate(); !why.empty()) throw std::invalid_argument(why);
+  decompose::DecomposeOptions options;
+  options.sharp_angle = sharp_angle;
+  options.merge = merge;
+  if (std::string why = options.validate(); !why.empty()) throw std::invalid_argument(why);
+  py::gil_scoped_release nogil;
+  const voronoi::VoronoiResult graph = voronoi::compute_voronoi_graph(*solid, graph_options);
+  const decompose::DecompositionResult result = decompose::decompose(*solid, graph, options);
+  std::string error;
+  if (result.ok() && !decompose::write_decomposition(result, brep_path, "", &error, vtp_path))
+    throw std::runtime_error(error);
+  return decompose::decomposition_json(result);
+}
+
 quality::CheckReport check(const core::HexMesh& mesh, SolidPtr solid, double volume_rel_tol,
                            double distance_rel_tol) {
   quality::CheckOptions o;
@@ -337,6 +358,11 @@ PYBIND11_MODULE(_VoroHexCore, m) {
         "mesh a solid; progress(stage, fraction) may return False to cancel");
   m.def("voronoi_graph_json", &voronoi_json, py::arg("solid"), py::arg("options"),
         "the embedded Voronoi graph of a solid as JSON text");
+  m.def("decomposition_json", &decomposition_json, py::arg("solid"), py::arg("graph_options"),
+        py::arg("sharp_angle"), py::arg("merge"), py::arg("brep_path") = "",
+        py::arg("vtp_path") = "",
+        "the decomposition of a solid as JSON text; writes the sub-volumes (BREP) and the "
+        "decomposition faces (VTP) where paths are given");
   m.def("check_mesh", &check, py::arg("mesh"), py::arg("solid") = nullptr,
         py::arg("volume_rel_tol") = quality::CheckOptions{}.volume_rel_tol,
         py::arg("distance_rel_tol") = quality::CheckOptions{}.distance_rel_tol);

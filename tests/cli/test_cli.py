@@ -247,8 +247,17 @@ class InspectCommands(unittest.TestCase):
         step = os.path.join(self.dir, "l.step")
         solid.exportStep(step)
         parts, rep = os.path.join(self.dir, "parts.brep"), os.path.join(self.dir, "d.json")
-        code, stdout, stderr = run("decompose", step, "-o", parts, "--report", rep, "--no-merge")
+        vtp = os.path.join(self.dir, "faces.vtp")
+        code, stdout, stderr = run("decompose", step, "-o", parts, "--report", rep, "--no-merge",
+                                   "--vtp", vtp)
         self.assertEqual(code, 0, stdout + stderr)
+        with open(rep) as f:
+            report = json.load(f)
+        self.assertTrue(report["decomposition_faces"])
+        with open(vtp) as f:
+            text = f.read()
+        self.assertIn("PolyData", text)
+        self.assertIn('Name="sub_volume_a"', text)
         compound = Part.read(parts)
         self.assertEqual(len(compound.Solids), 3)
         self.assertAlmostEqual(sum(s.Volume for s in compound.Solids), solid.Volume, places=6)

@@ -138,6 +138,28 @@ class TestVoroHexApi(unittest.TestCase):
         with self.assertRaisesRegex(TypeError, "fallback"):
             VoroHex.mesh(sphere, fallback="no")
 
+    def test_decompose_l_shape(self):
+        pts = [(0, 0, 0), (4, 0, 0), (4, 1, 0), (1, 1, 0), (1, 3, 0), (0, 3, 0), (0, 0, 0)]
+        face = Part.Face(Part.makePolygon([FreeCAD.Vector(*p) for p in pts]))
+        solid = face.extrude(FreeCAD.Vector(0, 0, 3))
+        with tempfile.TemporaryDirectory() as tmp:
+            vtp = os.path.join(tmp, "faces.vtp")
+            d = VoroHex.decompose(solid, merge=False, vtp=vtp)
+            self.assertTrue(os.path.exists(vtp))
+        self.assertTrue(d.ok, d.diagnostics)
+        self.assertEqual(d.counts["sub_volumes"], 3)
+        self.assertEqual(len(d.shapes), 3)
+        self.assertEqual(sorted(sv["type"] for sv in d.sub_volumes), ["Ve", "Vs", "Vs"])
+        self.assertAlmostEqual(sum(s.Volume for s in d.shapes), solid.Volume, places=6)
+        self.assertTrue(d.faces)
+        merged = VoroHex.decompose(solid)
+        self.assertEqual(len(merged.shapes), 1)
+        self.assertEqual(merged.sub_volumes[0]["scheme"], "sweep")
+        with self.assertRaisesRegex(ValueError, "sharp_angle"):
+            VoroHex.decompose(solid, sharp_angle=0)
+        with self.assertRaisesRegex(TypeError, "merge"):
+            VoroHex.decompose(solid, merge="yes")
+
     def test_tapered_brick_meshes(self):
         bottom = Part.makePolygon([FreeCAD.Vector(*p) for p in
                                    [(0, 0, 0), (20, 0, 0), (20, 10, 0), (0, 10, 0), (0, 0, 0)]])

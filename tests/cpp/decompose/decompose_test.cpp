@@ -192,8 +192,19 @@ TEST(Decompose, WritesCompoundAndReport) {
   const Decomposed r = run(l, opt);
   const std::string brep = ::testing::TempDir() + "decompose_parts.brep";
   const std::string json = ::testing::TempDir() + "decompose_report.json";
+  const std::string vtp = ::testing::TempDir() + "decompose_faces.vtp";
   std::string error;
-  ASSERT_TRUE(write_decomposition(r.result, brep, json, &error)) << error;
+  ASSERT_TRUE(write_decomposition(r.result, brep, json, &error, vtp)) << error;
+  // The VTP holds one polygon per quad of each decomposition face, with the face index.
+  std::size_t quads = 0;
+  for (const DecompositionFace& f : r.result.faces) quads += f.quads.size();
+  ASSERT_GT(quads, 0u);
+  std::ifstream v(vtp);
+  const std::string faces((std::istreambuf_iterator<char>(v)), std::istreambuf_iterator<char>());
+  EXPECT_NE(faces.find("NumberOfPolys=\"" + std::to_string(quads) + "\""), std::string::npos);
+  EXPECT_NE(faces.find("Name=\"face\""), std::string::npos);
+  EXPECT_NE(faces.find("Name=\"sub_volume_b\""), std::string::npos);
+  std::remove(vtp.c_str());
   std::ifstream in(json);
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   EXPECT_NE(text.find("\"sub_volumes_before_merge\": 3"), std::string::npos) << text;
