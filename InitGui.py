@@ -28,7 +28,7 @@ class VoroHexWorkbench(Workbench):  # noqa: F821 (Workbench is FreeCAD's builtin
         self.appendMenu("&VoroHex", commands.COMMANDS)
 
     def Activated(self):
-        # One command: show its name beside the icon so the toolbar explains itself.
+        # Few commands: show their names beside the icons so the toolbar explains itself.
         import FreeCADGui
         from PySide import QtCore, QtGui
 

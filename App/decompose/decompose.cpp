@@ -731,6 +731,15 @@ void self_check(const occ::Solid& solid, double tol, bool pairs, DecompositionRe
 
 }  // namespace
 
+std::vector<ClassifiedEdge> classify_edges(const voronoi::VoronoiResult& voronoi,
+                                           const DecomposeOptions& options) {
+  DecompositionResult r;
+  if (!options.validate().empty() || !voronoi.model || !voronoi.ok()) return {};
+  const detail::ModelRelations rel(*voronoi.model);
+  classify_all(voronoi.graph, rel, options.sharp_angle * kPi / 180, r);
+  return r.edges;
+}
+
 DecompositionResult decompose(const occ::Solid& solid, const voronoi::VoronoiResult& voronoi,
                               const DecomposeOptions& options) {
   const auto t0 = Clock::now();

@@ -145,6 +145,11 @@ struct DecompositionResult {
   bool ok() const { return status != DecompositionStatus::failed; }
 };
 
+// Only the first step: the type of every Voronoi edge (what the GUI colours the graph
+// by). Empty when the graph or the options are unusable.
+std::vector<ClassifiedEdge> classify_edges(const voronoi::VoronoiResult& voronoi,
+                                           const DecomposeOptions& options = {});
+
 // `voronoi` must be the graph of `solid` (its model gives the governors' relations).
 // partial: some sub-volume has no scheme, some vertex gap stayed open, a Voronoi edge was
 // unusable, or some decomposition face is not a quadrilateral between two sub-volumes

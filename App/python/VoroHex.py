@@ -452,6 +452,13 @@ class VoronoiGraph:
         want = sorted(governors)
         return [e for e in self.elements if sorted(e["governors"]) == want]
 
+    def type_counts(self):
+        """Number of Voronoi edges per type, e.g. {"[1]": 8, "[2]": 4}."""
+        counts = {}
+        for e in self.of_kind("edge"):
+            counts[e.get("type", "none")] = counts.get(e.get("type", "none"), 0) + 1
+        return counts
+
     def as_dict(self):
         return self.data
 
@@ -479,17 +486,31 @@ def _voronoi_options(eps, delta, max_depth, linear_tolerance):
     return opts
 
 
-def voronoi_graph(shape, eps=None, delta=None, max_depth=None, linear_tolerance=None):
+def voronoi_graph(shape, eps=None, delta=None, max_depth=None, linear_tolerance=None,
+                  sharp_angle=None):
     """The embedded Voronoi graph of the one solid in `shape` (a Part.Shape or feature).
 
     eps: merge tolerance / finest cell, delta: embedding accuracy, linear_tolerance: chord
     tolerance of curved entities, all relative to the bounding-box diagonal; max_depth:
     octree depth 1..12. None keeps the default (VoroHex's C++ VoronoiOptions). Returns a
     VoronoiGraph; bad values raise ValueError naming the option, bad shapes ShapeError.
+    Every edge element gets "type", its class for the decomposition ("[0]", "[1]", "[1s]",
+    "[2]", "[3]", "[1e]", "[0e]", "[C]", "degenerate" or "none"); sharp_angle (degrees,
+    default 60) is the dihedral below which a [1] edge is [1s].
     """
     opts = _voronoi_options(eps, delta, max_depth, linear_tolerance)
+    angle = 60.0 if sharp_angle is None else _number("sharp_angle", sharp_angle)
+    if not 0 < angle <= 180:
+        raise ValueError("VoroHex: option 'sharp_angle' must be in (0, 180], got {}".format(
+            angle))
     solid = _read_solid(check_shape(shape))
-    return VoronoiGraph(json.loads(_core.voronoi_graph_json(solid, opts)))
+    text, types = _core.typed_voronoi_graph(solid, opts, angle)
+    graph = VoronoiGraph(json.loads(text))
+    by_id = dict(types)
+    for e in graph.elements:
+        if e["kind"] == "edge":
+            e["type"] = by_id.get(e["id"], "none")
+    return graph
 
 
 class Decomposition:

@@ -315,6 +315,27 @@ std::string voronoi_json(SolidPtr solid, const voronoi::VoronoiOptions& options)
   return voronoi::voronoi_graph_json(voronoi::compute_voronoi_graph(*solid, options));
 }
 
+// The type of every Voronoi edge ("[0]", "[1s]", "[C]", "none", ...) as (element id, type)
+// pairs, next to the graph's JSON: what the GUI colours the graph by.
+py::tuple typed_voronoi(SolidPtr solid, const voronoi::VoronoiOptions& options,
+                        double sharp_angle) {
+  if (!solid) throw std::invalid_argument("no solid given");
+  if (std::string why = options.validate(); !why.empty()) throw std::invalid_argument(why);
+  decompose::DecomposeOptions d;
+  d.sharp_angle = sharp_angle;
+  if (std::string why = d.validate(); !why.empty()) throw std::invalid_argument(why);
+  std::string text;
+  std::vector<std::pair<int, std::string>> types;
+  {
+    py::gil_scoped_release nogil;
+    const voronoi::VoronoiResult graph = voronoi::compute_voronoi_graph(*solid, options);
+    text = voronoi::voronoi_graph_json(graph);
+    for (const decompose::ClassifiedEdge& e : decompose::classify_edges(graph, d))
+      types.emplace_back(e.element, decompose::detail::edge_type_name(e.type));
+  }
+  return py::make_tuple(text, types);
+}
+
 // The decomposition as JSON text (decomposition_io.h layout), writing the sub-volumes as a
 // BREP compound and the decomposition faces as VTP where paths are given.
 std::string decomposition_json(SolidPtr solid, const voronoi::VoronoiOptions& graph_options,
@@ -358,6 +379,9 @@ PYBIND11_MODULE(_VoroHexCore, m) {
         "mesh a solid; progress(stage, fraction) may return False to cancel");
   m.def("voronoi_graph_json", &voronoi_json, py::arg("solid"), py::arg("options"),
         "the embedded Voronoi graph of a solid as JSON text");
+  m.def("typed_voronoi_graph", &typed_voronoi, py::arg("solid"), py::arg("options"),
+        py::arg("sharp_angle") = 60.0,
+        "(graph JSON text, [(element id, edge type)]) for the GUI");
   m.def("decomposition_json", &decomposition_json, py::arg("solid"), py::arg("graph_options"),
         py::arg("sharp_angle"), py::arg("merge"), py::arg("brep_path") = "",
         py::arg("vtp_path") = "",

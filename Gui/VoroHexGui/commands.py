@@ -59,8 +59,40 @@ class HexMeshCommand:
             "FreeCADGui.getDocument('{}').setEdit(_hexmesh.Name)".format(doc.Name))
 
 
+class VoronoiGraphCommand:
+    def GetResources(self):
+        return {
+            "Pixmap": VoroHexGui.resource("icons", "VoroHexGraph.svg"),
+            "MenuText": "Voronoi graph",
+            "ToolTip": "The embedded Voronoi graph of the selected solid, its edges coloured "
+                       "by type, with a legend (why the solid is cut where it is)",
+        }
+
+    def IsActive(self):
+        return selected_part() is not None
+
+    def Activated(self):
+        part = selected_part()
+        error = VoroHexObjects.source_error(part)
+        if error is not None:
+            FreeCAD.Console.PrintError("VoroHex: {}\n".format(error))
+            QtGui.QMessageBox.warning(FreeCADGui.getMainWindow(), "VoroHex: no graph", error)
+            return
+        doc = part.Document
+        doc.openTransaction("Voronoi graph")
+        FreeCADGui.addModule("VoroHexGraph")
+        FreeCADGui.doCommand(
+            "_graph = VoroHexGraph.makeVoronoiGraph(FreeCAD.getDocument('{}'), "
+            "FreeCAD.getDocument('{}').getObject('{}'))".format(doc.Name, doc.Name, part.Name))
+        doc.commitTransaction()
+        FreeCADGui.Selection.clearSelection()
+        FreeCADGui.doCommand(
+            "FreeCADGui.getDocument('{}').setEdit(_graph.Name)".format(doc.Name))
+
+
 def register():
     FreeCADGui.addCommand("VoroHex_HexMesh", HexMeshCommand())
+    FreeCADGui.addCommand("VoroHex_VoronoiGraph", VoronoiGraphCommand())
 
 
-COMMANDS = ["VoroHex_HexMesh"]
+COMMANDS = ["VoroHex_HexMesh", "VoroHex_VoronoiGraph"]

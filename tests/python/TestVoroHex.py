@@ -10,6 +10,7 @@ import FreeCAD
 import Part
 
 import VoroHex
+import VoroHexGraph
 import VoroHexObjects
 
 # VTK hex faces, outward (the mesh order VoroHex uses, and Abaqus/CalculiX C3D8 order).
@@ -384,6 +385,49 @@ class TestVoroHexObject(unittest.TestCase):
         obj = VoroHexObjects.makeHexMesh(self.doc, self.box, size=size)
         self.doc.recompute()
         return obj
+
+    def test_voronoi_graph_object(self):
+        pts = [(0, 0, 0), (4, 0, 0), (4, 1, 0), (1, 1, 0), (1, 3, 0), (0, 3, 0), (0, 0, 0)]
+        l_shape = self.doc.addObject("Part::Feature", "L")
+        l_shape.Shape = Part.Face(Part.makePolygon([FreeCAD.Vector(*p) for p in pts])).extrude(
+            FreeCAD.Vector(0, 0, 3))
+        self.doc.recompute()
+        g = VoroHexGraph.makeVoronoiGraph(self.doc, l_shape)
+        self.assertTrue(g.isValid(), g.getStatusString())
+        self.assertEqual(g.Status, "ok")
+        graph = VoroHex.voronoi_graph(l_shape)
+        expected = graph.type_counts()
+        self.assertEqual({t: int(n) for t, n in g.EdgeTypeCounts.items()}, expected)
+        # Every edge with a polyline is drawn, grouped by type; the segments carry their type.
+        drawn = {}
+        for e in graph.of_kind("edge"):
+            if len(set(e["polyline"])) >= 2:
+                drawn[e["type"]] = drawn.get(e["type"], 0) + 1
+        self.assertEqual({t: int(n) for t, n in g.ShownEdgeCounts.items()}, drawn)
+        self.assertEqual(len(g.SegmentTypes), len(g.Shape.Edges))
+        self.assertEqual(len(g.Shape.Vertexes) >= g.VertexCount, True)
+        self.assertEqual(g.EdgeCount, graph.counts["edges"])
+        # Hiding a type removes exactly its segments.
+        hidden = "[C]"
+        self.assertIn(hidden, expected)
+        g.ShownTypes = [t for t in VoroHexGraph.TYPE_NAMES if t != hidden]
+        self.doc.recompute()
+        self.assertNotIn(hidden, g.SegmentTypes)
+        self.assertNotIn(hidden, g.ShownEdgeCounts)
+        self.assertEqual(len(g.SegmentTypes), len(g.Shape.Edges))
+        # Saved and reopened, the object keeps its properties.
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "graph.FCStd")
+            name = g.Name
+            self.doc.saveAs(path)
+            FreeCAD.closeDocument(self.doc.Name)
+            self.doc = FreeCAD.openDocument(path)
+            g2 = self.doc.getObject(name)
+            self.assertEqual(list(g2.ShownTypes), [t for t in VoroHexGraph.TYPE_NAMES
+                                                   if t != hidden])
+            self.assertEqual(dict(g2.EdgeTypeCounts), {t: str(n) for t, n in expected.items()})
+        with self.assertRaisesRegex(ValueError, "FEM mesh|not a solid|No geometry"):
+            VoroHexGraph.makeVoronoiGraph(self.doc, None)
 
     def test_recompute_counts_validity(self):
         obj = self.make_mesh()

@@ -1,0 +1,149 @@
+# GUI test, run by ctest under Xvfb (like gui_hexmesh.py):
+#   xvfb-run -a -s "-screen 0 1280x1024x24" freecad gui_voronoi.py -M <stage>/VoroHex
+# On an L-shaped extrusion: runs VoroHex_VoronoiGraph, checks that the legend and the
+# object show as many edges per type as the Voronoi graph has, that every drawn segment is
+# coloured by its type, that unchecking a type in the legend hides it, and saves a
+# screenshot (VOROHEX_SCREENSHOT, default ./gui_voronoi_l.png). Exit code 0 = pass.
+import os
+import sys
+import threading
+import time
+import traceback
+
+import FreeCAD
+import FreeCADGui as Gui
+from PySide import QtCore, QtGui
+
+TIMEOUT_S = 100
+SHOT = os.environ.get("VOROHEX_SCREENSHOT", os.path.abspath("gui_voronoi_l.png"))
+
+
+def log(msg):
+    sys.stdout.write("gui_voronoi: {}\n".format(msg))
+    sys.stdout.flush()
+
+
+def watchdog():
+    log("timed out after {} s".format(TIMEOUT_S))
+    os._exit(3)
+
+
+def pump(seconds=0.2):
+    end = time.time() + seconds
+    while time.time() < end:
+        QtGui.QApplication.processEvents()
+        time.sleep(0.01)
+
+
+def check(cond, what):
+    if not cond:
+        raise AssertionError(what)
+    log("ok: " + what)
+
+
+def main():
+    import Part
+
+    mw = Gui.getMainWindow()
+    mw.setGeometry(0, 0, 1280, 1024)
+    mw.showMaximized()
+    Gui.activateWorkbench("VoroHexWorkbench")
+    pump()
+    combo = [d for d in mw.findChildren(QtGui.QDockWidget) if d.isVisible()
+             and d.objectName() in ("Combo View", "ComboView")]
+    if combo:
+        mw.resizeDocks(combo, [470], QtCore.Qt.Horizontal)
+    pump(1.0)
+    doc = FreeCAD.newDocument("VoronoiDemo")
+    V = FreeCAD.Vector
+    pts = [(0, 0), (40, 0), (40, 10), (10, 10), (10, 30), (0, 30), (0, 0)]
+    l_shape = doc.addObject("Part::Feature", "L")
+    l_shape.Shape = Part.Face(Part.makePolygon([V(x, y, 0) for x, y in pts])).extrude(
+        V(0, 0, 30))
+    doc.recompute()
+    Gui.Selection.clearSelection()
+    from VoroHexGui import commands
+
+    check(not commands.VoronoiGraphCommand().IsActive(), "command inactive without selection")
+    Gui.Selection.addSelection(l_shape)
+    pump()
+    check(commands.VoronoiGraphCommand().IsActive(), "command active with the L selected")
+    Gui.runCommand("VoroHex_VoronoiGraph")
+    pump(0.5)
+    graphs = [o for o in doc.Objects if hasattr(o, "SegmentTypes")]
+    check(len(graphs) == 1, "one Voronoi graph object created")
+    g = graphs[0]
+    check(g.isValid() and g.Status == "ok", "graph computed: " + g.Message)
+    check(bool(Gui.Control.activeDialog()), "legend task panel open")
+
+    import VoroHex
+    import VoroHexGraph
+
+    graph = VoroHex.voronoi_graph(l_shape)
+    expected = graph.type_counts()
+    table = mw.findChild(QtGui.QTableWidget, "tbl_edge_types")
+    check(table is not None and table.rowCount() == len(VoroHexGraph.EDGE_TYPES),
+          "legend lists every edge type")
+    shown = {table.item(r, 0).text(): int(table.item(r, 1).text())
+             for r in range(table.rowCount())}
+    check(all(shown[t] == n for t, n in expected.items()) and sum(shown.values()) ==
+          graph.counts["edges"], "legend counts per type equal the graph's {}".format(expected))
+    drawn = {t: int(n) for t, n in g.ShownEdgeCounts.items()}
+    with_lines = {}
+    for e in graph.of_kind("edge"):
+        if len(set(e["polyline"])) >= 2:
+            with_lines[e["type"]] = with_lines.get(e["type"], 0) + 1
+    check(drawn == with_lines, "edges drawn per type equal the graph's {}".format(drawn))
+    colours = list(g.ViewObject.LineColorArray)
+    check(len(colours) == len(g.Shape.Edges), "one colour per drawn segment")
+    for c, t in zip(colours, g.SegmentTypes):
+        want = VoroHexGraph.COLOURS[t]
+        if max(abs(c[i] - want[i]) for i in range(3)) > 0.01:
+            raise AssertionError("segment of type {} coloured {}".format(t, c))
+    log("ok: every segment coloured by its type")
+
+    l_shape.ViewObject.Transparency = 80
+    view = Gui.ActiveDocument.ActiveView
+    view.viewIsometric()
+    pump(0.5)
+    view.fitAll()
+    pump(0.5)
+    os.makedirs(os.path.dirname(SHOT) or ".", exist_ok=True)
+    check(QtGui.QGuiApplication.primaryScreen().grabWindow(0).save(SHOT),
+          "screenshot saved to " + SHOT)
+
+    # Unchecking [C] in the legend hides its edges.
+    row = [r for r in range(table.rowCount()) if table.item(r, 0).text() == "[C]"][0]
+    table.item(row, 0).setCheckState(QtCore.Qt.Unchecked)
+    pump(0.5)
+    check("[C]" not in g.ShownTypes and "[C]" not in g.SegmentTypes, "[C] edges hidden")
+    check(len(g.ViewObject.LineColorArray) == len(g.Shape.Edges), "colours follow the shape")
+    close = None
+    for box in mw.findChildren(QtGui.QDialogButtonBox):
+        b = box.button(QtGui.QDialogButtonBox.Close)
+        if b is not None and b.isVisible():
+            close = b
+    check(close is not None, "legend has a Close button")
+    close.click()
+    pump(0.3)
+    check(not Gui.Control.activeDialog(), "legend closed")
+
+
+def run():
+    code = 1
+    try:
+        main()
+        code = 0
+        log("PASS")
+    except Exception:
+        traceback.print_exc()
+        log("FAIL")
+    sys.stdout.flush()
+    sys.stderr.flush()
+    os._exit(code)
+
+
+timer = threading.Timer(TIMEOUT_S, watchdog)
+timer.daemon = True
+timer.start()
+QtCore.QTimer.singleShot(0, run)
