@@ -90,9 +90,45 @@ class VoronoiGraphCommand:
             "FreeCADGui.getDocument('{}').setEdit(_graph.Name)".format(doc.Name))
 
 
+class DecompositionCommand:
+    def GetResources(self):
+        return {
+            "Pixmap": VoroHexGui.resource("icons", "VoroHexParts.svg"),
+            "MenuText": "Decomposition",
+            "ToolTip": "Cut the selected solid into sweepable and mappable sub-volumes along "
+                       "its Voronoi graph; faces coloured by scheme, decomposition faces marked",
+        }
+
+    def IsActive(self):
+        return selected_part() is not None
+
+    def Activated(self):
+        part = selected_part()
+        error = VoroHexObjects.source_error(part)
+        if error is not None:
+            FreeCAD.Console.PrintError("VoroHex: {}\n".format(error))
+            QtGui.QMessageBox.warning(FreeCADGui.getMainWindow(), "VoroHex: no decomposition",
+                                      error)
+            return
+        doc = part.Document
+        doc.openTransaction("Decomposition")
+        FreeCADGui.addModule("VoroHexParts")
+        try:
+            FreeCADGui.doCommand(
+                "_parts = VoroHexParts.makeDecomposition(FreeCAD.getDocument('{}'), "
+                "FreeCAD.getDocument('{}').getObject('{}'))".format(doc.Name, doc.Name,
+                                                                     part.Name))
+        finally:
+            doc.commitTransaction()
+        FreeCADGui.Selection.clearSelection()
+        FreeCADGui.doCommand(
+            "FreeCADGui.getDocument('{}').setEdit(_parts.Name)".format(doc.Name))
+
+
 def register():
     FreeCADGui.addCommand("VoroHex_HexMesh", HexMeshCommand())
     FreeCADGui.addCommand("VoroHex_VoronoiGraph", VoronoiGraphCommand())
+    FreeCADGui.addCommand("VoroHex_Decomposition", DecompositionCommand())
 
 
-COMMANDS = ["VoroHex_HexMesh", "VoroHex_VoronoiGraph"]
+COMMANDS = ["VoroHex_HexMesh", "VoroHex_VoronoiGraph", "VoroHex_Decomposition"]

@@ -127,6 +127,63 @@ def main():
     close.click()
     pump(0.3)
     check(not Gui.Control.activeDialog(), "legend closed")
+    g.ViewObject.Visibility = False
+
+    # The decomposition of the same L: three sub-volumes when not merged, coloured by scheme.
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(l_shape)
+    pump()
+    check(commands.DecompositionCommand().IsActive(), "decomposition command active")
+    Gui.runCommand("VoroHex_Decomposition")
+    pump(0.5)
+    parts = [o for o in doc.Objects if hasattr(o, "FaceRoles")]
+    check(len(parts) == 1 and parts[0].Status in ("ok", "partial"), "decomposition computed")
+    d = parts[0]
+    check(d.SubVolumeCount == 1 and list(d.Schemes) == ["sweep"], "merged: the L is one sweep")
+    close_panel(mw)
+    d.Merge = False
+    doc.recompute()
+    pump(0.5)
+    check(d.SubVolumeCount == 3 and d.DecompositionFaceCount == 2,
+          "not merged: 3 sub-volumes, 2 decomposition faces")
+    import VoroHexParts
+
+    colours = list(d.ViewObject.DiffuseColor)
+    check(len(colours) == len(d.Shape.Faces), "one colour per face")
+    for c, role in zip(colours, d.FaceRoles):
+        want = VoroHexParts.COLOURS[role]
+        if max(abs(c[i] - want[i]) for i in range(3)) > 0.01:
+            raise AssertionError("face of role {} coloured {}".format(role, c))
+    log("ok: every face coloured by its role")
+    Gui.ActiveDocument.setEdit(d.Name)
+    pump(0.5)
+    table = mw.findChild(QtGui.QTableWidget, "tbl_sub_volumes")
+    check(table is not None and table.rowCount() == 3, "sub-volume table has 3 rows")
+    table.selectRow(1)
+    pump(0.3)
+    sel = Gui.Selection.getSelectionEx()
+    check(len(sel) == 1 and len(sel[0].SubElementNames) == len(d.Shape.Solids[1].Faces),
+          "selecting a row selects that sub-volume's faces")
+    Gui.Selection.clearSelection()
+    table.clearSelection()
+    l_shape.ViewObject.Visibility = False
+    view.viewIsometric()
+    view.fitAll()
+    pump(0.5)
+    parts_shot = SHOT.replace("gui_voronoi_l", "gui_decomposition_l")
+    check(QtGui.QGuiApplication.primaryScreen().grabWindow(0).save(parts_shot),
+          "screenshot saved to " + parts_shot)
+    close_panel(mw)
+    check(not Gui.Control.activeDialog(), "decomposition panel closed")
+
+
+def close_panel(mw):
+    for box in mw.findChildren(QtGui.QDialogButtonBox):
+        b = box.button(QtGui.QDialogButtonBox.Close)
+        if b is not None and b.isVisible():
+            b.click()
+            pump(0.3)
+            return
 
 
 def run():

@@ -12,6 +12,7 @@ import Part
 import VoroHex
 import VoroHexGraph
 import VoroHexObjects
+import VoroHexParts
 
 # VTK hex faces, outward (the mesh order VoroHex uses, and Abaqus/CalculiX C3D8 order).
 HEX_FACES = ((0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7))
@@ -428,6 +429,29 @@ class TestVoroHexObject(unittest.TestCase):
             self.assertEqual(dict(g2.EdgeTypeCounts), {t: str(n) for t, n in expected.items()})
         with self.assertRaisesRegex(ValueError, "FEM mesh|not a solid|No geometry"):
             VoroHexGraph.makeVoronoiGraph(self.doc, None)
+
+    def test_decomposition_object(self):
+        pts = [(0, 0, 0), (4, 0, 0), (4, 1, 0), (1, 1, 0), (1, 3, 0), (0, 3, 0), (0, 0, 0)]
+        l_shape = self.doc.addObject("Part::Feature", "L")
+        l_shape.Shape = Part.Face(Part.makePolygon([FreeCAD.Vector(*p) for p in pts])).extrude(
+            FreeCAD.Vector(0, 0, 3))
+        self.doc.recompute()
+        d = VoroHexParts.makeDecomposition(self.doc, l_shape, merge=False)
+        self.assertTrue(d.isValid(), d.getStatusString())
+        self.assertEqual(d.SubVolumeCount, 3)
+        self.assertEqual(len(d.Shape.Solids), 3)
+        self.assertAlmostEqual(sum(s.Volume for s in d.Shape.Solids), 18.0, places=6)
+        self.assertEqual(sorted(d.Types), ["Ve", "Vs", "Vs"])
+        self.assertEqual(len(d.FaceRoles), len(d.Shape.Faces))
+        # The two cuts are faces of two sub-volumes each.
+        self.assertEqual(d.DecompositionFaceCount, 2)
+        self.assertEqual(list(d.FaceRoles).count("decomposition"), 4)
+        d.Merge = True
+        self.doc.recompute()
+        self.assertEqual((d.SubVolumeCount, d.SubVolumesBeforeMerge), (1, 3))
+        self.assertEqual(list(d.Schemes), ["sweep"])
+        self.assertEqual(list(d.FaceRoles).count("source/target"), 2)
+        self.assertNotIn("decomposition", d.FaceRoles)
 
     def test_recompute_counts_validity(self):
         obj = self.make_mesh()
