@@ -28,7 +28,7 @@ except ImportError:  # pragma: no cover - numpy is installed with FreeCAD on Deb
 
 __all__ = ["mesh", "check", "voronoi_graph", "MeshResult", "MeshStats", "VoronoiGraph",
            "CancelToken", "OPTIONS", "ShapeError", "from_femmesh", "SMESH_FROM_VTK",
-           "decompose", "Decomposition"]
+           "decompose", "Decomposition", "element_quality"]
 
 MOD_DIR = os.path.dirname(os.path.abspath(__file__))
 CancelToken = _core.CancelToken
@@ -369,6 +369,17 @@ def from_femmesh(femmesh):
                              "checked".format(vid, len(en)))
         hexes.extend(index[en[k]] for k in SMESH_FROM_VTK)
     return _core.HexMesh.from_bytes(nodes.tobytes(), hexes.tobytes())
+
+
+def element_quality(mesh):
+    """Scaled Jacobian of every hexahedron of a Fem.FemMesh (or a mesh object holding one)
+    as {element id: value}: 1 for a cube, <= 0 when inverted."""
+    femmesh = getattr(mesh, "FemMesh", mesh)
+    if not (hasattr(femmesh, "Volumes") and hasattr(femmesh, "getElementNodes")):
+        raise TypeError("VoroHex.element_quality: expected a Fem.FemMesh or a mesh object, "
+                        "got {}".format(type(mesh).__name__))
+    values = from_femmesh(femmesh).scaled_jacobians()
+    return dict(zip(femmesh.Volumes, values))
 
 
 def _as_core_mesh(mesh_or_path):

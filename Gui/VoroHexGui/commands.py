@@ -125,10 +125,50 @@ class DecompositionCommand:
             "FreeCADGui.getDocument('{}').setEdit(_parts.Name)".format(doc.Name))
 
 
+def selected_fem_mesh():
+    """The single selected FEM mesh object holding hexahedra, or None."""
+    if FreeCADGui.ActiveDocument is None:
+        return None
+    sel = FreeCADGui.Selection.getSelection()
+    if len(sel) == 1 and sel[0].isDerivedFrom("Fem::FemMeshObject") and \
+            sel[0].FemMesh.VolumeCount > 0:
+        return sel[0]
+    return None
+
+
+class MeshQualityCommand:
+    def GetResources(self):
+        return {
+            "Pixmap": VoroHexGui.resource("icons", "VoroHexQuality.svg"),
+            "MenuText": "Mesh quality",
+            "ToolTip": "Colour the hexahedra of the selected FEM mesh by scaled Jacobian, "
+                       "with a legend, and highlight the worst ones",
+        }
+
+    def IsActive(self):
+        return selected_fem_mesh() is not None and not FreeCADGui.Control.activeDialog()
+
+    def Activated(self):
+        from VoroHexGui import quality_view
+
+        mesh = selected_fem_mesh()
+        try:
+            panel = quality_view.QualityTaskPanel(mesh)
+        except (TypeError, ValueError) as e:
+            FreeCAD.Console.PrintError("VoroHex: {}\n".format(e))
+            QtGui.QMessageBox.warning(FreeCADGui.getMainWindow(), "VoroHex: mesh quality",
+                                      str(e))
+            return
+        FreeCADGui.Selection.clearSelection()
+        FreeCADGui.Control.showDialog(panel)
+
+
 def register():
     FreeCADGui.addCommand("VoroHex_HexMesh", HexMeshCommand())
     FreeCADGui.addCommand("VoroHex_VoronoiGraph", VoronoiGraphCommand())
     FreeCADGui.addCommand("VoroHex_Decomposition", DecompositionCommand())
+    FreeCADGui.addCommand("VoroHex_MeshQuality", MeshQualityCommand())
 
 
-COMMANDS = ["VoroHex_HexMesh", "VoroHex_VoronoiGraph", "VoroHex_Decomposition"]
+COMMANDS = ["VoroHex_HexMesh", "VoroHex_VoronoiGraph", "VoroHex_Decomposition",
+            "VoroHex_MeshQuality"]

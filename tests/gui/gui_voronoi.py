@@ -175,6 +175,56 @@ def main():
           "screenshot saved to " + parts_shot)
     close_panel(mw)
     check(not Gui.Control.activeDialog(), "decomposition panel closed")
+    d.ViewObject.Visibility = False
+
+    # Mesh quality of a sphere meshed by the fallback (a varied quality to look at).
+    import VoroHexObjects
+
+    sphere = doc.addObject("Part::Sphere", "Sphere")
+    sphere.Radius = 10
+    sphere.Placement.Base = V(70, 0, 0)
+    doc.recompute()
+    mesh = VoroHexObjects.makeHexMesh(doc, sphere, size=2.5)
+    doc.recompute()
+    check(mesh.Status == "ok" and mesh.Scheme == "tet-split", "sphere meshed: " + mesh.Message)
+    sphere.ViewObject.Visibility = False
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(mesh)
+    pump()
+    check(commands.MeshQualityCommand().IsActive(), "mesh quality command active")
+    Gui.runCommand("VoroHex_MeshQuality")
+    pump(0.5)
+    check(bool(Gui.Control.activeDialog()), "quality panel open")
+    from VoroHexGui import quality_view
+
+    panel = quality_view.current
+    check(panel is not None and len(panel.colours) == mesh.HexCount
+          and set(panel.colours) == set(mesh.FemMesh.Volumes), "every hexahedron coloured")
+    bands = mw.findChild(QtGui.QTableWidget, "tbl_quality_bands")
+    total = sum(int(bands.item(r, 1).text()) for r in range(bands.rowCount()))
+    check(total == mesh.HexCount, "legend counts all {} hexahedra".format(total))
+    threshold = mw.findChild(QtGui.QDoubleSpinBox, "sb_worst_threshold")
+    threshold.setValue(0.3)
+    mw.findChild(QtGui.QPushButton, "pb_highlight_worst").click()
+    pump(0.3)
+    import VoroHex
+
+    sj = VoroHex.element_quality(mesh)
+    below = [e for e, v in sj.items() if v < 0.3]
+    check(len(below) > 0 and len(mesh.ViewObject.HighlightedNodes) > 0,
+          "{} hexahedra below 0.3 highlighted".format(len(below)))
+    check(abs(min(sj.values()) - mesh.MinScaledJacobian) < 1e-6,
+          "colours from the same values as the object's minimum")
+    Gui.Selection.clearSelection()
+    view.viewIsometric()
+    view.fitAll()
+    pump(0.5)
+    quality_shot = SHOT.replace("gui_voronoi_l", "gui_quality_sphere")
+    check(QtGui.QGuiApplication.primaryScreen().grabWindow(0).save(quality_shot),
+          "screenshot saved to " + quality_shot)
+    close_panel(mw)
+    check(not Gui.Control.activeDialog() and quality_view.current is None
+          and not panel.colours, "quality panel closed, colours reset")
 
 
 def close_panel(mw):
