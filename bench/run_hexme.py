@@ -7,11 +7,15 @@ against the CAD), and `vorohex decompose` (sub-volumes before/after merging and 
 Writes bench/results/hexme.md.
 
 usage: run_hexme.py [--build BUILD] [--no-gmsh] [--only PREFIX]
+       run_hexme.py --from-logs LOG [LOG...]
 
 --no-gmsh keeps the Gmsh columns of the existing table (Gmsh's result does not change
-with VoroHex; it takes most of the run's time).
+with VoroHex; it takes most of the run's time). Every measured row is also printed (one
+Python dict per line), so runs split over several processes (--only i, --only n, ...) can
+be joined into one table with --from-logs (the last row of a model wins).
 """
 import argparse
+import ast
 import json
 import os
 import subprocess
@@ -51,7 +55,18 @@ def main():
     ap.add_argument("--build", default=os.path.join(REPO, "build"))
     ap.add_argument("--no-gmsh", action="store_true")
     ap.add_argument("--only", default="")
+    ap.add_argument("--from-logs", nargs="+", default=None)
     args = ap.parse_args()
+    if args.from_logs:
+        by_model = {}
+        for path in args.from_logs:
+            with open(path) as fh:
+                for line in fh:
+                    if line.startswith("{'model'"):
+                        row = ast.literal_eval(line)
+                        by_model[row["model"]] = row
+        write_table([by_model[m] for m in sorted(by_model)])
+        return
     vorohex = os.path.join(args.build, "vorohex")
     work = os.path.join(HERE, "work", "hexme")
     os.makedirs(work, exist_ok=True)
@@ -123,7 +138,10 @@ def main():
                 os.remove(msh)
         rows.append(row)
         print(row, flush=True)
+    write_table(rows)
 
+
+def write_table(rows):
     def f(v, fmt="%.3f"):
         return fmt % v if isinstance(v, (int, float)) else (v if v is not None else "")
 
@@ -138,6 +156,12 @@ def main():
         "of its diagnostics (never an invalid mesh reported as success). Gmsh:",
         "`Mesh.SubdivisionAlgorithm=2`, `Mesh.RecombineAll=1`. Decomposition: sub-volumes",
         "before -> after merging (schemes), or why it failed.",
+        "",
+        "VoroHex schemes: `map` (topological hexahedron), `sweep` (one-to-one), `midpoint`",
+        "(convex polyhedron) and `tet-split`, the fallback for solids no structured scheme",
+        "accepts (tetrahedra split into hexahedra, docs/meshing.md). Several sub-volumes of a",
+        "decomposition are not meshed into one mesh yet, so the decomposition column does not",
+        "feed the VoroHex column.",
         "",
         "VoroHex meshes %d of %d models today." % (valid, len(rows)),
         "",
