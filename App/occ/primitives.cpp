@@ -13,6 +13,7 @@
 #include <BRepPrimAPI_MakePrism.hxx>
 #include <BRepTools.hxx>
 #include <BRep_Builder.hxx>
+#include <BRep_Tool.hxx>
 #include <GC_MakeArcOfCircle.hxx>
 #include <GProp_GProps.hxx>
 #include <STEPControl_Writer.hxx>
@@ -24,6 +25,7 @@
 #include <TopoDS_Face.hxx>
 #include <TopoDS_Shell.hxx>
 #include <TopoDS_Solid.hxx>
+#include <TopoDS_Vertex.hxx>
 #include <TopoDS_Wire.hxx>
 #include <gp_Circ.hxx>
 #include <gp_Vec.hxx>
@@ -175,7 +177,13 @@ bool write_fixture(Fixture kind, const std::string& path) {
     const TopoDS_Solid box = BRepPrimAPI_MakeBox(1, 1, 1).Solid();
     BRep_Builder b;
     TopoDS_Shape shape;
-    if (kind == Fixture::open_box_shell || kind == Fixture::closed_box_shell) {
+    if (kind == Fixture::bad_tolerance_box) {
+      TopExp_Explorer ex(box, TopAbs_VERTEX);
+      const TopoDS_Vertex v = TopoDS::Vertex(ex.Current());
+      const gp_Pnt p = BRep_Tool::Pnt(v);
+      b.UpdateVertex(v, gp_Pnt(p.X() + 1e-4, p.Y() + 1e-4, p.Z()), 1e-7);
+      shape = box;
+    } else if (kind == Fixture::open_box_shell || kind == Fixture::closed_box_shell) {
       TopoDS_Shell shell;
       b.MakeShell(shell);
       int n = 0;

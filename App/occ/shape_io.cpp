@@ -12,6 +12,7 @@
 #include <IGESControl_Reader.hxx>
 #include <STEPControl_Reader.hxx>
 #include <STEPControl_Writer.hxx>
+#include <ShapeFix_Shape.hxx>
 #include <Standard_Failure.hxx>
 #include <TopExp.hxx>
 #include <TopExp_Explorer.hxx>
@@ -34,6 +35,7 @@ namespace {
 
 using core::make_error;
 using core::make_info;
+using core::make_warning;
 
 enum class Format { step, brep, iges, unknown };
 
@@ -149,12 +151,32 @@ ReadResult analyse(const TopoDS_Shape& shape, const std::string& where) {
     return r;
   }
 
-  BRepCheck_Analyzer check(solid);
-  if (!check.IsValid()) {
-    r.diagnostics.push_back(
-        make_error("invalid_shape", where + " holds a solid that fails OCCT's validity check "
-                                            "(self-intersecting or broken geometry)."));
-    return r;
+  if (!BRepCheck_Analyzer(solid).IsValid()) {
+    // Bad tolerances and similar defects: try OCCT's shape healing before giving up.
+    TopoDS_Solid fixed;
+    try {
+      ShapeFix_Shape fix(solid);
+      fix.Perform();
+      const TopoDS_Shape result = fix.Shape();
+      if (count(result, TopAbs_SOLID) == 1) {
+        TopExp_Explorer ex(result, TopAbs_SOLID);
+        fixed = TopoDS::Solid(ex.Current());
+      }
+    } catch (const Standard_Failure&) {
+      fixed.Nullify();
+    }
+    if (fixed.IsNull() || !BRepCheck_Analyzer(fixed).IsValid()) {
+      r.diagnostics.push_back(make_error(
+          "invalid_shape", where + " holds a solid that fails OCCT's validity check "
+                                   "(self-intersecting or broken geometry) and OCCT's shape "
+                                   "healing (ShapeFix) could not repair it."));
+      return r;
+    }
+    solid = fixed;
+    r.diagnostics.push_back(make_warning(
+        "shape_repaired", where + " holds a solid that failed OCCT's validity check (e.g. "
+                                  "tolerances too small for its geometry); it was repaired "
+                                  "with OCCT's shape healing (ShapeFix) before meshing."));
   }
   // An inside-out solid has negative volume: turn it, so normals point outwards.
   if (signed_volume(solid) < 0) {

@@ -433,6 +433,17 @@ double Solid::distance_to_face(FaceId f, const Vec3& p) const {
   return (project_to_face(f, p) - p).norm();
 }
 
+double Solid::tolerance() const {
+  double t = 0;
+  for (TopExp_Explorer ex(impl_->solid, TopAbs_VERTEX); ex.More(); ex.Next())
+    t = std::max(t, BRep_Tool::Tolerance(TopoDS::Vertex(ex.Current())));
+  for (TopExp_Explorer ex(impl_->solid, TopAbs_EDGE); ex.More(); ex.Next())
+    t = std::max(t, BRep_Tool::Tolerance(TopoDS::Edge(ex.Current())));
+  for (TopExp_Explorer ex(impl_->solid, TopAbs_FACE); ex.More(); ex.Next())
+    t = std::max(t, BRep_Tool::Tolerance(TopoDS::Face(ex.Current())));
+  return t;
+}
+
 FaceId Solid::nearest_face(const Vec3& p) const {
   const int nf = num_faces();
   std::vector<std::pair<double, int>> order;

@@ -74,6 +74,9 @@ struct Solid {
   double distance_to_vertex(VertexId v, const Vec3& p) const;
   // Distance to the whole boundary (nearest face), for meshes made by other tools.
   double distance_to_boundary(const Vec3& p) const;
+  // OCCT's largest vertex, edge or face tolerance: geometry closer than this counts as
+  // coincident (a healed solid can have tolerances well above the default 1e-7).
+  double tolerance() const;
   // The face / edge nearest to p (ties: the lowest index).
   FaceId nearest_face(const Vec3& p) const;
   EdgeId nearest_edge(const Vec3& p) const;

@@ -19,7 +19,7 @@ struct CheckOptions {
   // Quads with a node off the CAD (see distance_rel_tol) are no chords and get none.
   double volume_rel_tol = 1e-9;
   // Boundary nodes must lie within this distance of the CAD boundary, relative to the
-  // CAD bounding-box diagonal.
+  // CAD bounding-box diagonal (or within the CAD's own OCCT tolerance, if larger).
   double distance_rel_tol = 1e-6;
   void validate() const;  // throws std::invalid_argument naming the bad field
 };

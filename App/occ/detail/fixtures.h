@@ -7,10 +7,11 @@
 namespace vorohex::occ::detail {
 
 enum class Fixture {
-  open_box_shell,    // a shell of five faces of the unit box (one face missing)
-  closed_box_shell,  // the six faces of the unit box as a shell, not a solid
-  two_boxes,         // a compound of two disjoint unit boxes
-  box_faces,         // a compound of three loose faces of the unit box
+  open_box_shell,     // a shell of five faces of the unit box (one face missing)
+  closed_box_shell,   // the six faces of the unit box as a shell, not a solid
+  two_boxes,          // a compound of two disjoint unit boxes
+  box_faces,          // a compound of three loose faces of the unit box
+  bad_tolerance_box,  // the unit box with one vertex moved 1e-4 off its edges, tolerance 1e-7
 };
 
 // Writes the fixture; the format comes from the extension (.brep/.brp or .step/.stp).

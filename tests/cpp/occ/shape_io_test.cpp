@@ -111,6 +111,23 @@ TEST(ReadSolid, ClosedShellIsMadeASolid) {
   EXPECT_EQ(r.solid->num_faces(), 6);
 }
 
+// A solid whose vertex lies farther from its edges than its tolerance fails OCCT's check;
+// the reader repairs it with ShapeFix and says so.
+TEST(ReadSolid, BadTolerancesAreRepairedAndReported) {
+  const std::string path = temp_path("bad_tolerance.brep");
+  ASSERT_TRUE(detail::write_fixture(detail::Fixture::bad_tolerance_box, path));
+  const ReadResult r = read_solid(path);
+  ASSERT_TRUE(r.ok()) << (r.diagnostics.empty() ? "" : r.diagnostics.front().message);
+  const core::Diagnostic* d = nullptr;
+  for (const core::Diagnostic& x : r.diagnostics)
+    if (x.code == "shape_repaired") d = &x;
+  ASSERT_NE(d, nullptr);
+  EXPECT_EQ(d->severity, core::Severity::warning);
+  EXPECT_NE(d->message.find("ShapeFix"), std::string::npos) << d->message;
+  EXPECT_NEAR(r.solid->volume(), 1.0, 1e-3);
+  EXPECT_EQ(r.solid->num_faces(), 6);
+}
+
 TEST(ReadSolid, BoxRoundTripsThroughStepAndBrep) {
   const Solid box = make_box(1, 2, 3);
   for (const std::string name : {"box.step", "box.stp", "box.brep"}) {

@@ -7,7 +7,9 @@
 
 #include "fixtures/diagnostics.h"
 #include "fixtures/solids.h"
+#include "occ/detail/fixtures.h"
 #include "occ/primitives.h"
+#include "occ/shape_io.h"
 #include "occ/split_solid.h"
 
 namespace vorohex::pipeline {
@@ -101,6 +103,29 @@ TEST(GenerateMesh, TheFallbackMeshesWhatNoSchemeAcceptsAndSaysSo) {
     EXPECT_EQ(r.stats.scheme, "tet-split");
     // Every boundary node lies on the CAD (the check measures it against its entity).
     EXPECT_LT(r.check.max_boundary_distance_rel, 1e-7);
+  }
+}
+
+// Bad input that can be repaired is, and then meshes like any solid; millimetre and
+// kilometre scales mesh the same (relative tolerances everywhere).
+TEST(GenerateMesh, RepairedAndRescaledSolidsMeshValid) {
+  const std::string path = ::testing::TempDir() + "generate_mesh_bad_tolerance.brep";
+  ASSERT_TRUE(occ::detail::write_fixture(occ::detail::Fixture::bad_tolerance_box, path));
+  const occ::ReadResult read = occ::read_solid(path);
+  ASSERT_TRUE(read.ok());
+  MeshOptions opt;
+  opt.size = 0.25;
+  const MeshResult r = generate_mesh(*read.solid, opt);
+  EXPECT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics[0]));
+  EXPECT_EQ(r.stats.scheme, "map");
+  for (double scale : {1e-3, 1e3}) {
+    SCOPED_TRACE(scale);
+    const occ::Solid t = occ::make_tapered_brick(4 * scale, 2 * scale, 1.5 * scale, 0.4 * scale);
+    MeshOptions o;  // automatic size: diagonal / 20
+    const MeshResult m = generate_mesh(t, o);
+    ASSERT_TRUE(m.ok) << (m.diagnostics.empty() ? "" : core::format(m.diagnostics[0]));
+    EXPECT_GT(m.check.scaled_jacobian.min, 0.3);
+    EXPECT_NEAR(m.check.mesh_volume, t.volume(), 1e-9 * t.volume());
   }
 }
 
