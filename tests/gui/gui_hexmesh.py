@@ -143,6 +143,25 @@ def main():
     panel_shot = os.path.splitext(SHOT)[0] + "_panel.png"
     check(QtGui.QGuiApplication.primaryScreen().grabWindow(0).save(panel_shot),
           "panel screenshot saved to " + panel_shot)
+    # Stop during a long run: the GUI stays responsive (the timer that presses Stop fires
+    # while meshing runs) and the previous mesh is kept.
+    size_box = mw.findChild(QtGui.QDoubleSpinBox, "sb_size")
+    size_box.setValue(0.12)  # about 4.6 million hexes: seconds of work
+    stop = mw.findChild(QtGui.QPushButton, "pb_stop")
+    run = mw.findChild(QtGui.QPushButton, "pb_run")
+    pressed = []
+    QtCore.QTimer.singleShot(700, lambda: (pressed.append(time.time()), stop.click()))
+    t0 = time.time()
+    run.click()
+    elapsed = time.time() - t0
+    pump(0.3)
+    check(bool(pressed), "Stop pressed while meshing ran ({:.1f} s)".format(elapsed))
+    check(mesh.Status == "error" and "cancel" in mesh.Message.lower(),
+          "run reported as cancelled: " + mesh.Message)
+    check(mesh.FemMesh.VolumeCount == 512 and mesh.HexCount == 512,
+          "previous mesh kept after Stop")
+    check(run.isEnabled() and not stop.isEnabled(), "Run enabled again, Stop disabled")
+    size_box.setValue(2.5)
     task_ok_button(mw, QtGui.QDialogButtonBox.Cancel).click()
     pump(0.3)
     check(not Gui.Control.activeDialog(), "task panel closed again")
