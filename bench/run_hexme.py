@@ -64,6 +64,10 @@ def main():
                 for line in fh:
                     if line.startswith("{'model'"):
                         row = ast.literal_eval(line)
+                        if row.get("v_sec", 0) >= 299:  # killed: older runs read a stale report
+                            for k in ("v_hexes", "v_min_before", "v_min", "v_mean"):
+                                row.pop(k, None)
+                            row["v"] = "killed after %.0f s (300 s limit)" % row["v_sec"]
                         by_model[row["model"]] = row
         write_table([by_model[m] for m in sorted(by_model)])
         return
@@ -77,22 +81,24 @@ def main():
         step = os.path.join(HEXME, model)
         name = model[:-5]
         rep = os.path.join(work, name + ".json")
+        if os.path.exists(rep):
+            os.remove(rep)  # never read a previous run's report for a killed run
         code, sec, mb, err = measure([vorohex, "mesh", step, "-o", os.path.join(work, name + ".vtu"),
                                       "--report", rep, "--quiet"], timeout=300)
         r = load(rep)
         row = {"model": name, "v_sec": sec, "v_mb": mb}
+        size = None
         if r is None:
-            row["v"] = "crash (exit %d)" % code
-            rows.append(row)
-            continue
-        size = r["size"]
-        row["size"] = size
-        if r["ok"]:
+            row["v"] = ("killed after %.0f s (300 s limit)" % sec if code < 0 or sec >= 299
+                        else "crash (exit %d)" % code)
+        elif r["ok"]:
+            size = row["size"] = r["size"]
             c = r["check"]
             row.update(v="valid " + r["scheme"], v_hexes=c["hexes"],
                        v_min_before=r["smoothing"]["min_scaled_jacobian_before"],
                        v_min=c["scaled_jacobian"]["min"], v_mean=c["scaled_jacobian"]["mean"])
         else:
+            size = row["size"] = r["size"]
             row["v"] = errors(r["diagnostics"])
         drep = os.path.join(work, name + ".decomposition.json")
         code, dsec, _, derr = measure([vorohex, "decompose", step, "-o",
@@ -116,7 +122,7 @@ def main():
         row["d_sec"] = dsec
         if name in kept:
             row["g_kept"] = kept[name]
-        if not args.no_gmsh:
+        if not args.no_gmsh and size is not None:
             msh = os.path.join(work, name + ".gmsh.msh")
             code, gsec, gmb, gerr = measure([sys.executable, os.path.join(HERE, "gmsh_allhex.py"),
                                              step, msh, str(size)], timeout=900)
