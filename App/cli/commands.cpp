@@ -20,12 +20,13 @@ namespace vorohex::cli {
 const char* const kMeshUsage =
     "usage: vorohex mesh IN -o OUT [--size H] [--report REPORT.json] [--max-hexes N]\n"
     "                    [--smooth-iterations N] [--smooth-passes N] [--no-smooth]\n"
-    "                    [--no-fallback] [--keep-invalid] [--quiet]\n"
+    "                    [--no-fallback] [--time-limit S] [--keep-invalid] [--quiet]\n"
     "  IN    a solid as STEP (.step/.stp), BREP (.brep/.brp) or IGES (.iges/.igs)\n"
     "  OUT   the hex mesh: .vtu (ParaView), .msh (Gmsh 4.1) or .inp (Abaqus/CalculiX)\n"
     "  --size H        target edge length in model units (default: diagonal / 20)\n"
     "  --report FILE   write the quality and validity report as JSON\n"
     "  --max-hexes N   refuse up front when the predicted mesh is larger (default 50000000)\n"
+    "  --time-limit S  stop after S seconds like a cancel (error time_limit, nothing written)\n"
     "  --smooth-iterations N  Laplacian sweeps of the global smoothing (default 20)\n"
     "  --smooth-passes N      untangling/optimisation passes of the smoothing (default 10)\n"
     "  --no-smooth     no smoothing (same as both counts 0)\n"
@@ -167,7 +168,7 @@ bool known_mesh_extension(const std::string& path) {
 int mesh_command(const std::vector<std::string>& argv) {
   const Args args = parse(argv,
                           {"-o", "--output", "--size", "--report", "--max-hexes",
-                           "--smooth-iterations", "--smooth-passes"},
+                           "--smooth-iterations", "--smooth-passes", "--time-limit"},
                           {"--no-smooth", "--no-fallback", "--keep-invalid", "--quiet"});
   if (args.positional.size() != 1)
     throw UsageError("expected exactly one input file, got " +
@@ -193,6 +194,8 @@ int mesh_command(const std::vector<std::string>& argv) {
   if (args.flags.count("--no-smooth"))
     options.smoothing.laplacian_iterations = options.smoothing.optimisation_passes = 0;
   options.fallback = args.flags.count("--no-fallback") == 0;
+  if (args.values.count("--time-limit"))
+    options.time_limit = parse_positive("--time-limit", args.values.at("--time-limit"));
   const bool quiet = args.flags.count("--quiet") > 0;
 
   const auto t0 = std::chrono::steady_clock::now();

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
 #include <functional>
 #include <string_view>
 
@@ -19,11 +20,27 @@ class Progress {
   void report(std::string_view stage, double fraction) const {
     if (callback_) callback_(stage, fraction);
   }
-  bool cancelled() const { return cancel_ && cancel_->load(std::memory_order_relaxed); }
+  // Cancelled by the flag, or past the deadline (a time limit works like a cancel).
+  bool cancelled() const {
+    return (cancel_ && cancel_->load(std::memory_order_relaxed)) || timed_out();
+  }
+  bool timed_out() const { return has_deadline_ && std::chrono::steady_clock::now() > deadline_; }
+
+  // A copy that also counts as cancelled once `seconds` have passed from now.
+  Progress with_time_limit(double seconds) const {
+    Progress p = *this;
+    p.has_deadline_ = true;
+    p.deadline_ = std::chrono::steady_clock::now() +
+                  std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                      std::chrono::duration<double>(seconds));
+    return p;
+  }
 
  private:
   Callback callback_;
   const std::atomic<bool>* cancel_ = nullptr;
+  bool has_deadline_ = false;
+  std::chrono::steady_clock::time_point deadline_{};
 };
 
 }  // namespace vorohex::core

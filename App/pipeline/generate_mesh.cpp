@@ -122,13 +122,45 @@ void MeshOptions::validate() const {
     throw std::invalid_argument(s.str());
   }
   if (max_hexes == 0) throw std::invalid_argument("max_hexes must be at least 1");
+  if (!std::isfinite(time_limit) || time_limit < 0) {
+    std::ostringstream s;
+    s << "time_limit must be a number of seconds >= 0 (0: none), got " << time_limit;
+    throw std::invalid_argument(s.str());
+  }
   smoothing.validate();
   check.validate();
 }
 
+namespace {
+MeshResult generate(const occ::Solid& solid, const MeshOptions& options,
+                    const core::Progress& progress);
+}  // namespace
+
 MeshResult generate_mesh(const occ::Solid& solid, const MeshOptions& options,
                          const core::Progress& progress) {
   options.validate();
+  if (!(options.time_limit > 0)) return generate(solid, options, progress);
+  const core::Progress limited = progress.with_time_limit(options.time_limit);
+  MeshResult r = generate(solid, options, limited);
+  if (limited.timed_out() && !r.ok) {
+    for (core::Diagnostic& d : r.diagnostics)
+      if (d.code == "cancelled" || d.message.find("cancelled") != std::string::npos) {
+        d.code = "time_limit";
+        d.message = "Meshing stopped at the time limit of " + std::to_string(options.time_limit) +
+                    " s (" + d.message + ")";
+      }
+    if (!core::has_error(r.diagnostics))
+      r.diagnostics.push_back(core::make_error(
+          "time_limit",
+          "Meshing stopped at the time limit of " + std::to_string(options.time_limit) + " s."));
+    r.mesh = core::HexMesh();  // a stopped run hands over nothing
+  }
+  return r;
+}
+
+namespace {
+MeshResult generate(const occ::Solid& solid, const MeshOptions& options,
+                    const core::Progress& progress) {
   MeshResult result;
   const auto t0 = std::chrono::steady_clock::now();
 
@@ -226,5 +258,7 @@ MeshResult generate_mesh(const occ::Solid& solid, const MeshOptions& options,
   finish(result, solid, options, progress);
   return result;
 }
+
+}  // namespace
 
 }  // namespace vorohex::pipeline

@@ -24,6 +24,10 @@ struct MeshOptions {
   // Where no structured scheme applies: a tetrahedral mesh split into hexahedra (poorer
   // elements, reported as a warning); false refuses such solids instead.
   bool fallback = true;
+  // Seconds after which meshing stops like a cancel, with a `time_limit` error (0: none).
+  // Checked between and inside stages; the tetrahedral fallback's CGAL step is not
+  // interrupted.
+  double time_limit = 0;
   void validate() const;  // throws std::invalid_argument naming the bad option
 };
 

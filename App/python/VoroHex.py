@@ -72,6 +72,8 @@ OPTIONS = (
             auto_zero=True),
     _Option("max_hexes", "MaxHexes", "App::PropertyInteger", "Mesh",
             "Refuse to mesh when more hexahedra than this are predicted", "count"),
+    _Option("time_limit", "TimeLimit", "App::PropertyFloat", "Mesh",
+            "Seconds after which meshing stops like a cancel (0 = no limit)", "tolerance"),
     _Option("fallback", "Fallback", "App::PropertyBool", "Mesh",
             "Where no structured scheme (map, sweep, midpoint) applies, mesh tetrahedra split "
             "into hexahedra (poorer elements, reported as a warning); false refuses instead",

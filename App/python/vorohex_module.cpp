@@ -153,6 +153,8 @@ void bind_types(py::module_& m) {
       .def(py::init<>())
       .def_readwrite("size", &O::size, "target edge length, model units; 0 = diagonal / 20")
       .def_readwrite("max_hexes", &O::max_hexes, "refuse up front above this predicted count")
+      .def_readwrite("time_limit", &O::time_limit,
+                     "seconds after which meshing stops like a cancel (0: none)")
       .def_readwrite("fallback", &O::fallback,
                      "where no structured scheme applies: tetrahedra split into hexahedra "
                      "(reported as a warning); False refuses such solids")
@@ -380,8 +382,7 @@ PYBIND11_MODULE(_VoroHexCore, m) {
   m.def("voronoi_graph_json", &voronoi_json, py::arg("solid"), py::arg("options"),
         "the embedded Voronoi graph of a solid as JSON text");
   m.def("typed_voronoi_graph", &typed_voronoi, py::arg("solid"), py::arg("options"),
-        py::arg("sharp_angle") = 60.0,
-        "(graph JSON text, [(element id, edge type)]) for the GUI");
+        py::arg("sharp_angle") = 60.0, "(graph JSON text, [(element id, edge type)]) for the GUI");
   m.def("decomposition_json", &decomposition_json, py::arg("solid"), py::arg("graph_options"),
         py::arg("sharp_angle"), py::arg("merge"), py::arg("brep_path") = "",
         py::arg("vtp_path") = "",

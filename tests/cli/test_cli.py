@@ -181,6 +181,16 @@ class MeshCommand(unittest.TestCase):
         self.assertIn("not supported yet", stderr)
         self.assertFalse(os.path.exists(out))
 
+    def test_time_limit_stops_with_an_error_and_writes_nothing(self):
+        step = os.path.join(EXAMPLES, "box_3x2x1.step")
+        out = os.path.join(self.dir, "big.vtu")
+        code, stdout, stderr = run("mesh", step, "-o", out, "--size", "0.01", "--time-limit",
+                                   "0.05")
+        self.assertEqual(code, 1, stdout + stderr)
+        self.assertIn("time_limit", stderr)
+        self.assertFalse(os.path.exists(out))
+        self.expect_bad_input([step, "--time-limit", "-1"], "--time-limit")
+
     def test_fallback_meshes_what_no_scheme_accepts_and_says_so(self):
         sys.path.append("/usr/lib/freecad-python3/lib")
         import FreeCAD  # noqa: F401  (FreeCAD must be imported before Part)

@@ -129,6 +129,14 @@ class TestVoroHexApi(unittest.TestCase):
         self.assertTrue(r.message)
         self.assertEqual(r.hex_count, 0)
 
+    def test_time_limit(self):
+        r = VoroHex.mesh(Part.makeBox(30, 20, 10), size=0.1, time_limit=0.05)
+        self.assertFalse(r.ok)
+        self.assertIn("time_limit", [d.code for d in r.errors])
+        self.assertEqual(r.hex_count, 0)
+        with self.assertRaisesRegex(ValueError, "time_limit"):
+            VoroHex.mesh(Part.makeBox(1, 1, 1), time_limit=-1)
+
     def test_sphere_is_meshed_by_the_fallback_with_a_warning(self):
         sphere = Part.makeSphere(5)
         r = VoroHex.mesh(sphere, size=1.5, smooth_passes=2)

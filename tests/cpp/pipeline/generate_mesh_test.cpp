@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
+
 #include "fixtures/diagnostics.h"
 #include "fixtures/solids.h"
 #include "occ/detail/fixtures.h"
@@ -127,6 +129,26 @@ TEST(GenerateMesh, RepairedAndRescaledSolidsMeshValid) {
     EXPECT_GT(m.check.scaled_jacobian.min, 0.3);
     EXPECT_NEAR(m.check.mesh_volume, t.volume(), 1e-9 * t.volume());
   }
+}
+
+// A time limit stops meshing like a cancel: an error naming the limit, no mesh.
+TEST(GenerateMesh, TimeLimitStopsMeshingWithADiagnostic) {
+  const occ::Solid box = occ::make_box(3, 2, 1);
+  MeshOptions opt;
+  opt.size = 0.01;  // 6 million hexes: seconds of work
+  opt.time_limit = 0.05;
+  const auto t0 = std::chrono::steady_clock::now();
+  const MeshResult r = generate_mesh(box, opt);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  EXPECT_FALSE(r.ok);
+  EXPECT_EQ(r.mesh.num_hexes(), 0u);
+  const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "time_limit");
+  ASSERT_NE(d, nullptr);
+  EXPECT_NE(d->message.find("time limit"), std::string::npos) << d->message;
+  EXPECT_LT(seconds, 5.0);  // stopped early, not run to the end
+  opt.time_limit = -1;
+  EXPECT_THROW(generate_mesh(box, opt), std::invalid_argument);
 }
 
 }  // namespace
