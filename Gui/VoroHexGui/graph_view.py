@@ -1,50 +1,22 @@
 # View provider and task panel of the Voronoi graph object: edges coloured by type, and a
 # legend (colour, type, meaning, count, shown or not) that toggles types.
-import FreeCAD
 import FreeCADGui
 from PySide import QtCore, QtGui
 
 import VoroHexGraph
 import VoroHexGui
+from VoroHexGui.view_provider import ViewProviderBase
 
 
-class ViewProviderVoronoiGraph:
-    def __init__(self, vobj):
-        vobj.Proxy = self
-
-    def attach(self, vobj):
-        self.ViewObject = vobj
-        self.Object = vobj.Object
-
-    def getIcon(self):
-        return VoroHexGui.resource("icons", "VoroHexGraph.svg")
+class ViewProviderVoronoiGraph(ViewProviderBase):
+    ICON = "VoroHexGraph.svg"
 
     def updateData(self, obj, prop):
         if prop in ("SegmentTypes", "Shape"):
             colour_edges(obj)
 
-    def onChanged(self, vobj, prop):
-        return
-
-    def setEdit(self, vobj, mode=0):
-        vobj.show()
-        FreeCADGui.Control.showDialog(GraphTaskPanel(vobj.Object))
-        return True
-
-    def unsetEdit(self, vobj, mode=0):
-        FreeCADGui.Control.closeDialog()
-        return True
-
-    def doubleClicked(self, vobj):
-        if not FreeCADGui.Control.activeDialog():
-            FreeCADGui.getDocument(vobj.Object.Document.Name).setEdit(vobj.Object.Name)
-        return True
-
-    def __getstate__(self):
-        return None
-
-    def __setstate__(self, state):
-        return None
+    def make_panel(self, obj):
+        return GraphTaskPanel(obj)
 
 
 def colour_edges(obj):

@@ -5,47 +5,20 @@ import FreeCADGui
 from PySide import QtCore, QtGui
 
 import VoroHexGui
+from VoroHexGui.view_provider import ViewProviderBase
 import VoroHexParts
 from VoroHexGui.graph_view import swatch
 
 
-class ViewProviderDecomposition:
-    def __init__(self, vobj):
-        vobj.Proxy = self
-
-    def attach(self, vobj):
-        self.ViewObject = vobj
-        self.Object = vobj.Object
-
-    def getIcon(self):
-        return VoroHexGui.resource("icons", "VoroHexParts.svg")
+class ViewProviderDecomposition(ViewProviderBase):
+    ICON = "VoroHexParts.svg"
 
     def updateData(self, obj, prop):
         if prop in ("FaceRoles", "Shape"):
             colour_faces(obj)
 
-    def onChanged(self, vobj, prop):
-        return
-
-    def setEdit(self, vobj, mode=0):
-        vobj.show()
-        FreeCADGui.Control.showDialog(PartsTaskPanel(vobj.Object))
-        return True
-
-    def unsetEdit(self, vobj, mode=0):
-        FreeCADGui.Control.closeDialog()
-        return True
-
-    def doubleClicked(self, vobj):
-        if not FreeCADGui.Control.activeDialog():
-            FreeCADGui.getDocument(vobj.Object.Document.Name).setEdit(vobj.Object.Name)
-        return True
-
-    def __getstate__(self):
-        return None
-
-    def __setstate__(self, state):
-        return None
+    def make_panel(self, obj):
+        return PartsTaskPanel(obj)
 
 
 def colour_faces(obj):

@@ -1,10 +1,15 @@
-# View provider proxy of the VoroHex mesh object (FemMeshGmsh's VPMeshGmsh pattern).
+# View provider proxies of the VoroHex objects (FemMeshGmsh's VPMeshGmsh pattern).
 import FreeCADGui
 
 import VoroHexGui
 
 
-class ViewProviderHexMesh:
+class ViewProviderBase:
+    """What every VoroHex object's view provider shares: double click opens the task panel
+    made by make_panel(obj); icon from ICON; nothing saved with the document."""
+
+    ICON = "VoroHex.svg"
+
     def __init__(self, vobj):
         vobj.Proxy = self
 
@@ -13,7 +18,7 @@ class ViewProviderHexMesh:
         self.Object = vobj.Object
 
     def getIcon(self):
-        return VoroHexGui.resource("icons", "VoroHex.svg")
+        return VoroHexGui.resource("icons", self.ICON)
 
     def updateData(self, obj, prop):
         return
@@ -21,11 +26,12 @@ class ViewProviderHexMesh:
     def onChanged(self, vobj, prop):
         return
 
-    def setEdit(self, vobj, mode=0):
-        from VoroHexGui import task_panel
+    def make_panel(self, obj):
+        raise NotImplementedError
 
+    def setEdit(self, vobj, mode=0):
         vobj.show()
-        FreeCADGui.Control.showDialog(task_panel.TaskPanel(vobj.Object))
+        FreeCADGui.Control.showDialog(self.make_panel(vobj.Object))
         return True
 
     def unsetEdit(self, vobj, mode=0):
@@ -42,3 +48,10 @@ class ViewProviderHexMesh:
 
     def __setstate__(self, state):
         return None
+
+
+class ViewProviderHexMesh(ViewProviderBase):
+    def make_panel(self, obj):
+        from VoroHexGui import task_panel
+
+        return task_panel.TaskPanel(obj)
