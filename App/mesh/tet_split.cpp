@@ -288,7 +288,9 @@ TetSplitResult tet_split(const occ::Solid& solid, const TetSplitOptions& options
                     params::cell_radius_edge_ratio = 2.5, params::cell_size = tet_size);
   C3t3 c3t3;
   try {
-    c3t3 = CGAL::make_mesh_3<C3t3>(domain, criteria, params::perturb(), params::exude());
+    c3t3 = CGAL::make_mesh_3<C3t3>(
+        domain, criteria, params::odt(params::time_limit = 10, params::max_iteration_number = 20),
+        params::perturb(), params::no_exude());
   } catch (const std::exception& ex) {
     return fail(std::string("CGAL could not mesh the volume: ") + ex.what());
   }

@@ -58,7 +58,9 @@ class Smoother {
     result_.mean_before = before.mean;
     result_.inverted_before = before.inverted;
     floor_ = std::max(options_.quality_target, before.min);
+    input_min_ = before.min;
     const std::vector<double> input_sj = sj_;
+    const std::vector<Vec3> input_points = mesh_.points();
 
     const auto t0 = std::chrono::steady_clock::now();
     laplacian_phase();
@@ -69,8 +71,21 @@ class Smoother {
     result_.seconds_optimisation = seconds_since(t1);
 
     // Recomputed from scratch, not taken from the running values.
-    const std::vector<double> after_sj = quality::scaled_jacobians(mesh_);
-    const quality::QualityStats after = quality::quality_stats(after_sj);
+    std::vector<double> after_sj = quality::scaled_jacobians(mesh_);
+    quality::QualityStats after = quality::quality_stats(after_sj);
+    // Untangling may deepen one inverted hex to clear others; the result must never have a
+    // lower minimum than its input, so such a trade is undone as a whole.
+    if (after.min < before.min) {
+      for (std::size_t n = 0; n < input_points.size(); ++n)
+        mesh_.set_point(core::NodeId(static_cast<std::int32_t>(n)), input_points[n]);
+      std::ostringstream s;
+      s << "Smoothing lowered the minimum scaled Jacobian from " << before.min << " to "
+        << after.min << " (" << after.inverted << " inverted instead of " << before.inverted
+        << "); the input node positions were restored.";
+      result_.diagnostics.push_back(core::make_warning("smoothing_reverted", s.str()));
+      after_sj = input_sj;
+      after = before;
+    }
     result_.min_after = after.min;
     result_.mean_after = after.mean;
     result_.inverted_after = after.inverted;
@@ -141,10 +156,12 @@ class Smoother {
       const double old_sj = sj_[item / 8];
       const double new_sj = hex_sj(item, x);
       // Untangling may trade quality of valid hexes (never their validity) for fewer
-      // inverted ones; the optimisation phase then raises what fell below the target.
-      const bool ok = mode == Mode::strict
-                          ? new_sj >= std::min(old_sj, floor_)
-                          : old_sj <= 0 || new_sj >= std::min(old_sj, kUntangleFloor);
+      // inverted ones, and an inverted hex may get worse, never below the input's minimum;
+      // the optimisation phase then raises what fell below the target.
+      const bool ok =
+          mode == Mode::strict
+              ? new_sj >= std::min(old_sj, floor_)
+              : (old_sj <= 0 ? new_sj >= input_min_ : new_sj >= std::min(old_sj, kUntangleFloor));
       if (!ok) return false;
       trial.push_back(new_sj);
     }
@@ -450,6 +467,7 @@ class Smoother {
   std::vector<std::int32_t> serial_nodes_;                 // boundary and uncoloured nodes
   std::vector<IncidentHex> incident_;
   double floor_ = 0;
+  double input_min_ = 0;  // the input's minimum, which no hex may fall below
 };
 
 }  // namespace
