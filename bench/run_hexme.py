@@ -6,7 +6,7 @@ diagonal / 20), Gmsh's subdivision all-hex at the same size (both judged by `vor
 against the CAD), and `vorohex decompose` (sub-volumes before/after merging and schemes).
 Writes bench/results/hexme.md.
 
-usage: run_hexme.py [--build BUILD] [--no-gmsh] [--only PREFIX]
+usage: run_hexme.py [--build BUILD] [--no-gmsh] [--only PREFIX[,PREFIX...]]
        run_hexme.py --from-logs LOG [LOG...]
 
 --no-gmsh keeps the Gmsh columns of the existing table (Gmsh's result does not change
@@ -74,7 +74,8 @@ def main():
     vorohex = os.path.join(args.build, "vorohex")
     work = os.path.join(HERE, "work", "hexme")
     os.makedirs(work, exist_ok=True)
-    models = sorted(f for f in os.listdir(HEXME) if f.endswith(".step") and f.startswith(args.only))
+    prefixes = tuple(args.only.split(","))
+    models = sorted(f for f in os.listdir(HEXME) if f.endswith(".step") and f.startswith(prefixes))
     rows = []
     kept = previous_gmsh(os.path.join(HERE, "results", "hexme.md")) if args.no_gmsh else {}
     for model in models:

@@ -199,7 +199,9 @@ int mesh_command(const std::vector<std::string>& argv) {
   const bool quiet = args.flags.count("--quiet") > 0;
 
   const auto t0 = std::chrono::steady_clock::now();
-  occ::ReadResult read = occ::read_solid(args.positional[0]);
+  occ::ReadOptions read_options;
+  read_options.several_solids = true;  // glued at common faces, meshed as one
+  occ::ReadResult read = occ::read_solid(args.positional[0], read_options);
   if (!read.ok()) {
     print_diagnostics(read.diagnostics);
     return kExitBadInput;
@@ -293,7 +295,9 @@ int check_command(const std::vector<std::string>& argv) {
   }
   std::unique_ptr<occ::Solid> cad;
   if (args.values.count("--cad")) {
-    occ::ReadResult read = occ::read_solid(args.values.at("--cad"));
+    occ::ReadOptions read_options;
+    read_options.several_solids = true;
+    occ::ReadResult read = occ::read_solid(args.values.at("--cad"), read_options);
     if (!read.ok()) {
       print_diagnostics(read.diagnostics);
       return kExitBadInput;

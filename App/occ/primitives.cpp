@@ -194,9 +194,14 @@ bool write_fixture(Fixture kind, const std::string& path) {
     } else {
       TopoDS_Compound compound;
       b.MakeCompound(compound);
-      if (kind == Fixture::two_boxes) {
+      if (kind == Fixture::two_boxes || kind == Fixture::touching_boxes ||
+          kind == Fixture::overlapping_boxes) {
+        const double x = kind == Fixture::two_boxes ? 3 : kind == Fixture::touching_boxes ? 1 : 0.5;
         b.Add(compound, box);
-        b.Add(compound, BRepPrimAPI_MakeBox(gp_Pnt(3, 0, 0), 1, 1, 1).Solid());
+        b.Add(compound, BRepPrimAPI_MakeBox(gp_Pnt(x, 0, 0), 1, 1, 1).Solid());
+      } else if (kind == Fixture::stacked_boxes) {
+        b.Add(compound, BRepPrimAPI_MakeBox(2, 1, 1).Solid());
+        b.Add(compound, BRepPrimAPI_MakeBox(gp_Pnt(0.5, 0, 1), 1, 1, 1).Solid());
       } else {
         int n = 0;
         for (TopExp_Explorer ex(box, TopAbs_FACE); ex.More() && n < 3; ex.Next(), ++n)

@@ -1,5 +1,6 @@
 #include "occ/shape_io.h"
 
+#include <BRepAlgoAPI_BuilderAlgo.hxx>
 #include <BRepBuilderAPI_MakeSolid.hxx>
 #include <BRepCheck_Analyzer.hxx>
 #include <BRepGProp.hxx>
@@ -10,21 +11,29 @@
 #include <GProp_GProps.hxx>
 #include <IFSelect_ReturnStatus.hxx>
 #include <IGESControl_Reader.hxx>
+#include <Interface_Check.hxx>
+#include <Interface_CheckIterator.hxx>
+#include <Interface_InterfaceModel.hxx>
 #include <STEPControl_Reader.hxx>
 #include <STEPControl_Writer.hxx>
 #include <ShapeFix_Shape.hxx>
 #include <Standard_Failure.hxx>
+#include <TCollection_HAsciiString.hxx>
 #include <TopExp.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopTools_IndexedMapOfShape.hxx>
+#include <TopTools_ListOfShape.hxx>
 #include <TopoDS.hxx>
+#include <TopoDS_Compound.hxx>
 #include <TopoDS_Shape.hxx>
 #include <TopoDS_Shell.hxx>
 #include <TopoDS_Solid.hxx>
+#include <XSControl_WorkSession.hxx>
 
 #include <sys/stat.h>
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -95,8 +104,109 @@ std::string join_names(const std::vector<std::string>& names, std::size_t max_na
   return s;
 }
 
-// The checks shared by files and strings: exactly one valid, closed solid.
-ReadResult analyse(const TopoDS_Shape& shape, const std::string& where) {
+// Validity of one solid: OCCT's check (with ShapeFix healing when it fails), outward
+// orientation, faces. Null (with an error in r) when it cannot be used.
+TopoDS_Solid checked_solid(TopoDS_Solid solid, const std::string& where, ReadResult& r) {
+  if (!BRepCheck_Analyzer(solid).IsValid()) {
+    // Bad tolerances and similar defects: try OCCT's shape healing before giving up.
+    TopoDS_Solid fixed;
+    try {
+      ShapeFix_Shape fix(solid);
+      fix.Perform();
+      const TopoDS_Shape result = fix.Shape();
+      if (count(result, TopAbs_SOLID) == 1) {
+        TopExp_Explorer ex(result, TopAbs_SOLID);
+        fixed = TopoDS::Solid(ex.Current());
+      }
+    } catch (const Standard_Failure&) {
+      fixed.Nullify();
+    }
+    if (fixed.IsNull() || !BRepCheck_Analyzer(fixed).IsValid()) {
+      r.diagnostics.push_back(make_error(
+          "invalid_shape", where + " holds a solid that fails OCCT's validity check "
+                                   "(self-intersecting or broken geometry) and OCCT's shape "
+                                   "healing (ShapeFix) could not repair it."));
+      return TopoDS_Solid();
+    }
+    solid = fixed;
+    r.diagnostics.push_back(make_warning(
+        "shape_repaired", where + " holds a solid that failed OCCT's validity check (e.g. "
+                                  "tolerances too small for its geometry); it was repaired "
+                                  "with OCCT's shape healing (ShapeFix) before meshing."));
+  }
+  // An inside-out solid has negative volume: turn it, so normals point outwards.
+  if (signed_volume(solid) < 0) {
+    BRepLib::OrientClosedSolid(solid);
+    r.diagnostics.push_back(
+        make_info("solid_reoriented", where + " holds an inside-out solid; it was turned."));
+  }
+  // A shell whose free edges are not detected by incidence (e.g. non-manifold) still fails.
+  if (count(solid, TopAbs_FACE) == 0) {
+    r.diagnostics.push_back(make_error("no_solid", where + " holds an empty solid."));
+    return TopoDS_Solid();
+  }
+  return solid;
+}
+
+// Several solids glued into one compound: OCCT's general fuse makes faces the solids have in
+// common (touching boxes, fragments) one shared face. Overlapping solids are refused: their
+// common volume would be meshed twice.
+ReadResult glue(const std::vector<TopoDS_Solid>& solids, const std::string& where, ReadResult r) {
+  double volume = 0;
+  for (const TopoDS_Solid& s : solids) volume += signed_volume(s);
+  TopoDS_Shape glued;
+  try {
+    BRepAlgoAPI_BuilderAlgo fuse;
+    TopTools_ListOfShape args;
+    for (const TopoDS_Solid& s : solids) args.Append(s);
+    fuse.SetArguments(args);
+    fuse.SetRunParallel(false);
+    fuse.Build();
+    if (fuse.IsDone() && !fuse.HasErrors()) glued = fuse.Shape();
+  } catch (const Standard_Failure&) {
+    glued.Nullify();
+  }
+  if (glued.IsNull()) {
+    r.diagnostics.push_back(make_error("invalid_shape", where + " holds " +
+                                                            plural(int(solids.size()), "solid") +
+                                                            " that OCCT's general fuse could not "
+                                                            "glue at their common faces."));
+    return r;
+  }
+  std::vector<TopoDS_Solid> parts;
+  double glued_volume = 0;
+  for (TopExp_Explorer ex(glued, TopAbs_SOLID); ex.More(); ex.Next()) {
+    parts.push_back(TopoDS::Solid(ex.Current()));
+    glued_volume += signed_volume(parts.back());
+  }
+  if (parts.size() != solids.size() || std::abs(glued_volume - volume) > 1e-9 * std::abs(volume)) {
+    r.diagnostics.push_back(make_error(
+        "overlapping_solids", where + " holds " + plural(int(solids.size()), "solid") +
+                                  " that overlap (their general fuse has " +
+                                  plural(int(parts.size()), "solid") +
+                                  "); solids may touch at common faces but not share volume."));
+    return r;
+  }
+  BRep_Builder b;
+  TopoDS_Compound compound;
+  b.MakeCompound(compound);
+  for (const TopoDS_Solid& s : parts) b.Add(compound, s);
+  r.solid = std::make_unique<Solid>(make_solid_impl(compound));
+  std::ostringstream s;
+  s << where << " holds " << solids.size() << " solids; each is meshed, ";
+  const int shared = r.solid->num_interface_faces();
+  if (shared == 0)
+    s << "none touches another.";
+  else
+    s << "with one mesh across the " << plural(shared, "face") << " they share.";
+  r.diagnostics.push_back(make_info("several_solids", s.str()));
+  return r;
+}
+
+// The checks shared by files and strings: one valid, closed solid (or several, when the
+// options allow it).
+ReadResult analyse(const TopoDS_Shape& shape, const std::string& where,
+                   const ReadOptions& options) {
   ReadResult r;
   if (shape.IsNull()) {
     r.diagnostics.push_back(make_error("unreadable_file", where + " contains no shape."));
@@ -105,11 +215,22 @@ ReadResult analyse(const TopoDS_Shape& shape, const std::string& where) {
   const int solids = count(shape, TopAbs_SOLID);
   const int shells = count(shape, TopAbs_SHELL);
   const int faces = count(shape, TopAbs_FACE);
-  if (solids > 1) {
+  if (solids > 1 && !options.several_solids) {
     r.diagnostics.push_back(make_error(
         "several_solids",
-        where + " contains " + plural(solids, "solid") + "; VoroHex meshes one solid at a time."));
+        where + " contains " + plural(solids, "solid") + "; this command takes one solid."));
     return r;
+  }
+  if (solids > 1) {
+    std::vector<TopoDS_Solid> checked;
+    int k = 0;
+    for (TopExp_Explorer ex(shape, TopAbs_SOLID); ex.More(); ex.Next()) {
+      const TopoDS_Solid s = checked_solid(TopoDS::Solid(ex.Current()),
+                                           where + " (solid " + std::to_string(++k) + ")", r);
+      if (s.IsNull()) return r;
+      checked.push_back(s);
+    }
+    return glue(checked, where, std::move(r));
   }
   TopoDS_Solid solid;
   if (solids == 1) {
@@ -150,47 +271,36 @@ ReadResult analyse(const TopoDS_Shape& shape, const std::string& where) {
     r.diagnostics.push_back(make_error("no_solid", where + " contains " + what + " and no solid."));
     return r;
   }
-
-  if (!BRepCheck_Analyzer(solid).IsValid()) {
-    // Bad tolerances and similar defects: try OCCT's shape healing before giving up.
-    TopoDS_Solid fixed;
-    try {
-      ShapeFix_Shape fix(solid);
-      fix.Perform();
-      const TopoDS_Shape result = fix.Shape();
-      if (count(result, TopAbs_SOLID) == 1) {
-        TopExp_Explorer ex(result, TopAbs_SOLID);
-        fixed = TopoDS::Solid(ex.Current());
-      }
-    } catch (const Standard_Failure&) {
-      fixed.Nullify();
-    }
-    if (fixed.IsNull() || !BRepCheck_Analyzer(fixed).IsValid()) {
-      r.diagnostics.push_back(make_error(
-          "invalid_shape", where + " holds a solid that fails OCCT's validity check "
-                                   "(self-intersecting or broken geometry) and OCCT's shape "
-                                   "healing (ShapeFix) could not repair it."));
-      return r;
-    }
-    solid = fixed;
-    r.diagnostics.push_back(make_warning(
-        "shape_repaired", where + " holds a solid that failed OCCT's validity check (e.g. "
-                                  "tolerances too small for its geometry); it was repaired "
-                                  "with OCCT's shape healing (ShapeFix) before meshing."));
-  }
-  // An inside-out solid has negative volume: turn it, so normals point outwards.
-  if (signed_volume(solid) < 0) {
-    BRepLib::OrientClosedSolid(solid);
-    r.diagnostics.push_back(
-        make_info("solid_reoriented", where + " holds an inside-out solid; it was turned."));
-  }
-  // A shell whose free edges are not detected by incidence (e.g. non-manifold) still fails.
-  if (count(solid, TopAbs_FACE) == 0) {
-    r.diagnostics.push_back(make_error("no_solid", where + " holds an empty solid."));
-    return r;
-  }
+  solid = checked_solid(solid, where, r);
+  if (solid.IsNull()) return r;
   r.solid = std::make_unique<Solid>(make_solid_impl(solid));
   return r;
+}
+
+// OCCT's STEP translator (StepToGeom, StepToTopoDS) dereferences the references of entities
+// that failed to load (an unresolved #id, an entity of the wrong type, a number that is not
+// one) and crashes. Such files are refused before the transfer. Failures of metadata
+// (StepBasic: units, products; HexMe's i12 has an SI unit with a wrong parameter count) and
+// of unknown entity types are left to the translator, which copes with them. Returns ""
+// when the file may be transferred, else the first failures.
+std::string step_load_failures(const STEPControl_Reader& reader) {
+  const Handle(Interface_InterfaceModel) model = reader.Model();
+  Interface_CheckIterator checks = reader.WS()->ModelCheckList(false);  // load checks only
+  std::vector<std::string> failures;
+  for (checks.Start(); checks.More(); checks.Next()) {
+    const Handle(Interface_Check)& check = checks.Value();
+    if (!check->HasFailed() || checks.Number() < 1 || checks.Number() > model->NbEntities())
+      continue;
+    const Handle(Standard_Transient) entity = model->Value(checks.Number());
+    const std::string type = entity->DynamicType()->Name();
+    if (type.rfind("StepBasic_", 0) == 0 || type == "StepData_UndefinedEntity") continue;
+    failures.push_back(std::string(model->StringLabel(entity)->ToCString()) + " " + type + ": " +
+                       check->CFail(1));
+  }
+  if (failures.empty()) return "";
+  return std::to_string(failures.size()) +
+         (failures.size() == 1 ? " entity fails" : " entities fail") + " to load (" +
+         join_names(failures, 3) + ")";
 }
 
 bool only_whitespace(std::ifstream& in) {
@@ -204,7 +314,7 @@ bool only_whitespace(std::ifstream& in) {
 
 }  // namespace
 
-ReadResult read_solid(const std::string& path) {
+ReadResult read_solid(const std::string& path, const ReadOptions& options) {
   ReadResult r;
   struct stat st {};
   if (::stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) {
@@ -237,9 +347,17 @@ ReadResult read_solid(const std::string& path) {
     bool read = false;
     if (format == Format::step) {
       STEPControl_Reader reader;
-      if (reader.ReadFile(path.c_str()) == IFSelect_RetDone && reader.TransferRoots() > 0) {
-        shape = reader.OneShape();
-        read = !shape.IsNull();
+      if (reader.ReadFile(path.c_str()) == IFSelect_RetDone) {
+        const std::string failures = step_load_failures(reader);
+        if (!failures.empty()) {
+          r.diagnostics.push_back(
+              make_error("unreadable_file", where + " is a damaged STEP file: " + failures + "."));
+          return r;
+        }
+        if (reader.TransferRoots() > 0) {
+          shape = reader.OneShape();
+          read = !shape.IsNull();
+        }
       }
     } else if (format == Format::iges) {
       IGESControl_Reader reader;
@@ -256,7 +374,7 @@ ReadResult read_solid(const std::string& path) {
                                                                 " file (no shape could be read)."));
       return r;
     }
-    return analyse(shape, where);
+    return analyse(shape, where, options);
   } catch (const Standard_Failure& e) {
     r.diagnostics.push_back(make_error(
         "unreadable_file", where + " could not be read as " + kind + ": " + e.GetMessageString()));
@@ -268,7 +386,7 @@ ReadResult read_solid(const std::string& path) {
   return r;
 }
 
-ReadResult read_solid_from_brep_string(const std::string& brep) {
+ReadResult read_solid_from_brep_string(const std::string& brep, const ReadOptions& options) {
   ReadResult r;
   const std::string where = "The BREP string";
   if (std::all_of(brep.begin(), brep.end(),
@@ -286,7 +404,7 @@ ReadResult read_solid_from_brep_string(const std::string& brep) {
           "unreadable_file", where + " is not valid BREP text (no shape could be read)."));
       return r;
     }
-    return analyse(shape, where);
+    return analyse(shape, where, options);
   } catch (const Standard_Failure& e) {
     r.diagnostics.push_back(make_error(
         "unreadable_file", where + " could not be read as BREP: " + e.GetMessageString()));

@@ -12,19 +12,26 @@
 namespace vorohex::occ {
 
 struct ReadResult {
-  std::unique_ptr<Solid> solid;                 // null when reading failed
-  std::vector<core::Diagnostic> diagnostics;    // errors when solid is null; notes otherwise
+  std::unique_ptr<Solid> solid;               // null when reading failed
+  std::vector<core::Diagnostic> diagnostics;  // errors when solid is null; notes otherwise
   bool ok() const { return solid != nullptr; }
+};
+
+struct ReadOptions {
+  // Accept several solids (meshing): they are glued at the faces they have in common
+  // (OCCT's general fuse) into one Solid whose parts share those faces; overlapping solids
+  // are refused (overlapping_solids). Other commands take one solid (several_solids error).
+  bool several_solids = false;
 };
 
 // Format from the extension (.step/.stp, .brep/.brp, .iges/.igs, case-insensitive).
 // Errors (codes): file_not_found, empty_file, unsupported_format, unreadable_file,
-// no_solid, several_solids (message says how many), open_shell (names free edges),
-// invalid_shape.
-ReadResult read_solid(const std::string& path);
+// no_solid, several_solids (message says how many), overlapping_solids, open_shell (names
+// free edges), invalid_shape.
+ReadResult read_solid(const std::string& path, const ReadOptions& options = {});
 
 // The same checks on a BREP string (FreeCAD's Part.Shape.exportBrepToString()).
-ReadResult read_solid_from_brep_string(const std::string& brep);
+ReadResult read_solid_from_brep_string(const std::string& brep, const ReadOptions& options = {});
 
 // Writes a solid; format from the extension (.step/.stp or .brep). Returns false and
 // fills error on failure.

@@ -76,12 +76,24 @@ void check_id(int value, int count, const char* what) {
 
 }  // namespace
 
-std::unique_ptr<Solid::Impl> make_solid_impl(const TopoDS_Solid& solid) {
+std::unique_ptr<Solid::Impl> make_solid_impl(const TopoDS_Shape& solid) {
   auto impl = std::make_unique<Solid::Impl>();
   impl->solid = solid;
   TopExp::MapShapes(solid, TopAbs_FACE, impl->faces);
   TopExp::MapShapes(solid, TopAbs_EDGE, impl->edges);
   TopExp::MapShapes(solid, TopAbs_VERTEX, impl->vertices);
+  for (TopExp_Explorer ex(solid, TopAbs_SOLID); ex.More(); ex.Next())
+    impl->parts.push_back(TopoDS::Solid(ex.Current()));
+  impl->interface_face.assign(impl->faces.Extent() + 1, 0);
+  if (impl->parts.size() > 1) {
+    std::vector<int> uses(impl->faces.Extent() + 1, 0);
+    for (const TopoDS_Solid& part : impl->parts) {
+      TopTools_IndexedMapOfShape part_faces;
+      TopExp::MapShapes(part, TopAbs_FACE, part_faces);
+      for (int i = 1; i <= part_faces.Extent(); ++i) ++uses[impl->faces.FindIndex(part_faces(i))];
+    }
+    for (std::size_t f = 1; f < uses.size(); ++f) impl->interface_face[f] = uses[f] > 1;
+  }
 
   const int nf = impl->faces.Extent(), ne = impl->edges.Extent();
   auto edge_faces = std::make_shared<std::vector<std::vector<int>>>(ne + 1);
@@ -222,6 +234,40 @@ VertexId Solid::edge_last_vertex(EdgeId e) const {
 bool Solid::edge_is_degenerated(EdgeId e) const {
   check_id(e.value(), num_edges(), "edge");
   return BRep_Tool::Degenerated(TopoDS::Edge(impl_->edges(e.value())));
+}
+
+int Solid::num_solids() const {
+  return static_cast<int>(impl_->parts.size());
+}
+
+Solid Solid::part(int k) const {
+  if (k < 0 || k >= num_solids())
+    throw std::out_of_range("solid " + std::to_string(k) + " out of range (" +
+                            std::to_string(num_solids()) + " solids)");
+  return make_solid(impl_->parts[k]);
+}
+
+std::vector<int> Solid::part_ids(const Solid& part, int dim) const {
+  if (dim < 0 || dim > 2) throw std::invalid_argument("part_ids: dim must be 0, 1 or 2");
+  const TopTools_IndexedMapOfShape& from = dim == 0   ? part.impl().vertices
+                                           : dim == 1 ? part.impl().edges
+                                                      : part.impl().faces;
+  const TopTools_IndexedMapOfShape& to = dim == 0   ? impl_->vertices
+                                         : dim == 1 ? impl_->edges
+                                                    : impl_->faces;
+  std::vector<int> ids(from.Extent() + 1, 0);
+  for (int i = 1; i <= from.Extent(); ++i) ids[i] = to.FindIndex(from(i));
+  return ids;
+}
+
+bool Solid::face_is_interface(FaceId f) const {
+  check_id(f.value(), num_faces(), "face");
+  return impl_->interface_face[f.value()] != 0;
+}
+
+int Solid::num_interface_faces() const {
+  return static_cast<int>(
+      std::count(impl_->interface_face.begin(), impl_->interface_face.end(), char(1)));
 }
 
 double Solid::volume() const {

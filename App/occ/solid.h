@@ -83,6 +83,18 @@ struct Solid {
   // Outward unit normal of face f at the point of the face nearest to p.
   Vec3 face_normal(FaceId f, const Vec3& p) const;
 
+  // Several solids ------------------------------------------------------------------
+  // A Solid may hold several solids glued at the faces they have in common (read with
+  // ReadOptions::several_solids); ids then number the entities of all of them, a common
+  // face once. A plain solid has num_solids() == 1.
+  int num_solids() const;
+  Solid part(int k) const;  // the k-th solid (0-based) as a Solid of its own
+  // The id here of each entity of `part` of dimension `dim` (0 vertex, 1 edge, 2 face),
+  // indexed by its id in `part` (entry 0 unused; 0 = not an entity of this shape).
+  std::vector<int> part_ids(const Solid& part, int dim) const;
+  bool face_is_interface(FaceId f) const;  // the face bounds two of the solids
+  int num_interface_faces() const;
+
   // Serialisation (FreeCAD's Part.Shape.exportBrepToString gives this format).
   std::string to_brep_string() const;
 

@@ -6,6 +6,7 @@
 #include <Geom_Curve.hxx>
 #include <Geom_Surface.hxx>
 #include <TopTools_IndexedMapOfShape.hxx>
+#include <TopoDS_Shape.hxx>
 #include <TopoDS_Solid.hxx>
 #include <gp_Pln.hxx>
 #include <gp_Pnt.hxx>
@@ -43,7 +44,9 @@ struct EdgeCache {
 };
 
 struct Solid::Impl {
-  TopoDS_Solid solid;
+  TopoDS_Shape solid;                // a solid, or a compound of solids sharing common faces
+  std::vector<TopoDS_Solid> parts;   // the solids (one for a plain solid)
+  std::vector<char> interface_face;  // by face id: the face bounds two of the parts
   TopTools_IndexedMapOfShape faces, edges, vertices;
   // Immutable caches shared by clones.
   std::shared_ptr<const std::vector<FaceCache>> face_cache;
@@ -55,7 +58,8 @@ struct Solid::Impl {
 };
 
 // Builds the maps and caches of a solid (throws Standard_Failure from OCCT on bad input).
-std::unique_ptr<Solid::Impl> make_solid_impl(const TopoDS_Solid& solid);
+// A compound must hold solids only (glued, shape_io); entity ids number all of them.
+std::unique_ptr<Solid::Impl> make_solid_impl(const TopoDS_Shape& solid);
 
 inline Solid make_solid(const TopoDS_Solid& solid) {
   return Solid(make_solid_impl(solid));

@@ -1,5 +1,6 @@
 #include "pipeline/generate_mesh.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -7,6 +8,7 @@
 #include <stdexcept>
 
 #include "decompose/decompose.h"
+#include "mesh/assemble.h"
 #include "mesh/map_block.h"
 #include "mesh/midpoint.h"
 #include "mesh/sweep.h"
@@ -52,7 +54,7 @@ std::string decomposition_summary(const occ::Solid& solid, const core::Progress&
 // Smoothing and the validity check every result goes through.
 void finish(MeshResult& result, const occ::Solid& solid, const MeshOptions& options,
             const core::Progress& progress) {
-  result.stats.sub_volumes = 1;
+  if (result.stats.sub_volumes == 0) result.stats.sub_volumes = 1;
 
   if (progress.cancelled()) {
     result.diagnostics.push_back(core::make_error("cancelled", "Meshing was cancelled."));
@@ -90,11 +92,9 @@ void finish(MeshResult& result, const occ::Solid& solid, const MeshOptions& opti
 }
 
 // No structured scheme: tetrahedra split into hexahedra, said so in a warning.
-MeshResult fallback(const occ::Solid& solid, const MeshOptions& options, double size,
-                    const std::string& why, const core::Progress& progress,
-                    std::chrono::steady_clock::time_point t0) {
-  MeshResult result;
-  result.stats.size_used = size;
+bool fallback(const occ::Solid& solid, const MeshOptions& options, double size,
+              const std::string& why, const core::Progress& progress,
+              std::chrono::steady_clock::time_point t0, MeshResult& result) {
   result.stats.scheme = "tet-split";
   mesh::TetSplitOptions tet_options;
   tet_options.size = size;
@@ -102,15 +102,14 @@ MeshResult fallback(const occ::Solid& solid, const MeshOptions& options, double 
   mesh::TetSplitResult split = mesh::tet_split(solid, tet_options, progress);
   append(result.diagnostics, split.diagnostics);
   result.stats.seconds_meshing = seconds_since(t0);
-  if (!split.ok) return result;
+  if (!split.ok) return false;
   result.mesh = std::move(split.mesh);
   result.diagnostics.push_back(core::make_warning(
       "fallback", "No structured scheme applies (" + why +
                       ") Meshed by the fallback instead: " + std::to_string(split.tetrahedra) +
                       " tetrahedra, each split into four hexahedra; expect poorer elements than a "
                       "structured mesh."));
-  finish(result, solid, options, progress);
-  return result;
+  return true;
 }
 
 }  // namespace
@@ -159,13 +158,11 @@ MeshResult generate_mesh(const occ::Solid& solid, const MeshOptions& options,
 }
 
 namespace {
-MeshResult generate(const occ::Solid& solid, const MeshOptions& options,
-                    const core::Progress& progress) {
-  MeshResult result;
+// Meshes one solid with the first scheme that applies, without smoothing or checking:
+// true when result.mesh holds its mesh (else result.diagnostics say why not).
+bool mesh_solid(const occ::Solid& solid, const MeshOptions& options, double size,
+                const core::Progress& progress, MeshResult& result) {
   const auto t0 = std::chrono::steady_clock::now();
-
-  // Automatic size: 20 elements along the diagonal.
-  const double size = options.size > 0 ? options.size : solid.diagonal() / 20.0;
   result.stats.size_used = size;
 
   progress.report("scheme", 0.0);
@@ -188,9 +185,9 @@ MeshResult generate(const occ::Solid& solid, const MeshOptions& options,
         "hexahedron (mapped), one one-to-one sweep or one convex polyhedron (midpoint "
         "subdivision). " +
             why_not_structured + " " + decomposition_summary(solid, progress)));
-    return result;
+    return false;
   }
-  if (!structured) return fallback(solid, options, size, why_not_structured, progress, t0);
+  if (!structured) return fallback(solid, options, size, why_not_structured, progress, t0, result);
 
   std::size_t predicted = 0;
   mesh::MapBlockOptions map_options;
@@ -216,7 +213,7 @@ MeshResult generate(const occ::Solid& solid, const MeshOptions& options,
       << " hexahedra, more than max_hexes = " << options.max_hexes
       << "; increase the size or the limit.";
     result.diagnostics.push_back(core::make_error("too_many_hexes", s.str()));
-    return result;
+    return false;
   }
 
   bool meshed = false;
@@ -254,8 +251,64 @@ MeshResult generate(const occ::Solid& solid, const MeshOptions& options,
     }
   }
   result.stats.seconds_meshing = seconds_since(t0);
-  if (!meshed) return result;
-  finish(result, solid, options, progress);
+  return meshed;
+}
+
+// Several solids glued at common faces: each meshed with the same size, joined into one
+// mesh (nodes on shared faces merged where the meshes coincide), then smoothed and checked
+// as a whole, so nodes on a shared face stay on it and the check sees the interfaces.
+MeshResult generate_parts(const occ::Solid& whole, const MeshOptions& options, double size,
+                          const core::Progress& progress) {
+  MeshResult result;
+  result.stats.size_used = size;
+  const auto t0 = std::chrono::steady_clock::now();
+  const double tolerance = std::max(1e-9 * whole.diagonal(), whole.tolerance());
+  std::vector<std::string> schemes;
+  std::size_t merged = 0;
+  for (int k = 0; k < whole.num_solids(); ++k) {
+    const occ::Solid part = whole.part(k);
+    MeshResult one;
+    const bool meshed = mesh_solid(part, options, size, progress, one);
+    const std::string prefix = "Solid " + std::to_string(k + 1) + ": ";
+    for (core::Diagnostic d : one.diagnostics) {
+      d.message = prefix + d.message;
+      result.diagnostics.push_back(std::move(d));
+    }
+    if (!meshed) return result;
+    merged += mesh::append_part(result.mesh, whole, one.mesh, part, k + 1, tolerance).nodes_merged;
+    if (std::find(schemes.begin(), schemes.end(), one.stats.scheme) == schemes.end())
+      schemes.push_back(one.stats.scheme);
+    if (result.mesh.num_hexes() > options.max_hexes) {
+      std::ostringstream s;
+      s << "The solids' meshes have " << result.mesh.num_hexes() << " hexahedra after solid "
+        << k + 1 << ", more than max_hexes = " << options.max_hexes
+        << "; increase the size or the limit.";
+      result.diagnostics.push_back(core::make_error("too_many_hexes", s.str()));
+      result.mesh = core::HexMesh();
+      return result;
+    }
+    if (progress.cancelled()) break;
+  }
+  for (const std::string& s : schemes)
+    result.stats.scheme += (result.stats.scheme.empty() ? "" : "+") + s;
+  result.stats.sub_volumes = whole.num_solids();
+  result.stats.seconds_meshing = seconds_since(t0);
+  std::ostringstream s;
+  s << whole.num_solids() << " solids meshed one by one and joined; " << merged << " nodes on the "
+    << whole.num_interface_faces() << " shared faces (with their edges and "
+    << "vertices) merged.";
+  result.diagnostics.push_back(core::make_info("solids_joined", s.str()));
+  finish(result, whole, options, progress);
+  return result;
+}
+
+MeshResult generate(const occ::Solid& solid, const MeshOptions& options,
+                    const core::Progress& progress) {
+  // Automatic size: 20 elements along the diagonal (of all solids together).
+  const double size = options.size > 0 ? options.size : solid.diagonal() / 20.0;
+  if (solid.num_solids() > 1) return generate_parts(solid, options, size, progress);
+  MeshResult result;
+  if (mesh_solid(solid, options, size, progress, result)) finish(result, solid, options, progress);
   return result;
 }
 

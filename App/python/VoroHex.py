@@ -179,15 +179,16 @@ def _free_edges(shape):
     return names
 
 
-def check_shape(shape):
-    """Raises ShapeError (a ValueError) unless shape is one closed solid; returns it."""
+def check_shape(shape, several=False):
+    """Raises ShapeError (a ValueError) unless shape is one closed solid (or, with `several`,
+    one or more solids); returns it."""
     shape = _shape_of(shape)
     if shape.isNull():
         raise ShapeError("VoroHex: the shape is empty (null)")
     solids = shape.Solids
-    if len(solids) > 1:
-        raise ShapeError("VoroHex: the shape holds {} solids; VoroHex meshes one solid at a "
-                         "time (fuse them or select one)".format(len(solids)))
+    if len(solids) > 1 and not several:
+        raise ShapeError("VoroHex: the shape holds {} solids; this takes one solid (fuse them or "
+                         "select one; the mesh accepts several)".format(len(solids)))
     if not solids:
         shells = shape.Shells
         if shells and not all(s.isClosed() for s in shells):
@@ -203,8 +204,8 @@ def check_shape(shape):
     return shape
 
 
-def _read_solid(shape):
-    solid, diags = _core.read_brep(shape.exportBrepToString())
+def _read_solid(shape, several=False):
+    solid, diags = _core.read_brep(shape.exportBrepToString(), several)
     if solid is None:
         msg = "; ".join(d.message for d in diags if d.severity == "error") or "unknown error"
         raise ShapeError("VoroHex: cannot read the solid: " + msg)
@@ -350,7 +351,7 @@ def mesh(shape, size=None, progress=None, cancel=None, **options):
     if cancel is not None and not isinstance(cancel, CancelToken):
         raise TypeError("VoroHex: cancel must be a VoroHex.CancelToken")
     opts = _make_options(dict(options, size=size))
-    solid = _read_solid(check_shape(shape))
+    solid = _read_solid(check_shape(shape, True), True)
     core_result = _core.generate_mesh(solid, opts, progress, cancel)
     return MeshResult(core_result, solid)
 
@@ -414,7 +415,7 @@ def check(mesh_or_path, shape=None, volume_rel_tol=None, distance_rel_tol=None):
     """Validity and quality of a hex mesh (VoroHex's or any tool's), optionally against
     the solid it should fill. Returns a CheckReport (.valid, .diagnostics, ...)."""
     m = _as_core_mesh(mesh_or_path)
-    solid = _read_solid(check_shape(shape)) if shape is not None else None
+    solid = _read_solid(check_shape(shape, True), True) if shape is not None else None
     defaults = _core.MeshOptions()
     vt = defaults.volume_rel_tol if volume_rel_tol is None else _number(
         "volume_rel_tol", volume_rel_tol)

@@ -28,8 +28,9 @@ RESULTS = (
 )
 
 
-def source_error(part):
-    """Why `part` cannot be hex-meshed (a sentence), or None if it holds one solid."""
+def source_error(part, several=False):
+    """Why `part` cannot be used (a sentence), or None if it holds one solid (or, with
+    `several`, one or more: the hex mesh takes several)."""
     if part is None:
         return "No geometry linked: set the Part property to a solid"
     if part.isDerivedFrom("Fem::FemMeshObject"):
@@ -39,7 +40,7 @@ def source_error(part):
         return ("'{}' is a triangle mesh, not a solid; convert it first (Part > Create shape "
                 "from mesh, then Part > Convert to solid)".format(part.Label))
     try:
-        VoroHex.check_shape(part)
+        VoroHex.check_shape(part, several)
     except (TypeError, ValueError) as e:
         return "'{}': {}".format(part.Label, str(e).replace("VoroHex: ", ""))
     return None
@@ -97,7 +98,7 @@ class HexMesh:
     def execute(self, obj):
         """Re-meshes; on failure keeps the previous FemMesh, records why and raises so
         FreeCAD marks the object invalid with that message."""
-        error = source_error(obj.Part)
+        error = source_error(obj.Part, True)
         result = None
         if error is None:
             try:
@@ -128,7 +129,7 @@ class HexMesh:
 def makeHexMesh(doc, part, name="HexMesh", size=None):
     """Adds a VoroHex mesh object for `part` to `doc`. Raises ValueError, leaving the
     document untouched, when `part` holds no single closed solid."""
-    error = source_error(part)
+    error = source_error(part, True)
     if error is not None:
         raise ValueError("VoroHex: " + error)
     obj = doc.addObject("Fem::FemMeshObjectPython", name)

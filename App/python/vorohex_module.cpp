@@ -266,12 +266,14 @@ void bind_mesh(py::module_& m) {
       });
 }
 
-// Reads a BREP string into one solid; returns (solid or None, diagnostics).
-py::tuple read_brep(const std::string& brep) {
+// Reads a BREP string into one solid (or several glued); returns (solid or None, diagnostics).
+py::tuple read_brep(const std::string& brep, bool several_solids) {
   occ::ReadResult r;
   {
     py::gil_scoped_release nogil;
-    r = occ::read_solid_from_brep_string(brep);
+    occ::ReadOptions options;
+    options.several_solids = several_solids;
+    r = occ::read_solid_from_brep_string(brep, options);
   }
   SolidPtr solid(r.solid.release());
   return py::make_tuple(solid ? py::cast(solid) : py::none(), diagnostics_list(r.diagnostics));
@@ -375,7 +377,8 @@ PYBIND11_MODULE(_VoroHexCore, m) {
   py::register_exception<std::invalid_argument>(m, "InvalidArgument", PyExc_ValueError);
   bind_types(m);
   bind_mesh(m);
-  m.def("read_brep", &read_brep, py::arg("brep"), "BREP string -> (Solid or None, [Diagnostic])");
+  m.def("read_brep", &read_brep, py::arg("brep"), py::arg("several_solids") = false,
+        "BREP string -> (Solid or None, [Diagnostic]); several_solids: glue them into one");
   m.def("generate_mesh", &generate, py::arg("solid"), py::arg("options"),
         py::arg("progress") = py::none(), py::arg("cancel") = nullptr,
         "mesh a solid; progress(stage, fraction) may return False to cancel");

@@ -263,6 +263,8 @@ void check_against_cad(const HexMesh& mesh, const occ::Solid& cad, const CheckOp
   // within (area * centre distance). Quads with nodes off the CAD are no chords of it and
   // get no allowance, or a mesh with a hole would excuse its own missing volume.
   double chord = 0, on_cad_area = 0;
+  std::size_t interface_quads = 0;
+  std::vector<int> interface_faces;
   auto node_faces = [&](std::int32_t n) -> std::vector<int> {
     const NodeClass c = classes[n];
     if (!class_ok[n] || c.dim == 3) return {};
@@ -291,6 +293,28 @@ void check_against_cad(const HexMesh& mesh, const occ::Solid& cad, const CheckOp
     const double dist = common.empty() ? cad.distance_to_boundary(centre)
                                        : cad.distance_to_face(core::FaceId(common[0]), centre);
     chord += area * dist;
+    // A face two solids share lies inside the whole: a boundary quad there means the two
+    // solids' meshes do not match on it.
+    if (!common.empty() && std::all_of(common.begin(), common.end(), [&](int f) {
+          return cad.face_is_interface(core::FaceId(f));
+        })) {
+      ++interface_quads;
+      interface_faces.push_back(common[0]);
+    }
+  }
+  if (interface_quads > 0) {
+    std::sort(interface_faces.begin(), interface_faces.end());
+    interface_faces.erase(std::unique(interface_faces.begin(), interface_faces.end()),
+                          interface_faces.end());
+    std::vector<std::string> names;
+    for (int f : interface_faces) names.push_back(core::entity_name(core::FaceId(f)));
+    std::string list;
+    for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
+    report.diagnostics.push_back(core::make_error(
+        "non_conforming_interface",
+        std::to_string(interface_quads) + " boundary quads lie on faces shared by two solids (" +
+            list + "): the solids' meshes do not match there",
+        std::move(names)));
   }
   // A CAD tolerance above the distance allowance lets the surface itself move by that much.
   const double tolerance_excess = std::max(0.0, distance_tol - options.distance_rel_tol * diagonal);

@@ -39,7 +39,7 @@ class HexMeshCommand:
 
     def Activated(self):
         part = selected_part()
-        error = VoroHexObjects.source_error(part)
+        error = VoroHexObjects.source_error(part, True)
         if error is not None:
             FreeCAD.Console.PrintError("VoroHex: {}\n".format(error))
             QtGui.QMessageBox.warning(FreeCADGui.getMainWindow(), "VoroHex: cannot mesh", error)

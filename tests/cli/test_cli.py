@@ -159,11 +159,30 @@ class MeshCommand(unittest.TestCase):
         path = os.path.join(self.dir, "open.brep")
         shell.exportBrep(path)
         self.expect_bad_input([path], "open")
+        # Several solids: meshed, joined where they touch; overlapping ones refused.
         two = Part.makeCompound([Part.makeBox(1, 1, 1),
-                                 Part.makeBox(1, 1, 1, FreeCAD.Vector(3, 0, 0))])
+                                 Part.makeBox(1, 1, 1, FreeCAD.Vector(1, 0, 0))])
         path = os.path.join(self.dir, "two.step")
         two.exportStep(path)
-        self.expect_bad_input([path], "2 solids")
+        out = os.path.join(self.dir, "two.vtu")
+        rep = os.path.join(self.dir, "two.json")
+        code, stdout, stderr = run("mesh", path, "-o", out, "--size", "0.25", "--report", rep)
+        self.assertEqual(code, 0, stdout + stderr)
+        with open(rep) as f:
+            r = json.load(f)
+        self.assertEqual(r["sub_volumes"], 2)
+        self.assertEqual(r["check"]["hexes"], 128)
+        self.assertEqual(r["check"]["nodes"], 225)
+        code, stdout, stderr = run("check", out, "--cad", path)
+        self.assertEqual(code, 0, stdout + stderr)
+        code, stdout, stderr = run("voronoi", path, "-o", os.path.join(self.dir, "g.json"))
+        self.assertEqual(code, 2, stdout + stderr)
+        self.assertIn("2 solids", stderr)
+        overlap = Part.makeCompound([Part.makeBox(1, 1, 1),
+                                     Part.makeBox(1, 1, 1, FreeCAD.Vector(0.5, 0, 0))])
+        path = os.path.join(self.dir, "overlap.step")
+        overlap.exportStep(path)
+        self.expect_bad_input([path], "overlap")
 
     def test_bad_options(self):
         step = os.path.join(EXAMPLES, "box_3x2x1.step")

@@ -198,12 +198,27 @@ class TestVoroHexApi(unittest.TestCase):
                                            FreeCAD.Vector(1, 1, 0)]))
         with self.assertRaisesRegex(ValueError, "open shell.*Edge"):
             VoroHex.mesh(Part.makeShell(self.box.Faces[:5]))
-        with self.assertRaisesRegex(ValueError, "2 solids"):
+        with self.assertRaisesRegex(ValueError, "overlap"):
             VoroHex.mesh(Part.makeCompound([self.box, Part.makeSphere(1)]))
         with self.assertRaises(ValueError):
             VoroHex.mesh(Part.Shape())
         with self.assertRaisesRegex(TypeError, "progress"):
             VoroHex.mesh(self.box, progress=3)
+
+    def test_several_solids_are_meshed_as_one_conforming_mesh(self):
+        # Two boxes touching at x = 10 (separate shapes, as two Part features would give):
+        # glued at the common face, each mapped, one mesh with the face's nodes shared.
+        other = Part.makeBox(10, 20, 30, FreeCAD.Vector(10, 0, 0))
+        r = VoroHex.mesh(Part.makeCompound([self.box, other]), size=5)
+        self.assertTrue(r.ok, [d.message for d in r.errors])
+        self.assertEqual(r.stats.sub_volumes, 2)
+        self.assertEqual(r.stats.hexes, 2 * 2 * 4 * 6)
+        self.assertEqual(r.stats.nodes, 2 * 3 * 5 * 7 - 5 * 7)
+        self.assertAlmostEqual(r.stats.cad_volume, 12000, places=6)
+        self.assertIn("solids_joined", [d.code for d in r.diagnostics])
+        # The graph and the decomposition take one solid and say so.
+        with self.assertRaisesRegex(ValueError, "2 solids"):
+            VoroHex.voronoi_graph(Part.makeCompound([self.box, other]))
 
     def test_too_many_hexes_is_a_diagnostic(self):
         r = VoroHex.mesh(self.box, size=1, max_hexes=100)

@@ -87,8 +87,63 @@ TEST(ReadSolid, TwoBoxesInOneStepAreSeveralSolids) {
   ASSERT_TRUE(detail::write_fixture(detail::Fixture::two_boxes, path));
   const auto d = only_error(read_solid(path));
   EXPECT_EQ(d.code, "several_solids");
-  EXPECT_NE(d.message.find("contains 2 solids; VoroHex meshes one solid at a time"),
-            std::string::npos);
+  EXPECT_NE(d.message.find("contains 2 solids; this command takes one solid"), std::string::npos);
+}
+
+// With several_solids (meshing), disjoint solids stay apart and touching ones are glued: the
+// face they have in common becomes one face of both.
+TEST(ReadSolid, SeveralSolidsAreGluedAtTheirCommonFaces) {
+  ReadOptions several;
+  several.several_solids = true;
+  struct Case {
+    detail::Fixture kind;
+    int faces, interface_faces;
+    double volume;
+  };
+  for (const Case& c :
+       {Case{detail::Fixture::two_boxes, 12, 0, 2}, Case{detail::Fixture::touching_boxes, 11, 1, 2},
+        Case{detail::Fixture::stacked_boxes, 13, 1, 3}}) {
+    const std::string path = temp_path("several.brep");
+    ASSERT_TRUE(detail::write_fixture(c.kind, path));
+    const ReadResult r = read_solid(path, several);
+    ASSERT_TRUE(r.ok()) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics[0]));
+    EXPECT_EQ(r.solid->num_solids(), 2);
+    // The stacked big box's top face is split where the unit box stands on it (3 faces):
+    // 8 + 6 faces, one of them common.
+    EXPECT_EQ(r.solid->num_faces(), c.faces);
+    EXPECT_EQ(r.solid->num_interface_faces(), c.interface_faces);
+    EXPECT_NEAR(r.solid->volume(), c.volume, 1e-9);
+    bool said = false;
+    for (const auto& d : r.diagnostics) said = said || d.code == "several_solids";
+    EXPECT_TRUE(said);
+    // Every entity of each part has its id in the whole; the shared face is the same id.
+    std::vector<int> seen(r.solid->num_faces() + 1, 0);
+    for (int k = 0; k < 2; ++k) {
+      const Solid part = r.solid->part(k);
+      EXPECT_EQ(part.num_solids(), 1);
+      for (int dim = 0; dim < 3; ++dim)
+        for (std::size_t i = 1; i < r.solid->part_ids(part, dim).size(); ++i)
+          EXPECT_GT(r.solid->part_ids(part, dim)[i], 0);
+      for (int f : r.solid->part_ids(part, 2)) ++seen[f];
+    }
+    int shared = 0;
+    for (int f = 1; f <= r.solid->num_faces(); ++f) {
+      EXPECT_EQ(seen[f] == 2, r.solid->face_is_interface(FaceId(f))) << "face " << f;
+      shared += seen[f] == 2;
+    }
+    EXPECT_EQ(shared, c.interface_faces);
+  }
+  EXPECT_THROW(read_solid(temp_path("several.brep"), several).solid->part(2), std::out_of_range);
+}
+
+TEST(ReadSolid, OverlappingSolidsAreRefused) {
+  ReadOptions several;
+  several.several_solids = true;
+  const std::string path = temp_path("overlap.brep");
+  ASSERT_TRUE(detail::write_fixture(detail::Fixture::overlapping_boxes, path));
+  const auto d = only_error(read_solid(path, several));
+  EXPECT_EQ(d.code, "overlapping_solids");
+  EXPECT_NE(d.message.find("overlap"), std::string::npos);
 }
 
 TEST(ReadSolid, LooseFacesAreNoSolid) {

@@ -131,6 +131,65 @@ TEST(GenerateMesh, RepairedAndRescaledSolidsMeshValid) {
   }
 }
 
+// Several solids: each meshed, joined at the faces they share into one conforming mesh
+// whose hexes name their solid; the check sees shared faces as inner faces.
+TEST(GenerateMesh, SolidsSharingFacesGiveOneConformingMesh) {
+  occ::ReadOptions several;
+  several.several_solids = true;
+  for (auto kind : {occ::detail::Fixture::touching_boxes, occ::detail::Fixture::two_boxes}) {
+    const std::string path = ::testing::TempDir() + "generate_mesh_several.brep";
+    ASSERT_TRUE(occ::detail::write_fixture(kind, path));
+    const occ::ReadResult read = occ::read_solid(path, several);
+    ASSERT_TRUE(read.ok());
+    MeshOptions opt;
+    opt.size = 0.25;
+    const MeshResult r = generate_mesh(*read.solid, opt);
+    ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics[0]));
+    EXPECT_EQ(r.stats.scheme, "map");
+    EXPECT_EQ(r.stats.sub_volumes, 2);
+    EXPECT_EQ(r.mesh.num_hexes(), 2u * 64u);
+    const bool touching = kind == occ::detail::Fixture::touching_boxes;
+    // 5 x 5 x 5 nodes per box; touching boxes share the 5 x 5 nodes of their common face.
+    EXPECT_EQ(r.mesh.num_nodes(), touching ? 2u * 125u - 25u : 250u);
+    // Inner quads: 3 * 4 * 4 * 3 per box, plus the 16 of the shared face.
+    EXPECT_EQ(r.check.interior_quads, 2u * 144u + (touching ? 16u : 0u));
+    EXPECT_NEAR(r.check.mesh_volume, 2.0, 1e-9);
+    std::size_t in_first = 0;
+    for (std::int32_t sv : r.mesh.sub_volumes()) {
+      EXPECT_TRUE(sv == 1 || sv == 2);
+      in_first += sv == 1;
+    }
+    EXPECT_EQ(in_first, 64u);
+  }
+}
+
+// A unit box standing on a 2 x 1 x 1 box: the big one's top face is split where the small
+// one stands (8 faces: no block, a sweep through its depth), the small one is a block. The
+// sweep's layers and the block's intervals match on the common face, so it is one mesh.
+// (Part meshes that differ on a common face: AppendPart tests.)
+TEST(GenerateMesh, BoxStandingOnALargerBoxIsSweptMappedAndJoined) {
+  occ::ReadOptions several;
+  several.several_solids = true;
+  const std::string path = ::testing::TempDir() + "generate_mesh_stacked.brep";
+  ASSERT_TRUE(occ::detail::write_fixture(occ::detail::Fixture::stacked_boxes, path));
+  const occ::ReadResult read = occ::read_solid(path, several);
+  ASSERT_TRUE(read.ok());
+  MeshOptions opt;
+  opt.size = 0.25;
+  const MeshResult r = generate_mesh(*read.solid, opt);
+  ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics[0]));
+  EXPECT_EQ(r.stats.scheme, "sweep+map");
+  EXPECT_EQ(r.stats.sub_volumes, 2);
+  EXPECT_EQ(r.mesh.num_hexes(), 128u + 64u);
+  EXPECT_NEAR(r.check.mesh_volume, 3.0, 1e-9);
+  EXPECT_GE(r.check.scaled_jacobian.min, 0.99);
+  bool joined = false;
+  for (const auto& d : r.diagnostics)
+    joined = joined || (d.code == "solids_joined" &&
+                        d.message.find("25 nodes on the 1 shared faces") != std::string::npos);
+  EXPECT_TRUE(joined);
+}
+
 // A time limit stops meshing like a cancel: an error naming the limit, no mesh.
 TEST(GenerateMesh, TimeLimitStopsMeshingWithADiagnostic) {
   const occ::Solid box = occ::make_box(3, 2, 1);
