@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <chrono>
 #include <string>
 
 #include "decompose/decompose.h"
@@ -105,9 +104,8 @@ TEST(DecomposeBounds, ScatteredUnverifiedEdgeIsReportedAndLeftOut) {
     scatter.push_back(i % 2 ? core::Vec3(0.1, 0.1, 0.1 + 0.009 * i)
                             : core::Vec3(3.9, 0.9, 2.9 - 0.009 * i));
   el.polyline = scatter;
-  const auto t0 = std::chrono::steady_clock::now();
   const DecompositionResult r = decompose(l, v);
-  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 5);
+  EXPECT_LE(r.quads.size(), 100u);  // the scattered edge makes no quads of its own
   EXPECT_TRUE(has(r, "unusable_voronoi_edge"));
   EXPECT_NE(r.status, DecompositionStatus::ok);
   for (const DecompositionQuad& q : r.quads) EXPECT_NE(q.element, e);
@@ -141,16 +139,16 @@ TEST(DecomposeBounds, SplitTimeLimitFailsWithADiagnostic) {
   EXPECT_TRUE(has(r, "split_timeout"));
 }
 
-TEST(DecomposeBounds, HexMeModelsAreQuickAndNeverInvalidOk) {
+TEST(DecomposeBounds, HexMeModelsStayBoundedAndNeverInvalidOk) {
   // Small HexMe models that used to run > 30 s (n04: 195 quads from one dense [3] edge).
   for (const char* name : {"s07o_notch.step", "n04o_transition_prism.step"}) {
     const occ::ReadResult in = occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/" + name);
     ASSERT_TRUE(in.solid) << name;
     const voronoi::VoronoiResult v = voronoi::compute_voronoi_graph(*in.solid);
-    const auto t0 = std::chrono::steady_clock::now();
     const DecompositionResult r = decompose(*in.solid, v);
-    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 5)
-        << name;
+    // The work is bounded by the quads made (the slow runs came from hundreds of them), not
+    // asserted as a time: timings belong to bench/.
+    EXPECT_LE(r.quads.size(), 100u) << name;
     if (r.status == DecompositionStatus::ok)
       expect_invariants(*in.solid, r);
     else
