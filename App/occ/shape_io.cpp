@@ -28,6 +28,7 @@
 #include <TopoDS_Shape.hxx>
 #include <TopoDS_Shell.hxx>
 #include <TopoDS_Solid.hxx>
+#include <XSControl_Reader.hxx>
 #include <XSControl_WorkSession.hxx>
 
 #include <sys/stat.h>
@@ -277,13 +278,21 @@ ReadResult analyse(const TopoDS_Shape& shape, const std::string& where,
   return r;
 }
 
-// OCCT's STEP translator (StepToGeom, StepToTopoDS) dereferences the references of entities
-// that failed to load (an unresolved #id, an entity of the wrong type, a number that is not
-// one) and crashes. Such files are refused before the transfer. Failures of metadata
-// (StepBasic: units, products; HexMe's i12 has an SI unit with a wrong parameter count) and
-// of unknown entity types are left to the translator, which copes with them. Returns ""
-// when the file may be transferred, else the first failures.
-std::string step_load_failures(const STEPControl_Reader& reader) {
+// Entities that OCCT failed to load (an unresolved reference, an entity of the wrong type, a
+// number that is not one) keep null references, which OCCT's translators (StepToGeom,
+// StepToTopoDS, IGESToBRep) dereference: they crash. A file in which an entity of geometry
+// or topology failed is refused before the transfer (true, with an error in r). Failures of
+// metadata (units, products, names; HexMe's i12 has an SI unit with a wrong parameter count)
+// and of unknown entity types are left to the translator, which copes with them.
+bool is_step_shape_entity(const std::string& type) {
+  return type.rfind("StepBasic_", 0) != 0 && type != "StepData_UndefinedEntity";
+}
+bool is_iges_shape_entity(const std::string& type) {
+  return type.rfind("IGESGeom_", 0) == 0 || type.rfind("IGESSolid_", 0) == 0;
+}
+
+bool refuse_damaged(const XSControl_Reader& reader, bool (*is_shape_entity)(const std::string&),
+                    const std::string& where, const char* kind, ReadResult& r) {
   const Handle(Interface_InterfaceModel) model = reader.Model();
   Interface_CheckIterator checks = reader.WS()->ModelCheckList(false);  // load checks only
   std::vector<std::string> failures;
@@ -293,15 +302,32 @@ std::string step_load_failures(const STEPControl_Reader& reader) {
       continue;
     const Handle(Standard_Transient) entity = model->Value(checks.Number());
     const std::string type = entity->DynamicType()->Name();
-    if (type.rfind("StepBasic_", 0) == 0 || type == "StepData_UndefinedEntity") continue;
+    if (!is_shape_entity(type)) continue;
     failures.push_back(std::string(model->StringLabel(entity)->ToCString()) + " " + type + ": " +
                        check->CFail(1));
   }
-  if (failures.empty()) return "";
-  return std::to_string(failures.size()) +
-         (failures.size() == 1 ? " entity fails" : " entities fail") + " to load (" +
-         join_names(failures, 3) + ")";
+  if (failures.empty()) return false;
+  r.diagnostics.push_back(make_error(
+      "unreadable_file", where + " is a damaged " + kind +
+                             " file: " + std::to_string(failures.size()) +
+                             (failures.size() == 1 ? " entity fails" : " entities fail") +
+                             " to load (" + join_names(failures, 3) + ")."));
+  return true;
 }
+
+// OCCT's BREP reader does not look at the stream state: on text that ends early or holds a
+// word where a number belongs, its loops go on reading the failed stream (an edge's list of
+// representations ends at a 0 that never comes: it hangs). With exceptions on, the first
+// failed read ends the reading (std::ios_base::failure, reported as kBrepMalformed).
+TopoDS_Shape read_brep(std::istream& in) {
+  in.exceptions(std::ios::failbit | std::ios::badbit);
+  TopoDS_Shape shape;
+  BRep_Builder builder;
+  BRepTools::Read(shape, in, builder);
+  return shape;
+}
+
+const char* const kBrepMalformed = "the text ends early or holds a word where a number belongs";
 
 bool only_whitespace(std::ifstream& in) {
   char buf[4096];
@@ -348,12 +374,7 @@ ReadResult read_solid(const std::string& path, const ReadOptions& options) {
     if (format == Format::step) {
       STEPControl_Reader reader;
       if (reader.ReadFile(path.c_str()) == IFSelect_RetDone) {
-        const std::string failures = step_load_failures(reader);
-        if (!failures.empty()) {
-          r.diagnostics.push_back(
-              make_error("unreadable_file", where + " is a damaged STEP file: " + failures + "."));
-          return r;
-        }
+        if (refuse_damaged(reader, is_step_shape_entity, where, kind, r)) return r;
         if (reader.TransferRoots() > 0) {
           shape = reader.OneShape();
           read = !shape.IsNull();
@@ -361,13 +382,17 @@ ReadResult read_solid(const std::string& path, const ReadOptions& options) {
       }
     } else if (format == Format::iges) {
       IGESControl_Reader reader;
-      if (reader.ReadFile(path.c_str()) == IFSelect_RetDone && reader.TransferRoots() > 0) {
-        shape = reader.OneShape();
-        read = !shape.IsNull();
+      if (reader.ReadFile(path.c_str()) == IFSelect_RetDone) {
+        if (refuse_damaged(reader, is_iges_shape_entity, where, kind, r)) return r;
+        if (reader.TransferRoots() > 0) {
+          shape = reader.OneShape();
+          read = !shape.IsNull();
+        }
       }
     } else {
-      BRep_Builder builder;
-      read = BRepTools::Read(shape, path.c_str(), builder) && !shape.IsNull();
+      std::ifstream file(path);
+      shape = read_brep(file);
+      read = !shape.IsNull();
     }
     if (!read) {
       r.diagnostics.push_back(make_error("unreadable_file", where + " is not a readable " + kind +
@@ -375,6 +400,9 @@ ReadResult read_solid(const std::string& path, const ReadOptions& options) {
       return r;
     }
     return analyse(shape, where, options);
+  } catch (const std::ios_base::failure&) {
+    r.diagnostics.push_back(make_error("unreadable_file", where + " is not a readable " + kind +
+                                                              " file: " + kBrepMalformed + "."));
   } catch (const Standard_Failure& e) {
     r.diagnostics.push_back(make_error(
         "unreadable_file", where + " could not be read as " + kind + ": " + e.GetMessageString()));
@@ -396,15 +424,16 @@ ReadResult read_solid_from_brep_string(const std::string& brep, const ReadOption
   }
   try {
     std::istringstream in(brep);
-    TopoDS_Shape shape;
-    BRep_Builder builder;
-    BRepTools::Read(shape, in, builder);
+    const TopoDS_Shape shape = read_brep(in);
     if (shape.IsNull()) {
       r.diagnostics.push_back(make_error(
           "unreadable_file", where + " is not valid BREP text (no shape could be read)."));
       return r;
     }
     return analyse(shape, where, options);
+  } catch (const std::ios_base::failure&) {
+    r.diagnostics.push_back(
+        make_error("unreadable_file", where + " is not valid BREP text: " + kBrepMalformed + "."));
   } catch (const Standard_Failure& e) {
     r.diagnostics.push_back(make_error(
         "unreadable_file", where + " could not be read as BREP: " + e.GetMessageString()));

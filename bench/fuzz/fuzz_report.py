@@ -116,15 +116,15 @@ def main():
     results = [summarise(t, a.work, a.root) for t in a.targets]
 
     commit = git(a.root, "rev-parse", "--short", "HEAD")
-    dirty = git(a.root, "status", "--porcelain", "--untracked-files=no", "--", "App")
+    dirty = git(a.root, "diff", "--name-only", "HEAD", "--", "App")
     clang = subprocess.run(["clang++", "--version"], capture_output=True, text=True,
                            check=False).stdout.splitlines()[0]
     date = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
     out = ["# Fuzzing the readers (libFuzzer)", ""]
     out.append("Written by `bench/fuzz/run_fuzz.sh` (targets and method: `bench/fuzz/README.md`). "
                "Date: %s. Commit: %s%s. %s; machine: %d cores, shared with other jobs." %
-               (date, commit, " (plus uncommitted changes in App/: " +
-                ", ".join(l[3:] for l in dirty.splitlines()) + ")" if dirty else "", clang,
+               (date, commit, " (plus uncommitted changes in " +
+                ", ".join(dirty.splitlines()) + ")" if dirty else "", clang,
                 os.cpu_count()))
     out.append("")
     out.append("Flags: `%s`. Budget %d s per target, the targets one after the other. "

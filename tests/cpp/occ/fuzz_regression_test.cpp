@@ -1,6 +1,7 @@
-// Inputs on which the fuzz targets of bench/fuzz found crashes, read again through the same
-// entry points (bench/fuzz/README.md). OCCT's STEP translator dereferenced the references of
-// entities that had failed to load; read_solid now refuses such files before the transfer.
+// Inputs on which the fuzz targets of bench/fuzz found crashes or hangs, read again through
+// the same entry points (bench/fuzz/README.md). OCCT's STEP and IGES translators dereferenced
+// the references of entities that had failed to load (read_solid now refuses such files
+// before the transfer); OCCT's BREP reader looped on a failed stream (it now throws).
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -9,6 +10,7 @@
 #include <string>
 
 #include "fixtures/diagnostics.h"
+#include "occ/primitives.h"
 #include "occ/shape_io.h"
 
 namespace vorohex::occ {
@@ -69,7 +71,7 @@ TEST(FuzzRegression, StepEntityWithABrokenReferenceIsADamagedFile) {
   const std::string box = read_text(fs::path(VOROHEX_SOURCE_DIR) / "examples/box_3x2x1.step");
   const std::string line = "#27 = LINE('',#28,#29);";
   ASSERT_NE(box.find(line), std::string::npos);
-  for (const std::string& broken : {"#27 = LINE('',#30,#29);", "#27 = LINE('',#9999,#29);"}) {
+  for (const char* broken : {"#27 = LINE('',#30,#29);", "#27 = LINE('',#9999,#29);"}) {
     SCOPED_TRACE(broken);
     std::string step = box;
     step.replace(step.find(line), line.size(), broken);
@@ -83,6 +85,25 @@ TEST(FuzzRegression, StepEntityWithABrokenReferenceIsADamagedFile) {
   // The untouched file still reads (metadata failures, as in HexMe's i12, are tolerated:
   // ReadSolid.HexMeModelsReadAsSolids).
   EXPECT_TRUE(read_solid(write_temp("box.step", box)).ok());
+}
+
+// BREP text cut after one of an edge's representations: the list ends at a 0 that never
+// comes, and OCCT's reader went on reading the failed stream (a hang).
+TEST(FuzzRegression, BrepTextEndingInsideAnEdgeIsUnreadable) {
+  const std::string brep = make_box(1, 2, 3).to_brep_string();
+  const std::size_t edge = brep.find("\nEd\n");
+  ASSERT_NE(edge, std::string::npos);
+  const std::size_t curve_on_surface = brep.find("\n2 ", edge);
+  ASSERT_NE(curve_on_surface, std::string::npos);
+  const std::string cut = brep.substr(0, brep.find('\n', curve_on_surface + 1) + 1);
+  for (const ReadResult& r :
+       {read_solid_from_brep_string(cut), read_solid(write_temp("cut.brep", cut))}) {
+    ASSERT_FALSE(r.ok());
+    const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "unreadable_file");
+    ASSERT_NE(d, nullptr);
+    EXPECT_NE(d->message.find("ends early"), std::string::npos) << d->message;
+  }
+  EXPECT_TRUE(read_solid_from_brep_string(brep).ok());
 }
 
 }  // namespace
