@@ -355,8 +355,9 @@ class MshReader {
         return fail("invalid node block header");
       if (dim < 0 || dim > 3 || (parametric != 0 && parametric != 1))
         return fail("invalid node block header");
+      // Compared as count - total: total + n wraps around for a huge n (found by fuzzing).
+      if (n > count - total) return fail("node blocks hold more nodes than announced");
       total += n;
-      if (total > count) return fail("node blocks hold more nodes than announced");
       tags.resize(static_cast<std::size_t>(n));
       for (auto& tag : tags)
         if (!size_value(&tag)) return fail("truncated node tags");
@@ -390,8 +391,8 @@ class MshReader {
       std::uint64_t n = 0;
       if (!int_value(&dim) || !int_value(&entity) || !int_value(&type) || !size_value(&n))
         return fail("invalid element block header");
+      if (n > count - total) return fail("element blocks hold more elements than announced");
       total += n;
-      if (total > count) return fail("element blocks hold more elements than announced");
       const ElementKind kind = element_kind(type);
       if (kind.nodes == 0) {
         if (binary_) return fail("unknown element type " + std::to_string(type));
