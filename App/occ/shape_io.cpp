@@ -105,6 +105,26 @@ std::string join_names(const std::vector<std::string>& names, std::size_t max_na
   return s;
 }
 
+// Faces without a surface and edges (not degenerated) without a 3D curve, named by their
+// index in the whole shape. Damaged BREP text makes them, and OCCT's validity check
+// dereferences the missing geometry (BRepCheck_Edge::InContext; found by fuzzing).
+std::vector<std::string> missing_geometry(const TopoDS_Shape& shape) {
+  TopTools_IndexedMapOfShape faces, edges;
+  TopExp::MapShapes(shape, TopAbs_FACE, faces);
+  TopExp::MapShapes(shape, TopAbs_EDGE, edges);
+  std::vector<std::string> names;
+  for (int i = 1; i <= faces.Extent(); ++i)
+    if (BRep_Tool::Surface(TopoDS::Face(faces(i))).IsNull())
+      names.push_back("Face" + std::to_string(i));
+  for (int i = 1; i <= edges.Extent(); ++i) {
+    const TopoDS_Edge& edge = TopoDS::Edge(edges(i));
+    double first = 0, last = 0;
+    if (!BRep_Tool::Degenerated(edge) && BRep_Tool::Curve(edge, first, last).IsNull())
+      names.push_back("Edge" + std::to_string(i));
+  }
+  return names;
+}
+
 // Validity of one solid: OCCT's check (with ShapeFix healing when it fails), outward
 // orientation, faces. Null (with an error in r) when it cannot be used.
 TopoDS_Solid checked_solid(TopoDS_Solid solid, const std::string& where, ReadResult& r) {
@@ -213,6 +233,15 @@ ReadResult analyse(const TopoDS_Shape& shape, const std::string& where,
     r.diagnostics.push_back(make_error("unreadable_file", where + " contains no shape."));
     return r;
   }
+  const std::vector<std::string> broken = missing_geometry(shape);
+  if (!broken.empty()) {
+    r.diagnostics.push_back(
+        make_error("invalid_shape",
+                   where + " holds faces without surface or edges without curve (" +
+                       join_names(broken, 8) + "); OCCT can neither check nor repair such a shape.",
+                   broken));
+    return r;
+  }
   const int solids = count(shape, TopAbs_SOLID);
   const int shells = count(shape, TopAbs_SHELL);
   const int faces = count(shape, TopAbs_FACE);
@@ -315,6 +344,26 @@ bool refuse_damaged(const XSControl_Reader& reader, bool (*is_shape_entity)(cons
   return true;
 }
 
+// OCCT's IGES parser keeps static state from the previous file (IGESFile, structiges.c):
+// parameter lines read before any directory entry are filed under the previous file's
+// entries, freed by then, and it crashes (iges_newparam; found by fuzzing). The sections of
+// an IGES file come in the order S, G, D, P, T (column 73); files that break it are refused
+// before OCCT parses them.
+bool iges_sections_in_order(std::istream& in) {
+  const std::string order = "SGDPT";
+  std::size_t last = 0;
+  bool directory = false;
+  std::string line;
+  while (std::getline(in, line)) {
+    const std::size_t section = line.size() > 72 ? order.find(line[72]) : std::string::npos;
+    if (section == std::string::npos) continue;
+    if (section < last || (line[72] == 'P' && !directory)) return false;
+    last = section;
+    directory = directory || line[72] == 'D';
+  }
+  return true;
+}
+
 // OCCT's BREP reader does not look at the stream state: on text that ends early or holds a
 // word where a number belongs, its loops go on reading the failed stream (an edge's list of
 // representations ends at a 0 that never comes: it hangs). With exceptions on, the first
@@ -381,6 +430,13 @@ ReadResult read_solid(const std::string& path, const ReadOptions& options) {
         }
       }
     } else if (format == Format::iges) {
+      std::ifstream file(path);
+      if (!iges_sections_in_order(file)) {
+        r.diagnostics.push_back(make_error(
+            "unreadable_file", where + " is a damaged IGES file: its sections are not in the "
+                                       "order S, G, D, P, T (column 73)."));
+        return r;
+      }
       IGESControl_Reader reader;
       if (reader.ReadFile(path.c_str()) == IFSelect_RetDone) {
         if (refuse_damaged(reader, is_iges_shape_entity, where, kind, r)) return r;

@@ -8,7 +8,8 @@ frame in VoroHex's sources (App/, bench/fuzz/) or in an OCCT library (libTK*), s
 sanitizer, libFuzzer and C/C++ runtime frames. Findings in VoroHex code are open crashes;
 those in OCCT are third-party and listed with their stack top.
 
-usage: fuzz_report.py --root REPO --work WORKDIR --out FUZZ.md --replayed N TARGET...
+usage: fuzz_report.py --root REPO --build BUILD --work WORKDIR --out FUZZ.md --budget S
+                      --replayed N --flags FLAGS TARGET...
 """
 import argparse
 import datetime
@@ -31,7 +32,8 @@ def frame_owner(location, root):
 
 
 def short_name(function):
-    name = re.sub(r"\(.*", "", function)  # drop the parameter list
+    name = function.replace("(anonymous namespace)::", "")
+    name = re.sub(r"\(.*", "", name)  # drop the parameter list
     return name.replace("vorohex::", "")
 
 
@@ -98,6 +100,19 @@ def summarise(target, work, root):
     return s
 
 
+def replays(build, target, artifact):
+    """Runs one input again: "yes" if it fails again, "no" if it passes."""
+    if not artifact or not os.path.exists(artifact):
+        return "?"
+    try:
+        rc = subprocess.run([os.path.join(build, "fuzz", target), "-close_fd_mask=1",
+                             "-timeout=60", "-rss_limit_mb=4096", artifact],
+                            capture_output=True, timeout=180, check=False).returncode
+    except subprocess.TimeoutExpired:
+        return "yes"
+    return "yes" if rc != 0 else "no"
+
+
 def git(root, *args):
     return subprocess.run(["git", "-C", root] + list(args), capture_output=True, text=True,
                           check=False).stdout.strip()
@@ -107,6 +122,7 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--root", required=True)
     ap.add_argument("--work", required=True)
+    ap.add_argument("--build", required=True)
     ap.add_argument("--out", required=True)
     ap.add_argument("--budget", type=int, required=True)
     ap.add_argument("--replayed", type=int, required=True)
@@ -148,15 +164,24 @@ def main():
     for s in results:
         if not s["findings"]:
             continue
-        out.append("")
-        out.append("## %s: findings (%d segments)" % (s["target"], s["segments"]))
-        out.append("")
-        out.append("| kind | where | report | stack top (innermost first) | input |")
-        out.append("|---|---|---|---|---|")
+        groups = {}
         for f in s["findings"]:
-            out.append("| %s | %s | %s | `%s` | %s |" % (
-                f["kind"], f["owner"], f["title"].replace("|", "\\|")[:120], f["top"],
-                os.path.basename(f["artifact"])))
+            groups.setdefault((f["owner"], f["kind"], f["top"]), []).append(f)
+        out.append("")
+        out.append("## %s: %d findings in %d segments, %d distinct" % (
+            s["target"], len(s["findings"]), s["segments"], len(groups)))
+        out.append("")
+        out.append("Alone: whether the example input still fails when run by itself (no: the "
+                   "failure depends on state left by earlier inputs).")
+        out.append("")
+        out.append("| where | kind | count | stack top (innermost first) | report | example "
+                   "input | alone |")
+        out.append("|---|---|---|---|---|---|---|")
+        for (owner, kind, top), fs in sorted(groups.items(), key=lambda g: -len(g[1])):
+            example = fs[0]["artifact"]
+            out.append("| %s | %s | %d | `%s` | %s | %s | %s |" % (
+                owner, kind, len(fs), top, re.sub(r" \(pc .*", "", fs[0]["title"])[:90],
+                os.path.basename(example), replays(a.build, s["target"], example)))
     out.append("")
     with open(a.out, "w") as f:
         f.write("\n".join(out))

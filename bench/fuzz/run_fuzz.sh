@@ -85,7 +85,7 @@ for t in "${targets[@]}"; do
   left="$seconds"
   segment=0
   echo "run_fuzz: $t for ${seconds}s"
-  while [ "$left" -gt 0 ] && [ "$segment" -lt 200 ]; do
+  while [ "$left" -gt 0 ] && [ "$segment" -lt 1000 ]; do
     segment=$((segment + 1))
     log="$(printf '%s/logs/seg%03d.log' "$dir" "$segment")"
     start="$(date +%s)"
@@ -102,6 +102,7 @@ for t in "${targets[@]}"; do
   done
 done
 
-python3 "$here/fuzz_report.py" --root "$repo" --work "$work" --out "$repo/bench/results/fuzz.md" \
+python3 "$here/fuzz_report.py" --root "$repo" --build "$build" --work "$work" \
+  --out "$repo/bench/results/fuzz.md" \
   --budget "$seconds" --replayed "$replayed" --flags "${flags[*]}" "${targets[@]}"
 echo "run_fuzz: wrote bench/results/fuzz.md"

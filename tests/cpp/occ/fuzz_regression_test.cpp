@@ -1,13 +1,16 @@
 // Inputs on which the fuzz targets of bench/fuzz found crashes or hangs, read again through
 // the same entry points (bench/fuzz/README.md). OCCT's STEP and IGES translators dereferenced
 // the references of entities that had failed to load (read_solid now refuses such files
-// before the transfer); OCCT's BREP reader looped on a failed stream (it now throws).
+// before the transfer); OCCT's BREP reader looped on a failed stream (it now throws); broken
+// BREP geometry and IGES files out of order crashed OCCT's check and parser.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "fixtures/diagnostics.h"
 #include "occ/primitives.h"
@@ -104,6 +107,65 @@ TEST(FuzzRegression, BrepTextEndingInsideAnEdgeIsUnreadable) {
     EXPECT_NE(d->message.find("ends early"), std::string::npos) << d->message;
   }
   EXPECT_TRUE(read_solid_from_brep_string(brep).ok());
+}
+
+// BREP text whose face refers to a surface, or whose edge to a curve, that does not exist:
+// the face or edge is read without geometry, and OCCT's validity check dereferenced it
+// (BRepCheck_Edge::InContext).
+TEST(FuzzRegression, BrepFaceOrEdgeWithoutGeometryIsInvalid) {
+  const std::string brep = make_box(1, 2, 3).to_brep_string();
+  // The first face's "<natural restriction> <tolerance> <surface> <location>" line, and
+  // the first edge's 3D curve line "1 <curve> <location> <first> <last>".
+  const std::size_t face = brep.find("\nFa\n");
+  const std::size_t edge = brep.find("\nEd\n");
+  ASSERT_NE(face, std::string::npos);
+  ASSERT_NE(edge, std::string::npos);
+  const std::size_t surface_line = face + 4, curve_line = brep.find('\n', edge + 4) + 1;
+  ASSERT_EQ(brep.compare(curve_line, 3, "1  "), 0) << brep.substr(curve_line, 20);
+  std::string no_surface = brep, no_curve = brep;
+  no_surface.replace(surface_line, brep.find('\n', surface_line) - surface_line, "0 1e-07 99 0");
+  no_curve.replace(curve_line, brep.find('\n', curve_line) - curve_line, "1  99 0 0 1");
+  for (const std::string& text : {no_surface, no_curve}) {
+    const ReadResult r = read_solid_from_brep_string(text);
+    ASSERT_FALSE(r.ok());
+    const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "invalid_shape");
+    ASSERT_NE(d, nullptr);
+    EXPECT_NE(d->message.find("without surface or edges without curve"), std::string::npos)
+        << d->message;
+    EXPECT_EQ(d->entities.size(), 1u);
+  }
+}
+
+// An IGES file whose parameter lines come before its directory, read after another IGES
+// file: OCCT's parser filed them under the previous file's freed entries (iges_newparam).
+TEST(FuzzRegression, IgesSectionsOutOfOrderAreRefused) {
+  const fs::path seed =
+      fs::path(VOROHEX_SOURCE_DIR) / "bench/fuzz/corpus/fuzz_shape_reader/box.iges";
+  const std::string iges = read_text(seed).substr(1);  // without the selector byte
+  std::vector<std::string> lines;
+  std::istringstream in(iges);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  const auto section = [](const std::string& line) { return line.size() > 72 ? line[72] : ' '; };
+  const auto first_d = std::find_if(lines.begin(), lines.end(),
+                                    [&](const std::string& l) { return section(l) == 'D'; });
+  const auto first_p = std::find_if(lines.begin(), lines.end(),
+                                    [&](const std::string& l) { return section(l) == 'P'; });
+  ASSERT_TRUE(first_d != lines.end() && first_p != lines.end());
+  std::vector<std::string> moved(lines.begin(), first_d);
+  moved.push_back(*first_p);
+  for (auto it = first_d; it != lines.end(); ++it)
+    if (it != first_p) moved.push_back(*it);
+  std::string broken;
+  for (const std::string& line : moved) broken += line + "\n";
+
+  // The seed (FreeCAD's IGES export of a box: 6 faces, no solid) parses and leaves the state.
+  const ReadResult box = read_solid(write_temp("box.iges", iges));
+  EXPECT_NE(testing::find_diagnostic(box.diagnostics, "no_solid"), nullptr);
+  const ReadResult r = read_solid(write_temp("p_before_d.iges", broken));
+  ASSERT_FALSE(r.ok());
+  const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "unreadable_file");
+  ASSERT_NE(d, nullptr);
+  EXPECT_NE(d->message.find("damaged IGES file"), std::string::npos) << d->message;
 }
 
 }  // namespace
