@@ -132,7 +132,9 @@ def main():
     results = [summarise(t, a.work, a.root) for t in a.targets]
 
     commit = git(a.root, "rev-parse", "--short", "HEAD")
-    dirty = git(a.root, "diff", "--name-only", "HEAD", "--", "App")
+    # Only the sources the targets are built from.
+    dirty = git(a.root, "diff", "--name-only", "HEAD", "--", "App/core", "App/io", "App/occ",
+                "App/quality", "bench/fuzz")
     clang = subprocess.run(["clang++", "--version"], capture_output=True, text=True,
                            check=False).stdout.splitlines()[0]
     date = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
