@@ -37,6 +37,7 @@
 #include <cmath>
 #include <fstream>
 #include <sstream>
+#include <unordered_set>
 
 #include "occ/solid_impl.h"
 
@@ -344,22 +345,87 @@ bool refuse_damaged(const XSControl_Reader& reader, bool (*is_shape_entity)(cons
   return true;
 }
 
-// OCCT's IGES parser keeps static state from the previous file (IGESFile, structiges.c):
-// parameter lines read before any directory entry are filed under the previous file's
-// entries, freed by then, and it crashes (iges_newparam; found by fuzzing). The sections of
-// an IGES file come in the order S, G, D, P, T (column 73); files that break it are refused
-// before OCCT parses them.
-bool iges_sections_in_order(std::istream& in) {
+// Instance names (#n) of a STEP file given twice or referred to but never given. OCCT's
+// reader resolves the references of a file with a name given twice in a second pass over
+// arrays it does not initialise (StepData_StepReaderData::SetEntityNumbers), which, depending
+// on what the heap held, never ends; with dangling references its own check of the file can
+// recurse without end (StepShape_OrientedEdge::EdgeStart). Both found by fuzzing; names are
+// unique and resolved in ISO 10303-21 files (SCOPE blocks aside, then this says nothing).
+// Returns "" or what is wrong.
+std::string step_name_problem(std::istream& in) {
+  std::unordered_set<long long> names, references;
+  enum { statement_start, name, before_equals, body } phase = statement_start;
+  bool quoted = false, comment = false, reference = false;
+  long long id = 0, ref = 0;
+  char previous = 0;
+  for (char c; in.get(c); previous = c) {
+    if (quoted) {
+      quoted = c != '\'';  // a doubled quote reopens at once
+      continue;
+    }
+    if (comment) {
+      comment = !(previous == '*' && c == '/');
+      continue;
+    }
+    if (c == '/' && in.peek() == '*') {
+      comment = true;
+      in.get(c);
+      continue;
+    }
+    if (c == '&') return "";  // &SCOPE
+    const bool digit = c >= '0' && c <= '9';
+    if (reference && (!digit || ref >= (1LL << 50))) {
+      references.insert(ref);
+      reference = false;
+    } else if (reference) {
+      ref = 10 * ref + (c - '0');
+    }
+    const bool space = std::isspace(static_cast<unsigned char>(c)) != 0;
+    if (c == ';') {
+      phase = statement_start;
+    } else if (c == '\'') {
+      quoted = true;
+      phase = body;
+    } else if (phase == statement_start && !space) {
+      phase = c == '#' ? name : body;
+      id = 0;
+    } else if (phase == name && digit && id < (1LL << 50)) {
+      id = 10 * id + (c - '0');
+    } else if ((phase == name || phase == before_equals) && c == '=') {
+      if (!names.insert(id).second) return "the name #" + std::to_string(id) + " is given twice";
+      phase = body;
+    } else if (phase == name || phase == before_equals) {
+      phase = space ? before_equals : body;
+    } else if (phase == body && c == '#') {
+      reference = true;
+      ref = 0;
+    }
+  }
+  for (long long r : references)
+    if (!names.count(r)) return "it refers to #" + std::to_string(r) + ", which it never gives";
+  return "";
+}
+
+// OCCT's IGES parser keeps static state from the previous file (IGESFile): parameter lines
+// it reads before any directory entry are filed under the previous file's entries, freed by
+// then, and it crashes (iges_newparam; found by fuzzing). It cuts the text into records of
+// 80 columns whatever the line ends, so only files made of such records, column 73 holding
+// the sections S, G, D, P, T in this order, are given to it.
+bool iges_records_in_order(std::istream& in) {
   const std::string order = "SGDPT";
   std::size_t last = 0;
   bool directory = false;
   std::string line;
-  while (std::getline(in, line)) {
-    const std::size_t section = line.size() > 72 ? order.find(line[72]) : std::string::npos;
-    if (section == std::string::npos) continue;
-    if (section < last || (line[72] == 'P' && !directory)) return false;
-    last = section;
-    directory = directory || line[72] == 'D';
+  while (std::getline(in, line, '\n')) {
+    std::istringstream records(line);  // lone \r ends records too
+    for (std::string record; std::getline(records, record, '\r');) {
+      if (record.find_first_not_of(" \t") == std::string::npos) continue;
+      const std::size_t section = record.size() == 80 ? order.find(record[72]) : std::string::npos;
+      if (section == std::string::npos || section < last || (record[72] == 'P' && !directory))
+        return false;
+      last = section;
+      directory = directory || record[72] == 'D';
+    }
   }
   return true;
 }
@@ -421,6 +487,13 @@ ReadResult read_solid(const std::string& path, const ReadOptions& options) {
   try {
     bool read = false;
     if (format == Format::step) {
+      std::ifstream file(path, std::ios::binary);
+      const std::string names = step_name_problem(file);
+      if (!names.empty()) {
+        r.diagnostics.push_back(
+            make_error("unreadable_file", where + " is a damaged STEP file: " + names + "."));
+        return r;
+      }
       STEPControl_Reader reader;
       if (reader.ReadFile(path.c_str()) == IFSelect_RetDone) {
         if (refuse_damaged(reader, is_step_shape_entity, where, kind, r)) return r;
@@ -430,11 +503,12 @@ ReadResult read_solid(const std::string& path, const ReadOptions& options) {
         }
       }
     } else if (format == Format::iges) {
-      std::ifstream file(path);
-      if (!iges_sections_in_order(file)) {
+      std::ifstream file(path, std::ios::binary);
+      if (!iges_records_in_order(file)) {
         r.diagnostics.push_back(make_error(
-            "unreadable_file", where + " is a damaged IGES file: its sections are not in the "
-                                       "order S, G, D, P, T (column 73)."));
+            "unreadable_file", where + " is a damaged IGES file: not all lines are records of "
+                                       "80 columns with the sections S, G, D, P, T in order "
+                                       "(column 73)."));
         return r;
       }
       IGESControl_Reader reader;

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "fixtures/diagnostics.h"
@@ -70,25 +71,44 @@ TEST(FuzzRegression, ShapeReaderInputsAreRefused) {
 }
 
 // The smallest form of those inputs: a LINE whose point is a DIRECTION (loaded with a null
-// point: SIGSEGV in StepGeom_CartesianPoint::NbCoordinates) or a #id that does not exist.
-TEST(FuzzRegression, StepEntityWithABrokenReferenceIsADamagedFile) {
+// point: SIGSEGV in StepGeom_CartesianPoint::NbCoordinates).
+TEST(FuzzRegression, StepEntityWithAReferenceOfTheWrongTypeIsADamagedFile) {
   const std::string box = read_text(fs::path(VOROHEX_SOURCE_DIR) / "examples/box_3x2x1.step");
   const std::string line = "#27 = LINE('',#28,#29);";
   ASSERT_NE(box.find(line), std::string::npos);
-  for (const char* broken : {"#27 = LINE('',#30,#29);", "#27 = LINE('',#9999,#29);"}) {
-    SCOPED_TRACE(broken);
-    std::string step = box;
-    step.replace(step.find(line), line.size(), broken);
-    const ReadResult r = read_solid(write_temp("broken_line.step", step));
-    ASSERT_FALSE(r.ok());
-    const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "unreadable_file");
-    ASSERT_NE(d, nullptr);
-    EXPECT_NE(d->message.find("damaged STEP file"), std::string::npos) << d->message;
-    EXPECT_NE(d->message.find("#27 StepGeom_Line"), std::string::npos) << d->message;
-  }
+  std::string step = box;
+  step.replace(step.find(line), line.size(), "#27 = LINE('',#30,#29);");
+  const ReadResult r = read_solid(write_temp("broken_line.step", step));
+  ASSERT_FALSE(r.ok());
+  const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "unreadable_file");
+  ASSERT_NE(d, nullptr);
+  EXPECT_NE(d->message.find("damaged STEP file"), std::string::npos) << d->message;
+  EXPECT_NE(d->message.find("#27 StepGeom_Line"), std::string::npos) << d->message;
   // The untouched file still reads (metadata failures, as in HexMe's i12, are tolerated:
   // ReadSolid.HexMeModelsReadAsSolids).
   EXPECT_TRUE(read_solid(write_temp("box.step", box)).ok());
+}
+
+// STEP files giving one instance name to two entities (OCCT resolved their references over
+// arrays it does not initialise and, depending on the heap, never ended) or referring to a
+// name they never give (OCCT's own check of such a file recursed without end).
+TEST(FuzzRegression, StepNamesGivenTwiceOrNeverAreADamagedFile) {
+  const std::string box = read_text(fs::path(VOROHEX_SOURCE_DIR) / "examples/box_3x2x1.step");
+  const std::string direction = "#30 = DIRECTION('',(0.,0.,1.));";
+  const std::string line = "#27 = LINE('',#28,#29);";
+  ASSERT_NE(box.find(direction), std::string::npos);
+  ASSERT_NE(box.find(line), std::string::npos);
+  std::string twice = box, never = box;
+  twice.replace(twice.find(direction), 3, "#28");
+  never.replace(never.find(line), line.size(), "#27 = LINE('',#9999,#29);");
+  for (const auto& [step, what] : {std::pair{twice, "the name #28 is given twice"},
+                                   std::pair{never, "refers to #9999, which it never gives"}}) {
+    const ReadResult r = read_solid(write_temp("names.step", step));
+    ASSERT_FALSE(r.ok());
+    const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "unreadable_file");
+    ASSERT_NE(d, nullptr);
+    EXPECT_NE(d->message.find(what), std::string::npos) << d->message;
+  }
 }
 
 // BREP text cut after one of an edge's representations: the list ends at a 0 that never
@@ -137,9 +157,10 @@ TEST(FuzzRegression, BrepFaceOrEdgeWithoutGeometryIsInvalid) {
   }
 }
 
-// An IGES file whose parameter lines come before its directory, read after another IGES
-// file: OCCT's parser filed them under the previous file's freed entries (iges_newparam).
-TEST(FuzzRegression, IgesSectionsOutOfOrderAreRefused) {
+// IGES files whose parameter lines come before the directory, read after another IGES file:
+// OCCT's parser filed them under the previous file's freed entries (iges_newparam). It cuts
+// the text into 80-column records, so a longer line can do the same.
+TEST(FuzzRegression, IgesFilesNotInOrderedRecordsAreRefused) {
   const fs::path seed =
       fs::path(VOROHEX_SOURCE_DIR) / "bench/fuzz/corpus/fuzz_shape_reader/box.iges";
   const std::string iges = read_text(seed).substr(1);  // without the selector byte
@@ -152,21 +173,27 @@ TEST(FuzzRegression, IgesSectionsOutOfOrderAreRefused) {
   const auto first_p = std::find_if(lines.begin(), lines.end(),
                                     [&](const std::string& l) { return section(l) == 'P'; });
   ASSERT_TRUE(first_d != lines.end() && first_p != lines.end());
-  std::vector<std::string> moved(lines.begin(), first_d);
-  moved.push_back(*first_p);
+  std::vector<std::string> p_before_d(lines.begin(), first_d), long_line = lines;
+  p_before_d.push_back(*first_p);
   for (auto it = first_d; it != lines.end(); ++it)
-    if (it != first_p) moved.push_back(*it);
-  std::string broken;
-  for (const std::string& line : moved) broken += line + "\n";
+    if (it != first_p) p_before_d.push_back(*it);
+  long_line[first_d - lines.begin()] += "0000000000";
+  const auto text = [](const std::vector<std::string>& ls) {
+    std::string t;
+    for (const std::string& l : ls) t += l + "\n";
+    return t;
+  };
 
   // The seed (FreeCAD's IGES export of a box: 6 faces, no solid) parses and leaves the state.
   const ReadResult box = read_solid(write_temp("box.iges", iges));
   EXPECT_NE(testing::find_diagnostic(box.diagnostics, "no_solid"), nullptr);
-  const ReadResult r = read_solid(write_temp("p_before_d.iges", broken));
-  ASSERT_FALSE(r.ok());
-  const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "unreadable_file");
-  ASSERT_NE(d, nullptr);
-  EXPECT_NE(d->message.find("damaged IGES file"), std::string::npos) << d->message;
+  for (const std::string& broken : {text(p_before_d), text(long_line)}) {
+    const ReadResult r = read_solid(write_temp("broken.iges", broken));
+    ASSERT_FALSE(r.ok());
+    const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "unreadable_file");
+    ASSERT_NE(d, nullptr);
+    EXPECT_NE(d->message.find("damaged IGES file"), std::string::npos) << d->message;
+  }
 }
 
 }  // namespace
