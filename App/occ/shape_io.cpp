@@ -350,7 +350,7 @@ bool refuse_damaged(const XSControl_Reader& reader, bool (*is_shape_entity)(cons
 // arrays it does not initialise (StepData_StepReaderData::SetEntityNumbers), which, depending
 // on what the heap held, never ends; with dangling references its own check of the file can
 // recurse without end (StepShape_OrientedEdge::EdgeStart). Both found by fuzzing; names are
-// unique and resolved in ISO 10303-21 files (SCOPE blocks aside, then this says nothing).
+// unique and resolved in ISO 10303-21 files (SCOPE blocks aside: then this says nothing).
 // Returns "" or what is wrong.
 std::string step_name_problem(std::istream& in) {
   std::unordered_set<long long> names, references;
@@ -358,6 +358,7 @@ std::string step_name_problem(std::istream& in) {
   bool quoted = false, comment = false, reference = false;
   long long id = 0, ref = 0;
   char previous = 0;
+  int scope = 0;  // characters of "&SCOPE" just seen outside strings and comments
   for (char c; in.get(c); previous = c) {
     if (quoted) {
       quoted = c != '\'';  // a doubled quote reopens at once
@@ -370,9 +371,11 @@ std::string step_name_problem(std::istream& in) {
     if (c == '/' && in.peek() == '*') {
       comment = true;
       in.get(c);
+      c = 0;  // so that "/*/" does not close it
       continue;
     }
-    if (c == '&') return "";  // &SCOPE
+    scope = c == "&SCOPE"[scope] ? scope + 1 : c == '&' ? 1 : 0;
+    if (scope == 6) return "";
     const bool digit = c >= '0' && c <= '9';
     if (reference && (!digit || ref >= (1LL << 50))) {
       references.insert(ref);
@@ -401,6 +404,8 @@ std::string step_name_problem(std::istream& in) {
       ref = 0;
     }
   }
+  // Unclosed, the rest would be hidden from this scan (OCCT's parser goes on after it).
+  if (quoted || comment) return "a string or a comment is never closed";
   for (long long r : references)
     if (!names.count(r)) return "it refers to #" + std::to_string(r) + ", which it never gives";
   return "";
