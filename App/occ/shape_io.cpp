@@ -345,17 +345,18 @@ bool refuse_damaged(const XSControl_Reader& reader, bool (*is_shape_entity)(cons
   return true;
 }
 
-// Instance names (#n) of a STEP file given twice or referred to but never given. OCCT's
-// reader resolves the references of a file with a name given twice in a second pass over
-// arrays it does not initialise (StepData_StepReaderData::SetEntityNumbers), which, depending
-// on what the heap held, never ends; with dangling references its own check of the file can
-// recurse without end (StepShape_OrientedEdge::EdgeStart). Both found by fuzzing; names are
-// unique and resolved in ISO 10303-21 files (SCOPE blocks aside: then this says nothing).
+// Instance names (#n) of a STEP file given twice, referred to but never given, or referred
+// to by their own entity. OCCT's reader resolves the references of a file with a name given
+// twice in a second pass over arrays it does not initialise (StepData_StepReaderData::
+// SetEntityNumbers), which, depending on what the heap held, never ends; with a dangling
+// reference, or an oriented edge that is its own edge, its own check of the file recurses
+// without end (StepShape_OrientedEdge::EdgeStart). All found by fuzzing; names are unique
+// and resolved in ISO 10303-21 files (SCOPE blocks aside: then this says nothing).
 // Returns "" or what is wrong.
 std::string step_name_problem(std::istream& in) {
   std::unordered_set<long long> names, references;
   enum { statement_start, name, before_equals, body } phase = statement_start;
-  bool quoted = false, comment = false, reference = false;
+  bool quoted = false, comment = false, reference = false, named = false;
   long long id = 0, ref = 0;
   char previous = 0;
   int scope = 0;  // characters of "&SCOPE" just seen outside strings and comments
@@ -378,6 +379,7 @@ std::string step_name_problem(std::istream& in) {
     if (scope == 6) return "";
     const bool digit = c >= '0' && c <= '9';
     if (reference && (!digit || ref >= (1LL << 50))) {
+      if (named && ref == id) return "#" + std::to_string(id) + " refers to itself";
       references.insert(ref);
       reference = false;
     } else if (reference) {
@@ -392,10 +394,12 @@ std::string step_name_problem(std::istream& in) {
     } else if (phase == statement_start && !space) {
       phase = c == '#' ? name : body;
       id = 0;
+      named = false;
     } else if (phase == name && digit && id < (1LL << 50)) {
       id = 10 * id + (c - '0');
     } else if ((phase == name || phase == before_equals) && c == '=') {
       if (!names.insert(id).second) return "the name #" + std::to_string(id) + " is given twice";
+      named = true;
       phase = body;
     } else if (phase == name || phase == before_equals) {
       phase = space ? before_equals : body;

@@ -91,20 +91,23 @@ TEST(FuzzRegression, StepEntityWithAReferenceOfTheWrongTypeIsADamagedFile) {
 
 // STEP files giving one instance name to two entities (OCCT resolved their references over
 // arrays it does not initialise and, depending on the heap, never ended) or referring to a
-// name they never give (OCCT's own check of such a file recursed without end); a string
-// that is never closed would hide such references from the scan.
+// name they never give or to their own (OCCT's own check of such a file recursed without
+// end, StepShape_OrientedEdge::EdgeStart); a string that is never closed would hide such
+// references from the scan.
 TEST(FuzzRegression, StepNamesGivenTwiceOrNeverAreADamagedFile) {
   const std::string box = read_text(fs::path(VOROHEX_SOURCE_DIR) / "examples/box_3x2x1.step");
   const std::string direction = "#30 = DIRECTION('',(0.,0.,1.));";
   const std::string line = "#27 = LINE('',#28,#29);";
   ASSERT_NE(box.find(direction), std::string::npos);
   ASSERT_NE(box.find(line), std::string::npos);
-  std::string twice = box, never = box, unclosed = box;
+  std::string twice = box, never = box, itself = box, unclosed = box;
   twice.replace(twice.find(direction), 3, "#28");
   never.replace(never.find(line), line.size(), "#27 = LINE('',#9999,#29);");
+  itself.replace(itself.find(line), line.size(), "#27 = LINE('',#27,#29);");
   unclosed.replace(unclosed.find(line), line.size(), "#27 = LINE(',#28,#29);");
   for (const auto& [step, what] : {std::pair{twice, "the name #28 is given twice"},
                                    std::pair{never, "refers to #9999, which it never gives"},
+                                   std::pair{itself, "#27 refers to itself"},
                                    std::pair{unclosed, "a string or a comment is never closed"}}) {
     const ReadResult r = read_solid(write_temp("names.step", step));
     ASSERT_FALSE(r.ok());
