@@ -90,8 +90,8 @@ def main():
         row = {"model": name, "v_sec": sec, "v_mb": mb}
         size = None
         if r is None:
-            row["v"] = ("killed after %.0f s (300 s limit)" % sec if code < 0 or sec >= 299
-                        else "crash (exit %d)" % code)
+            row["v"] = ("killed after %.0f s (300 s limit)" % sec if sec >= 299
+                        else "crash (signal %d)" % -code if code < 0 else "crash (exit %d)" % code)
         elif r["ok"]:
             size = row["size"] = r["size"]
             c = r["check"]
@@ -117,8 +117,10 @@ def main():
                                           ", ".join("%d %s" % (n, s) for s, n in sorted(schemes.items())))
         else:
             last = [l for l in derr.strip().split("\n") if l][-1:] or ["exit %d" % code]
-            if code < 0 or dsec >= 29.5:
+            if dsec >= 29.5 or code == -9:
                 last = ["killed after %.0f s (30 s or 3 GB limit)" % dsec]
+            elif code < 0:
+                last = ["crash (signal %d)" % -code]
             row["d"] = "failed: " + last[0].replace("vorohex: ", "")[:90].replace("|", "/")
         row["d_sec"] = dsec
         if name in kept:

@@ -1,20 +1,14 @@
 #include "mesh/tet_split.h"
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Mesh_complex_3_in_triangulation_3.h>
-#include <CGAL/Mesh_criteria_3.h>
-#include <CGAL/Mesh_triangulation_3.h>
-#include <CGAL/Polyhedral_mesh_domain_with_features_3.h>
-#include <CGAL/Polyhedron_incremental_builder_3.h>
-#include <CGAL/make_mesh_3.h>
-
 #include <algorithm>
 #include <map>
 #include <set>
 #include <sstream>
 #include <tuple>
 
+#include "core/isolated_call.h"
 #include "core/option_checks.h"
+#include "mesh/detail/cgal_tets.h"
 #include "mesh/detail/tet_to_hex.h"
 #include "occ/tessellate.h"
 
@@ -27,25 +21,13 @@ void TetSplitOptions::validate() const {
 
 namespace {
 
-using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Polyhedron = CGAL::Mesh_polyhedron_3<K>::type;
-using Domain = CGAL::Polyhedral_mesh_domain_with_features_3<K>;
-using Tr = CGAL::Mesh_triangulation_3<Domain, CGAL::Default, CGAL::Sequential_tag>::type;
-using C3t3 = CGAL::Mesh_complex_3_in_triangulation_3<Tr, Domain::Corner_index, Domain::Curve_index>;
-using Criteria = CGAL::Mesh_criteria_3<Tr>;
 using core::NodeClass;
 using core::Vec3;
 
-// The boundary triangulation as one closed polyhedron, each facet's patch id the model
-// face it approximates (nodes shared between faces are merged: tessellate() shares them).
-struct Surface {
-  std::vector<Vec3> points;
-  std::vector<std::array<int, 3>> triangles;
-  std::vector<int> patch;
-};
-
-Surface merge(const occ::Tessellation& t) {
-  Surface s;
+// The boundary triangulation as one closed surface, each triangle's patch the model face
+// it approximates (nodes shared between faces are merged: tessellate() shares them).
+detail::TetSurface merge(const occ::Tessellation& t) {
+  detail::TetSurface s;
   std::map<std::tuple<double, double, double>, int> index;
   for (const occ::FaceTriangulation& f : t.faces) {
     if (!f.face.valid() || f.face.value() == 0) continue;
@@ -66,32 +48,6 @@ Surface merge(const occ::Tessellation& t) {
   }
   return s;
 }
-
-class Builder : public CGAL::Modifier_base<Polyhedron::HalfedgeDS> {
- public:
-  explicit Builder(const Surface& s) : s_(s) {}
-  void operator()(Polyhedron::HalfedgeDS& hds) override {
-    CGAL::Polyhedron_incremental_builder_3<Polyhedron::HalfedgeDS> b(hds, true);
-    b.begin_surface(s_.points.size(), s_.triangles.size());
-    for (const Vec3& p : s_.points) b.add_vertex(K::Point_3(p.x(), p.y(), p.z()));
-    for (std::size_t i = 0; i < s_.triangles.size(); ++i) {
-      const auto& t = s_.triangles[i];
-      if (!b.test_facet(t.begin(), t.end())) {
-        error = "the boundary triangulation is not a manifold surface";
-        b.rollback();
-        return;
-      }
-      auto h = b.add_facet(t.begin(), t.end());
-      h->facet()->set_patch_id(s_.patch[i]);
-    }
-    b.end_surface();
-    if (b.error()) error = "the boundary triangulation could not be built";
-  }
-  std::string error;
-
- private:
-  const Surface& s_;
-};
 
 using FacetFaces = std::map<std::array<int, 3>, int>;
 using EdgeFaces = std::map<std::array<int, 2>, int>;
@@ -264,42 +220,46 @@ TetSplitResult tet_split(const occ::Solid& solid, const TetSplitOptions& options
   topt.linear_deflection = std::min(0.05 * tet_size, 0.01 * solid.diagonal());
   const occ::Tessellation tess = occ::tessellate(solid, topt);
   if (!tess.ok()) return fail(tess.error);
-  const Surface surface = merge(tess);
-  Polyhedron poly;
-  Builder builder(surface);
-  poly.delegate(builder);
-  if (!builder.error.empty()) return fail(builder.error);
-  if (!poly.is_closed()) return fail("the boundary triangulation is not closed");
-
+  detail::TetRequest request;
+  request.surface = merge(tess);
+  request.size = tet_size;
   // Every model edge is a feature the tetrahedra keep (their polylines share the nodes).
-  std::vector<std::vector<K::Point_3>> polylines;
-  for (std::size_t e = 1; e < tess.edge_polylines.size(); ++e) {
-    const auto& pl = tess.edge_polylines[e];
-    if (pl.size() < 2) continue;
-    std::vector<K::Point_3> line;
-    for (const Vec3& p : pl) line.emplace_back(p.x(), p.y(), p.z());
-    polylines.push_back(std::move(line));
-  }
-  Domain domain(poly);
-  domain.add_features(polylines.begin(), polylines.end());
-  namespace params = CGAL::parameters;
-  Criteria criteria(params::edge_size = tet_size, params::facet_angle = 25,
-                    params::facet_size = tet_size, params::facet_distance = 0.1 * tet_size,
-                    params::cell_radius_edge_ratio = 2.5, params::cell_size = tet_size);
-  C3t3 c3t3;
-  try {
-    c3t3 = CGAL::make_mesh_3<C3t3>(
-        domain, criteria, params::odt(params::time_limit = 10, params::max_iteration_number = 20),
-        params::perturb(), params::no_exude());
-  } catch (const std::exception& ex) {
-    return fail(std::string("CGAL could not mesh the volume: ") + ex.what());
+  for (std::size_t e = 1; e < tess.edge_polylines.size(); ++e)
+    if (tess.edge_polylines[e].size() >= 2) request.features.push_back(tess.edge_polylines[e]);
+
+  // CGAL runs in a child process: its ODT optimiser (CGAL 5.5) can remove a vertex that a
+  // moved protecting ball hides and crash (HexMe i09); a crash then costs one retry with
+  // the perturber only, not the caller's process. Cancelling kills the child.
+  detail::Tetrahedra tm;
+  core::IsolatedCallOptions iso;
+  iso.stage = "tetrahedra";
+  for (const detail::TetOptimiser opt :
+       {detail::TetOptimiser::odt, detail::TetOptimiser::perturb}) {
+    request.optimiser = opt;
+    const core::IsolatedResult run = core::isolated_call(
+        [&request] { return detail::to_bytes(detail::mesh_tetrahedra(request)); }, progress, iso);
+    if (run.status == core::IsolatedResult::Status::cancelled) {
+      r.diagnostics.push_back(core::make_error("cancelled", "Meshing was cancelled."));
+      return r;
+    }
+    if (run.status == core::IsolatedResult::Status::failed) return fail(run.message);
+    if (run.ok()) {
+      if (!detail::from_bytes(run.data, tm)) return fail("the tetrahedral mesh came back damaged");
+      break;
+    }
+    if (opt == detail::TetOptimiser::perturb)
+      return fail("CGAL's tetrahedral mesher crashed twice (" + run.message + ")");
+    r.diagnostics.push_back(core::make_warning(
+        "tet_optimiser_crashed",
+        "CGAL's tetrahedral mesher crashed while optimising the tetrahedra (" + run.message +
+            "); meshed again with sliver perturbation only (poorer tetrahedra)."));
   }
   progress.report("tetrahedra", 0.6);
   if (progress.cancelled()) {
     r.diagnostics.push_back(core::make_error("cancelled", "Meshing was cancelled."));
     return r;
   }
-  r.tetrahedra = c3t3.number_of_cells_in_complex();
+  r.tetrahedra = tm.tets.size();
   if (r.tetrahedra == 0) return fail("no tetrahedron was generated");
   if (4 * r.tetrahedra > options.max_hexes) {
     std::ostringstream s;
@@ -309,47 +269,18 @@ TetSplitResult tet_split(const occ::Solid& solid, const TetSplitOptions& options
     return r;
   }
 
-  // Tetrahedron nodes with the dimension of the complex entity they lie on.
-  std::map<Tr::Vertex_handle, int> index;
-  std::vector<int> dimension;
-  std::vector<std::array<int, 4>> tets;
-  auto node = [&](Tr::Vertex_handle v) {
-    auto [it, added] = index.emplace(v, static_cast<int>(r.mesh.num_nodes()));
-    if (added) {
-      const auto& p = v->point().point();
-      r.mesh.add_node(Vec3(p.x(), p.y(), p.z()));
-      dimension.push_back(c3t3.in_dimension(v));
-    }
-    return it->second;
-  };
-  for (auto c = c3t3.cells_in_complex_begin(); c != c3t3.cells_in_complex_end(); ++c)
-    tets.push_back(
-        {node(c->vertex(0)), node(c->vertex(1)), node(c->vertex(2)), node(c->vertex(3))});
-  std::set<std::array<int, 2>> feature_edges;
-  for (auto e = c3t3.edges_in_complex_begin(); e != c3t3.edges_in_complex_end(); ++e) {
-    const auto a = index.find(e->first->vertex(e->second));
-    const auto b = index.find(e->first->vertex(e->third));
-    if (a == index.end() || b == index.end()) continue;
-    feature_edges.insert({std::min(a->second, b->second), std::max(a->second, b->second)});
-  }
+  for (const Vec3& p : tm.points) r.mesh.add_node(p);
+  const std::vector<int>& dimension = tm.dimension;
+  std::vector<std::array<int, 4>> tets = std::move(tm.tets);
+  const EdgeSet feature_edges(tm.feature_edges.begin(), tm.feature_edges.end());
   // The model face of every boundary triangle (its surface patch), and through them of
   // boundary tetrahedron edges and nodes.
-  std::map<std::array<int, 3>, int> facet_face;
-  std::map<std::array<int, 2>, int> edge_face;
+  FacetFaces facet_face;
+  EdgeFaces edge_face;
   std::vector<int> node_face(r.mesh.num_nodes(), 0);
-  for (auto f = c3t3.facets_in_complex_begin(); f != c3t3.facets_in_complex_end(); ++f) {
-    std::array<int, 3> k;
-    bool known = true;
-    for (int j = 0; j < 3; ++j) {
-      const auto it = index.find(f->first->vertex((f->second + 1 + j) % 4));
-      if (it == index.end())
-        known = false;
-      else
-        k[j] = it->second;
-    }
-    if (!known) continue;
-    std::sort(k.begin(), k.end());
-    const int face = static_cast<int>(c3t3.surface_patch_index(*f));
+  for (std::size_t i = 0; i < tm.facets.size(); ++i) {
+    const std::array<int, 3>& k = tm.facets[i];
+    const int face = tm.facet_patch[i];
     if (face < 1 || face > solid.num_faces()) continue;
     facet_face[k] = face;
     edge_face[{k[0], k[1]}] = edge_face[{k[1], k[2]}] = edge_face[{k[0], k[2]}] = face;

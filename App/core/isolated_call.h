@@ -1,0 +1,46 @@
+// Runs a computation in a child process, so that a crash inside a third-party library
+// (a segmentation fault or floating-point trap in CGAL, say) ends that computation with a
+// status instead of ending the caller (the CLI, or FreeCAD with the user's document).
+// The child gets a copy of the caller's memory (fork), runs `work` and sends the bytes it
+// returns back through a pipe; the caller waits, reporting progress and watching the
+// cancel flag and the time limit, and kills the child when the run is cancelled (so a
+// computation that cannot check a cancel flag itself can still be stopped).
+// On systems without fork, `work` runs in the calling process.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <string_view>
+
+#include "core/progress.h"
+
+namespace vorohex::core {
+
+struct IsolatedResult {
+  enum class Status {
+    ok,         // `work` returned; `data` holds what it returned
+    failed,     // `work` threw; `message` holds the exception's text
+    crashed,    // the child died of a signal (`signal`) or exited without a result
+    cancelled,  // the cancel flag or the time limit stopped it
+  };
+  Status status = Status::failed;
+  std::string data;
+  std::string message;
+  int signal = 0;
+  bool ok() const { return status == Status::ok; }
+};
+
+struct IsolatedCallOptions {
+  std::string_view stage = "";  // progress stage reported while waiting ("" = none)
+  bool isolate = true;          // false: run `work` in this process (for debugging)
+};
+
+// `work` returns its result as bytes (an exception becomes Status::failed).
+IsolatedResult isolated_call(const std::function<std::string()>& work,
+                             const Progress& progress = {},
+                             const IsolatedCallOptions& options = {});
+
+// The name of a signal for messages ("SIGSEGV (segmentation fault)").
+std::string signal_name(int signal);
+
+}  // namespace vorohex::core

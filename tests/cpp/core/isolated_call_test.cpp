@@ -1,0 +1,108 @@
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <stdexcept>
+#include <string>
+#include <thread>
+
+#include "core/isolated_call.h"
+
+namespace vorohex::core {
+namespace {
+
+TEST(IsolatedCall, ReturnsTheBytesTheChildComputed) {
+  std::string big(3 << 20, 'x');  // larger than a pipe's buffer
+  big[12345] = '\0';
+  const IsolatedResult r = isolated_call([&] { return "head" + big; });
+  ASSERT_TRUE(r.ok()) << r.message;
+  EXPECT_EQ(r.data, "head" + big);
+}
+
+TEST(IsolatedCall, AnEmptyResultIsStillAResult) {
+  const IsolatedResult r = isolated_call([] { return std::string(); });
+  EXPECT_TRUE(r.ok()) << r.message;
+  EXPECT_TRUE(r.data.empty());
+}
+
+TEST(IsolatedCall, AnExceptionBecomesFailedWithItsMessage) {
+  const IsolatedResult r =
+      isolated_call([]() -> std::string { throw std::runtime_error("no closed surface"); });
+  EXPECT_EQ(r.status, IsolatedResult::Status::failed);
+  EXPECT_EQ(r.message, "no closed surface");
+}
+
+TEST(IsolatedCall, ASegfaultInTheChildIsReportedAndTheCallerGoesOn) {
+  const IsolatedResult r = isolated_call([]() -> std::string {
+    std::raise(SIGSEGV);
+    return "unreachable";
+  });
+  EXPECT_EQ(r.status, IsolatedResult::Status::crashed);
+  EXPECT_EQ(r.signal, SIGSEGV);
+  EXPECT_NE(r.message.find("SIGSEGV"), std::string::npos) << r.message;
+  // The caller is still here and can run the next call.
+  EXPECT_TRUE(isolated_call([] { return std::string("again"); }).ok());
+}
+
+TEST(IsolatedCall, AFloatingPointTrapIsReported) {
+  const IsolatedResult r = isolated_call([]() -> std::string {
+    std::raise(SIGFPE);
+    return "unreachable";
+  });
+  EXPECT_EQ(r.status, IsolatedResult::Status::crashed);
+  EXPECT_NE(r.message.find("SIGFPE"), std::string::npos) << r.message;
+}
+
+TEST(IsolatedCall, CancellingKillsAChildThatNeverChecksTheFlag) {
+  std::atomic<bool> cancel{false};
+  int beats = 0;
+  const Progress progress(
+      [&](std::string_view stage, double) {
+        EXPECT_EQ(stage, "tetrahedra");
+        if (++beats == 3) cancel = true;  // the user presses Stop while it runs
+      },
+      &cancel);
+  IsolatedCallOptions options;
+  options.stage = "tetrahedra";
+  const auto t0 = std::chrono::steady_clock::now();
+  const IsolatedResult r = isolated_call(
+      [] {
+        std::this_thread::sleep_for(std::chrono::minutes(10));
+        return std::string("too late");
+      },
+      progress, options);
+  EXPECT_EQ(r.status, IsolatedResult::Status::cancelled);
+  EXPECT_EQ(r.message, "cancelled");
+  EXPECT_GE(beats, 3);  // the caller heard from it while waiting
+  // It did not wait for the child's ten minutes.
+  EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::minutes(5));
+}
+
+TEST(IsolatedCall, ATimeLimitStopsTheChild) {
+  const IsolatedResult r = isolated_call(
+      [] {
+        std::this_thread::sleep_for(std::chrono::minutes(10));
+        return std::string("too late");
+      },
+      Progress().with_time_limit(0.2));
+  EXPECT_EQ(r.status, IsolatedResult::Status::cancelled);
+  EXPECT_EQ(r.message, "the time limit was reached");
+}
+
+TEST(IsolatedCall, RunsInTheCallerWhenAskedTo) {
+  int touched = 0;
+  IsolatedCallOptions options;
+  options.isolate = false;
+  const IsolatedResult r = isolated_call(
+      [&] {
+        touched = 1;  // visible only when run in this process
+        return std::string("here");
+      },
+      {}, options);
+  EXPECT_TRUE(r.ok());
+  EXPECT_EQ(touched, 1);
+}
+
+}  // namespace
+}  // namespace vorohex::core

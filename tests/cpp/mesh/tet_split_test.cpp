@@ -1,0 +1,91 @@
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <string>
+
+#include "fixtures/diagnostics.h"
+#include "mesh/detail/cgal_tets.h"
+#include "mesh/tet_split.h"
+#include "occ/primitives.h"
+
+namespace vorohex::mesh {
+namespace {
+
+using core::Vec3;
+
+// A tetrahedron's boundary as a closed surface, one patch per face.
+detail::TetRequest unit_tetrahedron() {
+  detail::TetRequest q;
+  q.surface.points = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)};
+  q.surface.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  q.surface.patch = {1, 2, 3, 4};
+  for (int a = 0; a < 4; ++a)
+    for (int b = a + 1; b < 4; ++b)
+      q.features.push_back({q.surface.points[a], q.surface.points[b]});
+  q.size = 0.3;
+  return q;
+}
+
+TEST(CgalTets, MeshesAClosedSurfaceAndSurvivesTheTripThroughBytes) {
+  for (const detail::TetOptimiser opt :
+       {detail::TetOptimiser::odt, detail::TetOptimiser::perturb}) {
+    detail::TetRequest q = unit_tetrahedron();
+    q.optimiser = opt;
+    const detail::Tetrahedra t = detail::mesh_tetrahedra(q);
+    EXPECT_GT(t.tets.size(), 4u);
+    EXPECT_EQ(t.points.size(), t.dimension.size());
+    EXPECT_GE(t.feature_edges.size(), 6u);  // at least one segment per edge
+    ASSERT_FALSE(t.facets.empty());
+    for (int p : t.facet_patch) EXPECT_TRUE(p >= 1 && p <= 4) << p;
+    detail::Tetrahedra back;
+    const std::string bytes = detail::to_bytes(t);
+    ASSERT_TRUE(detail::from_bytes(bytes, back));
+    EXPECT_EQ(back.points, t.points);
+    EXPECT_EQ(back.tets, t.tets);
+    EXPECT_EQ(back.facets, t.facets);
+    EXPECT_EQ(back.facet_patch, t.facet_patch);
+    // Cut short, or with a node index out of range: refused, not read past the end.
+    detail::Tetrahedra bad;
+    EXPECT_FALSE(detail::from_bytes(bytes.substr(0, bytes.size() - 3), bad));
+    detail::Tetrahedra wrong = t;
+    wrong.tets[0][2] = static_cast<int>(t.points.size());
+    EXPECT_FALSE(detail::from_bytes(detail::to_bytes(wrong), bad));
+  }
+}
+
+TEST(CgalTets, AnOpenSurfaceIsNamedNotMeshed) {
+  detail::TetRequest q = unit_tetrahedron();
+  q.surface.triangles.pop_back();
+  q.surface.patch.pop_back();
+  try {
+    detail::mesh_tetrahedra(q);
+    FAIL() << "an open surface was meshed";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("not closed"), std::string::npos) << e.what();
+  }
+}
+
+TEST(TetSplit, MeshesACylinderInAChildProcessAndPlacesItOnTheCad) {
+  const occ::Solid cyl = occ::make_cylinder(1, 2);
+  TetSplitOptions opt;
+  opt.size = 0.3;
+  const TetSplitResult r = tet_split(cyl, opt);
+  ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics[0]));
+  EXPECT_EQ(r.mesh.num_hexes(), 4 * r.tetrahedra);
+  EXPECT_EQ(testing::find_diagnostic(r.diagnostics, "tet_optimiser_crashed"), nullptr);
+}
+
+TEST(TetSplit, ACancelledRunEndsWithoutAMesh) {
+  std::atomic<bool> cancel{true};
+  TetSplitOptions opt;
+  opt.size = 0.05;
+  const TetSplitResult r = tet_split(occ::make_cylinder(1, 2), opt, core::Progress({}, &cancel));
+  EXPECT_FALSE(r.ok);
+  EXPECT_EQ(r.mesh.num_hexes(), 0u);
+  const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "cancelled");
+  ASSERT_NE(d, nullptr);
+  EXPECT_EQ(d->severity, core::Severity::error);
+}
+
+}  // namespace
+}  // namespace vorohex::mesh
