@@ -36,9 +36,11 @@
 #include <cctype>
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <unordered_set>
 
+#include "core/isolated_call.h"
 #include "occ/solid_impl.h"
 
 namespace vorohex::occ {
@@ -453,6 +455,26 @@ TopoDS_Shape read_brep(std::istream& in) {
 
 const char* const kBrepMalformed = "the text ends early or holds a word where a number belongs";
 
+// OCCT's BREP reader dereferences the basis of a trimmed, offset, extrusion or revolution
+// curve or surface without looking (null when the basis has an unknown type: found by
+// fuzz_shape_reader, bench/fuzz/README.md). Short of parsing the geometry sections
+// ourselves, the text is read once in a child process (core/isolated_call.h): a crash
+// there is this message ("" when the reader came back, with or without an exception),
+// and the caller's process reads it only then.
+std::string brep_reader_crash(const std::function<void()>& read) {
+  const core::IsolatedResult probe = core::isolated_call([&read] {
+    try {
+      read();
+    } catch (...) {  // the caller's own read reports it
+    }
+    return std::string();
+  });
+  if (probe.status != core::IsolatedResult::Status::crashed) return "";
+  return "OCCT's BREP reader crashed on it (" + probe.message +
+         "); most often a trimmed, offset, extrusion or revolution curve or surface whose "
+         "basis is missing or of an unknown type";
+}
+
 bool only_whitespace(std::ifstream& in) {
   char buf[4096];
   while (in.read(buf, sizeof buf) || in.gcount() > 0) {
@@ -529,6 +551,15 @@ ReadResult read_solid(const std::string& path, const ReadOptions& options) {
         }
       }
     } else {
+      const std::string crash = brep_reader_crash([&path] {
+        std::ifstream probe(path);
+        read_brep(probe);
+      });
+      if (!crash.empty()) {
+        r.diagnostics.push_back(
+            make_error("unreadable_file", where + " is a damaged BREP file: " + crash + "."));
+        return r;
+      }
       std::ifstream file(path);
       shape = read_brep(file);
       read = !shape.IsNull();
@@ -559,6 +590,15 @@ ReadResult read_solid_from_brep_string(const std::string& brep, const ReadOption
   if (std::all_of(brep.begin(), brep.end(),
                   [](unsigned char ch) { return std::isspace(ch) != 0; })) {
     r.diagnostics.push_back(make_error("empty_file", where + " is empty."));
+    return r;
+  }
+  const std::string crash = brep_reader_crash([&brep] {
+    std::istringstream probe(brep);
+    read_brep(probe);
+  });
+  if (!crash.empty()) {
+    r.diagnostics.push_back(
+        make_error("unreadable_file", where + " is not valid BREP text: " + crash + "."));
     return r;
   }
   try {

@@ -70,6 +70,29 @@ TEST(FuzzRegression, ShapeReaderInputsAreRefused) {
   EXPECT_GE(inputs, 10);
 }
 
+// BREP text whose trimmed, offset, extrusion or revolution geometry has a basis of an
+// unknown type: OCCT's reader dereferenced the null basis (SIGSEGV). The text is read in a
+// child process first; the crash is named, the test (and a FreeCAD session) goes on.
+TEST(FuzzRegression, BrepGeometryWithoutItsBasisCrashesOnlyAChildProcess) {
+  const fs::path dir = fs::path(VOROHEX_SOURCE_DIR) / "bench/fuzz/regressions/fuzz_shape_reader";
+  int inputs = 0;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    const std::string name = entry.path().filename().string();
+    if (name.find("null_basis") == std::string::npos) continue;
+    SCOPED_TRACE(name);
+    const ReadResult r = read_like_fuzz_target(read_text(entry.path()));
+    ASSERT_FALSE(r.ok());
+    const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "unreadable_file");
+    ASSERT_NE(d, nullptr);
+    EXPECT_NE(d->message.find("BREP reader crashed on it (the computation crashed with SIG"),
+              std::string::npos)
+        << d->message;
+    ++inputs;
+  }
+  EXPECT_EQ(inputs, 7);
+  EXPECT_TRUE(read_solid_from_brep_string(make_box(1, 2, 3).to_brep_string()).ok());
+}
+
 // The smallest form of those inputs: a LINE whose point is a DIRECTION (loaded with a null
 // point: SIGSEGV in StepGeom_CartesianPoint::NbCoordinates).
 TEST(FuzzRegression, StepEntityWithAReferenceOfTheWrongTypeIsADamagedFile) {
