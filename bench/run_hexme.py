@@ -56,7 +56,10 @@ def main():
     ap.add_argument("--no-gmsh", action="store_true")
     ap.add_argument("--only", default="")
     ap.add_argument("--from-logs", nargs="+", default=None)
+    ap.add_argument("--commit", default=None, help="the commit the measured binary was built from")
     args = ap.parse_args()
+    global BUILT_FROM
+    BUILT_FROM = args.commit or commit()
     if args.from_logs:
         by_model = {}
         for path in args.from_logs:
@@ -150,6 +153,17 @@ def main():
     write_table(rows)
 
 
+BUILT_FROM = "unknown"
+
+
+def commit():
+    try:
+        return subprocess.run(["git", "-C", REPO, "rev-parse", "--short", "HEAD"], capture_output=True,
+                              text=True, check=True).stdout.strip()
+    except (OSError, subprocess.CalledProcessError):
+        return "unknown"
+
+
 def write_table(rows):
     def f(v, fmt="%.3f"):
         return fmt % v if isinstance(v, (int, float)) else (v if v is not None else "")
@@ -172,7 +186,9 @@ def write_table(rows):
         "decomposition are not meshed into one mesh yet, so the decomposition column does not",
         "feed the VoroHex column.",
         "",
-        "VoroHex meshes %d of %d models today." % (valid, len(rows)),
+        "VoroHex meshes %d of %d models today (VoroHex columns measured at commit %s%s)." % (
+            valid, len(rows), BUILT_FROM,
+            "; Gmsh columns kept from the previous table" if any("g_kept" in r for r in rows) else ""),
         "",
         "| model | VoroHex | hexes | min SJ | mean SJ | s | Gmsh | hexes | min SJ | mean SJ | inverted | s | decomposition | s |",
         "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|",
