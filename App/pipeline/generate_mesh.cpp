@@ -51,6 +51,53 @@ std::string decomposition_summary(const occ::Solid& solid, const core::Progress&
   return s.str();
 }
 
+// Model edges shorter than, and faces narrower than, a quarter of the size: no scheme
+// absorbs them yet (that needs the virtual topology's composite entities), so the mesh
+// keeps them as entities of their own and its elements there are small and poor. Said
+// before meshing, naming them, with what the user can do.
+std::vector<core::Diagnostic> small_features(const occ::Solid& solid, double size) {
+  const double limit = 0.25 * size;
+  std::vector<std::pair<double, std::string>> edges, faces;
+  for (core::EdgeId e : solid.edges()) {
+    if (solid.edge_is_degenerated(e)) continue;
+    const double length = solid.edge_length(e);
+    if (length < limit) edges.emplace_back(length, core::entity_name(e));
+  }
+  for (core::FaceId f : solid.faces()) {
+    double perimeter = 0;
+    for (const auto& wire : solid.face_wires(f))
+      for (const occ::OrientedEdge& oe : wire)
+        if (!solid.edge_is_degenerated(oe.edge)) perimeter += solid.edge_length(oe.edge);
+    // Width of a strip of that area and perimeter (a rectangle a x b: ab / (a + b), about b
+    // for b << a; a disc: its radius).
+    const double width = perimeter > 0 ? 2 * solid.area(f) / perimeter : 0;
+    if (width < limit) faces.emplace_back(width, core::entity_name(f));
+  }
+  std::vector<core::Diagnostic> out;
+  auto say = [&](std::vector<std::pair<double, std::string>>& list, const char* code,
+                 const char* what, const char* measure) {
+    if (list.empty()) return;
+    std::sort(list.begin(), list.end());
+    std::ostringstream s;
+    s << list.size() << " " << what << " " << measure << " a quarter of the size " << size << " (";
+    std::vector<std::string> names;
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      if (i < 5) s << (i ? ", " : "") << list[i].second << " " << list[i].first;
+      names.push_back(list[i].second);
+    }
+    const bool one = list.size() == 1;
+    s << (list.size() > 5 ? ", ..." : "") << "): " << (one ? "it is" : "they are") << " meshed as "
+      << (one ? "it is" : "they are") << ", with small elements of poor "
+      << "quality around " << (one ? "it" : "them") << ". Remove " << (one ? "it" : "them")
+      << " in the CAD (defeaturing) or give a smaller size.";
+    out.push_back(core::make_warning(code, s.str(), names));
+  };
+  say(edges, "tiny_edges", edges.size() == 1 ? "model edge is" : "model edges are", "shorter than");
+  say(faces, "sliver_faces", faces.size() == 1 ? "model face is" : "model faces are",
+      "narrower than");
+  return out;
+}
+
 // Smoothing and the validity check every result goes through.
 void finish(MeshResult& result, const occ::Solid& solid, const MeshOptions& options,
             const core::Progress& progress) {
@@ -306,8 +353,14 @@ MeshResult generate(const occ::Solid& solid, const MeshOptions& options,
                     const core::Progress& progress) {
   // Automatic size: 20 elements along the diagonal (of all solids together).
   const double size = options.size > 0 ? options.size : solid.diagonal() / 20.0;
-  if (solid.num_solids() > 1) return generate_parts(solid, options, size, progress);
+  const std::vector<core::Diagnostic> small = small_features(solid, size);
+  if (solid.num_solids() > 1) {
+    MeshResult parts = generate_parts(solid, options, size, progress);
+    parts.diagnostics.insert(parts.diagnostics.begin(), small.begin(), small.end());
+    return parts;
+  }
   MeshResult result;
+  result.diagnostics = small;
   if (mesh_solid(solid, options, size, progress, result)) finish(result, solid, options, progress);
   return result;
 }

@@ -191,6 +191,39 @@ TEST(GenerateMesh, BoxStandingOnALargerBoxIsSweptMappedAndJoined) {
 }
 
 // A time limit stops meshing like a cancel: an error naming the limit, no mesh.
+// A prism whose corner is cut by a chamfer 0.014 long: the chamfer's edges are tiny and its
+// face a sliver next to the size 0.5. Both are named before meshing; the mesh is still made
+// and checked. A plain box has neither.
+TEST(GenerateMesh, TinyEdgesAndSliverFacesAreNamed) {
+  const occ::Solid chamfered = occ::make_prism({{0, 0}, {4, 0}, {4, 1}, {0.01, 1}, {0, 0.99}}, 1.0);
+  MeshOptions opt;
+  opt.size = 0.5;
+  const MeshResult r = generate_mesh(chamfered, opt);
+  const core::Diagnostic* edges = testing::find_diagnostic(r.diagnostics, "tiny_edges");
+  const core::Diagnostic* faces = testing::find_diagnostic(r.diagnostics, "sliver_faces");
+  ASSERT_NE(edges, nullptr);
+  ASSERT_NE(faces, nullptr);
+  EXPECT_EQ(edges->severity, core::Severity::warning);
+  // The chamfer's two end edges (length 0.0141); its two vertical edges are 1 long.
+  EXPECT_EQ(edges->entities.size(), 2u);
+  EXPECT_NE(edges->message.find("2 model edges are shorter than a quarter of the size 0.5 (Edge"),
+            std::string::npos)
+      << edges->message;
+  EXPECT_NE(edges->message.find(" 0.0141"), std::string::npos) << edges->message;
+  // The chamfer face only: 0.0141 x 1, width 2A/P = 0.0141 / 1.0141 = 0.0139.
+  ASSERT_EQ(faces->entities.size(), 1u);
+  EXPECT_NE(faces->message.find("1 model face is narrower than"), std::string::npos)
+      << faces->message;
+  EXPECT_NE(faces->message.find(faces->entities[0] + " 0.0139"), std::string::npos)
+      << faces->message;
+  EXPECT_TRUE(r.check.hexes > 0);
+  EXPECT_EQ(r.ok, r.check.valid);
+
+  const MeshResult box = generate_mesh(occ::make_box(4, 1, 1), opt);
+  EXPECT_EQ(testing::find_diagnostic(box.diagnostics, "tiny_edges"), nullptr);
+  EXPECT_EQ(testing::find_diagnostic(box.diagnostics, "sliver_faces"), nullptr);
+}
+
 TEST(GenerateMesh, TimeLimitStopsMeshingWithADiagnostic) {
   const occ::Solid box = occ::make_box(3, 2, 1);
   MeshOptions opt;
