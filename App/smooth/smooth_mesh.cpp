@@ -413,6 +413,11 @@ class Smoother {
       }
       if (bad.empty()) return;
       std::sort(bad.begin(), bad.end());
+      // Raising the minimum is the aim: the worst hexes lead. On meshes where most hexes are
+      // below the target (tetrahedra split into hexahedra: mean about 0.4) a pass over all
+      // of them took minutes (HexMe i07, 135,556 hexes: 320 s) for little gain in the
+      // minimum; the rest is the Laplacian phase's.
+      if (!untangle) bad.resize(std::min(bad.size(), std::max<std::size_t>(2000, nh / 20)));
       // No fewer bad hexes and no better worst one since the last pass: widen the set.
       if (pass > 0 && bad.size() >= last_count && bad[0].first <= last_worst + 1e-9) {
         if (ring >= 2) return;
