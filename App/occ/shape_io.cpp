@@ -128,28 +128,74 @@ std::vector<std::string> missing_geometry(const TopoDS_Shape& shape) {
   return names;
 }
 
+// OCCT's BREP reader does not look at the stream state: on text that ends early or holds a
+// word where a number belongs, its loops go on reading the failed stream (an edge's list of
+// representations ends at a 0 that never comes: it hangs). With exceptions on, the first
+// failed read ends the reading (std::ios_base::failure, reported as kBrepMalformed).
+TopoDS_Shape read_brep(std::istream& in) {
+  in.exceptions(std::ios::failbit | std::ios::badbit);
+  TopoDS_Shape shape;
+  BRep_Builder builder;
+  BRepTools::Read(shape, in, builder);
+  return shape;
+}
+
+// OCCT's shape healing of a solid that fails its check, in a child process
+// (core/isolated_call.h): on a damaged solid found by fuzz_shape_reader it classified points
+// without end (BRepTopAdaptor_FClass2d::Perform < ShapeFix_Solid::SolidFromShell), and its
+// loops look at no progress indicator. The child sends the repaired solid back as BREP
+// text; null when it could not repair it, crashed, or passed the time limit (`why` says).
+TopoDS_Solid repaired(const TopoDS_Solid& solid, double time_limit, std::string& why) {
+  const core::IsolatedResult run = core::isolated_call(
+      [&solid] {
+        ShapeFix_Shape fix(solid);
+        fix.Perform();
+        const TopoDS_Shape result = fix.Shape();
+        if (count(result, TopAbs_SOLID) != 1) return std::string();
+        TopExp_Explorer ex(result, TopAbs_SOLID);
+        if (!BRepCheck_Analyzer(ex.Current()).IsValid()) return std::string();
+        std::ostringstream out;
+        BRepTools::Write(ex.Current(), out);
+        return out.str();
+      },
+      time_limit > 0 ? core::Progress().with_time_limit(time_limit) : core::Progress());
+  if (run.status == core::IsolatedResult::Status::cancelled) {
+    std::ostringstream s;
+    s << "OCCT's shape healing (ShapeFix) did not finish within " << time_limit << " s";
+    why = s.str();
+    return TopoDS_Solid();
+  }
+  if (run.status == core::IsolatedResult::Status::crashed) {
+    why = "OCCT's shape healing (ShapeFix) crashed on it (" + run.message + ")";
+    return TopoDS_Solid();
+  }
+  why = "OCCT's shape healing (ShapeFix) could not repair it";
+  if (!run.ok() || run.data.empty()) return TopoDS_Solid();
+  try {
+    std::istringstream in(run.data);
+    const TopoDS_Shape shape = read_brep(in);
+    if (shape.IsNull() || shape.ShapeType() != TopAbs_SOLID) return TopoDS_Solid();
+    return TopoDS::Solid(shape);
+  } catch (const std::exception&) {
+  } catch (const Standard_Failure&) {
+  }
+  return TopoDS_Solid();
+}
+
 // Validity of one solid: OCCT's check (with ShapeFix healing when it fails), outward
 // orientation, faces. Null (with an error in r) when it cannot be used.
-TopoDS_Solid checked_solid(TopoDS_Solid solid, const std::string& where, ReadResult& r) {
+TopoDS_Solid checked_solid(TopoDS_Solid solid, const std::string& where, const ReadOptions& options,
+                           ReadResult& r) {
   if (!BRepCheck_Analyzer(solid).IsValid()) {
     // Bad tolerances and similar defects: try OCCT's shape healing before giving up.
-    TopoDS_Solid fixed;
-    try {
-      ShapeFix_Shape fix(solid);
-      fix.Perform();
-      const TopoDS_Shape result = fix.Shape();
-      if (count(result, TopAbs_SOLID) == 1) {
-        TopExp_Explorer ex(result, TopAbs_SOLID);
-        fixed = TopoDS::Solid(ex.Current());
-      }
-    } catch (const Standard_Failure&) {
-      fixed.Nullify();
-    }
-    if (fixed.IsNull() || !BRepCheck_Analyzer(fixed).IsValid()) {
-      r.diagnostics.push_back(make_error(
-          "invalid_shape", where + " holds a solid that fails OCCT's validity check "
-                                   "(self-intersecting or broken geometry) and OCCT's shape "
-                                   "healing (ShapeFix) could not repair it."));
+    std::string why;
+    const TopoDS_Solid fixed = repaired(solid, options.repair_time_limit, why);
+    if (fixed.IsNull()) {
+      r.diagnostics.push_back(
+          make_error("invalid_shape", where +
+                                          " holds a solid that fails OCCT's validity check "
+                                          "(self-intersecting or broken geometry) and " +
+                                          why + "."));
       return TopoDS_Solid();
     }
     solid = fixed;
@@ -258,8 +304,8 @@ ReadResult analyse(const TopoDS_Shape& shape, const std::string& where,
     std::vector<TopoDS_Solid> checked;
     int k = 0;
     for (TopExp_Explorer ex(shape, TopAbs_SOLID); ex.More(); ex.Next()) {
-      const TopoDS_Solid s = checked_solid(TopoDS::Solid(ex.Current()),
-                                           where + " (solid " + std::to_string(++k) + ")", r);
+      const TopoDS_Solid s = checked_solid(
+          TopoDS::Solid(ex.Current()), where + " (solid " + std::to_string(++k) + ")", options, r);
       if (s.IsNull()) return r;
       checked.push_back(s);
     }
@@ -304,7 +350,7 @@ ReadResult analyse(const TopoDS_Shape& shape, const std::string& where,
     r.diagnostics.push_back(make_error("no_solid", where + " contains " + what + " and no solid."));
     return r;
   }
-  solid = checked_solid(solid, where, r);
+  solid = checked_solid(solid, where, options, r);
   if (solid.IsNull()) return r;
   r.solid = std::make_unique<Solid>(make_solid_impl(solid));
   return r;
@@ -439,18 +485,6 @@ bool iges_records_in_order(std::istream& in) {
     }
   }
   return true;
-}
-
-// OCCT's BREP reader does not look at the stream state: on text that ends early or holds a
-// word where a number belongs, its loops go on reading the failed stream (an edge's list of
-// representations ends at a 0 that never comes: it hangs). With exceptions on, the first
-// failed read ends the reading (std::ios_base::failure, reported as kBrepMalformed).
-TopoDS_Shape read_brep(std::istream& in) {
-  in.exceptions(std::ios::failbit | std::ios::badbit);
-  TopoDS_Shape shape;
-  BRep_Builder builder;
-  BRepTools::Read(shape, in, builder);
-  return shape;
 }
 
 const char* const kBrepMalformed = "the text ends early or holds a word where a number belongs";

@@ -22,6 +22,9 @@ struct ReadOptions {
   // (OCCT's general fuse) into one Solid whose parts share those faces; overlapping solids
   // are refused (overlapping_solids). Other commands take one solid (several_solids error).
   bool several_solids = false;
+  // Seconds OCCT's shape healing of a solid that fails OCCT's check may take (0: no
+  // limit); it runs in a child process that is stopped then (error invalid_shape).
+  double repair_time_limit = 120;
 };
 
 // Format from the extension (.step/.stp, .brep/.brp, .iges/.igs, case-insensitive).

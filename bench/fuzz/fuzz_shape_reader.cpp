@@ -60,6 +60,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const char* text = reinterpret_cast<const char*>(data + 1);
   vorohex::occ::ReadOptions options;
   options.several_solids = (data[0] & 4) != 0;
+  options.repair_time_limit = 5;  // well under libFuzzer's -timeout (run_fuzz.sh)
   vorohex::occ::ReadResult read;
   const int mode = data[0] & 3;
   if (mode == 0) {

@@ -40,6 +40,7 @@ std::string write_temp(const std::string& name, const std::string& text) {
 ReadResult read_like_fuzz_target(const std::string& bytes) {
   ReadOptions options;
   options.several_solids = (bytes[0] & 4) != 0;
+  options.repair_time_limit = 5;  // as the target sets it
   const std::string text = bytes.substr(1);
   switch (bytes[0] & 3) {
     case 0:
@@ -91,6 +92,26 @@ TEST(FuzzRegression, BrepGeometryWithoutItsBasisCrashesOnlyAChildProcess) {
   }
   EXPECT_EQ(inputs, 7);
   EXPECT_TRUE(read_solid_from_brep_string(make_box(1, 2, 3).to_brep_string()).ok());
+}
+
+// Damaged BREP solids on which OCCT's shape healing classified points without end
+// (BRepTopAdaptor_FClass2d::Perform < ShapeFix_Solid::SolidFromShell): the repair runs in a
+// child process that is stopped at the time limit; the solid is refused, naming why.
+TEST(FuzzRegression, ARepairThatNeverEndsIsStoppedAtItsTimeLimit) {
+  const fs::path dir = fs::path(VOROHEX_SOURCE_DIR) / "bench/fuzz/regressions/fuzz_shape_reader";
+  int inputs = 0;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    const std::string name = entry.path().filename().string();
+    if (name.find("hang_in_shapefix") == std::string::npos) continue;
+    SCOPED_TRACE(name);
+    const ReadResult r = read_like_fuzz_target(read_text(entry.path()));
+    ASSERT_FALSE(r.ok());
+    const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "invalid_shape");
+    ASSERT_NE(d, nullptr);
+    EXPECT_NE(d->message.find("did not finish within 5 s"), std::string::npos) << d->message;
+    ++inputs;
+  }
+  EXPECT_EQ(inputs, 2);
 }
 
 // The smallest form of those inputs: a LINE whose point is a DIRECTION (loaded with a null
