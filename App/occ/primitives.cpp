@@ -183,6 +183,11 @@ bool write_fixture(Fixture kind, const std::string& path) {
       const gp_Pnt p = BRep_Tool::Pnt(v);
       b.UpdateVertex(v, gp_Pnt(p.X() + 1e-4, p.Y() + 1e-4, p.Z()), 1e-7);
       shape = box;
+    } else if (kind == Fixture::self_intersecting_prism) {
+      BRepBuilderAPI_MakePolygon bowtie(gp_Pnt(0, 0, 0), gp_Pnt(2, 1, 0), gp_Pnt(2, 0, 0),
+                                        gp_Pnt(0, 1, 0), true);
+      const TopoDS_Face face = BRepBuilderAPI_MakeFace(bowtie.Wire(), true).Face();
+      shape = BRepPrimAPI_MakePrism(face, gp_Vec(0, 0, 1)).Shape();
     } else if (kind == Fixture::open_box_shell || kind == Fixture::closed_box_shell) {
       TopoDS_Shell shell;
       b.MakeShell(shell);

@@ -7,14 +7,15 @@
 namespace vorohex::occ::detail {
 
 enum class Fixture {
-  open_box_shell,     // a shell of five faces of the unit box (one face missing)
-  closed_box_shell,   // the six faces of the unit box as a shell, not a solid
-  two_boxes,          // a compound of two disjoint unit boxes
-  touching_boxes,     // unit boxes at x = 0 and x = 1 (separate shapes touching at x = 1)
-  stacked_boxes,      // a 2 x 1 x 1 box with a unit box on top at x in [0.5, 1.5]
-  overlapping_boxes,  // unit boxes at x = 0 and x = 0.5
-  box_faces,          // a compound of three loose faces of the unit box
-  bad_tolerance_box,  // the unit box with one vertex moved 1e-4 off its edges, tolerance 1e-7
+  open_box_shell,           // a shell of five faces of the unit box (one face missing)
+  closed_box_shell,         // the six faces of the unit box as a shell, not a solid
+  two_boxes,                // a compound of two disjoint unit boxes
+  touching_boxes,           // unit boxes at x = 0 and x = 1 (separate shapes touching at x = 1)
+  stacked_boxes,            // a 2 x 1 x 1 box with a unit box on top at x in [0.5, 1.5]
+  overlapping_boxes,        // unit boxes at x = 0 and x = 0.5
+  box_faces,                // a compound of three loose faces of the unit box
+  bad_tolerance_box,        // the unit box with one vertex moved 1e-4 off its edges, tolerance 1e-7
+  self_intersecting_prism,  // a bow-tie outline (its edges cross at (1, 0.5)) extruded by 1
 };
 
 // Writes the fixture; the format comes from the extension (.brep/.brp or .step/.stp).

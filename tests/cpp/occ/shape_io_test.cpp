@@ -183,6 +183,24 @@ TEST(ReadSolid, BadTolerancesAreRepairedAndReported) {
   EXPECT_EQ(r.solid->num_faces(), 6);
 }
 
+// A prism on a bow-tie outline: its side faces cross, OCCT's check fails and its healing
+// cannot make a solid of it. Refused with a message saying so, from a file and from BREP
+// text (as FreeCAD hands shapes over).
+TEST(ReadSolid, SelfIntersectingSolidIsRefused) {
+  const std::string path = temp_path("bowtie.brep");
+  ASSERT_TRUE(detail::write_fixture(detail::Fixture::self_intersecting_prism, path));
+  std::ifstream in(path);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  for (const ReadResult& r : {read_solid(path), read_solid_from_brep_string(text)}) {
+    ASSERT_FALSE(r.ok());
+    ASSERT_FALSE(r.diagnostics.empty());
+    const core::Diagnostic& d = r.diagnostics.front();
+    EXPECT_EQ(d.code, "invalid_shape");
+    EXPECT_NE(d.message.find("self-intersecting"), std::string::npos) << d.message;
+    EXPECT_NE(d.message.find("could not repair it"), std::string::npos) << d.message;
+  }
+}
+
 TEST(ReadSolid, BoxRoundTripsThroughStepAndBrep) {
   const Solid box = make_box(1, 2, 3);
   for (const std::string name : {"box.step", "box.stp", "box.brep"}) {
