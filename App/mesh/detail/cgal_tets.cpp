@@ -6,6 +6,7 @@
 #include <CGAL/Mesh_triangulation_3.h>
 #include <CGAL/Polyhedral_mesh_domain_with_features_3.h>
 #include <CGAL/Polyhedron_incremental_builder_3.h>
+#include <CGAL/Random.h>
 #include <CGAL/make_mesh_3.h>
 
 #include <algorithm>
@@ -54,13 +55,15 @@ class Builder : public CGAL::Modifier_base<Polyhedron::HalfedgeDS> {
 
 C3t3 refine(const Domain& domain, const Criteria& criteria, TetOptimiser optimiser) {
   namespace params = CGAL::parameters;
-  // No exuder: on HexMe i15 it sent a NaN weight into GMP (SIGFPE).
+  // No exuder: on HexMe i15 it sent a NaN weight into GMP (SIGFPE). No time limits: the
+  // perturber's default (as long as refinement took) made the result depend on the
+  // machine's load; the caller bounds the time by killing the child process instead.
   if (optimiser == TetOptimiser::odt)
     return CGAL::make_mesh_3<C3t3>(
-        domain, criteria, params::odt(params::time_limit = 10, params::max_iteration_number = 20),
-        params::perturb(), params::no_exude());
+        domain, criteria, params::odt(params::time_limit = 0, params::max_iteration_number = 20),
+        params::perturb(params::time_limit = 0), params::no_exude());
   return CGAL::make_mesh_3<C3t3>(domain, criteria, params::no_odt(), params::no_lloyd(),
-                                 params::perturb(), params::no_exude());
+                                 params::perturb(params::time_limit = 0), params::no_exude());
 }
 
 template <class T>
@@ -106,6 +109,9 @@ Tetrahedra mesh_tetrahedra(const TetRequest& request) {
   Criteria criteria(params::edge_size = s, params::facet_angle = 25, params::facet_size = s,
                     params::facet_distance = 0.1 * s, params::cell_radius_edge_ratio = 2.5,
                     params::cell_size = s);
+  // The same tetrahedra for the same input (the perturber draws from CGAL's default
+  // random generator, seeded differently per process otherwise).
+  CGAL::get_default_random() = CGAL::Random(0);
   C3t3 c3t3;
   try {
     c3t3 = refine(domain, criteria, request.optimiser);
