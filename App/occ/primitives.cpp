@@ -204,6 +204,10 @@ bool write_fixture(Fixture kind, const std::string& path) {
         const double x = kind == Fixture::two_boxes ? 3 : kind == Fixture::touching_boxes ? 1 : 0.5;
         b.Add(compound, box);
         b.Add(compound, BRepPrimAPI_MakeBox(gp_Pnt(x, 0, 0), 1, 1, 1).Solid());
+      } else if (kind == Fixture::edge_touching_boxes || kind == Fixture::vertex_touching_boxes) {
+        b.Add(compound, box);
+        const double z = kind == Fixture::edge_touching_boxes ? 0 : 1;
+        b.Add(compound, BRepPrimAPI_MakeBox(gp_Pnt(1, 1, z), 1, 1, 1).Solid());
       } else if (kind == Fixture::stacked_boxes) {
         b.Add(compound, BRepPrimAPI_MakeBox(2, 1, 1).Solid());
         b.Add(compound, BRepPrimAPI_MakeBox(gp_Pnt(0.5, 0, 1), 1, 1, 1).Solid());

@@ -21,6 +21,7 @@
 #include <TCollection_HAsciiString.hxx>
 #include <TopExp.hxx>
 #include <TopExp_Explorer.hxx>
+#include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
 #include <TopTools_IndexedMapOfShape.hxx>
 #include <TopTools_ListOfShape.hxx>
 #include <TopoDS.hxx>
@@ -218,6 +219,53 @@ TopoDS_Solid checked_solid(TopoDS_Solid solid, const std::string& where, const R
   return solid;
 }
 
+// Where glued solids touch without a common face: an edge two solids have with no face
+// of both through it, or a vertex with no edge of both. Meshed one by one, such solids
+// would give a mesh that is not a manifold there (hexes meeting along an edge or at a
+// node only). Named as in the whole shape (Edge<i>, Vertex<i>).
+std::vector<std::string> touching_without_face(const std::vector<TopoDS_Solid>& parts,
+                                               const TopoDS_Shape& whole) {
+  const int n = static_cast<int>(parts.size());
+  std::vector<TopTools_IndexedMapOfShape> faces(n), edges(n), vertices(n);
+  for (int i = 0; i < n; ++i) {
+    TopExp::MapShapes(parts[i], TopAbs_FACE, faces[i]);
+    TopExp::MapShapes(parts[i], TopAbs_EDGE, edges[i]);
+    TopExp::MapShapes(parts[i], TopAbs_VERTEX, vertices[i]);
+  }
+  TopTools_IndexedMapOfShape all_edges, all_vertices;
+  TopExp::MapShapes(whole, TopAbs_EDGE, all_edges);
+  TopExp::MapShapes(whole, TopAbs_VERTEX, all_vertices);
+  TopTools_IndexedDataMapOfShapeListOfShape edge_faces, vertex_edges;
+  TopExp::MapShapesAndAncestors(whole, TopAbs_EDGE, TopAbs_FACE, edge_faces);
+  TopExp::MapShapesAndAncestors(whole, TopAbs_VERTEX, TopAbs_EDGE, vertex_edges);
+  // Whether some ancestor of the entity belongs to both solids.
+  auto shared_by = [](const TopTools_ListOfShape& ancestors, const TopTools_IndexedMapOfShape& a,
+                      const TopTools_IndexedMapOfShape& b) {
+    for (const TopoDS_Shape& x : ancestors)
+      if (a.Contains(x) && b.Contains(x)) return true;
+    return false;
+  };
+  std::vector<std::string> names;
+  for (int i = 0; i < n; ++i)
+    for (int j = i + 1; j < n; ++j) {
+      for (int e = 1; e <= edges[i].Extent(); ++e) {
+        const TopoDS_Shape& edge = edges[i](e);
+        if (!edges[j].Contains(edge) || BRep_Tool::Degenerated(TopoDS::Edge(edge))) continue;
+        if (!shared_by(edge_faces.FindFromKey(edge), faces[i], faces[j]))
+          names.push_back("Edge" + std::to_string(all_edges.FindIndex(edge)));
+      }
+      for (int v = 1; v <= vertices[i].Extent(); ++v) {
+        const TopoDS_Shape& vertex = vertices[i](v);
+        if (!vertices[j].Contains(vertex)) continue;
+        if (!shared_by(vertex_edges.FindFromKey(vertex), edges[i], edges[j]))
+          names.push_back("Vertex" + std::to_string(all_vertices.FindIndex(vertex)));
+      }
+    }
+  std::sort(names.begin(), names.end());
+  names.erase(std::unique(names.begin(), names.end()), names.end());
+  return names;
+}
+
 // Several solids glued into one compound: OCCT's general fuse makes faces the solids have in
 // common (touching boxes, fragments) one shared face. Overlapping solids are refused: their
 // common volume would be meshed twice.
@@ -261,6 +309,17 @@ ReadResult glue(const std::vector<TopoDS_Solid>& solids, const std::string& wher
   TopoDS_Compound compound;
   b.MakeCompound(compound);
   for (const TopoDS_Solid& s : parts) b.Add(compound, s);
+  const std::vector<std::string> pinched = touching_without_face(parts, compound);
+  if (!pinched.empty()) {
+    r.diagnostics.push_back(make_error(
+        "non_manifold",
+        where + " holds solids that touch along an edge or at a vertex without a common face (" +
+            join_names(pinched, 8) +
+            "): one mesh of them would not be a manifold there. Join them by a face, or mesh "
+            "them apart.",
+        pinched));
+    return r;
+  }
   r.solid = std::make_unique<Solid>(make_solid_impl(compound));
   std::ostringstream s;
   s << where << " holds " << solids.size() << " solids; each is meshed, ";

@@ -29,8 +29,9 @@ struct ReadOptions {
 
 // Format from the extension (.step/.stp, .brep/.brp, .iges/.igs, case-insensitive).
 // Errors (codes): file_not_found, empty_file, unsupported_format, unreadable_file,
-// no_solid, several_solids (message says how many), overlapping_solids, open_shell (names
-// free edges), invalid_shape.
+// no_solid, several_solids (message says how many), overlapping_solids, non_manifold
+// (solids touching along an edge or at a vertex only; names them), open_shell (names free
+// edges), invalid_shape.
 ReadResult read_solid(const std::string& path, const ReadOptions& options = {});
 
 // The same checks on a BREP string (FreeCAD's Part.Shape.exportBrepToString()).

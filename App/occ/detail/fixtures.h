@@ -16,6 +16,8 @@ enum class Fixture {
   box_faces,                // a compound of three loose faces of the unit box
   bad_tolerance_box,        // the unit box with one vertex moved 1e-4 off its edges, tolerance 1e-7
   self_intersecting_prism,  // a bow-tie outline (its edges cross at (1, 0.5)) extruded by 1
+  edge_touching_boxes,      // unit boxes at the origin and at (1, 1, 0): one common edge
+  vertex_touching_boxes,    // unit boxes at the origin and at (1, 1, 1): one common vertex
 };
 
 // Writes the fixture; the format comes from the extension (.brep/.brp or .step/.stp).

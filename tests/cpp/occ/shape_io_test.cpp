@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <utility>
 
 #include "occ/detail/fixtures.h"
 #include "occ/primitives.h"
@@ -144,6 +145,27 @@ TEST(ReadSolid, OverlappingSolidsAreRefused) {
   const auto d = only_error(read_solid(path, several));
   EXPECT_EQ(d.code, "overlapping_solids");
   EXPECT_NE(d.message.find("overlap"), std::string::npos);
+}
+
+// Solids touching along an edge or at a vertex only: one mesh of them would not be a
+// manifold there, so the input is refused naming where they touch.
+TEST(ReadSolid, SolidsTouchingAlongAnEdgeOrAtAVertexAreNonManifold) {
+  ReadOptions several;
+  several.several_solids = true;
+  for (const auto& [kind, what] : {std::pair{detail::Fixture::edge_touching_boxes, "Edge"},
+                                   std::pair{detail::Fixture::vertex_touching_boxes, "Vertex"}}) {
+    SCOPED_TRACE(what);
+    const std::string path = temp_path("pinched.brep");
+    ASSERT_TRUE(detail::write_fixture(kind, path));
+    const ReadResult r = read_solid(path, several);
+    ASSERT_FALSE(r.ok());
+    ASSERT_FALSE(r.diagnostics.empty());
+    const core::Diagnostic& d = r.diagnostics.back();
+    EXPECT_EQ(d.code, "non_manifold");
+    EXPECT_NE(d.message.find("touch along an edge or at a vertex"), std::string::npos) << d.message;
+    ASSERT_EQ(d.entities.size(), 1u);  // one edge (its two vertices lie on it), or one vertex
+    EXPECT_EQ(d.entities[0].rfind(what, 0), 0u) << d.entities[0];
+  }
 }
 
 TEST(ReadSolid, LooseFacesAreNoSolid) {
