@@ -148,6 +148,23 @@ class TestVoroHexApi(unittest.TestCase):
         with self.assertRaisesRegex(TypeError, "fallback"):
             VoroHex.mesh(sphere, fallback="no")
 
+    def test_stop_inside_the_fallbacks_tetrahedra(self):
+        # CGAL meshes the tetrahedra in a child process that checks no flag: while it works,
+        # the progress callback still hears from the waiting side (heartbeats) and a False
+        # from it stops the run there (the child is killed).
+        beats = []
+
+        def stop_in_tetrahedra(stage, fraction):
+            if stage == "tetrahedra":
+                beats.append(fraction)
+            return len(beats) < 3
+
+        r = VoroHex.mesh(Part.makeSphere(5), size=0.15, progress=stop_in_tetrahedra)
+        self.assertFalse(r.ok)
+        self.assertIn("cancelled", [d.code for d in r.errors])
+        self.assertEqual(r.hex_count, 0)
+        self.assertGreaterEqual(len(beats), 3)
+
     def test_decompose_l_shape(self):
         pts = [(0, 0, 0), (4, 0, 0), (4, 1, 0), (1, 1, 0), (1, 3, 0), (0, 3, 0), (0, 0, 0)]
         face = Part.Face(Part.makePolygon([FreeCAD.Vector(*p) for p in pts]))
