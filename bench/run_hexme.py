@@ -67,7 +67,8 @@ def main():
                 for line in fh:
                     if line.startswith("{'model'"):
                         row = ast.literal_eval(line)
-                        if row.get("v_sec", 0) >= 299:  # killed: older runs read a stale report
+                        # Killed: runs from before v_limit was recorded read a stale report.
+                        if "v_limit" not in row and row.get("v_sec", 0) >= 299:
                             for k in ("v_hexes", "v_min_before", "v_min", "v_mean"):
                                 row.pop(k, None)
                             row["v"] = "killed after %.0f s (300 s limit)" % row["v_sec"]
@@ -88,12 +89,12 @@ def main():
         if os.path.exists(rep):
             os.remove(rep)  # never read a previous run's report for a killed run
         code, sec, mb, err = measure([vorohex, "mesh", step, "-o", os.path.join(work, name + ".vtu"),
-                                      "--report", rep, "--quiet"], timeout=300)
+                                      "--report", rep, "--quiet"], timeout=MESH_TIMEOUT)
         r = load(rep)
-        row = {"model": name, "v_sec": sec, "v_mb": mb}
+        row = {"model": name, "v_sec": sec, "v_mb": mb, "v_limit": MESH_TIMEOUT}
         size = None
         if r is None:
-            row["v"] = ("killed after %.0f s (300 s limit)" % sec if sec >= 299
+            row["v"] = ("killed after %.0f s (%d s limit)" % (sec, MESH_TIMEOUT) if sec >= MESH_TIMEOUT - 1
                         else "crash (signal %d)" % -code if code < 0 else "crash (exit %d)" % code)
         elif r["ok"]:
             size = row["size"] = r["size"]
@@ -154,6 +155,7 @@ def main():
 
 
 BUILT_FROM = "unknown"
+MESH_TIMEOUT = 600  # seconds for one `vorohex mesh` (HexMe i08 takes 324 s on this machine)
 
 
 def commit():
