@@ -235,50 +235,39 @@ class MeshCommand(unittest.TestCase):
         code, stdout, stderr = run("check", out, "--cad", path)
         self.assertEqual(code, 0, stdout + stderr)
 
-    def test_hexme_i15_ends_with_a_diagnostic_not_a_crash(self):
-        # CGAL's sliver exuder raised SIGFPE on this model (a NaN weight inside GMP); the
-        # fallback now optimises with ODT and perturbation instead. Whatever the verdict, the
-        # command exits 0 with a valid mesh or 1 with the failure named, and writes nothing
-        # invalid.
-        step = os.path.join(HEXME, "i15o_s8.step")
+    def mesh_hexme(self, model):
+        """Meshes a HexMe model; the exit code must be 0 with a valid mesh written or 1 with
+        the failure named and nothing written. Returns the report."""
+        step = os.path.join(HEXME, model + ".step")
         if not os.path.exists(step):
             self.skipTest("HexMe models not found at " + HEXME)
-        out = os.path.join(self.dir, "i15.vtu")
-        rep = os.path.join(self.dir, "i15.json")
+        out = os.path.join(self.dir, model + ".vtu")
+        rep = os.path.join(self.dir, model + ".json")
         code, stdout, stderr = run("mesh", step, "-o", out, "--report", rep)
         self.assertIn(code, (0, 1), stdout + stderr)
         with open(rep) as f:
             r = json.load(f)
-        self.assertEqual(r["scheme"], "tet-split")
+        self.assertEqual(code == 0, r["check"]["valid"])
+        self.assertEqual(code == 0, os.path.exists(out))
         if code == 1:
-            self.assertFalse(r["check"]["valid"])
             self.assertIn("invalid", stderr)
-            self.assertFalse(os.path.exists(out))
-        else:
-            self.assertTrue(r["check"]["valid"])
+        return r
+
+    def test_hexme_i15_ends_with_a_diagnostic_not_a_crash(self):
+        # CGAL's sliver exuder raised SIGFPE on this model (a NaN weight inside GMP); the
+        # fallback now optimises with ODT and perturbation instead.
+        self.assertEqual(self.mesh_hexme("i15o_s8")["scheme"], "tet-split")
 
     def test_hexme_i09_survives_a_crash_inside_cgal(self):
         # CGAL 5.5's ODT optimiser crashes (SIGSEGV) on this model's tetrahedra; the
         # fallback runs CGAL in a child process, so the crash costs a retry with the
-        # perturber, not the command. Exit 0 with a valid mesh or 1 naming the failure.
-        step = os.path.join(HEXME, "i09o_m9.step")
-        if not os.path.exists(step):
-            self.skipTest("HexMe models not found at " + HEXME)
-        out = os.path.join(self.dir, "i09.vtu")
-        rep = os.path.join(self.dir, "i09.json")
-        code, stdout, stderr = run("mesh", step, "-o", out, "--report", rep)
-        self.assertIn(code, (0, 1), stdout + stderr)
-        with open(rep) as f:
-            r = json.load(f)
+        # perturber, not the command.
+        r = self.mesh_hexme("i09o_m9")
         self.assertEqual(r["scheme"], "tet-split")
         for d in r["diagnostics"]:
             if d["code"] == "tet_optimiser_crashed":
                 self.assertEqual(d["severity"], "warning")
                 self.assertIn("SIGSEGV", d["message"])
-        self.assertEqual(code == 0, r["check"]["valid"])
-        if code == 1:
-            self.assertIn("invalid", stderr)
-            self.assertFalse(os.path.exists(out))
 
     def test_the_fallback_gives_the_same_mesh_every_run(self):
         # CGAL's perturber drew from a generator seeded per process and stopped after as long
