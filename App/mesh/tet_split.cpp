@@ -49,6 +49,45 @@ detail::TetSurface merge(const occ::Tessellation& t) {
   return s;
 }
 
+// Where the merged boundary triangulation is open: model faces OCCT left without triangles
+// and model edges along which the triangles of the two sides do not meet (e.g. next to an
+// edge much shorter than the triangles). Empty when it is closed.
+std::string open_boundary(const occ::Tessellation& t, const detail::TetSurface& s) {
+  std::map<std::tuple<double, double, double>, int> index;
+  for (std::size_t i = 0; i < s.points.size(); ++i)
+    index.emplace(std::make_tuple(s.points[i].x(), s.points[i].y(), s.points[i].z()),
+                  static_cast<int>(i));
+  std::map<std::pair<int, int>, int> uses;
+  for (const auto& tri : s.triangles)
+    for (int j = 0; j < 3; ++j)
+      ++uses[{std::min(tri[j], tri[(j + 1) % 3]), std::max(tri[j], tri[(j + 1) % 3])}];
+  std::vector<std::string> names;
+  for (std::size_t f = 1; f < t.faces.size(); ++f)
+    if (t.faces[f].face.valid() && t.faces[f].triangles.empty())
+      names.push_back(core::entity_name(core::FaceId(static_cast<int>(f))) + " (no triangles)");
+  for (std::size_t e = 1; e < t.edge_polylines.size(); ++e) {
+    const auto& pl = t.edge_polylines[e];
+    for (std::size_t k = 0; k + 1 < pl.size(); ++k) {
+      const auto a = index.find(std::make_tuple(pl[k].x(), pl[k].y(), pl[k].z()));
+      const auto b = index.find(std::make_tuple(pl[k + 1].x(), pl[k + 1].y(), pl[k + 1].z()));
+      if (a == index.end() || b == index.end() || a->second == b->second) continue;
+      const auto it = uses.find({std::min(a->second, b->second), std::max(a->second, b->second)});
+      if (it == uses.end() || it->second != 2) {
+        names.push_back(core::entity_name(core::EdgeId(static_cast<int>(e))));
+        break;
+      }
+    }
+  }
+  bool open = !names.empty();
+  for (const auto& [edge, n] : uses) open |= n != 2;
+  if (!open) return "";
+  std::string list;
+  for (std::size_t i = 0; i < names.size() && i < 8; ++i) list += (i ? ", " : "") + names[i];
+  if (names.size() > 8) list += ", ...";
+  return "the boundary triangulation is not closed" +
+         (names.empty() ? std::string() : " (at " + list + ")");
+}
+
 using FacetFaces = std::map<std::array<int, 3>, int>;
 using EdgeFaces = std::map<std::array<int, 2>, int>;
 using EdgeSet = std::set<std::array<int, 2>>;
@@ -222,6 +261,8 @@ TetSplitResult tet_split(const occ::Solid& solid, const TetSplitOptions& options
   if (!tess.ok()) return fail(tess.error);
   detail::TetRequest request;
   request.surface = merge(tess);
+  if (const std::string open = open_boundary(tess, request.surface); !open.empty())
+    return fail(open);
   request.size = tet_size;
   // Every model edge is a feature the tetrahedra keep (their polylines share the nodes).
   for (std::size_t e = 1; e < tess.edge_polylines.size(); ++e)

@@ -7,6 +7,7 @@
 #include "mesh/detail/cgal_tets.h"
 #include "mesh/tet_split.h"
 #include "occ/primitives.h"
+#include "occ/shape_io.h"
 
 namespace vorohex::mesh {
 namespace {
@@ -73,6 +74,21 @@ TEST(TetSplit, MeshesACylinderInAChildProcessAndPlacesItOnTheCad) {
   ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics[0]));
   EXPECT_EQ(r.mesh.num_hexes(), 4 * r.tetrahedra);
   EXPECT_EQ(testing::find_diagnostic(r.diagnostics, "tet_optimiser_crashed"), nullptr);
+}
+
+// HexMe i16 has two edges 4e-7 long: OCCT's triangles of the faces beside them do not meet,
+// and the failure names the edges where the boundary triangulation is open.
+TEST(TetSplit, AnOpenBoundaryTriangulationNamesItsEdges) {
+  const occ::ReadResult in = occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/i16o_s9.step");
+  if (!in.ok()) GTEST_SKIP() << "HexMe model i16 not found in " << VOROHEX_HEXME_DIR;
+  TetSplitOptions opt;
+  opt.size = in.solid->diagonal() / 20;
+  const TetSplitResult r = tet_split(*in.solid, opt);
+  EXPECT_FALSE(r.ok);
+  const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "tet_split_failed");
+  ASSERT_NE(d, nullptr);
+  EXPECT_NE(d->message.find("not closed (at Edge"), std::string::npos) << d->message;
+  EXPECT_NE(d->message.find("Edge64"), std::string::npos) << d->message;  // 3.97e-7 long
 }
 
 TEST(TetSplit, ACancelledRunEndsWithoutAMesh) {
