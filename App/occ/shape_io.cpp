@@ -38,6 +38,7 @@
 #include <cmath>
 #include <fstream>
 #include <functional>
+#include <iterator>
 #include <sstream>
 #include <unordered_set>
 
@@ -644,8 +645,13 @@ ReadResult read_solid(const std::string& path, const ReadOptions& options) {
         }
       }
     } else {
-      const std::string crash = brep_reader_crash([&path] {
-        std::ifstream probe(path);
+      // Read once: the child probes the same text the caller then parses (a file that
+      // changed in between could crash the caller).
+      std::ifstream file(path, std::ios::binary);
+      const std::string text((std::istreambuf_iterator<char>(file)),
+                             std::istreambuf_iterator<char>());
+      const std::string crash = brep_reader_crash([&text] {
+        std::istringstream probe(text);
         read_brep(probe);
       });
       if (!crash.empty()) {
@@ -653,8 +659,8 @@ ReadResult read_solid(const std::string& path, const ReadOptions& options) {
             make_error("unreadable_file", where + " is a damaged BREP file: " + crash + "."));
         return r;
       }
-      std::ifstream file(path);
-      shape = read_brep(file);
+      std::istringstream in(text);
+      shape = read_brep(in);
       read = !shape.IsNull();
     }
     if (!read) {

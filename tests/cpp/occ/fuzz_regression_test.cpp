@@ -29,8 +29,11 @@ std::string read_text(const fs::path& path) {
   return s.str();
 }
 
+// Named after the running test too: ctest runs the tests as processes side by side.
 std::string write_temp(const std::string& name, const std::string& text) {
-  const std::string path = ::testing::TempDir() + "vorohex_fuzz_regression_" + name;
+  const std::string path = ::testing::TempDir() + "vorohex_fuzz_regression_" +
+                           ::testing::UnitTest::GetInstance()->current_test_info()->name() + "_" +
+                           name;
   std::ofstream(path, std::ios::binary) << text;
   return path;
 }

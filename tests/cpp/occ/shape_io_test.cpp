@@ -14,8 +14,10 @@
 namespace vorohex::occ {
 namespace {
 
+// Named after the running test too: ctest runs the tests as processes side by side.
 std::string temp_path(const std::string& name) {
-  return ::testing::TempDir() + "vorohex_occ_" + name;
+  return ::testing::TempDir() + "vorohex_occ_" +
+         ::testing::UnitTest::GetInstance()->current_test_info()->name() + "_" + name;
 }
 
 void write_text(const std::string& path, const std::string& text) {
