@@ -152,8 +152,7 @@ bool fallback(const occ::Solid& solid, const MeshOptions& options, double size,
   if (!split.ok) return false;
   result.mesh = std::move(split.mesh);
   result.diagnostics.push_back(core::make_warning(
-      "fallback", "No structured scheme applies (" + why +
-                      ") Meshed by the fallback instead: " + std::to_string(split.tetrahedra) +
+      "fallback", why + " Meshed by the fallback instead: " + std::to_string(split.tetrahedra) +
                       " tetrahedra, each split into four hexahedra; expect poorer elements than a "
                       "structured mesh."));
   return true;
@@ -234,7 +233,10 @@ bool mesh_solid(const occ::Solid& solid, const MeshOptions& options, double size
             why_not_structured + " " + decomposition_summary(solid, progress)));
     return false;
   }
-  if (!structured) return fallback(solid, options, size, why_not_structured, progress, t0, result);
+  if (!structured)
+    return fallback(solid, options, size,
+                    "No structured scheme applies (" + why_not_structured + ")", progress, t0,
+                    result);
 
   std::size_t predicted = 0;
   mesh::MapBlockOptions map_options;
@@ -263,6 +265,7 @@ bool mesh_solid(const occ::Solid& solid, const MeshOptions& options, double size
     return false;
   }
 
+  const std::size_t scheme_diagnostics = result.diagnostics.size();
   bool meshed = false;
   if (map.ok) {
     mesh::MapBlockResult mapped = mesh::map_block(solid, map_options, progress);
@@ -298,7 +301,24 @@ bool mesh_solid(const occ::Solid& solid, const MeshOptions& options, double size
     }
   }
   result.stats.seconds_meshing = seconds_since(t0);
-  return meshed;
+  if (meshed || !options.fallback || progress.cancelled()) return meshed;
+  // The scheme applied but failed (a sweep whose layers fold, say): its errors go into the
+  // fallback's warning and the fallback meshes the solid, as for a solid no scheme accepts.
+  std::string why = "The " + result.stats.scheme + " scheme applied but failed (";
+  std::vector<core::Diagnostic> kept(result.diagnostics.begin(),
+                                     result.diagnostics.begin() + scheme_diagnostics);
+  for (std::size_t i = scheme_diagnostics; i < result.diagnostics.size(); ++i) {
+    const core::Diagnostic& d = result.diagnostics[i];
+    if (d.severity == core::Severity::error) {
+      std::string m = d.message;
+      if (!m.empty() && m.back() == '.') m.pop_back();
+      why += (why.back() == '(' ? "" : "; ") + m;
+    } else
+      kept.push_back(d);
+  }
+  result.diagnostics = std::move(kept);
+  result.stats.intervals = {0, 0, 0};
+  return fallback(solid, options, size, why + ").", progress, t0, result);
 }
 
 // Several solids glued at common faces: each meshed with the same size, joined into one

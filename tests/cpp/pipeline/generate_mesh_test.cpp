@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <chrono>
 
 #include "fixtures/diagnostics.h"
@@ -222,6 +223,32 @@ TEST(GenerateMesh, TinyEdgesAndSliverFacesAreNamed) {
   const MeshResult box = generate_mesh(occ::make_box(4, 1, 1), opt);
   EXPECT_EQ(testing::find_diagnostic(box.diagnostics, "tiny_edges"), nullptr);
   EXPECT_EQ(testing::find_diagnostic(box.diagnostics, "sliver_faces"), nullptr);
+}
+
+// HexMe n03 is a sweep whose layers fold: the sweep's failure goes into the fallback's
+// warning and the fallback meshes it valid; without the fallback the sweep's error stands.
+TEST(GenerateMesh, AStructuredSchemeThatFailsHandsOverToTheFallback) {
+  const occ::ReadResult in =
+      occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/n03o_skijump_box_cyl.step");
+  if (!in.ok()) GTEST_SKIP() << "HexMe model n03 not found in " << VOROHEX_HEXME_DIR;
+  MeshOptions opt;
+  const MeshResult r = generate_mesh(*in.solid, opt);
+  ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
+  EXPECT_EQ(r.stats.scheme, "tet-split");
+  EXPECT_EQ(r.stats.intervals, (std::array<int, 3>{0, 0, 0}));
+  const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "fallback");
+  ASSERT_NE(d, nullptr);
+  EXPECT_EQ(d->severity, core::Severity::warning);
+  EXPECT_EQ(d->message.rfind("The sweep scheme applied but failed (", 0), 0u) << d->message;
+  EXPECT_NE(d->message.find("fold"), std::string::npos) << d->message;
+
+  opt.fallback = false;
+  const MeshResult refused = generate_mesh(*in.solid, opt);
+  EXPECT_FALSE(refused.ok);
+  EXPECT_EQ(refused.stats.scheme, "sweep");
+  const core::Diagnostic* e = testing::find_diagnostic(refused.diagnostics, "inverted_elements");
+  ASSERT_NE(e, nullptr);
+  EXPECT_EQ(e->severity, core::Severity::error);
 }
 
 TEST(GenerateMesh, TimeLimitStopsMeshingWithADiagnostic) {
