@@ -37,7 +37,6 @@
 #include <cctype>
 #include <cmath>
 #include <fstream>
-#include <functional>
 #include <iterator>
 #include <sstream>
 #include <unordered_set>
@@ -555,10 +554,11 @@ const char* const kBrepMalformed = "the text ends early or holds a word where a 
 // ourselves, the text is read once in a child process (core/isolated_call.h): a crash
 // there is this message ("" when the reader came back, with or without an exception),
 // and the caller's process reads it only then.
-std::string brep_reader_crash(const std::function<void()>& read) {
-  const core::IsolatedResult probe = core::isolated_call([&read] {
+std::string brep_reader_crash(const std::string& text) {
+  const core::IsolatedResult probe = core::isolated_call([&text] {
     try {
-      read();
+      std::istringstream in(text);
+      read_brep(in);
     } catch (...) {  // the caller's own read reports it
     }
     return std::string();
@@ -650,10 +650,7 @@ ReadResult read_solid(const std::string& path, const ReadOptions& options) {
       std::ifstream file(path, std::ios::binary);
       const std::string text((std::istreambuf_iterator<char>(file)),
                              std::istreambuf_iterator<char>());
-      const std::string crash = brep_reader_crash([&text] {
-        std::istringstream probe(text);
-        read_brep(probe);
-      });
+      const std::string crash = brep_reader_crash(text);
       if (!crash.empty()) {
         r.diagnostics.push_back(
             make_error("unreadable_file", where + " is a damaged BREP file: " + crash + "."));
@@ -691,10 +688,7 @@ ReadResult read_solid_from_brep_string(const std::string& brep, const ReadOption
     r.diagnostics.push_back(make_error("empty_file", where + " is empty."));
     return r;
   }
-  const std::string crash = brep_reader_crash([&brep] {
-    std::istringstream probe(brep);
-    read_brep(probe);
-  });
+  const std::string crash = brep_reader_crash(brep);
   if (!crash.empty()) {
     r.diagnostics.push_back(
         make_error("unreadable_file", where + " is not valid BREP text: " + crash + "."));
