@@ -58,16 +58,16 @@ std::string decomposition_summary(const occ::Solid& solid, const core::Progress&
 std::vector<core::Diagnostic> small_features(const occ::Solid& solid, double size) {
   const double limit = 0.25 * size;
   std::vector<std::pair<double, std::string>> edges, faces;
+  std::vector<double> length(solid.num_edges() + 1, 0.0);  // by edge id; 0 when degenerated
   for (core::EdgeId e : solid.edges()) {
     if (solid.edge_is_degenerated(e)) continue;
-    const double length = solid.edge_length(e);
-    if (length < limit) edges.emplace_back(length, core::entity_name(e));
+    length[e.value()] = solid.edge_length(e);
+    if (length[e.value()] < limit) edges.emplace_back(length[e.value()], core::entity_name(e));
   }
   for (core::FaceId f : solid.faces()) {
     double perimeter = 0;
     for (const auto& wire : solid.face_wires(f))
-      for (const occ::OrientedEdge& oe : wire)
-        if (!solid.edge_is_degenerated(oe.edge)) perimeter += solid.edge_length(oe.edge);
+      for (const occ::OrientedEdge& oe : wire) perimeter += length[oe.edge.value()];
     // Width of a strip of that area and perimeter (a rectangle a x b: ab / (a + b), about b
     // for b << a; a disc: its radius).
     const double width = perimeter > 0 ? 2 * solid.area(f) / perimeter : 0;
