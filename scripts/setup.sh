@@ -19,6 +19,8 @@ packages=(
   libocct-data-exchange-dev libtbb-dev libeigen3-dev nlohmann-json3-dev zlib1g-dev
   # constrained Delaunay triangulation for the all-quad face mesher
   libcgal-dev libgmp-dev libmpfr-dev
+  # integer program of the interval assignment (COIN-OR CBC with CLP)
+  coinor-libcbc-dev
   # Python module for FreeCAD's interpreter, and tests
   pybind11-dev python3-dev python3-numpy libgtest-dev
   # FreeCAD (App and GUI) and a headless X server for the GUI tests
