@@ -30,7 +30,7 @@ namespace {
 
 // Which constraints take part in one solve (all, or a subset while looking for a conflict).
 struct Selection {
-  std::vector<char> equal, even;
+  std::vector<char> equal, even, at_least;
 };
 
 struct Solution {
@@ -82,6 +82,16 @@ Solution solve(const IntervalProblem& p, const IntervalOptions& o, const Selecti
     add_row(coefs, 0);
     ++k;
   }
+  for (std::size_t j = 0; j < p.at_least.size(); ++j) {
+    if (!use.at_least[j]) continue;
+    std::map<int, double> coefs;
+    for (int c : p.at_least[j].curves) coefs[c] += 1;
+    CoinPackedVector v;
+    for (const auto& [col, c] : coefs) v.insert(col, c);
+    rows.appendRow(v);
+    row_lb.push_back(p.at_least[j].minimum);
+    row_ub.push_back(COIN_DBL_MAX);
+  }
   OsiClpSolverInterface solver;
   solver.messageHandler()->setLogLevel(0);
   solver.setHintParam(OsiDoReducePrint, true, OsiHintTry);
@@ -128,6 +138,7 @@ IntervalResult assign_intervals(const IntervalProblem& problem, const IntervalOp
   for (const auto& e : problem.equal)
     check_indices(e.lhs, nc, e.why), check_indices(e.rhs, nc, e.why);
   for (const auto& e : problem.even) check_indices(e.curves, nc, e.why);
+  for (const auto& e : problem.at_least) check_indices(e.curves, nc, e.why);
 
   IntervalResult r;
   if (nc == 0) {
@@ -135,7 +146,8 @@ IntervalResult assign_intervals(const IntervalProblem& problem, const IntervalOp
     return r;
   }
   Selection all{std::vector<char>(problem.equal.size(), 1),
-                std::vector<char>(problem.even.size(), 1)};
+                std::vector<char>(problem.even.size(), 1),
+                std::vector<char>(problem.at_least.size(), 1)};
   Solution s = solve(problem, options, all);
   if (s.status != IntervalStatus::infeasible) {
     r.status = s.status;
@@ -146,7 +158,7 @@ IntervalResult assign_intervals(const IntervalProblem& problem, const IntervalOp
   // Infeasible: a deletion filter leaves a set of constraints that conflict although any
   // one of them could go (an irreducible subset), which is what the user has to look at.
   Selection conflict = all;
-  const std::size_t total = problem.equal.size() + problem.even.size();
+  const std::size_t total = problem.equal.size() + problem.even.size() + problem.at_least.size();
   if (total <= 300) {
     for (std::size_t j = 0; j < problem.equal.size(); ++j) {
       conflict.equal[j] = 0;
@@ -157,6 +169,11 @@ IntervalResult assign_intervals(const IntervalProblem& problem, const IntervalOp
       conflict.even[j] = 0;
       if (solve(problem, options, conflict).status != IntervalStatus::infeasible)
         conflict.even[j] = 1;
+    }
+    for (std::size_t j = 0; j < problem.at_least.size(); ++j) {
+      conflict.at_least[j] = 0;
+      if (solve(problem, options, conflict).status != IntervalStatus::infeasible)
+        conflict.at_least[j] = 1;
     }
   }
   std::vector<std::string> whys;
@@ -174,6 +191,11 @@ IntervalResult assign_intervals(const IntervalProblem& problem, const IntervalOp
     if (conflict.even[j]) {
       whys.push_back(problem.even[j].why);
       add_names(problem.even[j].curves);
+    }
+  for (std::size_t j = 0; j < problem.at_least.size(); ++j)
+    if (conflict.at_least[j]) {
+      whys.push_back(problem.at_least[j].why);
+      add_names(problem.at_least[j].curves);
     }
   std::sort(entities.begin(), entities.end());
   entities.erase(std::unique(entities.begin(), entities.end()), entities.end());

@@ -3,7 +3,7 @@
 // COIN-OR CBC: integer counts n_c >= 1 close to length_c / size (weighted absolute
 // deviation), subject to equal sums (opposite sides of mapped faces, the two sides of a
 // sweep's linking face, the layers of a sweep) and even sums (loops of faces meshed with
-// unstructured quads).
+// unstructured quads) and lower bounds on sums (a loop of quads has at least 4 segments).
 #pragma once
 
 #include <string>
@@ -29,6 +29,13 @@ struct IntervalProblem {
     std::string why;
   };
   std::vector<Even> even;
+  // sum(n[curves]) >= minimum.
+  struct AtLeast {
+    std::vector<int> curves;
+    int minimum = 1;
+    std::string why;
+  };
+  std::vector<AtLeast> at_least;
 
   int add_curve(double length, std::string name);  // its index
 };

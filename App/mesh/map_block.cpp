@@ -201,7 +201,26 @@ Plan plan(const Solid& solid, const MapBlockOptions& options) {
   for (int d = 0; d < 3; ++d) {
     double mean = 0;
     for (const BlockEdge& e : p.block.edges[d]) mean += solid.edge_length(e.id) / 4;
-    const double n = std::max(1.0, std::round(mean / options.size));
+    double n = std::max(1.0, std::round(mean / options.size));
+    if (!options.edge_intervals.empty()) {
+      std::vector<int> given;
+      std::vector<std::string> names;
+      for (const BlockEdge& e : p.block.edges[d]) {
+        const int i = e.id.value();
+        given.push_back(i < int(options.edge_intervals.size()) ? options.edge_intervals[i] : 0);
+        names.push_back(core::entity_name(e.id));
+      }
+      if (given[0] < 1 || std::count(given.begin(), given.end(), given[0]) != 4) {
+        std::ostringstream s;
+        s << "The given intervals of the four parallel edges of one block direction differ or "
+             "are missing ("
+          << names[0] << " " << given[0] << ", " << names[1] << " " << given[1] << ", " << names[2]
+          << " " << given[2] << ", " << names[3] << " " << given[3] << ").";
+        p.diagnostics.push_back(core::make_error("intervals_mismatch", s.str(), names));
+        return p;
+      }
+      n = given[0];
+    }
     if (n > options.max_intervals) {
       std::vector<std::string> names;
       for (const BlockEdge& e : p.block.edges[d]) names.push_back(core::entity_name(e.id));
@@ -238,6 +257,20 @@ Applicability map_block_applicable(const occ::Solid& solid) {
   }
   a.ok = a.reason.empty();
   return a;
+}
+
+std::array<std::vector<core::EdgeId>, 3> map_block_edge_groups(const occ::Solid& solid) {
+  std::array<std::vector<core::EdgeId>, 3> groups;
+  Block block;
+  std::vector<std::string> entities;
+  try {
+    if (!find_block(solid, block, entities).empty()) return groups;
+  } catch (const std::exception&) {
+    return groups;
+  }
+  for (int d = 0; d < 3; ++d)
+    for (const BlockEdge& e : block.edges[d]) groups[d].push_back(e.id);
+  return groups;
 }
 
 MapBlockEstimate map_block_evaluate(const occ::Solid& solid, const MapBlockOptions& options) {

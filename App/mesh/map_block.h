@@ -17,9 +17,12 @@
 namespace vorohex::mesh {
 
 struct MapBlockOptions {
-  double size = 1.0;          // target edge length, model units (> 0)
-  int max_intervals = 100000; // per direction; more is refused (> 0)
-  void validate() const;      // throws std::invalid_argument naming the bad field
+  double size = 1.0;           // target edge length, model units (> 0)
+  int max_intervals = 100000;  // per direction; more is refused (> 0)
+  // Given intervals per edge id (entry 0 unused), e.g. from assign_intervals, instead of
+  // the size: the four parallel edges of each direction must agree (else an error).
+  std::vector<int> edge_intervals;
+  void validate() const;  // throws std::invalid_argument naming the bad field
 };
 
 struct Applicability {
@@ -29,6 +32,10 @@ struct Applicability {
 
 // The block structure of a solid that map_block accepts.
 Applicability map_block_applicable(const occ::Solid& solid);
+
+// The block's edges by direction: three groups of four parallel edges (empty groups when
+// the solid is not a block). What an interval assignment must keep equal.
+std::array<std::vector<core::EdgeId>, 3> map_block_edge_groups(const occ::Solid& solid);
 
 // Intervals per block direction and the node and hex counts compute() will produce.
 struct MapBlockEstimate {

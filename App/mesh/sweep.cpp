@@ -5,6 +5,7 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -181,15 +182,166 @@ std::string choose(const Solid& s, Topology& best) {
   return "no two faces are joined by four-sided linking faces (" + first_reason + ")";
 }
 
+std::vector<Vec3> read_edge(const Solid& s, const Directed& d, int n) {
+  auto pts = s.edge_points_by_length(d.edge, n);
+  if (!d.forward) std::reverse(pts.begin(), pts.end());
+  return pts;
+}
+
 struct Plan {
   bool ok = false;
   Topology topo;
   int layers = 0;
+  // Source (and target) meshed by transfinite interpolation: grid[0] x grid[1] segments
+  // (0 when the source went through quad_face).
+  std::array<int, 2> grid{0, 0};
   std::vector<std::vector<int>> counts;         // intervals per source loop edge
   std::vector<std::vector<Vec3>> source_loops;  // source boundary nodes per loop
   QuadFaceMesh source_mesh;
   std::vector<core::Diagnostic> diagnostics;
 };
+
+// A structured (transfinite) grid on a four-sided face from its boundary nodes in loop
+// order (n0, n1, n0, n1 segments per side): the inner nodes row by row (i fastest),
+// projected onto the face when it is curved.
+std::vector<Vec3> grid_inner_nodes(const Solid& solid, FaceId face, const std::vector<Vec3>& loop,
+                                   int n0, int n1) {
+  auto at = [&](int i, int j) -> const Vec3& {
+    if (j == 0) return loop[i];
+    if (i == n0) return loop[n0 + j];
+    if (j == n1) return loop[n0 + n1 + (n0 - i)];
+    return loop[(2 * n0 + n1 + (n1 - j)) % loop.size()];
+  };
+  const bool curved = !solid.face_is_planar(face);
+  std::vector<Vec3> inner;
+  inner.reserve(std::size_t(std::max(0, n0 - 1)) * std::max(0, n1 - 1));
+  for (int j = 1; j < n1; ++j) {
+    const double v = double(j) / n1;
+    for (int i = 1; i < n0; ++i) {
+      const double u = double(i) / n0;
+      const Vec3 q = (1 - u) * at(0, j) + u * at(n0, j) + (1 - v) * at(i, 0) + v * at(i, n1) -
+                     ((1 - u) * (1 - v) * at(0, 0) + u * (1 - v) * at(n0, 0) +
+                      (1 - u) * v * at(0, n1) + u * v * at(n0, n1));
+      inner.push_back(curved ? solid.project_to_face(face, q) : q);
+    }
+  }
+  return inner;
+}
+
+// The source as a transfinite grid in QuadFaceMesh form (boundary loop, then inner nodes;
+// quads counter-clockwise seen from outside, as the loop runs).
+QuadFaceMesh grid_source(const Solid& solid, FaceId face, const std::vector<Vec3>& loop, int n0,
+                         int n1) {
+  QuadFaceMesh m;
+  m.points = loop;
+  m.num_boundary = loop.size();
+  const std::vector<Vec3> inner = grid_inner_nodes(solid, face, loop, n0, n1);
+  m.points.insert(m.points.end(), inner.begin(), inner.end());
+  auto index = [&](int i, int j) -> int {
+    if (j == 0) return i;
+    if (i == n0) return n0 + j;
+    if (j == n1) return n0 + n1 + (n0 - i);
+    if (i == 0) return (2 * n0 + n1 + (n1 - j)) % int(loop.size());
+    return int(loop.size()) + (j - 1) * (n0 - 1) + (i - 1);
+  };
+  double sum = 0;
+  m.min_quality = 1;
+  for (int j = 0; j < n1; ++j)
+    for (int i = 0; i < n0; ++i) {
+      const std::array<int, 4> q{index(i, j), index(i + 1, j), index(i + 1, j + 1),
+                                 index(i, j + 1)};
+      m.quads.push_back(q);
+      Vec3 c = Vec3::Zero();
+      for (int v : q) c += m.points[v] / 4;
+      const Vec3 n = solid.face_normal(face, c);
+      double worst = 1;
+      for (int a = 0; a < 4; ++a) {
+        const Vec3 e1 = m.points[q[(a + 1) % 4]] - m.points[q[a]];
+        const Vec3 e2 = m.points[q[(a + 3) % 4]] - m.points[q[a]];
+        const double l = e1.norm() * e2.norm();
+        worst = std::min(worst, l > 0 ? e1.cross(e2).dot(n) / l : -1.0);
+      }
+      m.min_quality = std::min(m.min_quality, worst);
+      sum += worst;
+    }
+  m.mean_quality = m.quads.empty() ? 0 : sum / double(m.quads.size());
+  m.ok = true;
+  return m;
+}
+
+// Planning with the intervals given per edge: checked, not chosen.
+Plan plan_given(const Solid& solid, const SweepOptions& options, Plan p) {
+  const Topology& t = p.topo;
+  auto given = [&](EdgeId e) {
+    const int i = e.value();
+    return i < int(options.edge_intervals.size()) ? options.edge_intervals[i] : 0;
+  };
+  auto refuse = [&](const std::string& why, std::vector<std::string> names) {
+    p.diagnostics.push_back(core::make_error("intervals_mismatch",
+                                             "The given intervals do not fit the sweep from " +
+                                                 name(t.source) + " to " + name(t.target) + ": " +
+                                                 why + ".",
+                                             std::move(names)));
+    return p;
+  };
+  for (const auto& loop : t.loops)
+    for (const Link& l : loop)
+      for (const Directed& c : {l.col0, l.col1}) {
+        const int k = given(c.edge);
+        if (k < 1 || k > options.max_intervals || (p.layers != 0 && k != p.layers))
+          return refuse(name(c.edge) + " has " + std::to_string(k) +
+                            " intervals, other linking "
+                            "edges " +
+                            std::to_string(p.layers),
+                        {name(c.edge)});
+        p.layers = k;
+      }
+  for (std::size_t li = 0; li < t.loops.size(); ++li) {
+    const auto& loop = t.loops[li];
+    std::vector<int> counts;
+    int total = 0;
+    for (const Link& l : loop) {
+      const int n = given(l.source.edge);
+      if (n < 1 || n > options.max_intervals || given(l.target.edge) != n)
+        return refuse(name(l.source.edge) + " has " + std::to_string(n) + " intervals and " +
+                          name(l.target.edge) + " across " + name(l.face) + " " +
+                          std::to_string(given(l.target.edge)),
+                      {name(l.source.edge), name(l.target.edge)});
+      counts.push_back(n);
+      total += n;
+    }
+    const bool grid =
+        t.loops.size() == 1 && loop.size() == 4 && counts[0] == counts[2] && counts[1] == counts[3];
+    if (grid)
+      p.grid = {counts[0], counts[1]};
+    else if (total % 2 != 0 || total < (t.loops.size() == 1 ? 4 : 6))
+      return refuse("loop " + std::to_string(li + 1) + " of " + name(t.source) + " has " +
+                        std::to_string(total) + " segments (quads need an even number, at least " +
+                        (t.loops.size() == 1 ? "4" : "6") + ")",
+                    {name(t.source)});
+    p.counts.push_back(counts);
+    std::vector<Vec3> nodes;
+    for (std::size_t e = 0; e < loop.size(); ++e) {
+      auto pts = read_edge(solid, loop[e].source, counts[e]);
+      nodes.insert(nodes.end(), pts.begin(), pts.end() - 1);
+    }
+    p.source_loops.push_back(std::move(nodes));
+  }
+  if (p.grid[0] > 0) {
+    p.source_mesh = grid_source(solid, t.source, p.source_loops[0], p.grid[0], p.grid[1]);
+  } else {
+    QuadFaceOptions qo;
+    qo.size = options.size;
+    qo.smoothing_passes = options.smoothing_passes;
+    p.source_mesh = quad_face(solid, t.source, p.source_loops, qo);
+    if (!p.source_mesh.ok) {
+      p.diagnostics = p.source_mesh.diagnostics;
+      return p;
+    }
+  }
+  p.ok = true;
+  return p;
+}
 
 Plan plan(const Solid& solid, const SweepOptions& options) {
   options.validate();
@@ -209,6 +361,7 @@ Plan plan(const Solid& solid, const SweepOptions& options) {
       p.diagnostics.push_back(core::make_error("too_many_intervals", s.str(), std::move(names)));
       return p;
     };
+    if (!options.edge_intervals.empty()) return plan_given(solid, options, std::move(p));
     const double k = std::max(1.0, std::round(t.link_length / options.size));
     if (k > options.max_intervals) return too_many(t.link_length, k, {});
     p.layers = int(k);
@@ -318,12 +471,6 @@ class AffineFit {
   Eigen::Matrix<double, 3, 2> m_;
 };
 
-std::vector<Vec3> read_edge(const Solid& s, const Directed& d, int n) {
-  auto pts = s.edge_points_by_length(d.edge, n);
-  if (!d.forward) std::reverse(pts.begin(), pts.end());
-  return pts;
-}
-
 }  // namespace
 
 SweepApplicability sweep_applicable(const occ::Solid& solid) {
@@ -337,6 +484,28 @@ SweepApplicability sweep_applicable(const occ::Solid& solid) {
   }
   a.ok = a.reason.empty();
   return a;
+}
+
+SweepStructure sweep_structure(const occ::Solid& solid) {
+  SweepStructure out;
+  Topology t;
+  try {
+    if (!choose(solid, t).empty()) return out;
+  } catch (const std::exception&) {
+    return out;
+  }
+  out.source = t.source;
+  out.target = t.target;
+  std::set<int> seen;
+  for (const auto& loop : t.loops) {
+    out.loops.emplace_back();
+    for (const Link& l : loop) {
+      out.loops.back().emplace_back(l.source.edge, l.target.edge);
+      for (const Directed& c : {l.col0, l.col1})
+        if (seen.insert(c.edge.value()).second) out.linking.push_back(c.edge);
+    }
+  }
+  return out;
 }
 
 SweepEstimate sweep_evaluate(const occ::Solid& solid, const SweepOptions& options) {
@@ -429,10 +598,16 @@ SweepResult sweep(const occ::Solid& solid, const SweepOptions& options,
     for (std::size_t j = 0; j < nb; ++j) xt[j] = P[id(K, j)];
     AffineFit to_target(xs);
     to_target.fit(xt);
+    // A grid source has a grid target: transfinite interpolation of the target's own
+    // boundary nodes (what a neighbour meshing that face as a mapped face computes).
+    const std::vector<Vec3> grid_target =
+        p.grid[0] > 0 ? grid_inner_nodes(solid, t.target, xt, p.grid[0], p.grid[1])
+                      : std::vector<Vec3>();
     for (std::size_t j = nb; j < M; ++j) {
       P[id(0, j)] = sm.points[j];
       C[id(0, j)] = NodeClass::on(t.source);
-      P[id(K, j)] = solid.project_to_face(t.target, to_target(sm.points[j]));
+      P[id(K, j)] = p.grid[0] > 0 ? grid_target[j - nb]
+                                  : solid.project_to_face(t.target, to_target(sm.points[j]));
       C[id(K, j)] = NodeClass::on(t.target);
     }
   } catch (const std::exception& e) {

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/diagnostic.h"
@@ -21,7 +22,14 @@ struct SweepOptions {
   double size = 1.0;           // target edge length, model units (> 0)
   int max_intervals = 100000;  // per edge and for the layers; more is refused (> 0)
   int smoothing_passes = 30;   // of the source face mesh (>= 0)
-  void validate() const;       // throws std::invalid_argument naming the bad field
+  // Given intervals per edge id (entry 0 unused), e.g. from assign_intervals, instead of
+  // the size: every linking edge the same count (the layers), each source edge the count
+  // of the target edge across its linking face, each source loop even (at least 4, or 6
+  // with holes); otherwise an error. With given intervals a source of one loop of four
+  // edges whose opposite counts agree is meshed by transfinite interpolation, and so is
+  // the target: a neighbour meshing the same face as a mapped face gets the same nodes.
+  std::vector<int> edge_intervals;
+  void validate() const;  // throws std::invalid_argument naming the bad field
 };
 
 struct SweepApplicability {
@@ -34,6 +42,17 @@ struct SweepApplicability {
 // four-sided linking face joining their loops. Among several pairs it prefers the shortest
 // linking edges (fewest layers), then the largest source face.
 SweepApplicability sweep_applicable(const occ::Solid& solid);
+
+// The chosen sweep's structure (what an interval assignment must respect): empty when
+// sweep_applicable refuses.
+struct SweepStructure {
+  core::FaceId source, target;
+  // Per source loop, per edge in loop order: the source edge and the target edge across
+  // its linking face.
+  std::vector<std::vector<std::pair<core::EdgeId, core::EdgeId>>> loops;
+  std::vector<core::EdgeId> linking;  // every linking edge (all have the layer count)
+};
+SweepStructure sweep_structure(const occ::Solid& solid);
 
 struct SweepEstimate {
   int layers = 0;

@@ -219,48 +219,72 @@ TopoDS_Solid checked_solid(TopoDS_Solid solid, const std::string& where, const R
   return solid;
 }
 
-// Where glued solids touch without a common face: an edge two solids have with no face
-// of both through it, or a vertex with no edge of both. Meshed one by one, such solids
-// would give a mesh that is not a manifold there (hexes meeting along an edge or at a
-// node only). Named as in the whole shape (Edge<i>, Vertex<i>).
+// Where glued solids touch without a common face: an edge (vertex) whose solids are not
+// all connected through faces through it that two of them share. Meshed one by one, such
+// solids would give a mesh that is not a manifold there (hexes meeting along an edge or at
+// a node only). Three solids around an edge, each sharing a face with the next (the
+// corner of a decomposed L), are connected and fine. Named as in the whole shape.
 std::vector<std::string> touching_without_face(const std::vector<TopoDS_Solid>& parts,
                                                const TopoDS_Shape& whole) {
   const int n = static_cast<int>(parts.size());
-  std::vector<TopTools_IndexedMapOfShape> faces(n), edges(n), vertices(n);
-  for (int i = 0; i < n; ++i) {
-    TopExp::MapShapes(parts[i], TopAbs_FACE, faces[i]);
-    TopExp::MapShapes(parts[i], TopAbs_EDGE, edges[i]);
-    TopExp::MapShapes(parts[i], TopAbs_VERTEX, vertices[i]);
-  }
+  std::vector<TopTools_IndexedMapOfShape> faces(n);
+  for (int i = 0; i < n; ++i) TopExp::MapShapes(parts[i], TopAbs_FACE, faces[i]);
+  std::vector<std::string> names;
+  auto check = [&](TopAbs_ShapeEnum kind, const char* prefix) {
+    TopTools_IndexedDataMapOfShapeListOfShape entity_faces;
+    TopExp::MapShapesAndAncestors(whole, kind, TopAbs_FACE, entity_faces);
+    for (int k = 1; k <= entity_faces.Extent(); ++k) {
+      const TopoDS_Shape& entity = entity_faces.FindKey(k);
+      if (kind == TopAbs_EDGE && BRep_Tool::Degenerated(TopoDS::Edge(entity))) continue;
+      // Solids through the entity, joined when a face through it belongs to both.
+      std::vector<int> comp(n, -1);
+      std::vector<int> solids;
+      for (const TopoDS_Shape& f : entity_faces(k)) {
+        std::vector<int> owners;
+        for (int i = 0; i < n; ++i)
+          if (faces[i].Contains(f)) owners.push_back(i);
+        for (int i : owners)
+          if (comp[i] < 0) comp[i] = i, solids.push_back(i);
+        for (std::size_t a = 1; a < owners.size(); ++a) {
+          const int from = comp[owners[a]], to = comp[owners[0]];
+          if (from != to)
+            for (int& c : comp)
+              if (c == from) c = to;
+        }
+      }
+      for (int i : solids)
+        if (comp[i] != comp[solids[0]]) {
+          names.push_back(prefix + std::to_string(k));
+          break;
+        }
+    }
+  };
+  check(TopAbs_EDGE, "Edge");
+  const std::size_t flagged_edges = names.size();
+  check(TopAbs_VERTEX, "Vertex");
+  // Entity numbers: as MapShapes of the whole numbers them (the names users see).
   TopTools_IndexedMapOfShape all_edges, all_vertices;
   TopExp::MapShapes(whole, TopAbs_EDGE, all_edges);
   TopExp::MapShapes(whole, TopAbs_VERTEX, all_vertices);
-  TopTools_IndexedDataMapOfShapeListOfShape edge_faces, vertex_edges;
+  TopTools_IndexedDataMapOfShapeListOfShape edge_faces, vertex_faces;
   TopExp::MapShapesAndAncestors(whole, TopAbs_EDGE, TopAbs_FACE, edge_faces);
-  TopExp::MapShapesAndAncestors(whole, TopAbs_VERTEX, TopAbs_EDGE, vertex_edges);
-  // Whether some ancestor of the entity belongs to both solids.
-  auto shared_by = [](const TopTools_ListOfShape& ancestors, const TopTools_IndexedMapOfShape& a,
-                      const TopTools_IndexedMapOfShape& b) {
-    for (const TopoDS_Shape& x : ancestors)
-      if (a.Contains(x) && b.Contains(x)) return true;
-    return false;
-  };
-  std::vector<std::string> names;
-  for (int i = 0; i < n; ++i)
-    for (int j = i + 1; j < n; ++j) {
-      for (int e = 1; e <= edges[i].Extent(); ++e) {
-        const TopoDS_Shape& edge = edges[i](e);
-        if (!edges[j].Contains(edge) || BRep_Tool::Degenerated(TopoDS::Edge(edge))) continue;
-        if (!shared_by(edge_faces.FindFromKey(edge), faces[i], faces[j]))
-          names.push_back("Edge" + std::to_string(all_edges.FindIndex(edge)));
-      }
-      for (int v = 1; v <= vertices[i].Extent(); ++v) {
-        const TopoDS_Shape& vertex = vertices[i](v);
-        if (!vertices[j].Contains(vertex)) continue;
-        if (!shared_by(vertex_edges.FindFromKey(vertex), edges[i], edges[j]))
-          names.push_back("Vertex" + std::to_string(all_vertices.FindIndex(vertex)));
-      }
-    }
+  TopExp::MapShapesAndAncestors(whole, TopAbs_VERTEX, TopAbs_FACE, vertex_faces);
+  // A vertex at the end of a flagged edge says nothing more: only the edge is named.
+  TopTools_IndexedMapOfShape edge_ends;
+  for (std::size_t i = 0; i < flagged_edges; ++i)
+    TopExp::MapShapes(edge_faces.FindKey(std::stoi(names[i].substr(4))), TopAbs_VERTEX, edge_ends);
+  names.erase(
+      std::remove_if(names.begin() + flagged_edges, names.end(),
+                     [&](const std::string& name) {
+                       return edge_ends.Contains(vertex_faces.FindKey(std::stoi(name.substr(6))));
+                     }),
+      names.end());
+  for (std::string& name : names) {
+    const bool edge = name.rfind("Edge", 0) == 0;
+    const int k = std::stoi(name.substr(edge ? 4 : 6));
+    name = edge ? "Edge" + std::to_string(all_edges.FindIndex(edge_faces.FindKey(k)))
+                : "Vertex" + std::to_string(all_vertices.FindIndex(vertex_faces.FindKey(k)));
+  }
   std::sort(names.begin(), names.end());
   names.erase(std::unique(names.begin(), names.end()), names.end());
   return names;
@@ -715,6 +739,21 @@ ReadResult read_solid_from_brep_string(const std::string& brep, const ReadOption
   }
   r.solid.reset();
   return r;
+}
+
+ReadResult glue_solids(const std::vector<const Solid*>& solids, const std::string& where) {
+  std::vector<TopoDS_Solid> shapes;
+  for (const Solid* s : solids)
+    for (const TopoDS_Solid& part : s->impl().parts) shapes.push_back(part);
+  try {
+    return glue(shapes, where, ReadResult());
+  } catch (const Standard_Failure& e) {
+    ReadResult r;
+    r.diagnostics.push_back(make_error(
+        "invalid_shape", where + ": OCCT failed gluing the solids (" +
+                             std::string(e.GetMessageString() ? e.GetMessageString() : "") + ")."));
+    return r;
+  }
 }
 
 bool write_solid(const Solid& solid, const std::string& path, std::string* error) {

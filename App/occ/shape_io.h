@@ -37,6 +37,11 @@ ReadResult read_solid(const std::string& path, const ReadOptions& options = {});
 // The same checks on a BREP string (FreeCAD's Part.Shape.exportBrepToString()).
 ReadResult read_solid_from_brep_string(const std::string& brep, const ReadOptions& options = {});
 
+// Glues solids (e.g. the sub-volumes of a decomposition) at the faces they have in common,
+// as ReadOptions::several_solids does: one Solid whose parts share those faces, or errors
+// (overlapping_solids, non_manifold, invalid_shape). `where` starts the messages.
+ReadResult glue_solids(const std::vector<const Solid*>& solids, const std::string& where);
+
 // Writes a solid; format from the extension (.step/.stp or .brep). Returns false and
 // fills error on failure.
 bool write_solid(const Solid& solid, const std::string& path, std::string* error);

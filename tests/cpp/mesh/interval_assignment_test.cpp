@@ -54,12 +54,14 @@ TEST(IntervalAssignment, SumsAndParityHold) {
   const int c = p.add_curve(2.0, "Edge3"), d = p.add_curve(0.3, "Edge4");
   p.equal.push_back({{a, b}, {c}, "Face2: one side is two edges"});
   p.even.push_back({{a, b, c, d}, "Face3: loop of quads"});
+  p.at_least.push_back({{a, b, c, d}, 16, "Face3: at least 16 segments"});
   IntervalOptions o;
   o.size = 0.3;
   const IntervalResult r = assign_intervals(p, o);
   ASSERT_TRUE(r.ok());
   EXPECT_EQ(r.intervals[a] + r.intervals[b], r.intervals[c]);
   EXPECT_EQ(sum(r.intervals, {a, b, c, d}) % 2, 0);
+  EXPECT_GE(sum(r.intervals, {a, b, c, d}), 16);  // targets alone give 3 + 3 + 7 + 1 = 14
   for (int n : r.intervals) EXPECT_GE(n, 1);
 }
 

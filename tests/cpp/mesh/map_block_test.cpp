@@ -265,3 +265,29 @@ TEST(MapBlock, MillionHexBox) {
 
 }  // namespace
 }  // namespace vorohex::mesh
+
+namespace vorohex::mesh {
+namespace {
+
+TEST(MapBlockGivenIntervals, UsesThemAndRefusesParallelEdgesThatDiffer) {
+  const occ::Solid box = occ::make_box(3, 2, 1);
+  const auto groups = map_block_edge_groups(box);
+  for (const auto& g : groups) ASSERT_EQ(g.size(), 4u);
+  MapBlockOptions o;
+  o.edge_intervals.assign(box.num_edges() + 1, 0);
+  const int want[3] = {7, 3, 2};
+  for (int d = 0; d < 3; ++d)
+    for (core::EdgeId e : groups[d]) o.edge_intervals[e.value()] = want[d];
+  const MapBlockResult r = map_block(box, o);
+  ASSERT_TRUE(r.ok);
+  EXPECT_EQ(r.mesh.num_hexes(), std::size_t(7 * 3 * 2));
+  o.edge_intervals[groups[1][2].value()] = 4;
+  const MapBlockResult bad = map_block(box, o);
+  EXPECT_FALSE(bad.ok);
+  ASSERT_FALSE(bad.diagnostics.empty());
+  EXPECT_EQ(bad.diagnostics[0].code, "intervals_mismatch");
+  EXPECT_TRUE(map_block_edge_groups(occ::make_prism({{0, 0}, {2, 0}, {1, 1}}, 1))[0].empty());
+}
+
+}  // namespace
+}  // namespace vorohex::mesh

@@ -185,3 +185,65 @@ TEST(Sweep, MillionHexPlateWithHolesTiming) {
 
 }  // namespace
 }  // namespace vorohex::mesh
+
+namespace vorohex::mesh {
+namespace {
+
+// Intervals given per edge (from an interval assignment) are used as given: the layers
+// are the linking edges' count, source edges their own; counts that do not fit the sweep
+// are an error naming the edges, not silently changed.
+TEST(SweepGivenIntervals, UsesThemAndRefusesCountsThatDoNotFit) {
+  const occ::Solid l = occ::make_prism({{0, 0}, {4, 0}, {4, 1}, {1, 1}, {1, 3}, {0, 3}}, 0.5);
+  const SweepStructure s = sweep_structure(l);
+  ASSERT_TRUE(s.source.valid());
+  ASSERT_EQ(s.loops.size(), 1u);
+  ASSERT_EQ(s.loops[0].size(), 6u);
+  EXPECT_EQ(s.linking.size(), 6u);
+  SweepOptions o;
+  o.size = 0.25;
+  o.edge_intervals.assign(l.num_edges() + 1, 0);
+  for (core::EdgeId e : s.linking) o.edge_intervals[e.value()] = 3;
+  for (const auto& [src, tgt] : s.loops[0]) {
+    const int n = 2 * int(std::lround(l.edge_length(src) / 0.5));
+    o.edge_intervals[src.value()] = o.edge_intervals[tgt.value()] = n;
+  }
+  const SweepResult r = sweep(l, o);
+  ASSERT_TRUE(r.ok);
+  EXPECT_EQ(r.layers, 3);
+  EXPECT_EQ(sweep_evaluate(l, o).hexes, r.mesh.num_hexes());
+
+  SweepOptions bad = o;
+  bad.edge_intervals[s.linking[1].value()] = 4;  // layers disagree
+  SweepResult rb = sweep(l, bad);
+  EXPECT_FALSE(rb.ok);
+  ASSERT_FALSE(rb.diagnostics.empty());
+  EXPECT_EQ(rb.diagnostics[0].code, "intervals_mismatch");
+  bad = o;
+  bad.edge_intervals[s.loops[0][0].second.value()] += 2;  // target edge differs from source
+  rb = sweep(l, bad);
+  EXPECT_FALSE(rb.ok);
+  EXPECT_EQ(rb.diagnostics[0].code, "intervals_mismatch");
+  bad = o;
+  bad.edge_intervals[s.loops[0][0].first.value()] += 1;  // odd source loop
+  bad.edge_intervals[s.loops[0][0].second.value()] += 1;
+  rb = sweep(l, bad);
+  EXPECT_FALSE(rb.ok);
+  EXPECT_EQ(rb.diagnostics[0].code, "intervals_mismatch");
+}
+
+// A four-sided source with given intervals is a structured grid, and so is the target.
+TEST(SweepGivenIntervals, FourSidedSourceIsAGrid) {
+  const occ::Solid t = occ::make_prism({{0, 0}, {3, 0}, {2.5, 1}, {0.5, 1}}, 2);
+  const SweepStructure s = sweep_structure(t);
+  ASSERT_TRUE(s.source.valid());
+  SweepOptions o;
+  o.size = 0.25;
+  o.edge_intervals.assign(t.num_edges() + 1, 5);
+  const SweepResult r = sweep(t, o);
+  ASSERT_TRUE(r.ok);
+  EXPECT_EQ(r.mesh.num_hexes(), std::size_t(5 * 5 * 5));
+  EXPECT_EQ(r.mesh.num_nodes(), std::size_t(6 * 6 * 6));
+}
+
+}  // namespace
+}  // namespace vorohex::mesh

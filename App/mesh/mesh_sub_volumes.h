@@ -1,0 +1,53 @@
+// Meshing several sub-volumes into one conforming mesh (paper §5.1): the sub-volumes are
+// glued at their common faces (occ::glue_solids), each is given its scheme (a mapped block,
+// else a one-to-one sweep), one interval assignment over every curve of all of them makes
+// the counts agree where they meet, each sub-volume is meshed with those counts (in
+// parallel), and the meshes are joined with nodes on common entities merged. Faces two
+// sub-volumes share are meshed as mapped faces by both (the same transfinite nodes from the
+// same edge nodes); a sweep's source of four sides is a mapped grid for that reason.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "core/diagnostic.h"
+#include "core/hex_mesh.h"
+#include "core/progress.h"
+#include "occ/solid.h"
+
+namespace vorohex::mesh {
+
+struct SubVolumeMeshOptions {
+  double size = 1.0;                 // target edge length, model units (> 0)
+  int max_intervals = 100000;        // per curve (>= 1)
+  int smoothing_passes = 30;         // of unstructured sweep sources (>= 0)
+  double interval_time_limit = 20;   // seconds for the integer program (> 0)
+  std::size_t max_hexes = 50000000;  // more is refused before meshing (>= 1)
+  int threads = 0;                   // sub-volumes meshed at once (0: the machine's cores)
+  void validate() const;             // throws std::invalid_argument naming the bad field
+};
+
+struct SubVolumeMeshStats {
+  std::vector<std::string> schemes;  // per sub-volume: "map" or "sweep"
+  int curves = 0;                    // curves in the interval assignment
+  int constraints = 0;
+  double interval_deviation = 0;  // the assignment's objective (see IntervalResult)
+  std::size_t nodes_merged = 0;   // sub-volume nodes that became a common node
+  double seconds_intervals = 0, seconds_meshing = 0;
+};
+
+struct SubVolumeMeshResult {
+  core::HexMesh mesh;  // classified on the entities of `pieces`; cell data: sub-volume 1..n
+  bool ok = false;
+  std::vector<core::Diagnostic> diagnostics;
+  SubVolumeMeshStats stats;
+};
+
+// `pieces`: glued sub-volumes (Solid::num_solids() parts). Errors: no_scheme (a sub-volume
+// neither a block nor a sweep, named), intervals_infeasible, too_many_hexes, cancelled, and
+// the schemes' own errors prefixed with the sub-volume.
+SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMeshOptions& options,
+                                     const core::Progress& progress = {});
+
+}  // namespace vorohex::mesh

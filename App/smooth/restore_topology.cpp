@@ -1,0 +1,78 @@
+#include "smooth/restore_topology.h"
+
+#include <vector>
+
+#include "occ/split_solid.h"
+
+namespace vorohex::smooth {
+
+using core::EdgeId;
+using core::FaceId;
+using core::NodeClass;
+using core::VertexId;
+
+RestoreStats restore_topology(core::HexMesh& mesh, const occ::Solid& pieces,
+                              const occ::Solid& original, double tolerance) {
+  // Faces: a shared (decomposition) face is inside; any other lies on an original face.
+  std::vector<NodeClass> face_class(pieces.num_faces() + 1, NodeClass::interior());
+  for (const occ::FaceSample& s : occ::sample_faces(pieces))
+    if (!pieces.face_is_interface(s.face))
+      face_class[s.face.value()] = NodeClass::on(original.nearest_face(s.point));
+
+  // Edges: along an original edge (two inner points on it), else in the original face of a
+  // boundary face it bounds (all such faces lie on one original face, or the edge would be
+  // on the original edge between them), else inside.
+  std::vector<NodeClass> edge_class(pieces.num_edges() + 1, NodeClass::interior());
+  for (EdgeId e : pieces.edges()) {
+    NodeClass on_face = NodeClass::interior();
+    for (FaceId f : pieces.edge_faces(e))
+      if (!face_class[f.value()].is_interior()) on_face = face_class[f.value()];
+    if (on_face.is_interior()) continue;
+    edge_class[e.value()] = on_face;
+    if (pieces.edge_is_degenerated(e)) continue;
+    const std::vector<core::Vec3> p = pieces.edge_points_by_length(e, 3);
+    const EdgeId near = original.nearest_edge(p[1]);
+    if (near.valid() && original.distance_to_edge(near, p[1]) <= tolerance &&
+        original.distance_to_edge(near, p[2]) <= tolerance)
+      edge_class[e.value()] = NodeClass::on(near);
+  }
+
+  // Vertices: an original vertex, else the class of a boundary edge through it (an
+  // original edge first), else inside.
+  std::vector<NodeClass> vertex_class(pieces.num_vertices() + 1, NodeClass::interior());
+  for (EdgeId e : pieces.edges()) {
+    const NodeClass c = edge_class[e.value()];
+    if (c.is_interior()) continue;
+    for (VertexId v : {pieces.edge_first_vertex(e), pieces.edge_last_vertex(e)}) {
+      NodeClass& vc = vertex_class[v.value()];
+      if (vc.is_interior() || (vc.dim == 2 && c.dim == 1)) vc = c;
+    }
+  }
+  for (VertexId v : pieces.vertices()) {
+    if (vertex_class[v.value()].is_interior()) continue;
+    const core::Vec3 p = pieces.vertex_point(v);
+    for (VertexId w : original.vertices())
+      if (original.distance_to_vertex(w, p) <= tolerance) {
+        vertex_class[v.value()] = NodeClass::on(w);
+        break;
+      }
+  }
+
+  RestoreStats stats;
+  for (std::size_t i = 0; i < mesh.num_nodes(); ++i) {
+    const core::NodeId n(static_cast<std::int32_t>(i));
+    const NodeClass c = mesh.node_class(n);
+    if (c.is_interior()) continue;
+    const NodeClass r = c.dim == 0   ? vertex_class[c.id]
+                        : c.dim == 1 ? edge_class[c.id]
+                                     : face_class[c.id];
+    mesh.set_node_class(n, r);
+    if (r.is_interior())
+      ++stats.interior;
+    else
+      ++(r.dim == 0 ? stats.on_vertices : r.dim == 1 ? stats.on_edges : stats.on_faces);
+  }
+  return stats;
+}
+
+}  // namespace vorohex::smooth
