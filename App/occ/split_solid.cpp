@@ -31,6 +31,7 @@
 #include <Eigen/Geometry>
 #include <chrono>
 #include <cmath>
+#include <sstream>
 
 #include "occ/solid_impl.h"
 
@@ -267,6 +268,20 @@ bool write_compound_brep(const std::vector<const Solid*>& solids, const std::str
   } catch (const Standard_Failure& e) {
     if (error) *error = e.GetMessageString() ? e.GetMessageString() : "OCCT failure";
     return false;
+  }
+}
+
+std::string compound_brep_string(const std::vector<const Solid*>& solids) {
+  try {
+    BRep_Builder b;
+    TopoDS_Compound c;
+    b.MakeCompound(c);
+    for (const Solid* s : solids) b.Add(c, s->impl().solid);
+    std::ostringstream out;
+    BRepTools::Write(c, out);
+    return out.str();
+  } catch (const Standard_Failure&) {
+    return std::string();
   }
 }
 

@@ -54,4 +54,7 @@ double common_volume(const Solid& a, const Solid& b);
 bool write_compound_brep(const std::vector<const Solid*>& solids, const std::string& path,
                          std::string* error);
 
+// The solids as one compound in BREP text (empty on an OCCT failure).
+std::string compound_brep_string(const std::vector<const Solid*>& solids);
+
 }  // namespace vorohex::occ

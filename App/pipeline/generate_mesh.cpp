@@ -3,16 +3,19 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iomanip>
 #include <map>
 #include <sstream>
 #include <stdexcept>
 
-#include "decompose/decompose.h"
 #include "mesh/assemble.h"
 #include "mesh/map_block.h"
+#include "mesh/mesh_sub_volumes.h"
 #include "mesh/midpoint.h"
 #include "mesh/sweep.h"
 #include "mesh/tet_split.h"
+#include "pipeline/detail/decompose_isolated.h"
+#include "smooth/restore_topology.h"
 
 namespace vorohex::pipeline {
 namespace {
@@ -23,32 +26,6 @@ void append(std::vector<core::Diagnostic>& to, const std::vector<core::Diagnosti
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-// What the decomposition makes of a solid that is neither a block nor a sweep: the user
-// sees where it would be cut even though several sub-volumes are not meshed together yet.
-std::string decomposition_summary(const occ::Solid& solid, const core::Progress& progress) {
-  progress.report("decompose", 0.0);
-  const voronoi::VoronoiResult graph = voronoi::compute_voronoi_graph(solid);
-  if (!graph.ok()) return "Its Voronoi graph could not be computed.";
-  decompose::DecomposeOptions options;
-  options.split_time_limit = 10;  // a summary for a refusal: do not keep the user waiting
-  const decompose::DecompositionResult d = decompose::decompose(solid, graph, options);
-  progress.report("decompose", 1.0);
-  if (!d.ok()) {
-    for (const core::Diagnostic& diag : d.diagnostics)
-      if (diag.severity == core::Severity::error)
-        return "Its decomposition failed: " + diag.message + ".";
-    return "Its decomposition failed.";
-  }
-  std::map<std::string, int> schemes;
-  for (const decompose::SubVolume& sv : d.sub_volumes) ++schemes[decompose::scheme_name(sv.scheme)];
-  std::ostringstream s;
-  s << "Its decomposition (vorohex decompose) has " << d.sub_volumes.size() << " sub-volumes (";
-  bool first = true;
-  for (const auto& [name, n] : schemes) s << (first ? "" : ", ") << n << " " << name, first = false;
-  s << "); meshing several sub-volumes into one conforming mesh is not implemented yet.";
-  return s.str();
 }
 
 // Model edges shorter than, and faces narrower than, a quarter of the size: no scheme
@@ -167,6 +144,12 @@ void MeshOptions::validate() const {
     throw std::invalid_argument(s.str());
   }
   if (max_hexes == 0) throw std::invalid_argument("max_hexes must be at least 1");
+  if (!std::isfinite(decomposition_time_limit) || decomposition_time_limit <= 0) {
+    std::ostringstream s;
+    s << "decomposition_time_limit must be a number of seconds > 0, got "
+      << decomposition_time_limit;
+    throw std::invalid_argument(s.str());
+  }
   if (!std::isfinite(time_limit) || time_limit < 0) {
     std::ostringstream s;
     s << "time_limit must be a number of seconds >= 0 (0: none), got " << time_limit;
@@ -204,6 +187,70 @@ MeshResult generate_mesh(const occ::Solid& solid, const MeshOptions& options,
 }
 
 namespace {
+// A solid no single scheme meshes: decomposed into sub-volumes (in a child process), those
+// meshed into one conforming mesh, which is put back onto the solid's own topology. True
+// when result.mesh holds it; else false with `why_not` (a sentence fragment), or a
+// `cancelled` error when the user stopped it.
+bool mesh_decomposed(const occ::Solid& solid, const MeshOptions& options, double size,
+                     const core::Progress& progress, MeshResult& result, std::string& why_not) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const detail::IsolatedDecomposition d =
+      detail::decompose_isolated(solid, options.decomposition_time_limit, progress);
+  if (d.cancelled) {
+    result.diagnostics.push_back(core::make_error("cancelled", "Meshing was cancelled."));
+    return false;
+  }
+  if (!d.pieces) {
+    why_not = d.why_not;
+    return false;
+  }
+  mesh::SubVolumeMeshOptions o;
+  o.size = size;
+  o.max_hexes = options.max_hexes;
+  mesh::SubVolumeMeshResult m = mesh::mesh_sub_volumes(*d.pieces, o, progress);
+  const int n = d.pieces->num_solids();
+  if (!m.ok) {
+    if (progress.cancelled()) {
+      result.diagnostics.push_back(core::make_error("cancelled", "Meshing was cancelled."));
+      return false;
+    }
+    std::string errors;
+    for (const core::Diagnostic& diag : m.diagnostics)
+      if (diag.severity == core::Severity::error) {
+        std::string msg = diag.message;
+        if (!msg.empty() && msg.back() == '.') msg.pop_back();
+        errors += (errors.empty() ? "" : "; ") + msg;
+      }
+    why_not =
+        "its " + std::to_string(n) + " sub-volumes could not be meshed together (" + errors + ")";
+    return false;
+  }
+  const double tolerance = std::max(1e-9 * solid.diagonal(), solid.tolerance());
+  const smooth::RestoreStats restored =
+      smooth::restore_topology(m.mesh, *d.pieces, solid, tolerance);
+  result.mesh = std::move(m.mesh);
+  std::map<std::string, int> count;
+  for (const std::string& s : m.stats.schemes) ++count[s];
+  result.stats.scheme.clear();
+  for (const auto& [name, k] : count)
+    result.stats.scheme += (result.stats.scheme.empty() ? "" : "+") + name;
+  result.stats.sub_volumes = n;
+  result.stats.intervals = {0, 0, 0};
+  result.stats.seconds_meshing = seconds_since(t0);
+  std::ostringstream s;
+  s << "Cut along its Voronoi graph into " << n << " sub-volumes (" << d.before_merge
+    << " before merging; ";
+  bool first = true;
+  for (const auto& [name, k] : count)
+    s << (first ? "" : ", ") << k << " " << (name == "map" ? "mapped" : "swept"), first = false;
+  s << "), meshed with one interval assignment over " << m.stats.curves << " curves and "
+    << m.stats.constraints << " constraints, joined (" << m.stats.nodes_merged << " nodes merged); "
+    << restored.interior << " nodes on the cuts are inside the solid again. Decomposition "
+    << std::fixed << std::setprecision(1) << d.seconds << " s.";
+  result.diagnostics.push_back(core::make_info("decomposed", s.str()));
+  return true;
+}
+
 // Meshes one solid with the first scheme that applies, without smoothing or checking:
 // true when result.mesh holds its mesh (else result.diagnostics say why not).
 bool mesh_solid(const occ::Solid& solid, const MeshOptions& options, double size,
@@ -224,19 +271,22 @@ bool mesh_solid(const occ::Solid& solid, const MeshOptions& options, double size
   const std::string why_not_structured = "Not a block: " + map.reason +
                                          ". Not a sweep: " + sweepable.reason +
                                          ". No midpoint subdivision: " + midpoint.reason + ".";
+  std::string not_decomposed = "decomposition is off";
+  if (!structured && options.decompose) {
+    if (mesh_decomposed(solid, options, size, progress, result, not_decomposed)) return true;
+    if (progress.cancelled() || core::has_error(result.diagnostics)) return false;
+  }
   if (!structured && !options.fallback) {
     result.diagnostics.push_back(core::make_error(
-        "not_supported_yet",
-        "This solid is not supported yet: this version meshes solids that are one topological "
-        "hexahedron (mapped), one one-to-one sweep or one convex polyhedron (midpoint "
-        "subdivision). " +
-            why_not_structured + " " + decomposition_summary(solid, progress)));
+        "not_supported_yet", "This solid is not supported yet: no single scheme meshes it, and " +
+                                 not_decomposed + ". " + why_not_structured));
     return false;
   }
   if (!structured)
-    return fallback(solid, options, size,
-                    "No structured scheme applies (" + why_not_structured + ")", progress, t0,
-                    result);
+    return fallback(
+        solid, options, size,
+        "No structured scheme applies (" + why_not_structured + ") and " + not_decomposed + ".",
+        progress, t0, result);
 
   std::size_t predicted = 0;
   mesh::MapBlockOptions map_options;

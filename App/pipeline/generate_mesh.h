@@ -24,6 +24,12 @@ struct MeshOptions {
   // Where no structured scheme applies: a tetrahedral mesh split into hexahedra (poorer
   // elements, reported as a warning); false refuses such solids instead.
   bool fallback = true;
+  // Where no single scheme applies, first cut the solid into sub-volumes along its Voronoi
+  // graph (paper §4) and mesh those into one conforming mesh (§5); the fallback (if on)
+  // takes what that cannot mesh. The graph and the cut run in a child process stopped
+  // after decomposition_time_limit seconds (> 0).
+  bool decompose = true;
+  double decomposition_time_limit = 60;
   // Seconds after which meshing stops like a cancel, with a `time_limit` error (0: none).
   // Checked between and inside stages; the tetrahedral fallback's CGAL step is not
   // interrupted.
@@ -41,7 +47,8 @@ struct MeshStats {
   double min_sj_before_smoothing = 0, mean_sj_before_smoothing = 0;
   int sub_volumes = 0;
   // "map" (mapped block), "sweep" (one-to-one sweep), "midpoint" (convex polyhedron) or
-  // "tet-split" (the fallback)
+  // "tet-split" (the fallback); sub-volumes of a decomposition or several solids: their
+  // schemes joined by "+" ("map+sweep")
   std::string scheme;
 };
 
