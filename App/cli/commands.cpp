@@ -20,7 +20,8 @@ namespace vorohex::cli {
 const char* const kMeshUsage =
     "usage: vorohex mesh IN -o OUT [--size H] [--report REPORT.json] [--max-hexes N]\n"
     "                    [--smooth-iterations N] [--smooth-passes N] [--no-smooth]\n"
-    "                    [--no-fallback] [--time-limit S] [--keep-invalid] [--quiet]\n"
+    "                    [--no-decompose] [--decomposition-time-limit S] [--no-fallback]\n"
+    "                    [--time-limit S] [--keep-invalid] [--quiet]\n"
     "  IN    a solid as STEP (.step/.stp), BREP (.brep/.brp) or IGES (.iges/.igs)\n"
     "  OUT   the hex mesh: .vtu (ParaView), .msh (Gmsh 4.1) or .inp (Abaqus/CalculiX)\n"
     "  --size H        target edge length in model units (default: diagonal / 20)\n"
@@ -30,8 +31,13 @@ const char* const kMeshUsage =
     "  --smooth-iterations N  Laplacian sweeps of the global smoothing (default 20)\n"
     "  --smooth-passes N      untangling/optimisation passes of the smoothing (default 10)\n"
     "  --no-smooth     no smoothing (same as both counts 0)\n"
-    "  --no-fallback   refuse a solid no structured scheme (map, sweep, midpoint) accepts\n"
-    "                  instead of meshing it as tetrahedra split into hexahedra\n"
+    "  --no-decompose  do not cut a solid no single scheme meshes into sub-volumes along its\n"
+    "                  Voronoi graph (by default its sub-volumes are meshed into one mesh)\n"
+    "  --decomposition-time-limit S  seconds the graph and the cut may take (default 60),\n"
+    "                  then the fallback takes over\n"
+    "  --no-fallback   refuse a solid that neither one scheme (map, sweep, midpoint) nor its\n"
+    "                  decomposition meshes, instead of meshing it as tetrahedra split into\n"
+    "                  hexahedra\n"
     "  --keep-invalid  write the mesh even when it fails the validity check\n"
     "  --quiet         no progress lines\n"
     "exit: 0 valid mesh written, 1 meshing failed or mesh invalid, 2 bad input\n";
@@ -166,10 +172,11 @@ bool known_mesh_extension(const std::string& path) {
 }
 
 int mesh_command(const std::vector<std::string>& argv) {
-  const Args args = parse(argv,
-                          {"-o", "--output", "--size", "--report", "--max-hexes",
-                           "--smooth-iterations", "--smooth-passes", "--time-limit"},
-                          {"--no-smooth", "--no-fallback", "--keep-invalid", "--quiet"});
+  const Args args =
+      parse(argv,
+            {"-o", "--output", "--size", "--report", "--max-hexes", "--smooth-iterations",
+             "--smooth-passes", "--time-limit", "--decomposition-time-limit"},
+            {"--no-smooth", "--no-fallback", "--no-decompose", "--keep-invalid", "--quiet"});
   if (args.positional.size() != 1)
     throw UsageError("expected exactly one input file, got " +
                      std::to_string(args.positional.size()));
@@ -194,6 +201,10 @@ int mesh_command(const std::vector<std::string>& argv) {
   if (args.flags.count("--no-smooth"))
     options.smoothing.laplacian_iterations = options.smoothing.optimisation_passes = 0;
   options.fallback = args.flags.count("--no-fallback") == 0;
+  options.decompose = args.flags.count("--no-decompose") == 0;
+  if (args.values.count("--decomposition-time-limit"))
+    options.decomposition_time_limit =
+        parse_positive("--decomposition-time-limit", args.values.at("--decomposition-time-limit"));
   if (args.values.count("--time-limit"))
     options.time_limit = parse_positive("--time-limit", args.values.at("--time-limit"));
   const bool quiet = args.flags.count("--quiet") > 0;

@@ -114,19 +114,28 @@ std::size_t remove_caps(std::vector<std::array<int, 4>>& tets, const EdgeSet& fe
   for (const auto& t : tets) {
     int on_boundary = 0, face = 0;
     bool same_face = true;
+    std::array<int, 4> omitted{};  // per boundary facet, the tet vertex it leaves out
     for (int j = 0; j < 4; ++j) {
       const std::array<int, 3> k = facet_of(t, j);
       if (count[k] != 1) continue;
-      ++on_boundary;
+      omitted[on_boundary++] = j;
       const auto it = facet_face.find(k);
       const int f = it == facet_face.end() ? 0 : it->second;
       if (f == 0 || (face != 0 && f != face)) same_face = false;
       face = f;
     }
+    // The edge two boundary facets share (joining the two vertices neither leaves out) must
+    // not be a feature: the model would bend sharply there, not curve. Feature edges
+    // elsewhere on the tet (a narrow face one tet wide between two model edges) do not
+    // matter: such a tet inverted in HexMe i02 once its nodes went onto the face.
     bool crosses_feature = false;
-    for (int i = 0; i < 4; ++i)
-      for (int j = i + 1; j < 4; ++j)
-        crosses_feature |= features.count({std::min(t[i], t[j]), std::max(t[i], t[j])}) > 0;
+    for (int a = 0; a < on_boundary; ++a)
+      for (int b = a + 1; b < on_boundary; ++b) {
+        int e[2], n = 0;
+        for (int v = 0; v < 4; ++v)
+          if (v != omitted[a] && v != omitted[b]) e[n++] = t[v];
+        crosses_feature |= features.count({std::min(e[0], e[1]), std::max(e[0], e[1])}) > 0;
+      }
     if (on_boundary < 2 || on_boundary > 3 || !same_face || crosses_feature) {
       kept.push_back(t);
       continue;

@@ -78,6 +78,12 @@ OPTIONS = (
             "Where no structured scheme (map, sweep, midpoint) applies, mesh tetrahedra split "
             "into hexahedra (poorer elements, reported as a warning); false refuses instead",
             "flag"),
+    _Option("decompose", "Decompose", "App::PropertyBool", "Mesh",
+            "Where no single scheme applies, cut the solid into sub-volumes along its Voronoi "
+            "graph and mesh them into one conforming mesh (before any fallback)", "flag"),
+    _Option("decomposition_time_limit", "DecompositionTimeLimit", "App::PropertyFloat", "Mesh",
+            "Seconds the Voronoi graph and the cut may take before the fallback takes over (> 0)",
+            "tolerance"),
     _Option("smooth_iterations", "SmoothIterations", "App::PropertyIntegerConstraint",
             "Smoothing", "Laplacian smoothing sweeps (0 and SmoothPasses 0 = no smoothing)",
             "iterations", limits=(0, 100000, 1)),

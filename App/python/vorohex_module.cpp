@@ -158,6 +158,11 @@ void bind_types(py::module_& m) {
       .def_readwrite("fallback", &O::fallback,
                      "where no structured scheme applies: tetrahedra split into hexahedra "
                      "(reported as a warning); False refuses such solids")
+      .def_readwrite("decompose", &O::decompose,
+                     "where no single scheme applies: cut along the Voronoi graph and mesh the "
+                     "sub-volumes into one conforming mesh (before any fallback)")
+      .def_readwrite("decomposition_time_limit", &O::decomposition_time_limit,
+                     "seconds the graph and the cut may take (> 0), then the fallback")
       .def_property(
           "smooth_iterations", [](const O& o) { return o.smoothing.laplacian_iterations; },
           [](O& o, int v) { o.smoothing.laplacian_iterations = v; },

@@ -211,6 +211,8 @@ class MeshCommand(unittest.TestCase):
         self.assertIn("time_limit", stderr)
         self.assertFalse(os.path.exists(out))
         self.expect_bad_input([step, "--time-limit", "-1"], "--time-limit")
+        self.expect_bad_input([step, "--decomposition-time-limit", "0"],
+                              "--decomposition-time-limit")
 
     def test_fallback_meshes_what_no_scheme_accepts_and_says_so(self):
         sys.path.append("/usr/lib/freecad-python3/lib")
@@ -235,7 +237,7 @@ class MeshCommand(unittest.TestCase):
         code, stdout, stderr = run("check", out, "--cad", path)
         self.assertEqual(code, 0, stdout + stderr)
 
-    def mesh_hexme(self, model):
+    def mesh_hexme(self, model, *extra):
         """Meshes a HexMe model; the exit code must be 0 with a valid mesh written or 1 with
         the failure named and nothing written. Returns the report."""
         step = os.path.join(HEXME, model + ".step")
@@ -243,7 +245,7 @@ class MeshCommand(unittest.TestCase):
             self.skipTest("HexMe models not found at " + HEXME)
         out = os.path.join(self.dir, model + ".vtu")
         rep = os.path.join(self.dir, model + ".json")
-        code, stdout, stderr = run("mesh", step, "-o", out, "--report", rep)
+        code, stdout, stderr = run("mesh", step, "-o", out, "--report", rep, *extra)
         self.assertIn(code, (0, 1), stdout + stderr)
         with open(rep) as f:
             r = json.load(f)
@@ -256,13 +258,14 @@ class MeshCommand(unittest.TestCase):
     def test_hexme_i15_ends_with_a_diagnostic_not_a_crash(self):
         # CGAL's sliver exuder raised SIGFPE on this model (a NaN weight inside GMP); the
         # fallback now optimises with ODT and perturbation instead.
-        self.assertEqual(self.mesh_hexme("i15o_s8")["scheme"], "tet-split")
+        # (The decomposition is left out: these tests are about the fallback.)
+        self.assertEqual(self.mesh_hexme("i15o_s8", "--no-decompose")["scheme"], "tet-split")
 
     def test_hexme_i09_survives_a_crash_inside_cgal(self):
         # CGAL 5.5's ODT optimiser crashes (SIGSEGV) on this model's tetrahedra; the
         # fallback runs CGAL in a child process, so the crash costs a retry with the
         # perturber, not the command.
-        r = self.mesh_hexme("i09o_m9")
+        r = self.mesh_hexme("i09o_m9", "--no-decompose")
         self.assertEqual(r["scheme"], "tet-split")
         for d in r["diagnostics"]:
             if d["code"] == "tet_optimiser_crashed":
@@ -280,7 +283,7 @@ class MeshCommand(unittest.TestCase):
         for k in range(2):
             out = os.path.join(self.dir, "i02_%d.vtu" % k)
             code, stdout, stderr = run("mesh", step, "-o", out, "--no-smooth", "--keep-invalid",
-                                       "--quiet")
+                                       "--no-decompose", "--quiet")
             self.assertIn(code, (0, 1), stdout + stderr)
             with open(out, "rb") as f:
                 texts.append(f.read())
