@@ -1,6 +1,8 @@
 #include "mesh/tet_split.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <set>
 #include <sstream>
@@ -100,53 +102,79 @@ std::array<int, 3> facet_of(const std::array<int, 4>& t, int skip) {
   return k;
 }
 
-// Leaves out tetrahedra with two or three faces on one model face and no feature edge
-// between those faces: they lie flat on a curved face (the boundary triangles there are
-// coarse next to its curvature) and moving their nodes onto the face would flatten and
-// invert them. Their other faces become boundary faces of the same model face.
-std::size_t remove_caps(std::vector<std::array<int, 4>>& tets, const EdgeSet& features,
+// Leaves out tetrahedra lying flat on the boundary: two or three of their faces are
+// boundary faces whose outward normals agree within 40 degrees (on one curved model face,
+// or on two faces meeting smoothly, as fillets do). The boundary triangles there are coarse
+// next to the curvature, and moving their nodes onto the CAD would flatten and invert
+// them. A tet across a sharp model edge (normals far apart) stays. Its other faces become
+// boundary faces (of the same model face when there was one), unless that would pinch the
+// boundary (an edge in more than two boundary faces).
+std::size_t remove_caps(std::vector<std::array<int, 4>>& tets, const std::vector<Vec3>& points,
                         FacetFaces& facet_face, EdgeFaces& edge_face) {
   std::map<std::array<int, 3>, int> count;
   for (const auto& t : tets)
     for (int j = 0; j < 4; ++j) ++count[facet_of(t, j)];
+  // Boundary facets per edge: a removal must not leave an edge in more than two (the
+  // boundary would pinch there, not close).
+  std::map<std::array<int, 2>, int> boundary_at;
+  auto edges_of = [](const std::array<int, 3>& k) {
+    return std::array<std::array<int, 2>, 3>{{{k[0], k[1]}, {k[1], k[2]}, {k[0], k[2]}}};
+  };
+  for (const auto& [k, n] : count)
+    if (n == 1)
+      for (const auto& e : edges_of(k)) ++boundary_at[e];
+  const double flat = std::cos(40.0 * M_PI / 180.0);
   std::vector<std::array<int, 4>> kept;
   std::size_t removed = 0;
   for (const auto& t : tets) {
     int on_boundary = 0, face = 0;
     bool same_face = true;
-    std::array<int, 4> omitted{};  // per boundary facet, the tet vertex it leaves out
+    std::array<Vec3, 4> normal;  // outward, per boundary facet
     for (int j = 0; j < 4; ++j) {
       const std::array<int, 3> k = facet_of(t, j);
       if (count[k] != 1) continue;
-      omitted[on_boundary++] = j;
+      Vec3 n = (points[k[1]] - points[k[0]]).cross(points[k[2]] - points[k[0]]);
+      if (n.dot(points[t[j]] - points[k[0]]) > 0) n = -n;
+      const double len = n.norm();
+      normal[on_boundary++] = len > 0 ? Vec3(n / len) : Vec3::Zero();
       const auto it = facet_face.find(k);
       const int f = it == facet_face.end() ? 0 : it->second;
       if (f == 0 || (face != 0 && f != face)) same_face = false;
       face = f;
     }
-    // The edge two boundary facets share (joining the two vertices neither leaves out) must
-    // not be a feature: the model would bend sharply there, not curve. Feature edges
-    // elsewhere on the tet (a narrow face one tet wide between two model edges) do not
-    // matter: such a tet inverted in HexMe i02 once its nodes went onto the face.
-    bool crosses_feature = false;
+    bool smooth = true;
     for (int a = 0; a < on_boundary; ++a)
-      for (int b = a + 1; b < on_boundary; ++b) {
-        int e[2], n = 0;
-        for (int v = 0; v < 4; ++v)
-          if (v != omitted[a] && v != omitted[b]) e[n++] = t[v];
-        crosses_feature |= features.count({std::min(e[0], e[1]), std::max(e[0], e[1])}) > 0;
+      for (int b = a + 1; b < on_boundary; ++b) smooth &= normal[a].dot(normal[b]) > flat;
+    const bool lies_flat = on_boundary >= 2 && on_boundary <= 3 && smooth;
+    if (!same_face) face = 0;
+    bool pinches = false;
+    if (lies_flat) {
+      std::map<std::array<int, 2>, int> after;
+      for (int j = 0; j < 4; ++j) {
+        const std::array<int, 3> k = facet_of(t, j);
+        for (const auto& e : edges_of(k)) {
+          if (!after.count(e)) after[e] = boundary_at[e];
+          after[e] += count[k] == 1 ? -1 : 1;
+        }
       }
-    if (on_boundary < 2 || on_boundary > 3 || !same_face || crosses_feature) {
+      for (const auto& [e, n] : after) pinches |= n > 2;
+    }
+    if (!lies_flat || pinches) {
       kept.push_back(t);
       continue;
     }
     ++removed;
     for (int j = 0; j < 4; ++j) {
       const std::array<int, 3> k = facet_of(t, j);
-      if (count[k] == 1) continue;
-      facet_face[k] = face;  // exposed: now on the model face
-      edge_face[{k[0], k[1]}] = edge_face[{k[1], k[2]}] = edge_face[{k[0], k[2]}] = face;
+      for (const auto& e : edges_of(k)) boundary_at[e] += count[k] == 1 ? -1 : 1;
+      if (count[k] == 1) {
+        --count[k];
+        continue;
+      }
       --count[k];
+      if (face == 0) continue;  // exposed on two model faces: the nearest one takes it
+      facet_face[k] = face;     // exposed: now on the model face
+      edge_face[{k[0], k[1]}] = edge_face[{k[1], k[2]}] = edge_face[{k[0], k[2]}] = face;
     }
   }
   tets.swap(kept);
@@ -319,6 +347,12 @@ TetSplitResult tet_split(const occ::Solid& solid, const TetSplitOptions& options
     return r;
   }
 
+  if (tm.filled > 0)
+    r.diagnostics.push_back(core::make_info(
+        "pinches_filled", std::to_string(tm.filled) +
+                              " tetrahedra CGAL had left out between two fans of tetrahedra "
+                              "around one edge were put back (their centroids lie inside the "
+                              "solid), so that the boundary is a closed surface there."));
   for (const Vec3& p : tm.points) r.mesh.add_node(p);
   const std::vector<int>& dimension = tm.dimension;
   std::vector<std::array<int, 4>> tets = std::move(tm.tets);
@@ -336,13 +370,18 @@ TetSplitResult tet_split(const occ::Solid& solid, const TetSplitOptions& options
     edge_face[{k[0], k[1]}] = edge_face[{k[1], k[2]}] = edge_face[{k[0], k[2]}] = face;
     for (int j = 0; j < 3; ++j) node_face[k[j]] = face;
   }
-  const std::size_t caps = remove_caps(tets, feature_edges, facet_face, edge_face);
+  // Until none is left: leaving one out can expose a neighbour that is a cap in turn.
+  std::size_t caps = 0;
+  for (std::size_t removed = 1; removed > 0;) {
+    removed = remove_caps(tets, tm.points, facet_face, edge_face);
+    caps += removed;
+  }
   if (caps > 0)
     r.diagnostics.push_back(core::make_info(
         "caps_removed", std::to_string(caps) +
-                            " tetrahedra lying flat on a curved face (two or three of their "
-                            "faces on it) were left out; the face is followed by their "
-                            "neighbours."));
+                            " tetrahedra lying flat on the boundary (two or three of their "
+                            "faces on it, with outward normals within 40 degrees) were left "
+                            "out; the surface is followed by their neighbours."));
   r.tetrahedra = tets.size();
   const detail::TetSplitNodes split = detail::split_tetrahedra(r.mesh, tets);
   progress.report("tetrahedra", 0.8);

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <cstring>
 #include <map>
+#include <set>
 #include <stdexcept>
 
 namespace vorohex::mesh::detail {
@@ -133,6 +134,55 @@ Tetrahedra mesh_tetrahedra(const TetRequest& request) {
   for (auto c = c3t3.cells_in_complex_begin(); c != c3t3.cells_in_complex_end(); ++c)
     t.tets.push_back(
         {node(c->vertex(0)), node(c->vertex(1)), node(c->vertex(2)), node(c->vertex(3))});
+  // Pinched edges: an edge of more than two boundary facets has two fans of tetrahedra
+  // around it with a gap between them. Where the gap lies inside the solid (cells CGAL left
+  // out of the complex, whose centroid the domain puts inside) it is filled; otherwise the
+  // hex mesh's boundary would not be closed there (HexMe i02 at a model edge).
+  {
+    const Tr& tr = c3t3.triangulation();
+    const auto inside = domain.is_in_domain_object();
+    std::set<Tr::Cell_handle> added;
+    auto in = [&](Tr::Cell_handle c) { return c3t3.is_in_complex(c) || added.count(c) > 0; };
+    // Filling a gap can pinch a neighbouring edge: repeated a few times.
+    for (int round = 0; round < 5; ++round) {
+      std::map<std::pair<Tr::Vertex_handle, Tr::Vertex_handle>, int> boundary_count;
+      auto count_cell = [&](Tr::Cell_handle c) {
+        for (int f = 0; f < 4; ++f) {
+          if (in(c->neighbor(f))) continue;
+          for (int a = 0; a < 3; ++a) {
+            Tr::Vertex_handle u = c->vertex((f + 1 + a) % 4);
+            Tr::Vertex_handle v = c->vertex((f + 1 + (a + 1) % 3) % 4);
+            if (v < u) std::swap(u, v);
+            ++boundary_count[{u, v}];
+          }
+        }
+      };
+      for (auto c = c3t3.cells_in_complex_begin(); c != c3t3.cells_in_complex_end(); ++c)
+        count_cell(c);
+      for (Tr::Cell_handle c : added) count_cell(c);
+      std::size_t before = added.size();
+      for (const auto& [edge, count] : boundary_count) {
+        if (count <= 2) continue;
+        Tr::Cell_handle cell;
+        int i = 0, j = 0;
+        if (!tr.is_edge(edge.first, edge.second, cell, i, j)) continue;
+        auto circ = tr.incident_cells(cell, i, j), done = circ;
+        do {
+          const Tr::Cell_handle c = circ;
+          if (!tr.is_infinite(c) && !in(c)) {
+            K::Vector_3 sum(0, 0, 0);
+            for (int k = 0; k < 4; ++k) sum = sum + (tr.point(c, k).point() - CGAL::ORIGIN);
+            if (inside(CGAL::ORIGIN + sum / 4.0)) added.insert(c);
+          }
+        } while (++circ != done);
+      }
+      if (added.size() == before) break;
+    }
+    for (Tr::Cell_handle c : added)
+      t.tets.push_back(
+          {node(c->vertex(0)), node(c->vertex(1)), node(c->vertex(2)), node(c->vertex(3))});
+    t.filled = static_cast<int>(added.size());
+  }
   for (auto e = c3t3.edges_in_complex_begin(); e != c3t3.edges_in_complex_end(); ++e) {
     const auto a = index.find(e->first->vertex(e->second));
     const auto b = index.find(e->first->vertex(e->third));
@@ -168,6 +218,7 @@ std::string to_bytes(const Tetrahedra& t) {
   put(out, t.feature_edges);
   put(out, t.facets);
   put(out, t.facet_patch);
+  put(out, std::vector<int>{t.filled});
   return out;
 }
 
@@ -176,8 +227,11 @@ bool from_bytes(const std::string& bytes, Tetrahedra& t) {
   std::vector<double> xyz;
   if (!get(bytes, at, xyz) || xyz.size() % 3 != 0 || !get(bytes, at, t.dimension) ||
       !get(bytes, at, t.tets) || !get(bytes, at, t.feature_edges) || !get(bytes, at, t.facets) ||
-      !get(bytes, at, t.facet_patch) || at != bytes.size())
+      !get(bytes, at, t.facet_patch))
     return false;
+  std::vector<int> filled;
+  if (!get(bytes, at, filled) || filled.size() != 1 || at != bytes.size()) return false;
+  t.filled = filled[0];
   t.points.clear();
   for (std::size_t i = 0; i < xyz.size(); i += 3)
     t.points.emplace_back(xyz[i], xyz[i + 1], xyz[i + 2]);

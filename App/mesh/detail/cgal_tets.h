@@ -38,6 +38,7 @@ struct Tetrahedra {
   std::vector<std::array<int, 2>> feature_edges;  // sorted node pairs
   std::vector<std::array<int, 3>> facets;         // boundary triangles, sorted node triples
   std::vector<int> facet_patch;                   // their surface patch (model face)
+  int filled = 0;  // cells added to close gaps at pinched edges (in `tets`, not in `facets`)
 };
 
 // Builds the polyhedron and meshes it. Throws std::runtime_error naming what failed (a
