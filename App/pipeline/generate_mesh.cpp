@@ -187,6 +187,18 @@ MeshResult generate_mesh(const occ::Solid& solid, const MeshOptions& options,
 }
 
 namespace {
+// Schemes of several sub-volumes or solids, each once, in order of first use ("sweep+map").
+std::string joined_schemes(const std::vector<std::string>& schemes) {
+  std::vector<std::string> seen;
+  std::string out;
+  for (const std::string& s : schemes)
+    if (std::find(seen.begin(), seen.end(), s) == seen.end()) {
+      seen.push_back(s);
+      out += (out.empty() ? "" : "+") + s;
+    }
+  return out;
+}
+
 // A solid no single scheme meshes: decomposed into sub-volumes (in a child process), those
 // meshed into one conforming mesh, which is put back onto the solid's own topology. True
 // when result.mesh holds it; else false with `why_not` (a sentence fragment), or a
@@ -231,9 +243,7 @@ bool mesh_decomposed(const occ::Solid& solid, const MeshOptions& options, double
   result.mesh = std::move(m.mesh);
   std::map<std::string, int> count;
   for (const std::string& s : m.stats.schemes) ++count[s];
-  result.stats.scheme.clear();
-  for (const auto& [name, k] : count)
-    result.stats.scheme += (result.stats.scheme.empty() ? "" : "+") + name;
+  result.stats.scheme = joined_schemes(m.stats.schemes);
   result.stats.sub_volumes = n;
   result.stats.intervals = {0, 0, 0};
   result.stats.seconds_meshing = seconds_since(t0);
@@ -379,6 +389,37 @@ MeshResult generate_parts(const occ::Solid& whole, const MeshOptions& options, d
   MeshResult result;
   result.stats.size_used = size;
   const auto t0 = std::chrono::steady_clock::now();
+  // Every solid a block or a sweep: one interval assignment over all of them makes the
+  // shared faces conform (mesh/mesh_sub_volumes.h). Otherwise each solid on its own below.
+  {
+    mesh::SubVolumeMeshOptions o;
+    o.size = size;
+    o.max_hexes = options.max_hexes;
+    mesh::SubVolumeMeshResult m = mesh::mesh_sub_volumes(whole, o, progress);
+    if (m.ok) {
+      result.mesh = std::move(m.mesh);
+      result.stats.scheme = joined_schemes(m.stats.schemes);
+      result.stats.sub_volumes = whole.num_solids();
+      result.stats.seconds_meshing = seconds_since(t0);
+      std::ostringstream s;
+      s << whole.num_solids() << " solids meshed with one interval assignment over "
+        << m.stats.curves << " curves, so that their meshes match on the "
+        << whole.num_interface_faces() << " shared faces; " << m.stats.nodes_merged
+        << " nodes merged.";
+      result.diagnostics.push_back(core::make_info("solids_joined", s.str()));
+      finish(result, whole, options, progress);
+      return result;
+    }
+    if (progress.cancelled()) {
+      result.diagnostics.push_back(core::make_error("cancelled", "Meshing was cancelled."));
+      return result;
+    }
+    for (const core::Diagnostic& d : m.diagnostics)
+      if (d.code == "too_many_hexes") {
+        result.diagnostics.push_back(d);
+        return result;
+      }
+  }
   const double tolerance = std::max(1e-9 * whole.diagonal(), whole.tolerance());
   std::vector<std::string> schemes;
   std::size_t merged = 0;

@@ -189,8 +189,36 @@ TEST(GenerateMesh, BoxStandingOnALargerBoxIsSweptMappedAndJoined) {
   bool joined = false;
   for (const auto& d : r.diagnostics)
     joined = joined || (d.code == "solids_joined" &&
-                        d.message.find("25 nodes on the 1 shared faces") != std::string::npos);
+                        d.message.find("one interval assignment") != std::string::npos &&
+                        d.message.find("25 nodes merged") != std::string::npos);
   EXPECT_TRUE(joined);
+}
+
+// A block standing on a block whose own intervals would differ on the face they share
+// (alone, the lower one's 1.1 long edges get 4 intervals at size 0.25, the upper one's
+// edges, 1.1 below and 1.5 above, 5): one interval assignment over both makes them agree,
+// so the mesh conforms (before, each solid chose alone and the check named the face).
+TEST(GenerateMesh, SolidsWhoseOwnIntervalsDifferAreMeshedWithOneAssignment) {
+  const occ::Solid lower = occ::make_box(1.1, 1, 1);
+  const occ::Solid upper = occ::make_polyhedron(
+      {{0, 0, 1},
+       {1.1, 0, 1},
+       {1.1, 1, 1},
+       {0, 1, 1},
+       {-0.2, 0, 2},
+       {1.3, 0, 2},
+       {1.3, 1, 2},
+       {-0.2, 1, 2}},
+      {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}});
+  occ::ReadResult glued = occ::glue_solids({&lower, &upper}, "The test");
+  ASSERT_TRUE(glued.ok());
+  MeshOptions opt;
+  opt.size = 0.25;
+  const MeshResult r = generate_mesh(*glued.solid, opt);
+  ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
+  EXPECT_EQ(r.stats.scheme, "map");
+  EXPECT_EQ(r.check.boundary_quads + 2 * r.check.interior_quads, 6 * r.mesh.num_hexes());
+  EXPECT_NEAR(r.check.mesh_volume, glued.solid->volume(), 1e-9 * glued.solid->volume());
 }
 
 // A time limit stops meshing like a cancel: an error naming the limit, no mesh.
