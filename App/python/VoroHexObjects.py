@@ -25,7 +25,17 @@ RESULTS = (
     ("VolumeError", "App::PropertyFloat", "Relative volume error of the mesh vs the solid"),
     ("ScaledJacobianHistogram", "App::PropertyIntegerList",
      "Hexes per scaled Jacobian bin of 0.1 from -1 to 1"),
+    ("Diagnostics", "App::PropertyStringList",
+     "Messages of the last recompute, one per line: severity [code] message"),
+    ("DiagnosticEntities", "App::PropertyStringList",
+     "Per message, the model entities it names (Face7, Edge3, ...; comma-separated)"),
 )
+
+
+def record_diagnostics(obj, diagnostics):
+    """Stores the messages and the entities each names (the task panel highlights them)."""
+    obj.Diagnostics = ["{} [{}] {}".format(d.severity, d.code, d.message) for d in diagnostics]
+    obj.DiagnosticEntities = [",".join(d.entities) for d in diagnostics]
 
 
 def source_error(part, several=False):
@@ -108,6 +118,7 @@ class HexMesh:
                 error = str(e).replace("VoroHex: ", "")
         if result is not None and not result.ok:
             error = result.message
+        record_diagnostics(obj, [] if result is None else list(result.diagnostics))
         if error is not None:
             obj.Status, obj.Message = "error", error
             raise RuntimeError("VoroHex: " + error)

@@ -1,5 +1,7 @@
 # Task panel of the VoroHex mesh object (the FemMeshGmsh task panel pattern): edit the
 # options, Run (with progress and Stop), and see the quality summary and histogram.
+import re
+
 import FreeCAD
 import FreeCADGui
 from PySide import QtCore, QtGui
@@ -55,10 +57,24 @@ class TaskPanel:
             v = QtGui.QDoubleValidator(0.0, 1.0, 15, self.form)
             v.setNotation(QtGui.QDoubleValidator.ScientificNotation)
             getattr(self.form, name).setValidator(v)
+        # Messages of the last run; selecting one selects the model entities it names.
+        box = QtGui.QGroupBox("Messages (select one to highlight what it names)", self.form)
+        box.setObjectName("gb_diagnostics")
+        self.diagnostics = QtGui.QListWidget(box)
+        self.diagnostics.setObjectName("lw_diagnostics")
+        self.diagnostics.setWordWrap(True)
+        self.diagnostics.setMinimumHeight(90)
+        QtGui.QVBoxLayout(box).addWidget(self.diagnostics)
+        self.form.layout().addWidget(box)
+        self.diagnostics.currentRowChanged.connect(self.highlight)
         self.form.pb_run.clicked.connect(self.run)
         self.form.pb_stop.clicked.connect(self.stop)
         self.running = False
         self.stop_requested = False
+        # Cancel puts the options back as they were when the panel opened (a stopped run
+        # with a tiny size must not stay behind to be recomputed later).
+        self.initial = {o.prop: getattr(obj, o.prop) for o in VoroHex.OPTIONS}
+        self.initially_touched = "Touched" in obj.State
         self.load()
         self.show_result()
         if self.obj.Status:
@@ -141,7 +157,35 @@ class TaskPanel:
     def stop(self):
         self.stop_requested = True
 
+    def highlight(self, row):
+        """Selects, on the linked solid, the faces, edges and vertices message `row` names."""
+        FreeCADGui.Selection.clearSelection()
+        entities = list(self.obj.DiagnosticEntities)
+        part = self.obj.Part
+        if part is None or not 0 <= row < len(entities):
+            return
+        for name in entities[row].split(","):
+            name = name.strip()
+            if re.match(r"^(Face|Edge|Vertex)[0-9]+$", name):
+                try:
+                    FreeCADGui.Selection.addSelection(part, name)
+                except Exception:  # an entity of a glued whole the part does not number
+                    pass
+        if part.ViewObject is not None and entities[row]:
+            part.ViewObject.Visibility = True  # the named entities are on the solid
+
     def show_result(self):
+        self.diagnostics.clear()
+        colours = {"error": "#b00000", "warning": "#a05a00"}
+        entities = list(self.obj.DiagnosticEntities)
+        for k, line in enumerate(self.obj.Diagnostics):
+            item = QtGui.QListWidgetItem(line)
+            names = entities[k] if k < len(entities) else ""
+            item.setToolTip(line + ("\nNames: " + names if names else ""))
+            severity = line.split(" ", 1)[0]
+            if severity in colours:
+                item.setForeground(QtGui.QBrush(QtGui.QColor(colours[severity])))
+            self.diagnostics.addItem(item)
         self.form.lbl_status.setText(summary_text(self.obj))
         colour = "#b00000" if self.obj.Status == "error" else "palette(text)"
         self.form.lbl_status.setStyleSheet("color: {}".format(colour))
@@ -164,6 +208,11 @@ class TaskPanel:
         if self.running:
             self.stop_requested = True
             return False
+        for prop, value in self.initial.items():
+            if getattr(self.obj, prop) != value:
+                setattr(self.obj, prop, value)
+        if not self.initially_touched and self.obj.Status == "ok":
+            self.obj.purgeTouched()  # its mesh is the one of these options
         self._close()
         return True
 

@@ -166,6 +166,67 @@ def main():
     pump(0.3)
     check(not Gui.Control.activeDialog(), "task panel closed again")
 
+    # Messages name model entities; selecting one in the panel selects them on the solid.
+    # A prism with a corner chamfer 0.014 long: its tiny edges are named before meshing.
+    import Part
+
+    pts = [FreeCAD.Vector(*p) for p in ((0, 0, 0), (40, 0, 0), (40, 10, 0), (0.1, 10, 0),
+                                        (0, 9.9, 0), (0, 0, 0))]
+    prism = doc.addObject("Part::Feature", "ChamferedPrism")
+    prism.Shape = Part.Face(Part.makePolygon(pts)).extrude(FreeCAD.Vector(0, 0, 10))
+    doc.recompute()
+    box.ViewObject.Visibility = False
+    import VoroHexObjects
+
+    chamfered = VoroHexObjects.makeHexMesh(doc, prism, "ChamferedMesh", size=5)
+    doc.recompute()
+    check(chamfered.Status == "ok", "chamfered prism meshed: " + chamfered.Message)
+    tiny = [k for k, line in enumerate(chamfered.Diagnostics) if "[tiny_edges]" in line]
+    check(len(tiny) == 1, "tiny_edges among the recorded messages")
+    named = chamfered.DiagnosticEntities[tiny[0]].split(",")
+    check(named and all(n.startswith("Edge") for n in named), "it names edges: " + str(named))
+    Gui.Selection.clearSelection()
+    Gui.ActiveDocument.setEdit(chamfered.Name)
+    pump(1.0)
+    listing = mw.findChild(QtGui.QListWidget, "lw_diagnostics")
+    check(listing is not None and listing.count() == len(chamfered.Diagnostics),
+          "the panel lists every message")
+    listing.setCurrentRow(tiny[0])
+    pump(0.5)
+    selected = [n for s in Gui.Selection.getSelectionEx() for n in s.SubElementNames]
+    check(sorted(selected) == sorted(named), "selecting it selects {} on the solid".format(named))
+    # For the screenshot: only the solid, looking at the chamfer with the named edges
+    # selected, and the panel scrolled down to the messages.
+    for o in (chamfered, mesh, box):
+        o.ViewObject.Visibility = False
+    prism.ViewObject.Visibility = True
+    from pivy import coin
+
+    view = Gui.ActiveDocument.ActiveView
+    view.viewIsometric()
+    view.fitAll()
+    top = max(named, key=lambda n: prism.Shape.getElement(n).BoundBox.ZMax)
+    target = prism.Shape.getElement(top).BoundBox.Center  # the chamfer's top edge
+    look = FreeCAD.Vector(1, -1, -0.8).normalize()  # towards the chamfered corner
+    cam = view.getCameraNode()
+    eye = target - look * 60
+    cam.position.setValue(eye.x, eye.y, eye.z)
+    cam.pointAt(coin.SbVec3f(target.x, target.y, target.z), coin.SbVec3f(0, 0, 1))
+    if hasattr(cam, "height"):
+        cam.height.setValue(3.0)  # about 20 chamfer widths across
+    view.redraw()
+    for area in mw.findChildren(QtGui.QScrollArea):
+        if area.isVisible() and area.widget() and area.widget().findChild(
+                QtGui.QListWidget, "lw_diagnostics"):
+            area.verticalScrollBar().setValue(area.verticalScrollBar().maximum())
+    pump(1.0)
+    diag_shot = os.path.splitext(SHOT)[0] + "_diagnostics.png"
+    check(QtGui.QGuiApplication.primaryScreen().grabWindow(0).save(diag_shot),
+          "diagnostics screenshot saved to " + diag_shot)
+    task_ok_button(mw, QtGui.QDialogButtonBox.Cancel).click()
+    pump(0.3)
+    Gui.Selection.clearSelection()
+
     # Inside an active FEM analysis the new mesh object joins it (as FEM's mesh commands do).
     import FemGui
     import ObjectsFem
@@ -177,7 +238,8 @@ def main():
     pump()
     Gui.runCommand("VoroHex_HexMesh")
     pump(0.5)
-    new = [o for o in doc.Objects if o.isDerivedFrom("Fem::FemMeshObjectPython") and o != mesh]
+    new = [o for o in doc.Objects
+           if o.isDerivedFrom("Fem::FemMeshObjectPython") and o not in (mesh, chamfered)]
     check(len(new) == 1 and new[0] in analysis.Group, "mesh object added to the analysis")
     task_ok_button(mw, QtGui.QDialogButtonBox.Cancel).click()
     pump(0.3)
