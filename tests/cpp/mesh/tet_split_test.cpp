@@ -8,6 +8,7 @@
 #include "mesh/tet_split.h"
 #include "occ/primitives.h"
 #include "occ/shape_io.h"
+#include "quality/check_mesh.h"
 
 namespace vorohex::mesh {
 namespace {
@@ -89,6 +90,23 @@ TEST(TetSplit, AnOpenBoundaryTriangulationNamesItsEdges) {
   ASSERT_NE(d, nullptr);
   EXPECT_NE(d->message.find("not closed (at Edge"), std::string::npos) << d->message;
   EXPECT_NE(d->message.find("Edge64"), std::string::npos) << d->message;  // 3.97e-7 long
+}
+
+// HexMe i02: CGAL's complex pinched at a model edge (two fans of tetrahedra around it, four
+// boundary faces at one edge), so the hex mesh's boundary was not closed there. The gap's
+// cells are put back: every boundary edge of the hex mesh lies in exactly two boundary quads.
+TEST(TetSplit, APinchedEdgeIsFilledSoTheBoundaryCloses) {
+  const occ::ReadResult in = occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/i02o_m2.step");
+  if (!in.ok()) GTEST_SKIP() << "HexMe model i02 not found in " << VOROHEX_HEXME_DIR;
+  TetSplitOptions opt;
+  opt.size = in.solid->diagonal() / 20;
+  const TetSplitResult r = tet_split(*in.solid, opt);
+  ASSERT_TRUE(r.ok);
+  EXPECT_NE(testing::find_diagnostic(r.diagnostics, "pinches_filled"), nullptr);
+  const quality::CheckReport check = quality::check_mesh(r.mesh, in.solid.get(), {});
+  EXPECT_EQ(check.open_boundary_edges, 0u);
+  EXPECT_EQ(check.non_manifold_quads, 0u);
+  EXPECT_EQ(check.folded_quads, 0u);
 }
 
 TEST(TetSplit, ACancelledRunEndsWithoutAMesh) {
