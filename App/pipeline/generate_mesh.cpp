@@ -79,6 +79,8 @@ std::vector<core::Diagnostic> small_features(const occ::Solid& solid, double siz
 void finish(MeshResult& result, const occ::Solid& solid, const MeshOptions& options,
             const core::Progress& progress) {
   if (result.stats.sub_volumes == 0) result.stats.sub_volumes = 1;
+  if (result.stats.sub_volume_schemes.empty())
+    result.stats.sub_volume_schemes.assign(result.stats.sub_volumes, result.stats.scheme);
 
   if (progress.cancelled()) {
     result.diagnostics.push_back(core::make_error("cancelled", "Meshing was cancelled."));
@@ -244,6 +246,7 @@ bool mesh_decomposed(const occ::Solid& solid, const MeshOptions& options, double
   std::map<std::string, int> count;
   for (const std::string& s : m.stats.schemes) ++count[s];
   result.stats.scheme = joined_schemes(m.stats.schemes);
+  result.stats.sub_volume_schemes = m.stats.schemes;
   result.stats.sub_volumes = n;
   result.stats.intervals = {0, 0, 0};
   result.stats.seconds_meshing = seconds_since(t0);
@@ -399,6 +402,7 @@ MeshResult generate_parts(const occ::Solid& whole, const MeshOptions& options, d
     if (m.ok) {
       result.mesh = std::move(m.mesh);
       result.stats.scheme = joined_schemes(m.stats.schemes);
+      result.stats.sub_volume_schemes = m.stats.schemes;
       result.stats.sub_volumes = whole.num_solids();
       result.stats.seconds_meshing = seconds_since(t0);
       std::ostringstream s;
@@ -436,6 +440,7 @@ MeshResult generate_parts(const occ::Solid& whole, const MeshOptions& options, d
     merged += mesh::append_part(result.mesh, whole, one.mesh, part, k + 1, tolerance).nodes_merged;
     if (std::find(schemes.begin(), schemes.end(), one.stats.scheme) == schemes.end())
       schemes.push_back(one.stats.scheme);
+    result.stats.sub_volume_schemes.push_back(one.stats.scheme);
     if (result.mesh.num_hexes() > options.max_hexes) {
       std::ostringstream s;
       s << "The solids' meshes have " << result.mesh.num_hexes() << " hexahedra after solid "

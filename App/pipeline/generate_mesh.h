@@ -50,6 +50,8 @@ struct MeshStats {
   // "tet-split" (the fallback); sub-volumes of a decomposition or several solids: their
   // schemes joined by "+" ("map+sweep")
   std::string scheme;
+  // Per sub-volume (SubVolume cell data 1, 2, ...): its scheme.
+  std::vector<std::string> sub_volume_schemes;
 };
 
 struct MeshResult {

@@ -234,6 +234,7 @@ class MeshStats:
         self.mesh_volume, self.cad_volume = c.mesh_volume, c.cad_volume
         self.max_boundary_distance = c.max_boundary_distance
         self.sub_volumes = s.sub_volumes
+        self.sub_volume_schemes = list(s.sub_volume_schemes)  # per sub-volume 1, 2, ...
         self.size_used = s.size_used
         self.intervals = tuple(s.intervals)
         self.scheme = s.scheme  # "map" (mapped block), "sweep" (one-to-one) or "midpoint"
@@ -324,6 +325,30 @@ class MeshResult:
     def hexes(self):
         """M x 8 zero-based node indices, VTK order."""
         return _hexes_of(self._mesh)
+
+    def sub_volume_table(self):
+        """Per sub-volume (SubVolume cell data 1, 2, ...; 0 for a solid meshed whole): a dict
+        with id, scheme, hexes and the min and mean scaled Jacobian of its hexes."""
+        ids = array("i", self._mesh.sub_volume_bytes())
+        sj = self._core.scaled_jacobian
+        schemes = list(self._core.stats.sub_volume_schemes)
+        rows = {}
+        for k, sv in enumerate(ids):
+            r = rows.setdefault(sv, {"id": sv, "hexes": 0, "min_scaled_jacobian": float("inf"),
+                                     "sum": 0.0})
+            r["hexes"] += 1
+            if k < len(sj):
+                r["min_scaled_jacobian"] = min(r["min_scaled_jacobian"], sj[k])
+                r["sum"] += sj[k]
+        table = []
+        for sv in sorted(rows):
+            r = rows[sv]
+            r["mean_scaled_jacobian"] = r.pop("sum") / r["hexes"]
+            # A solid meshed whole carries sub-volume 0 on its hexes: it is the one scheme.
+            k = max(sv, 1) - 1
+            r["scheme"] = schemes[k] if k < len(schemes) else ""
+            table.append(r)
+        return table
 
     def to_femmesh(self):
         """A Fem.FemMesh with the hexahedra in SMESH node order (1-based ids)."""

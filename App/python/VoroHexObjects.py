@@ -25,6 +25,10 @@ RESULTS = (
     ("VolumeError", "App::PropertyFloat", "Relative volume error of the mesh vs the solid"),
     ("ScaledJacobianHistogram", "App::PropertyIntegerList",
      "Hexes per scaled Jacobian bin of 0.1 from -1 to 1"),
+    ("SubVolumeSchemes", "App::PropertyStringList", "Per sub-volume (1, 2, ...): its scheme"),
+    ("SubVolumeHexCounts", "App::PropertyIntegerList", "Per sub-volume: its hexahedra"),
+    ("SubVolumeMinScaledJacobian", "App::PropertyFloatList",
+     "Per sub-volume: the smallest scaled Jacobian of its hexahedra"),
     ("Diagnostics", "App::PropertyStringList",
      "Messages of the last recompute, one per line: severity [code] message"),
     ("DiagnosticEntities", "App::PropertyStringList",
@@ -133,6 +137,10 @@ class HexMesh:
         obj.Scheme = s.scheme
         obj.VolumeError = s.volume_rel_error
         obj.ScaledJacobianHistogram = [int(c) for c in s.histogram]
+        table = result.sub_volume_table()
+        obj.SubVolumeSchemes = [r["scheme"] for r in table]
+        obj.SubVolumeHexCounts = [r["hexes"] for r in table]
+        obj.SubVolumeMinScaledJacobian = [float(r["min_scaled_jacobian"]) for r in table]
         obj.Status, obj.Message = "ok", result.message
         self.last_result = result  # for the task panel (not saved)
 

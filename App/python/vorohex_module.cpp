@@ -145,6 +145,7 @@ void bind_types(py::module_& m) {
       .def_readonly("min_sj_before_smoothing", &S::min_sj_before_smoothing)
       .def_readonly("mean_sj_before_smoothing", &S::mean_sj_before_smoothing)
       .def_readonly("sub_volumes", &S::sub_volumes)
+      .def_readonly("sub_volume_schemes", &S::sub_volume_schemes)
       .def_readonly("scheme", &S::scheme);
 
   // Flat option names: the one list VoroHex.py maps FreeCAD properties onto.

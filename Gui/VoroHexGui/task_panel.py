@@ -57,6 +57,22 @@ class TaskPanel:
             v = QtGui.QDoubleValidator(0.0, 1.0, 15, self.form)
             v.setNotation(QtGui.QDoubleValidator.ScientificNotation)
             getattr(self.form, name).setValidator(v)
+        # Sub-volumes of the last run; selecting one highlights the nodes of its hexahedra.
+        sv_box = QtGui.QGroupBox("Sub-volumes (select one to highlight it)", self.form)
+        sv_box.setObjectName("gb_sub_volumes")
+        self.sub_volumes = QtGui.QTableWidget(0, 4, sv_box)
+        self.sub_volumes.setObjectName("tw_sub_volumes")
+        self.sub_volumes.setHorizontalHeaderLabels(["id", "scheme", "hexes", "min SJ"])
+        self.sub_volumes.verticalHeader().setVisible(False)
+        self.sub_volumes.setSelectionBehavior(QtGui.QAbstractItemView.SelectRows)
+        self.sub_volumes.setSelectionMode(QtGui.QAbstractItemView.SingleSelection)
+        self.sub_volumes.setEditTriggers(QtGui.QAbstractItemView.NoEditTriggers)
+        self.sub_volumes.horizontalHeader().setStretchLastSection(True)
+        self.sub_volumes.setMinimumHeight(80)
+        self.sub_volumes.setMaximumHeight(140)
+        QtGui.QVBoxLayout(sv_box).addWidget(self.sub_volumes)
+        self.form.layout().addWidget(sv_box)
+        self.sub_volumes.itemSelectionChanged.connect(self.highlight_sub_volume)
         # Messages of the last run; selecting one selects the model entities it names.
         box = QtGui.QGroupBox("Messages (select one to highlight what it names)", self.form)
         box.setObjectName("gb_diagnostics")
@@ -157,6 +173,26 @@ class TaskPanel:
     def stop(self):
         self.stop_requested = True
 
+    def highlight_sub_volume(self):
+        """Highlights the nodes of the selected sub-volume's hexahedra in the mesh view."""
+        vobj = self.obj.ViewObject
+        if vobj is None or not hasattr(vobj, "HighlightedNodes"):
+            return
+        rows = {i.row() for i in self.sub_volumes.selectedIndexes()}
+        counts = list(self.obj.SubVolumeHexCounts)
+        if not rows or min(rows) >= len(counts):
+            vobj.HighlightedNodes = []
+            return
+        # The hexahedra of sub-volume k follow those of 1 .. k-1 (meshes are joined in that
+        # order), so its elements are one range of ids.
+        row = min(rows)
+        first = sum(counts[:row]) + 1
+        femmesh, nodes = self.obj.FemMesh, set()
+        for e in range(first, first + counts[row]):
+            nodes.update(femmesh.getElementNodes(e))
+        vobj.HighlightedNodes = sorted(nodes)
+        vobj.Visibility = True
+
     def highlight(self, row):
         """Selects, on the linked solid, the faces, edges and vertices message `row` names."""
         FreeCADGui.Selection.clearSelection()
@@ -175,6 +211,15 @@ class TaskPanel:
             part.ViewObject.Visibility = True  # the named entities are on the solid
 
     def show_result(self):
+        self.sub_volumes.setRowCount(0)
+        if self.obj.Status == "ok":
+            rows = list(zip(self.obj.SubVolumeSchemes, self.obj.SubVolumeHexCounts,
+                            self.obj.SubVolumeMinScaledJacobian))
+            self.sub_volumes.setRowCount(len(rows))
+            for k, (scheme, hexes, min_sj) in enumerate(rows):
+                for c, text in enumerate((str(k + 1), scheme, str(hexes), "{:.3f}".format(min_sj))):
+                    self.sub_volumes.setItem(k, c, QtGui.QTableWidgetItem(text))
+            self.sub_volumes.resizeColumnsToContents()
         self.diagnostics.clear()
         colours = {"error": "#b00000", "warning": "#a05a00"}
         entities = list(self.obj.DiagnosticEntities)

@@ -227,6 +227,49 @@ def main():
     pump(0.3)
     Gui.Selection.clearSelection()
 
+    # Sub-volumes: two blocks glued at a face (a block standing on a larger one), meshed
+    # with one interval assignment; the table lists both, selecting one highlights it.
+    two = doc.addObject("Part::Feature", "TwoBlocks")
+    two.Shape = Part.makeCompound([Part.makeBox(40, 20, 10),
+                                   Part.makeBox(20, 20, 15, FreeCAD.Vector(10, 0, 10))])
+    doc.recompute()
+    prism.ViewObject.Visibility = False
+    joined = VoroHexObjects.makeHexMesh(doc, two, "TwoBlocksMesh", size=2.5)
+    doc.recompute()
+    check(joined.Status == "ok" and joined.SubVolumeCount == 2,
+          "two glued blocks meshed as one: " + joined.Message)
+    check(list(joined.SubVolumeHexCounts) == [16 * 8 * 4, 8 * 8 * 6],
+          "hexes per sub-volume " + str(list(joined.SubVolumeHexCounts)))
+    two.ViewObject.Visibility = False
+    Gui.ActiveDocument.setEdit(joined.Name)
+    pump(1.0)
+    table = mw.findChild(QtGui.QTableWidget, "tw_sub_volumes")
+    check(table is not None and table.rowCount() == 2, "the panel's table lists 2 sub-volumes")
+    check([table.item(r, 1).text() for r in range(2)] == list(joined.SubVolumeSchemes),
+          "with their schemes " + str(list(joined.SubVolumeSchemes)))
+    table.selectRow(1)
+    pump(0.5)
+    check(len(joined.ViewObject.HighlightedNodes) == 9 * 9 * 7,
+          "selecting the upper block highlights its {} nodes".format(9 * 9 * 7))
+    view = Gui.ActiveDocument.ActiveView
+    view.viewIsometric()
+    view.fitAll()
+    cam = view.getCameraNode()
+    if hasattr(cam, "height"):
+        cam.height.setValue(cam.height.getValue() * 1.2)
+    for area in mw.findChildren(QtGui.QScrollArea):
+        if area.isVisible() and area.widget() and area.widget().findChild(
+                QtGui.QTableWidget, "tw_sub_volumes"):
+            bar = area.verticalScrollBar()
+            bar.setValue(bar.maximum() - 160)
+    pump(1.0)
+    sv_shot = os.path.splitext(SHOT)[0] + "_sub_volumes.png"
+    check(QtGui.QGuiApplication.primaryScreen().grabWindow(0).save(sv_shot),
+          "sub-volume screenshot saved to " + sv_shot)
+    task_ok_button(mw, QtGui.QDialogButtonBox.Cancel).click()
+    pump(0.3)
+    joined.ViewObject.HighlightedNodes = []
+
     # Inside an active FEM analysis the new mesh object joins it (as FEM's mesh commands do).
     import FemGui
     import ObjectsFem
@@ -239,7 +282,7 @@ def main():
     Gui.runCommand("VoroHex_HexMesh")
     pump(0.5)
     new = [o for o in doc.Objects
-           if o.isDerivedFrom("Fem::FemMeshObjectPython") and o not in (mesh, chamfered)]
+           if o.isDerivedFrom("Fem::FemMeshObjectPython") and o not in (mesh, chamfered, joined)]
     check(len(new) == 1 and new[0] in analysis.Group, "mesh object added to the analysis")
     task_ok_button(mw, QtGui.QDialogButtonBox.Cancel).click()
     pump(0.3)

@@ -1,5 +1,6 @@
 # FreeCAD unit tests of VoroHex (run: freecadcmd -t TestVoroHex -M <Mod/VoroHex>).
 # Registered through FreeCAD.__unit_test__ in Init.py.
+import array
 import math
 import os
 import re
@@ -233,6 +234,16 @@ class TestVoroHexApi(unittest.TestCase):
         self.assertEqual(r.stats.nodes, 2 * 3 * 5 * 7 - 5 * 7)
         self.assertAlmostEqual(r.stats.cad_volume, 12000, places=6)
         self.assertIn("solids_joined", [d.code for d in r.diagnostics])
+        # Per sub-volume: its scheme, hexes and quality; the hexes of each are one range.
+        self.assertEqual(r.stats.sub_volume_schemes, ["map", "map"])
+        table = r.sub_volume_table()
+        self.assertEqual([t["id"] for t in table], [1, 2])
+        self.assertEqual([t["hexes"] for t in table], [48, 48])
+        self.assertEqual([t["scheme"] for t in table], ["map", "map"])
+        self.assertAlmostEqual(table[0]["min_scaled_jacobian"], 1.0, places=9)
+        ids = array.array("i")
+        ids.frombytes(r.core_mesh.sub_volume_bytes())
+        self.assertEqual(list(ids), [1] * 48 + [2] * 48)
         # The graph and the decomposition take one solid and say so.
         with self.assertRaisesRegex(ValueError, "2 solids"):
             VoroHex.voronoi_graph(Part.makeCompound([self.box, other]))
@@ -501,6 +512,9 @@ class TestVoroHexObject(unittest.TestCase):
         self.assertEqual((obj.HexCount, obj.NodeCount), (48, 105))
         self.assertEqual((obj.FemMesh.VolumeCount, obj.FemMesh.NodeCount), (48, 105))
         self.assertEqual(obj.SubVolumeCount, 1)
+        self.assertEqual((list(obj.SubVolumeSchemes), list(obj.SubVolumeHexCounts)), (["map"], [48]))
+        self.assertAlmostEqual(obj.SubVolumeMinScaledJacobian[0], 1.0, places=9)
+        self.assertEqual(len(obj.Diagnostics), len(obj.DiagnosticEntities))
         self.assertAlmostEqual(obj.MinScaledJacobian, 1.0, places=9)
         self.assertEqual(sum(obj.ScaledJacobianHistogram), 48)
         self.assertTrue(VoroHex.check(obj.FemMesh, self.box.Shape).valid)
