@@ -251,8 +251,9 @@ bool mesh_decomposed(const occ::Solid& solid, const MeshOptions& options, double
   result.stats.intervals = {0, 0, 0};
   result.stats.seconds_meshing = seconds_since(t0);
   std::ostringstream s;
-  s << "Cut along its Voronoi graph into " << n << " sub-volumes (" << d.before_merge
-    << " before merging; ";
+  s << (d.method == "voronoi" ? "Cut along its Voronoi graph into "
+                              : "Cut along the planes of its concave edges into ")
+    << n << " sub-volumes (" << d.before_merge << " before merging; ";
   bool first = true;
   for (const auto& [name, k] : count)
     s << (first ? "" : ", ") << k << " " << (name == "map" ? "mapped" : "swept"), first = false;

@@ -7,6 +7,7 @@
 
 #include "core/isolated_call.h"
 #include "decompose/decompose.h"
+#include "decompose/plane_cuts.h"
 #include "occ/shape_io.h"
 #include "occ/split_solid.h"
 #include "voronoi/voronoi_graph.h"
@@ -15,9 +16,16 @@ namespace vorohex::pipeline::detail {
 
 namespace {
 
-// Runs in the child: "<before merge>\n" then the sub-volumes as one BREP compound, or
-// throws with the reason.
-std::string decompose_to_text(const occ::Solid& solid, double time_limit) {
+// "<before merge>\n<method>\n" then the sub-volumes as one BREP compound.
+std::string to_text(int before_merge, const char* method,
+                    const std::vector<const occ::Solid*>& solids) {
+  const std::string brep = occ::compound_brep_string(solids);
+  if (brep.empty()) throw std::runtime_error("its sub-volumes could not be written");
+  return std::to_string(before_merge) + "\n" + method + "\n" + brep;
+}
+
+// Runs in the child: the Voronoi decomposition, or throws with the reason.
+std::string voronoi_decomposition(const occ::Solid& solid, double time_limit) {
   const voronoi::VoronoiResult graph = voronoi::compute_voronoi_graph(solid);
   if (!graph.ok()) throw std::runtime_error("its Voronoi graph could not be computed");
   decompose::DecomposeOptions options;
@@ -45,9 +53,29 @@ std::string decompose_to_text(const occ::Solid& solid, double time_limit) {
                                "has no scheme (" + sv.reason + ")");
     solids.push_back(sv.solid.get());
   }
-  const std::string brep = occ::compound_brep_string(solids);
-  if (brep.empty()) throw std::runtime_error("its sub-volumes could not be written");
-  return std::to_string(d.stats.sub_volumes_before_merge) + "\n" + brep;
+  return to_text(d.stats.sub_volumes_before_merge, "voronoi", solids);
+}
+
+// Runs in the child: the Voronoi decomposition, else exact plane cuts at concave edges.
+std::string decompose_to_text(const occ::Solid& solid, double time_limit) {
+  const auto t0 = std::chrono::steady_clock::now();
+  std::string why;
+  try {
+    return voronoi_decomposition(solid, time_limit);
+  } catch (const std::exception& e) {
+    why = e.what();
+  }
+  decompose::PlaneCutOptions options;
+  options.time_limit = std::max(
+      1.0,
+      time_limit - std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  const decompose::PlaneCutResult cut = decompose::cut_at_concave_edges(solid, options);
+  if (!cut.ok)
+    throw std::runtime_error(why + "; cutting along the planes at its concave edges " +
+                             "did not help either (" + cut.why_not + ")");
+  std::vector<const occ::Solid*> solids;
+  for (const occ::Solid& s : cut.pieces) solids.push_back(&s);
+  return to_text(cut.pieces_before_merge, "plane cuts", solids);
 }
 
 }  // namespace
@@ -80,14 +108,16 @@ IsolatedDecomposition decompose_isolated(const occ::Solid& solid, double time_li
     }
   }
   const std::size_t eol = run.data.find('\n');
-  if (eol == std::string::npos) {
+  const std::size_t eol2 = eol == std::string::npos ? eol : run.data.find('\n', eol + 1);
+  if (eol2 == std::string::npos) {
     out.why_not = "its decomposition returned nothing";
     return out;
   }
   out.before_merge = std::atoi(run.data.substr(0, eol).c_str());
+  out.method = run.data.substr(eol + 1, eol2 - eol - 1);
   occ::ReadOptions ro;
   ro.several_solids = true;
-  occ::ReadResult r = occ::read_solid_from_brep_string(run.data.substr(eol + 1), ro);
+  occ::ReadResult r = occ::read_solid_from_brep_string(run.data.substr(eol2 + 1), ro);
   if (!r.ok()) {
     std::string m = r.diagnostics.empty() ? std::string() : r.diagnostics.front().message;
     out.why_not = "its sub-volumes could not be glued (" + m + ")";

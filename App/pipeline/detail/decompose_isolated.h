@@ -1,5 +1,6 @@
 // The decomposition as the mesh pipeline uses it: Voronoi graph and decomposition (with
-// merging) of a solid that no single scheme meshes, in a child process with a time limit
+// merging) of a solid that no single scheme meshes, else exact plane cuts at its concave
+// edges (decompose/plane_cuts.h), in a child process with a time limit
 // (core/isolated_call.h), since both can take minutes or much memory on complex parts
 // (HexMe's i-series): the pipeline then falls back instead of waiting. What comes back is
 // the sub-volumes glued at their common faces, when there are at least two and each has a
@@ -17,6 +18,7 @@ namespace vorohex::pipeline::detail {
 struct IsolatedDecomposition {
   std::unique_ptr<occ::Solid> pieces;  // glued sub-volumes (null: none usable)
   int before_merge = 0;                // sub-volumes of the first split
+  std::string method;                  // "voronoi", or "plane cuts" (decompose/plane_cuts.h)
   std::string why_not;                 // when pieces is null: a sentence fragment
   bool cancelled = false;              // stopped by `progress` (not by the time limit)
   double seconds = 0;

@@ -7,6 +7,7 @@
 
 #include <array>
 #include <chrono>
+#include <memory>
 
 #include "fixtures/diagnostics.h"
 #include "fixtures/solids.h"
@@ -49,14 +50,17 @@ TEST(GenerateMesh, PlanarSolidsAreValidAndGoodBeforeSmoothing) {
   }
 }
 
-// Neither one scheme nor the decomposition meshes the cut cube (its decomposition leaves a
-// sub-volume of 24 faces): without the fallback it is refused, saying why.
+// Neither one scheme nor a decomposition meshes a cylinder standing on a plate (its
+// Voronoi decomposition fails, and its concave edge borders a curved face, so there is no
+// exact plane to cut along): without the fallback it is refused, saying why.
 TEST(GenerateMesh, WithoutTheFallbackSolidsThatNothingMeshesAreRefused) {
-  const occ::Solid cut_cube = testing::make_cut_cube();
+  std::unique_ptr<occ::Solid> boss =
+      occ::fuse_solids(occ::make_box(4, 4, 1), occ::make_cylinder(1, 3));
+  ASSERT_TRUE(boss);
   MeshOptions opt;
   opt.size = 0.25;
   opt.fallback = false;
-  const MeshResult r = generate_mesh(cut_cube, opt);
+  const MeshResult r = generate_mesh(*boss, opt);
   EXPECT_FALSE(r.ok);
   EXPECT_EQ(r.mesh.num_hexes(), 0u);
   const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "not_supported_yet");
@@ -64,7 +68,44 @@ TEST(GenerateMesh, WithoutTheFallbackSolidsThatNothingMeshesAreRefused) {
   EXPECT_NE(d->message.find("Not a block"), std::string::npos) << d->message;
   // The user learns why the decomposition did not help.
   EXPECT_NE(d->message.find("its decomposition"), std::string::npos) << d->message;
-  EXPECT_NE(d->message.find("no scheme"), std::string::npos) << d->message;
+  EXPECT_NE(d->message.find("curved"), std::string::npos) << d->message;
+}
+
+// Solids that need several sub-volumes: a post on a plate and the cut cube. The Voronoi
+// decomposition does not give meshable sub-volumes for them (its cuts are placed only as
+// accurately as the embedding); exact plane cuts at their concave edges do, and the
+// sub-volumes are meshed into one conforming mesh: structured, no fallback, every hex a
+// cube.
+TEST(GenerateMesh, SolidsNeedingSeveralSubVolumesAreCutAndMeshedAsOne) {
+  std::vector<Named> solids;
+  solids.push_back({"post on plate", testing::make_post_on_plate()});
+  solids.push_back({"cut cube", testing::make_cut_cube()});
+  for (const Named& s : solids) {
+    SCOPED_TRACE(s.name);
+    MeshOptions opt;
+    opt.size = 0.25;
+    opt.fallback = false;
+    const MeshResult r = generate_mesh(s.solid, opt);
+    ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
+    EXPECT_GE(r.stats.sub_volumes, 2);
+    EXPECT_EQ(r.stats.sub_volume_schemes.size(), std::size_t(r.stats.sub_volumes));
+    EXPECT_NE(r.stats.scheme, "tet-split");
+    EXPECT_EQ(testing::find_diagnostic(r.diagnostics, "fallback"), nullptr);
+    const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "decomposed");
+    ASSERT_NE(d, nullptr);
+    EXPECT_NE(d->message.find("concave edges"), std::string::npos) << d->message;
+    EXPECT_GE(r.stats.min_sj_before_smoothing, 0.3);
+    EXPECT_GE(r.stats.mean_sj_before_smoothing, 0.85);
+    EXPECT_NEAR(r.check.mesh_volume, s.solid.volume(), 1e-9 * s.solid.volume());
+    EXPECT_EQ(r.check.open_boundary_edges, 0u);
+    EXPECT_EQ(r.check.boundary_quads + 2 * r.check.interior_quads, 6 * r.mesh.num_hexes());
+    // Nodes are classified on the solid's own entities, none on a cut.
+    for (std::size_t i = 0; i < r.mesh.num_nodes(); ++i) {
+      const core::NodeClass c = r.mesh.node_class(core::NodeId(std::int32_t(i)));
+      if (c.dim == 2) EXPECT_LE(c.id, s.solid.num_faces());
+      if (c.dim == 1) EXPECT_LE(c.id, s.solid.num_edges());
+    }
+  }
 }
 
 // Convex polyhedra that are neither blocks nor sweeps go through midpoint subdivision.

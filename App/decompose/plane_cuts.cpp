@@ -1,0 +1,184 @@
+#include "decompose/plane_cuts.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <set>
+#include <stdexcept>
+
+#include "core/option_checks.h"
+#include "mesh/map_block.h"
+#include "mesh/sweep.h"
+#include "occ/shape_io.h"
+#include "occ/split_solid.h"
+
+namespace vorohex::decompose {
+
+using core::EdgeId;
+using core::FaceId;
+using core::Vec3;
+
+void PlaneCutOptions::validate() const {
+  core::require_at_least("PlaneCutOptions.max_planes", max_planes, 1);
+  core::require_at_least("PlaneCutOptions.max_pieces", max_pieces, 2);
+  core::require_positive("PlaneCutOptions.time_limit", time_limit);
+}
+
+namespace {
+
+struct Plane {
+  Vec3 normal;        // unit
+  double offset = 0;  // normal . x = offset
+};
+
+bool meshable(const occ::Solid& s) {
+  return mesh::map_block_applicable(s).ok || mesh::sweep_applicable(s).ok;
+}
+
+// Each part of the glued pieces a block or a sweep (gluing imprints a neighbour's edges).
+bool all_meshable(const std::vector<const occ::Solid*>& pieces,
+                  std::unique_ptr<occ::Solid>* glued) {
+  occ::ReadResult r = occ::glue_solids(pieces, "The plane cut");
+  if (!r.ok()) return false;
+  for (int k = 0; k < r.solid->num_solids(); ++k)
+    if (!meshable(r.solid->part(k))) return false;
+  if (glued) *glued = std::move(r.solid);
+  return true;
+}
+
+// The planes of the planar faces at concave edges; false (with why) when a concave edge
+// has a curved face (no exact plane to cut along).
+bool concave_planes(const occ::Solid& s, std::vector<Plane>& planes, std::string& why) {
+  const double diag = s.diagonal(), eps = 1e-3 * diag, tol = 1e-7 * diag;
+  for (EdgeId e : s.edges()) {
+    if (s.edge_is_degenerated(e)) continue;
+    const std::vector<FaceId> faces = s.edge_faces(e);
+    if (faces.size() != 2) continue;
+    const std::vector<Vec3> p = s.edge_points_by_length(e, 2);
+    const Vec3 m = p[1];
+    const Vec3 t = (p[2] - p[0]).normalized();
+    const Vec3 n1 = s.face_normal(faces[0], m), n2 = s.face_normal(faces[1], m);
+    // The direction from the edge into the first face, across the edge.
+    Vec3 d1 = n1.cross(t).normalized();
+    if (s.distance_to_face(faces[0], m + eps * d1) > s.distance_to_face(faces[0], m - eps * d1))
+      d1 = -d1;
+    if (d1.dot(n2) <= std::sin(M_PI / 180)) continue;  // convex or smooth
+    for (FaceId f : faces) {
+      if (!s.face_is_planar(f)) {
+        why = "its concave " + core::entity_name(e) + " borders the curved " +
+              core::entity_name(f) + " (no plane to cut along)";
+        return false;
+      }
+      const Vec3 n = s.face_normal(f, m);
+      Plane pl{n, n.dot(m)};
+      if (pl.normal.x() + 1e-12 * pl.normal.y() + 1e-24 * pl.normal.z() < 0)
+        pl.normal = -pl.normal, pl.offset = -pl.offset;
+      bool known = false;
+      for (const Plane& q : planes)
+        known =
+            known || (q.normal.dot(pl.normal) > 1 - 1e-9 && std::abs(q.offset - pl.offset) <= tol);
+      if (!known) planes.push_back(pl);
+    }
+  }
+  return true;
+}
+
+// A square on the plane covering the solid (its tool face for the splitter).
+std::vector<Vec3> covering_square(const occ::Solid& s, const Plane& pl) {
+  const core::BoundingBox box = s.bounding_box();
+  const Vec3 centre = 0.5 * (box.min + box.max);
+  const Vec3 c = centre - (pl.normal.dot(centre) - pl.offset) * pl.normal;
+  const Vec3 any = std::abs(pl.normal.x()) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
+  const Vec3 u = pl.normal.cross(any).normalized(), v = pl.normal.cross(u);
+  const double h = 2 * s.diagonal();
+  return {c - h * u - h * v, c + h * u - h * v, c + h * u + h * v, c - h * u + h * v};
+}
+
+bool boxes_touch(const occ::Solid& a, const occ::Solid& b) {
+  const core::BoundingBox p = a.bounding_box(), q = b.bounding_box();
+  const double tol = 1e-6 * std::max(p.diagonal(), q.diagonal());
+  for (int i = 0; i < 3; ++i)
+    if (p.min[i] > q.max[i] + tol || q.min[i] > p.max[i] + tol) return false;
+  return true;
+}
+
+}  // namespace
+
+PlaneCutResult cut_at_concave_edges(const occ::Solid& solid, const PlaneCutOptions& options,
+                                    const core::Progress& progress) {
+  options.validate();
+  PlaneCutResult r;
+  const auto t0 = std::chrono::steady_clock::now();
+  auto seconds = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
+  std::vector<Plane> planes;
+  if (!concave_planes(solid, planes, r.why_not)) return r;
+  if (planes.empty()) {
+    r.why_not = "it has no concave edge to cut at";
+    return r;
+  }
+  if (int(planes.size()) > options.max_planes) {
+    r.why_not = "its concave edges give " + std::to_string(planes.size()) +
+                " cut planes, more than " + std::to_string(options.max_planes);
+    return r;
+  }
+  std::vector<std::vector<Vec3>> tools;
+  for (const Plane& pl : planes) tools.push_back(covering_square(solid, pl));
+  occ::SplitResult split =
+      occ::split_solid(solid, tools, 1e-6 * solid.diagonal(), options.time_limit);
+  if (!split.ok) {
+    r.why_not = "OCCT could not cut it along the planes of its concave edges";
+    return r;
+  }
+  r.planes = int(planes.size());
+  r.pieces_before_merge = int(split.pieces.size());
+  if (r.pieces_before_merge > options.max_pieces) {
+    r.why_not = "the planes of its concave edges cut it into " +
+                std::to_string(r.pieces_before_merge) + " pieces, more than " +
+                std::to_string(options.max_pieces);
+    return r;
+  }
+  std::vector<occ::Solid> pieces = std::move(split.pieces);
+  auto pointers = [](const std::vector<occ::Solid>& v) {
+    std::vector<const occ::Solid*> out;
+    for (const occ::Solid& s : v) out.push_back(&s);
+    return out;
+  };
+  if (!all_meshable(pointers(pieces), nullptr)) {
+    r.why_not =
+        "the planes of its concave edges leave a piece that is neither a block nor "
+        "a sweep";
+    return r;
+  }
+  progress.report("plane_cuts", 0.5);
+  // Merge neighbours while the union is a block or a sweep and all pieces stay so once
+  // glued (a union must not leave a T-junction on a neighbour's face).
+  for (bool merged = true; merged && pieces.size() > 1 && seconds() < options.time_limit;) {
+    merged = false;
+    for (std::size_t a = 0; a < pieces.size() && !merged; ++a)
+      for (std::size_t b = a + 1; b < pieces.size() && !merged; ++b) {
+        if (seconds() >= options.time_limit || progress.cancelled()) break;
+        if (!boxes_touch(pieces[a], pieces[b])) continue;
+        std::unique_ptr<occ::Solid> u = occ::fuse_solids(pieces[a], pieces[b]);
+        if (!u || !meshable(*u)) continue;
+        std::vector<occ::Solid> next;
+        for (std::size_t k = 0; k < pieces.size(); ++k)
+          if (k != a && k != b) next.push_back(pieces[k].clone());
+        next.push_back(std::move(*u));
+        if (!all_meshable(pointers(next), nullptr)) continue;
+        pieces = std::move(next);
+        merged = true;
+      }
+  }
+  progress.report("plane_cuts", 1.0);
+  r.pieces = std::move(pieces);
+  r.ok = r.pieces.size() >= 2;
+  if (!r.ok) r.why_not = "its plane cuts merge back into one piece";
+  return r;
+}
+
+}  // namespace vorohex::decompose

@@ -1,0 +1,39 @@
+// Decomposition by exact plane cuts at concave edges: the cut the Voronoi decomposition
+// approximates at a concave model edge between two planar faces is the extension of one
+// of those faces into the solid (the L's corner cut, the cut under a post standing on a
+// plate). Computed exactly, with the whole plane through the solid (so that the pieces
+// meet face to face, without T-junctions), then pieces whose union stays a block or a
+// sweep once glued to its neighbours are merged again. The pipeline uses it when the
+// Voronoi decomposition does not give sub-volumes every scheme accepts: its cuts are placed
+// only as accurately as the graph's embedding, and OCCT's split of nearly coincident faces
+// fails or leaves slivers on simple parts.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/progress.h"
+#include "occ/solid.h"
+
+namespace vorohex::decompose {
+
+struct PlaneCutOptions {
+  int max_planes = 16;     // more distinct cut planes than this: not attempted (>= 1)
+  int max_pieces = 60;     // more pieces after cutting: not attempted (>= 2)
+  double time_limit = 30;  // seconds for the whole (> 0); OCCT splits stop at it
+  void validate() const;   // throws std::invalid_argument naming the bad field
+};
+
+struct PlaneCutResult {
+  std::vector<occ::Solid> pieces;  // each a block or a sweep once glued to the others
+  int planes = 0;                  // distinct cut planes used
+  int pieces_before_merge = 0;
+  bool ok = false;
+  std::string why_not;  // when not ok: a sentence fragment
+};
+
+// Only solids whose concave edges all lie between planar faces are attempted.
+PlaneCutResult cut_at_concave_edges(const occ::Solid& solid, const PlaneCutOptions& options = {},
+                                    const core::Progress& progress = {});
+
+}  // namespace vorohex::decompose
