@@ -225,6 +225,75 @@ def main():
     close_panel(mw)
     check(not Gui.Control.activeDialog() and quality_view.current is None
           and not panel.colours, "quality panel closed, colours reset")
+    mesh.ViewObject.Visibility = False
+
+    # The paper's Figure 6 part as its caption describes it: a hexagonal ring whose six
+    # walls (the "main faces") meet in six corners, with six triangular protrusions, each
+    # a thin region holding an f_s face. Its graph, with the counts per type; its mesh.
+    figure6 = doc.addObject("Part::Feature", "Figure6Part")
+    figure6.Shape = figure6_shape()
+    doc.recompute()
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(figure6)
+    pump()
+    Gui.runCommand("VoroHex_VoronoiGraph")
+    pump(0.5)
+    g6 = [o for o in doc.Objects if hasattr(o, "SegmentTypes") and o != g]
+    check(len(g6) == 1 and g6[0].Status == "ok", "Figure 6 part: graph computed")
+    graph6 = VoroHex.voronoi_graph(figure6)
+    table = mw.findChild(QtGui.QTableWidget, "tbl_edge_types")
+    shown = {table.item(r, 0).text(): int(table.item(r, 1).text())
+             for r in range(table.rowCount())}
+    expected6 = graph6.type_counts()
+    check(all(shown[t] == n for t, n in expected6.items()) and sum(shown.values()) ==
+          graph6.counts["edges"], "Figure 6 part: legend counts equal the graph's {}".format(
+              expected6))
+    check(graph6.counts["f_s"] >= 6 + 6,
+          "f_s faces in the six walls and six protrusions ({})".format(
+              graph6.counts["f_s"]))
+    figure6.ViewObject.Transparency = 80
+    view.viewIsometric()
+    view.fitAll()
+    pump(0.5)
+    fig6_shot = SHOT.replace("gui_voronoi_l", "gui_voronoi_figure6")
+    check(QtGui.QGuiApplication.primaryScreen().grabWindow(0).save(fig6_shot),
+          "screenshot saved to " + fig6_shot)
+    close_panel(mw)
+    g6[0].ViewObject.Visibility = False
+    mesh6 = VoroHexObjects.makeHexMesh(doc, figure6, "Figure6Mesh", size=0.5)
+    doc.recompute()
+    check(mesh6.Status == "ok" and mesh6.MinScaledJacobianBeforeSmoothing >= 0.3,
+          "Figure 6 part meshed ({}, min scaled Jacobian {:.3f})".format(
+              mesh6.Scheme, mesh6.MinScaledJacobianBeforeSmoothing))
+    figure6.ViewObject.Visibility = False
+    view.viewIsometric()
+    view.fitAll()
+    pump(0.5)
+    mesh6_shot = SHOT.replace("gui_voronoi_l", "gui_hexmesh_figure6")
+    check(QtGui.QGuiApplication.primaryScreen().grabWindow(0).save(mesh6_shot),
+          "screenshot saved to " + mesh6_shot)
+
+
+def figure6_shape():
+    """Hexagonal ring (outer circumradius 5, inner 4, height 3) with a triangular
+    protrusion (base 1.5, 1.5 out) in the middle of each outer wall; tests/cpp/fixtures."""
+    import math
+
+    import Part
+
+    V = FreeCAD.Vector
+    outer, inner = [], []
+    apothem = 5 * math.cos(math.pi / 6)
+    for k in range(6):
+        a0, am = math.pi / 3 * k, math.pi / 3 * (k + 0.5)
+        cx, cy = apothem * math.cos(am), apothem * math.sin(am)
+        tx, ty = -math.sin(am), math.cos(am)
+        outer += [V(5 * math.cos(a0), 5 * math.sin(a0), 0), V(cx - 0.75 * tx, cy - 0.75 * ty, 0),
+                  V((apothem + 1.5) * math.cos(am), (apothem + 1.5) * math.sin(am), 0),
+                  V(cx + 0.75 * tx, cy + 0.75 * ty, 0)]
+        inner.append(V(4 * math.cos(a0), 4 * math.sin(a0), 0))
+    face = Part.Face([Part.makePolygon(outer + outer[:1]), Part.makePolygon(inner + inner[:1])])
+    return face.extrude(V(0, 0, 3))
 
 
 def close_panel(mw):

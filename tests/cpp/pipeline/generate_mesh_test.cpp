@@ -35,6 +35,7 @@ TEST(GenerateMesh, PlanarSolidsAreValidAndGoodBeforeSmoothing) {
   solids.push_back({"U", testing::make_u()});
   solids.push_back({"plate with square holes", testing::make_plate_with_square_holes()});
   solids.push_back({"stepped block", testing::make_stepped_block()});
+  solids.push_back({"Figure 6 part", testing::make_figure6_part()});
   for (const Named& s : solids) {
     SCOPED_TRACE(s.name);
     MeshOptions opt;
