@@ -13,7 +13,9 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "mesh/interval_assignment.h"
 #include "mesh/quad_face.h"
+#include "mesh/submap_face.h"
 
 namespace vorohex::mesh {
 
@@ -195,6 +197,8 @@ struct Plan {
   // Source (and target) meshed by transfinite interpolation: grid[0] x grid[1] segments
   // (0 when the source went through quad_face).
   std::array<int, 2> grid{0, 0};
+  // Source (and target) submapped: the direction of each source edge (empty otherwise).
+  std::vector<int> submap;
   std::vector<std::vector<int>> counts;         // intervals per source loop edge
   std::vector<std::vector<Vec3>> source_loops;  // source boundary nodes per loop
   QuadFaceMesh source_mesh;
@@ -269,6 +273,14 @@ QuadFaceMesh grid_source(const Solid& solid, FaceId face, const std::vector<Vec3
   return m;
 }
 
+// Whether the counts balance along the submap directions (+u = -u, +v = -v).
+bool balanced(const std::vector<int>& dirs, const std::vector<int>& counts) {
+  if (dirs.empty() || dirs.size() != counts.size()) return false;
+  int sum[4] = {0, 0, 0, 0};
+  for (std::size_t e = 0; e < dirs.size(); ++e) sum[dirs[e]] += counts[e];
+  return sum[0] == sum[2] && sum[1] == sum[3];
+}
+
 // Planning with the intervals given per edge: checked, not chosen.
 Plan plan_given(const Solid& solid, const SweepOptions& options, Plan p) {
   const Topology& t = p.topo;
@@ -312,8 +324,12 @@ Plan plan_given(const Solid& solid, const SweepOptions& options, Plan p) {
     }
     const bool grid =
         t.loops.size() == 1 && loop.size() == 4 && counts[0] == counts[2] && counts[1] == counts[3];
+    const std::vector<int> dirs =
+        t.loops.size() == 1 ? submap_directions(solid, t.source) : std::vector<int>();
     if (grid)
       p.grid = {counts[0], counts[1]};
+    else if (balanced(dirs, counts))
+      p.submap = dirs;
     else if (total % 2 != 0 || total < (t.loops.size() == 1 ? 4 : 6))
       return refuse("loop " + std::to_string(li + 1) + " of " + name(t.source) + " has " +
                         std::to_string(total) + " segments (quads need an even number, at least " +
@@ -329,6 +345,12 @@ Plan plan_given(const Solid& solid, const SweepOptions& options, Plan p) {
   }
   if (p.grid[0] > 0) {
     p.source_mesh = grid_source(solid, t.source, p.source_loops[0], p.grid[0], p.grid[1]);
+  } else if (!p.submap.empty()) {
+    p.source_mesh = submap_face(solid, t.source, p.source_loops[0], p.counts[0], p.submap);
+    if (!p.source_mesh.ok) {
+      p.diagnostics = p.source_mesh.diagnostics;
+      return p;
+    }
   } else {
     QuadFaceOptions qo;
     qo.size = options.size;
@@ -365,9 +387,44 @@ Plan plan(const Solid& solid, const SweepOptions& options) {
     const double k = std::max(1.0, std::round(t.link_length / options.size));
     if (k > options.max_intervals) return too_many(t.link_length, k, {});
     p.layers = int(k);
+    // A submappable source (an L, a T, a stepped outline): counts from one interval
+    // assignment so that opposite directions balance, and the lattice mesh.
+    if (t.loops.size() == 1) {
+      const std::vector<int> dirs = submap_directions(solid, t.source);
+      if (!dirs.empty()) {
+        IntervalProblem ip;
+        IntervalProblem::Equal u{{}, {}, name(t.source) + ": +u and -u sides"},
+            v{{}, {}, name(t.source) + ": +v and -v sides"};
+        for (std::size_t e = 0; e < t.loops[0].size(); ++e) {
+          const EdgeId edge = t.loops[0][e].source.edge;
+          const int c = ip.add_curve(solid.edge_length(edge), name(edge));
+          (dirs[e] == 0 ? u.lhs : dirs[e] == 2 ? u.rhs : dirs[e] == 1 ? v.lhs : v.rhs).push_back(c);
+        }
+        ip.equal = {u, v};
+        IntervalOptions io;
+        io.size = options.size;
+        io.max_intervals = options.max_intervals;
+        const IntervalResult assigned = assign_intervals(ip, io);
+        if (assigned.ok()) {
+          std::vector<Vec3> nodes;
+          for (std::size_t e = 0; e < t.loops[0].size(); ++e) {
+            auto pts = read_edge(solid, t.loops[0][e].source, assigned.intervals[e]);
+            nodes.insert(nodes.end(), pts.begin(), pts.end() - 1);
+          }
+          QuadFaceMesh lattice = submap_face(solid, t.source, nodes, assigned.intervals, dirs);
+          if (lattice.ok) {
+            p.counts = {assigned.intervals};
+            p.source_loops = {std::move(nodes)};
+            p.source_mesh = std::move(lattice);
+            p.submap = dirs;
+          }
+        }
+      }
+    }
     // Source edges: their own counts, each even so that every model vertex is a coarse node
     // of the quad mesher; loops of at least 6 (4 for a face without holes).
     for (const auto& loop : t.loops) {
+      if (!p.submap.empty()) break;
       std::vector<int> counts;
       std::vector<double> lengths;
       int total = 0;
@@ -397,13 +454,15 @@ Plan plan(const Solid& solid, const SweepOptions& options) {
       }
       p.source_loops.push_back(std::move(nodes));
     }
-    QuadFaceOptions qo;
-    qo.size = options.size;
-    qo.smoothing_passes = options.smoothing_passes;
-    p.source_mesh = quad_face(solid, t.source, p.source_loops, qo);
-    if (!p.source_mesh.ok) {
-      p.diagnostics = p.source_mesh.diagnostics;
-      return p;
+    if (p.submap.empty()) {
+      QuadFaceOptions qo;
+      qo.size = options.size;
+      qo.smoothing_passes = options.smoothing_passes;
+      p.source_mesh = quad_face(solid, t.source, p.source_loops, qo);
+      if (!p.source_mesh.ok) {
+        p.diagnostics = p.source_mesh.diagnostics;
+        return p;
+      }
     }
     const double nodes = double(p.source_mesh.points.size()) * (p.layers + 1);
     if (nodes > double(std::numeric_limits<std::int32_t>::max())) {
@@ -600,14 +659,19 @@ SweepResult sweep(const occ::Solid& solid, const SweepOptions& options,
     to_target.fit(xt);
     // A grid source has a grid target: transfinite interpolation of the target's own
     // boundary nodes (what a neighbour meshing that face as a mapped face computes).
-    const std::vector<Vec3> grid_target =
+    std::vector<Vec3> grid_target =
         p.grid[0] > 0 ? grid_inner_nodes(solid, t.target, xt, p.grid[0], p.grid[1])
                       : std::vector<Vec3>();
+    if (!p.submap.empty()) {  // the same lattice on the target's own boundary nodes
+      const QuadFaceMesh tm = submap_face(solid, t.target, xt, p.counts[0], p.submap);
+      if (!tm.ok) throw std::runtime_error("the target could not be submapped");
+      grid_target.assign(tm.points.begin() + nb, tm.points.end());
+    }
     for (std::size_t j = nb; j < M; ++j) {
       P[id(0, j)] = sm.points[j];
       C[id(0, j)] = NodeClass::on(t.source);
-      P[id(K, j)] = p.grid[0] > 0 ? grid_target[j - nb]
-                                  : solid.project_to_face(t.target, to_target(sm.points[j]));
+      P[id(K, j)] = !grid_target.empty() ? grid_target[j - nb]
+                                         : solid.project_to_face(t.target, to_target(sm.points[j]));
       C[id(K, j)] = NodeClass::on(t.target);
     }
   } catch (const std::exception& e) {
