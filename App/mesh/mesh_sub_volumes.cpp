@@ -98,16 +98,10 @@ void add_constraints(Curves& c, const occ::Solid& pieces, const Part& part, int 
   // A submappable source (rectilinear outline): +u and -u sides balance, +v and -v too.
   const std::vector<int> dirs = submap_directions(part.solid, s.source);
   if (!dirs.empty() && dirs.size() == s.loops[0].size()) {
-    IntervalProblem::Equal u{
-        {}, {}, who + " (sweep): +u and -u sides of its source " + core::entity_name(s.source)};
-    IntervalProblem::Equal v{
-        {}, {}, who + " (sweep): +v and -v sides of its source " + core::entity_name(s.source)};
-    for (std::size_t e = 0; e < dirs.size(); ++e) {
-      const int c = cv(s.loops[0][e].first);
-      (dirs[e] == 0 ? u.lhs : dirs[e] == 2 ? u.rhs : dirs[e] == 1 ? v.lhs : v.rhs).push_back(c);
-    }
-    c.problem.equal.push_back(std::move(u));
-    c.problem.equal.push_back(std::move(v));
+    std::vector<int> curves;
+    for (const auto& st : s.loops[0]) curves.push_back(cv(st.first));
+    add_submap_balance(c.problem, dirs, curves,
+                       who + " (sweep): its source " + core::entity_name(s.source));
     return;
   }
   // Unstructured quads on the source: each edge even (model vertices stay coarse nodes of

@@ -1,5 +1,7 @@
 #include "mesh/submap_face.h"
 
+#include "mesh/detail/quad_quality.h"
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
@@ -125,34 +127,24 @@ QuadFaceMesh submap_face(const occ::Solid& solid, core::FaceId face, const std::
     }
     if (moved <= tol) break;
   }
-  // Quality of the quads (2-D scaled Jacobian about the face normal, or its opposite when
-  // the loop runs the other way round, as a sweep's target seen in its source's order).
-  double orientation = 0;
-  for (const auto& q : m.quads) {
-    const Vec3 a = m.points[q[1]] - m.points[q[0]], b = m.points[q[3]] - m.points[q[0]];
-    orientation += a.cross(b).dot(solid.face_normal(face, m.points[q[0]]));
-  }
-  const double sign = orientation < 0 ? -1.0 : 1.0;
-  double sum = 0;
-  m.min_quality = 1;
-  for (const auto& q : m.quads) {
-    Vec3 c = Vec3::Zero();
-    for (int v : q) c += m.points[v] / 4;
-    const Vec3 n = sign * solid.face_normal(face, c);
-    double worst = 1;
-    for (int a = 0; a < 4; ++a) {
-      const Vec3 e1 = m.points[q[(a + 1) % 4]] - m.points[q[a]];
-      const Vec3 e2 = m.points[q[(a + 3) % 4]] - m.points[q[a]];
-      const double l = e1.norm() * e2.norm();
-      worst = std::min(worst, l > 0 ? e1.cross(e2).dot(n) / l : -1.0);
-    }
-    m.min_quality = std::min(m.min_quality, worst);
-    sum += worst;
-  }
-  m.mean_quality = m.quads.empty() ? 0 : sum / double(m.quads.size());
+  detail::measure_quads(solid, face, m);
   if (m.quads.empty() || m.min_quality <= 0) return fail("its lattice folds");
   m.ok = true;
   return m;
+}
+
+void add_submap_balance(IntervalProblem& problem, const std::vector<int>& directions,
+                        const std::vector<int>& curves, const std::string& why) {
+  IntervalProblem::Equal u{{}, {}, why + ": +u and -u sides"};
+  IntervalProblem::Equal v{{}, {}, why + ": +v and -v sides"};
+  for (std::size_t e = 0; e < directions.size() && e < curves.size(); ++e)
+    (directions[e] == 0   ? u.lhs
+     : directions[e] == 2 ? u.rhs
+     : directions[e] == 1 ? v.lhs
+                          : v.rhs)
+        .push_back(curves[e]);
+  problem.equal.push_back(std::move(u));
+  problem.equal.push_back(std::move(v));
 }
 
 }  // namespace vorohex::mesh

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/geometry.h"
+#include "mesh/interval_assignment.h"
 #include "mesh/quad_face.h"
 #include "occ/solid.h"
 
@@ -25,5 +26,10 @@ std::vector<int> submap_directions(const occ::Solid& solid, core::FaceId face);
 QuadFaceMesh submap_face(const occ::Solid& solid, core::FaceId face,
                          const std::vector<core::Vec3>& loop, const std::vector<int>& counts,
                          const std::vector<int>& directions);
+
+// Adds the face's two balance constraints (+u = -u, +v = -v) to an interval problem;
+// `curves`: the problem's curve of each wire edge; `why` names the face for diagnostics.
+void add_submap_balance(IntervalProblem& problem, const std::vector<int>& directions,
+                        const std::vector<int>& curves, const std::string& why);
 
 }  // namespace vorohex::mesh

@@ -13,6 +13,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "mesh/detail/quad_quality.h"
 #include "mesh/interval_assignment.h"
 #include "mesh/quad_face.h"
 #include "mesh/submap_face.h"
@@ -248,29 +249,23 @@ QuadFaceMesh grid_source(const Solid& solid, FaceId face, const std::vector<Vec3
     if (i == 0) return (2 * n0 + n1 + (n1 - j)) % int(loop.size());
     return int(loop.size()) + (j - 1) * (n0 - 1) + (i - 1);
   };
-  double sum = 0;
-  m.min_quality = 1;
   for (int j = 0; j < n1; ++j)
-    for (int i = 0; i < n0; ++i) {
-      const std::array<int, 4> q{index(i, j), index(i + 1, j), index(i + 1, j + 1),
-                                 index(i, j + 1)};
-      m.quads.push_back(q);
-      Vec3 c = Vec3::Zero();
-      for (int v : q) c += m.points[v] / 4;
-      const Vec3 n = solid.face_normal(face, c);
-      double worst = 1;
-      for (int a = 0; a < 4; ++a) {
-        const Vec3 e1 = m.points[q[(a + 1) % 4]] - m.points[q[a]];
-        const Vec3 e2 = m.points[q[(a + 3) % 4]] - m.points[q[a]];
-        const double l = e1.norm() * e2.norm();
-        worst = std::min(worst, l > 0 ? e1.cross(e2).dot(n) / l : -1.0);
-      }
-      m.min_quality = std::min(m.min_quality, worst);
-      sum += worst;
-    }
-  m.mean_quality = m.quads.empty() ? 0 : sum / double(m.quads.size());
+    for (int i = 0; i < n0; ++i)
+      m.quads.push_back({index(i, j), index(i + 1, j), index(i + 1, j + 1), index(i, j + 1)});
+  detail::measure_quads(solid, face, m);
   m.ok = true;
   return m;
+}
+
+// The source by the general quad mesher (any face, holes included); false with its
+// diagnostics when it fails.
+bool mesh_source_unstructured(const Solid& solid, const SweepOptions& options, Plan& p) {
+  QuadFaceOptions qo;
+  qo.size = options.size;
+  qo.smoothing_passes = options.smoothing_passes;
+  p.source_mesh = quad_face(solid, p.topo.source, p.source_loops, qo);
+  if (!p.source_mesh.ok) p.diagnostics = p.source_mesh.diagnostics;
+  return p.source_mesh.ok;
 }
 
 // Whether the counts balance along the submap directions (+u = -u, +v = -v).
@@ -351,15 +346,8 @@ Plan plan_given(const Solid& solid, const SweepOptions& options, Plan p) {
       p.diagnostics = p.source_mesh.diagnostics;
       return p;
     }
-  } else {
-    QuadFaceOptions qo;
-    qo.size = options.size;
-    qo.smoothing_passes = options.smoothing_passes;
-    p.source_mesh = quad_face(solid, t.source, p.source_loops, qo);
-    if (!p.source_mesh.ok) {
-      p.diagnostics = p.source_mesh.diagnostics;
-      return p;
-    }
+  } else if (!mesh_source_unstructured(solid, options, p)) {
+    return p;
   }
   p.ok = true;
   return p;
@@ -393,14 +381,10 @@ Plan plan(const Solid& solid, const SweepOptions& options) {
       const std::vector<int> dirs = submap_directions(solid, t.source);
       if (!dirs.empty()) {
         IntervalProblem ip;
-        IntervalProblem::Equal u{{}, {}, name(t.source) + ": +u and -u sides"},
-            v{{}, {}, name(t.source) + ": +v and -v sides"};
-        for (std::size_t e = 0; e < t.loops[0].size(); ++e) {
-          const EdgeId edge = t.loops[0][e].source.edge;
-          const int c = ip.add_curve(solid.edge_length(edge), name(edge));
-          (dirs[e] == 0 ? u.lhs : dirs[e] == 2 ? u.rhs : dirs[e] == 1 ? v.lhs : v.rhs).push_back(c);
-        }
-        ip.equal = {u, v};
+        std::vector<int> curves;
+        for (const Link& l : t.loops[0])
+          curves.push_back(ip.add_curve(solid.edge_length(l.source.edge), name(l.source.edge)));
+        add_submap_balance(ip, dirs, curves, name(t.source));
         IntervalOptions io;
         io.size = options.size;
         io.max_intervals = options.max_intervals;
@@ -454,16 +438,7 @@ Plan plan(const Solid& solid, const SweepOptions& options) {
       }
       p.source_loops.push_back(std::move(nodes));
     }
-    if (p.submap.empty()) {
-      QuadFaceOptions qo;
-      qo.size = options.size;
-      qo.smoothing_passes = options.smoothing_passes;
-      p.source_mesh = quad_face(solid, t.source, p.source_loops, qo);
-      if (!p.source_mesh.ok) {
-        p.diagnostics = p.source_mesh.diagnostics;
-        return p;
-      }
-    }
+    if (p.submap.empty() && !mesh_source_unstructured(solid, options, p)) return p;
     const double nodes = double(p.source_mesh.points.size()) * (p.layers + 1);
     if (nodes > double(std::numeric_limits<std::int32_t>::max())) {
       p.diagnostics.push_back(core::make_error(
