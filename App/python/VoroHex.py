@@ -531,8 +531,11 @@ def _voronoi_options(eps, delta, max_depth, linear_tolerance):
     return opts
 
 
+Cancelled = _core.Cancelled  # raised when a progress callback returns False
+
+
 def voronoi_graph(shape, eps=None, delta=None, max_depth=None, linear_tolerance=None,
-                  sharp_angle=None):
+                  sharp_angle=None, progress=None):
     """The embedded Voronoi graph of the one solid in `shape` (a Part.Shape or feature).
 
     eps: merge tolerance / finest cell, delta: embedding accuracy, linear_tolerance: chord
@@ -541,7 +544,9 @@ def voronoi_graph(shape, eps=None, delta=None, max_depth=None, linear_tolerance=
     VoronoiGraph; bad values raise ValueError naming the option, bad shapes ShapeError.
     Every edge element gets "type", its class for the decomposition ("[0]", "[1]", "[1s]",
     "[2]", "[3]", "[1e]", "[0e]", "[C]", "degenerate" or "none"); sharp_angle (degrees,
-    default 60) is the dihedral below which a [1] edge is [1s].
+    default 60) is the dihedral below which a [1] edge is [1s]. It is computed in a child
+    process: progress(stage, fraction) is called about every 0.2 s and may return False to
+    stop it (VoroHex.Cancelled is raised).
     """
     opts = _voronoi_options(eps, delta, max_depth, linear_tolerance)
     angle = 60.0 if sharp_angle is None else _number("sharp_angle", sharp_angle)
@@ -549,7 +554,7 @@ def voronoi_graph(shape, eps=None, delta=None, max_depth=None, linear_tolerance=
         raise ValueError("VoroHex: option 'sharp_angle' must be in (0, 180], got {}".format(
             angle))
     solid = _read_solid(check_shape(shape))
-    text, types = _core.typed_voronoi_graph(solid, opts, angle)
+    text, types = _core.typed_voronoi_graph(solid, opts, angle, progress)
     graph = VoronoiGraph(json.loads(text))
     by_id = dict(types)
     for e in graph.elements:
@@ -590,12 +595,13 @@ class Decomposition:
 
 
 def decompose(shape, sharp_angle=None, merge=True, vtp=None, eps=None, delta=None,
-              max_depth=None, linear_tolerance=None):
+              max_depth=None, linear_tolerance=None, progress=None):
     """Cuts the one solid in `shape` into sweepable and mappable sub-volumes along its
     embedded Voronoi graph (vorohex decompose). sharp_angle: degrees in (0, 180] below
     which a dihedral counts as sharp (default 60); merge: unite neighbours whose union is
     a sweep; vtp: a path to write the decomposition faces to (VTK PolyData); the graph
-    options are those of voronoi_graph. Returns a Decomposition."""
+    options are those of voronoi_graph; progress as for voronoi_graph. Returns a
+    Decomposition."""
     import tempfile
     if not isinstance(merge, bool):
         raise TypeError("VoroHex: option 'merge' must be True or False, got {!r}".format(merge))
@@ -607,7 +613,7 @@ def decompose(shape, sharp_angle=None, merge=True, vtp=None, eps=None, delta=Non
     solid = _read_solid(check_shape(shape))
     with tempfile.TemporaryDirectory(prefix="vorohex-") as tmp:
         brep = os.path.join(tmp, "parts.brep")
-        text = _core.decomposition_json(solid, opts, angle, merge, brep, vtp or "")
+        text = _core.decomposition_json(solid, opts, angle, merge, brep, vtp or "", progress)
         shapes = []
         if os.path.exists(brep):
             import Part

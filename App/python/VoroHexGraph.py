@@ -87,7 +87,12 @@ class VoronoiGraph:
         error = VoroHexObjects.source_error(obj.Part)
         graph = None
         if error is None:
-            graph = VoroHex.voronoi_graph(obj.Part, sharp_angle=obj.SharpAngle)
+            try:
+                graph = VoroHex.voronoi_graph(obj.Part, sharp_angle=obj.SharpAngle,
+                                              progress=getattr(self, "progress", None))
+            except VoroHex.Cancelled:
+                obj.Status, obj.Message = "error", "cancelled"
+                raise RuntimeError("VoroHex: the Voronoi graph was cancelled")
             if not graph.ok:
                 error = "; ".join(d.get("message", "") for d in graph.diagnostics) or \
                     "the Voronoi graph could not be computed"
@@ -146,9 +151,11 @@ def polyline(points):
     return curve.toShape()
 
 
-def makeVoronoiGraph(doc, part, name="VoronoiGraph"):
+def makeVoronoiGraph(doc, part, name="VoronoiGraph", progress=None):
     """Adds a Voronoi graph object for `part` to `doc` and computes it. Raises ValueError
-    (and leaves the document as it was) when `part` holds no single solid."""
+    (and leaves the document as it was) when `part` holds no single solid. progress(stage,
+    fraction) is called while it computes and may return False to cancel (the object then
+    has Status error, Message cancelled)."""
     error = VoroHexObjects.source_error(part)
     if error is not None:
         raise ValueError("VoroHex: " + error)
@@ -159,5 +166,9 @@ def makeVoronoiGraph(doc, part, name="VoronoiGraph"):
         from VoroHexGui import graph_view
 
         graph_view.ViewProviderVoronoiGraph(obj.ViewObject)
-    obj.recompute()
+    obj.Proxy.progress = progress
+    try:
+        obj.recompute()
+    finally:
+        obj.Proxy.progress = None
     return obj

@@ -76,7 +76,12 @@ class Decomposition:
         error = VoroHexObjects.source_error(obj.Part)
         d = None
         if error is None:
-            d = VoroHex.decompose(obj.Part, sharp_angle=obj.SharpAngle, merge=obj.Merge)
+            try:
+                d = VoroHex.decompose(obj.Part, sharp_angle=obj.SharpAngle, merge=obj.Merge,
+                                      progress=getattr(self, "progress", None))
+            except VoroHex.Cancelled:
+                obj.Status, obj.Message = "error", "cancelled"
+                raise RuntimeError("VoroHex: the decomposition was cancelled")
             if not d.ok or not d.shapes:
                 error = "; ".join(x.get("message", "") for x in d.diagnostics
                                   if x.get("severity") == "error") or "the decomposition failed"
@@ -129,9 +134,10 @@ def face_roles(compound, d):
     return roles
 
 
-def makeDecomposition(doc, part, name="Decomposition", merge=True):
+def makeDecomposition(doc, part, name="Decomposition", merge=True, progress=None):
     """Adds a decomposition object for `part` to `doc` and computes it. Raises ValueError
-    (and leaves the document as it was) when `part` holds no single solid."""
+    (and leaves the document as it was) when `part` holds no single solid. progress as for
+    VoroHexGraph.makeVoronoiGraph."""
     error = VoroHexObjects.source_error(part)
     if error is not None:
         raise ValueError("VoroHex: " + error)
@@ -143,5 +149,9 @@ def makeDecomposition(doc, part, name="Decomposition", merge=True):
         from VoroHexGui import parts_view
 
         parts_view.ViewProviderDecomposition(obj.ViewObject)
-    obj.recompute()
+    obj.Proxy.progress = progress
+    try:
+        obj.recompute()
+    finally:
+        obj.Proxy.progress = None
     return obj

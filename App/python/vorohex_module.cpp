@@ -14,6 +14,7 @@
 
 #include "core/diagnostic.h"
 #include "core/hex_mesh.h"
+#include "core/isolated_call.h"
 #include "core/progress.h"
 #include "decompose/decomposition_io.h"
 #include "io/mesh_io.h"
@@ -28,6 +29,11 @@ namespace py = pybind11;
 using namespace vorohex;
 
 namespace {
+
+// A run stopped by its progress callback (VoroHex.Cancelled in Python).
+struct CancelledError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
 
 // Shared so a Python object keeps the solid alive while a mesh result refers to it.
 using SolidPtr = std::shared_ptr<occ::Solid>;
@@ -325,45 +331,103 @@ std::string voronoi_json(SolidPtr solid, const voronoi::VoronoiOptions& options)
   return voronoi::voronoi_graph_json(voronoi::compute_voronoi_graph(*solid, options));
 }
 
+// Runs `work` in a child process (core/isolated_call.h) with the GIL released: the caller
+// gets heartbeats through `progress(stage, 0.0)` (False cancels: the child is killed, the
+// Python exception Cancelled is raised), and a crash inside the child is an error, not the
+// end of FreeCAD.
+std::string run_isolated(const std::function<std::string()>& work, py::object progress,
+                         const char* stage) {
+  std::atomic<bool> cancel{false};
+  std::unique_ptr<py::error_already_set> callback_error;
+  core::Progress::Callback cb;
+  if (!progress.is_none())
+    cb = [&](std::string_view s, double fraction) {
+      py::gil_scoped_acquire gil;
+      if (callback_error) return;
+      try {
+        py::object ret = progress(std::string(s), fraction);
+        if (!ret.is_none() && !ret.cast<bool>()) cancel = true;
+      } catch (py::error_already_set& e) {
+        callback_error = std::make_unique<py::error_already_set>(std::move(e));
+        cancel = true;
+      }
+    };
+  core::IsolatedResult run;
+  {
+    py::gil_scoped_release nogil;
+    core::IsolatedCallOptions o;
+    o.stage = stage;
+    run = core::isolated_call(work, core::Progress(cb, &cancel), o);
+  }
+  if (callback_error) throw std::move(*callback_error);
+  switch (run.status) {
+    case core::IsolatedResult::Status::ok:
+      return run.data;
+    case core::IsolatedResult::Status::cancelled:
+      throw CancelledError(std::string(stage) + " was cancelled");
+    case core::IsolatedResult::Status::crashed:
+      throw std::runtime_error(std::string(stage) + " crashed (" + run.message + ")");
+    case core::IsolatedResult::Status::failed:
+      break;
+  }
+  throw std::runtime_error(run.message);
+}
+
 // The type of every Voronoi edge ("[0]", "[1s]", "[C]", "none", ...) as (element id, type)
 // pairs, next to the graph's JSON: what the GUI colours the graph by.
-py::tuple typed_voronoi(SolidPtr solid, const voronoi::VoronoiOptions& options,
-                        double sharp_angle) {
+py::tuple typed_voronoi(SolidPtr solid, const voronoi::VoronoiOptions& options, double sharp_angle,
+                        py::object progress) {
   if (!solid) throw std::invalid_argument("no solid given");
   if (std::string why = options.validate(); !why.empty()) throw std::invalid_argument(why);
   decompose::DecomposeOptions d;
   d.sharp_angle = sharp_angle;
   if (std::string why = d.validate(); !why.empty()) throw std::invalid_argument(why);
-  std::string text;
+  // The child sends "<id> <type>" lines, a 0x1e separator, then the graph's JSON.
+  const std::string bytes = run_isolated(
+      [&] {
+        const voronoi::VoronoiResult graph = voronoi::compute_voronoi_graph(*solid, options);
+        std::string out;
+        for (const decompose::ClassifiedEdge& e : decompose::classify_edges(graph, d))
+          out += std::to_string(e.element) + " " + decompose::detail::edge_type_name(e.type) + "\n";
+        return out + '\x1e' + voronoi::voronoi_graph_json(graph);
+      },
+      progress, "voronoi_graph");
+  const std::size_t sep = bytes.find('\x1e');
+  if (sep == std::string::npos) throw std::runtime_error("the Voronoi graph came back garbled");
   std::vector<std::pair<int, std::string>> types;
-  {
-    py::gil_scoped_release nogil;
-    const voronoi::VoronoiResult graph = voronoi::compute_voronoi_graph(*solid, options);
-    text = voronoi::voronoi_graph_json(graph);
-    for (const decompose::ClassifiedEdge& e : decompose::classify_edges(graph, d))
-      types.emplace_back(e.element, decompose::detail::edge_type_name(e.type));
+  std::size_t at = 0;
+  while (at < sep) {
+    const std::size_t eol = bytes.find('\n', at);
+    const std::string line = bytes.substr(at, eol - at);
+    const std::size_t space = line.find(' ');
+    types.emplace_back(std::stoi(line.substr(0, space)), line.substr(space + 1));
+    at = eol + 1;
   }
-  return py::make_tuple(text, types);
+  return py::make_tuple(bytes.substr(sep + 1), types);
 }
 
 // The decomposition as JSON text (decomposition_io.h layout), writing the sub-volumes as a
 // BREP compound and the decomposition faces as VTP where paths are given.
 std::string decomposition_json(SolidPtr solid, const voronoi::VoronoiOptions& graph_options,
                                double sharp_angle, bool merge, const std::string& brep_path,
-                               const std::string& vtp_path) {
+                               const std::string& vtp_path, py::object progress) {
   if (!solid) throw std::invalid_argument("no solid given");
   if (std::string why = graph_options.validate(); !why.empty()) throw std::invalid_argument(why);
   decompose::DecomposeOptions options;
   options.sharp_angle = sharp_angle;
   options.merge = merge;
   if (std::string why = options.validate(); !why.empty()) throw std::invalid_argument(why);
-  py::gil_scoped_release nogil;
-  const voronoi::VoronoiResult graph = voronoi::compute_voronoi_graph(*solid, graph_options);
-  const decompose::DecompositionResult result = decompose::decompose(*solid, graph, options);
-  std::string error;
-  if (result.ok() && !decompose::write_decomposition(result, brep_path, "", &error, vtp_path))
-    throw std::runtime_error(error);
-  return decompose::decomposition_json(result);
+  // In the child: it writes the files, the JSON comes back.
+  return run_isolated(
+      [&] {
+        const voronoi::VoronoiResult graph = voronoi::compute_voronoi_graph(*solid, graph_options);
+        const decompose::DecompositionResult result = decompose::decompose(*solid, graph, options);
+        std::string error;
+        if (result.ok() && !decompose::write_decomposition(result, brep_path, "", &error, vtp_path))
+          throw std::runtime_error(error);
+        return decompose::decomposition_json(result);
+      },
+      progress, "decomposition");
 }
 
 quality::CheckReport check(const core::HexMesh& mesh, SolidPtr solid, double volume_rel_tol,
@@ -381,6 +445,7 @@ quality::CheckReport check(const core::HexMesh& mesh, SolidPtr solid, double vol
 PYBIND11_MODULE(_VoroHexCore, m) {
   m.doc() = "VoroHex C++ core (all-hexahedral meshing); use the VoroHex module instead";
   py::register_exception<std::invalid_argument>(m, "InvalidArgument", PyExc_ValueError);
+  py::register_exception<CancelledError>(m, "Cancelled", PyExc_RuntimeError);
   bind_types(m);
   bind_mesh(m);
   m.def("read_brep", &read_brep, py::arg("brep"), py::arg("several_solids") = false,
@@ -391,10 +456,12 @@ PYBIND11_MODULE(_VoroHexCore, m) {
   m.def("voronoi_graph_json", &voronoi_json, py::arg("solid"), py::arg("options"),
         "the embedded Voronoi graph of a solid as JSON text");
   m.def("typed_voronoi_graph", &typed_voronoi, py::arg("solid"), py::arg("options"),
-        py::arg("sharp_angle") = 60.0, "(graph JSON text, [(element id, edge type)]) for the GUI");
+        py::arg("sharp_angle") = 60.0, py::arg("progress") = py::none(),
+        "(graph JSON text, [(element id, edge type)]) for the GUI; computed in a child "
+        "process, progress(stage, fraction) heartbeats may return False to cancel");
   m.def("decomposition_json", &decomposition_json, py::arg("solid"), py::arg("graph_options"),
         py::arg("sharp_angle"), py::arg("merge"), py::arg("brep_path") = "",
-        py::arg("vtp_path") = "",
+        py::arg("vtp_path") = "", py::arg("progress") = py::none(),
         "the decomposition of a solid as JSON text; writes the sub-volumes (BREP) and the "
         "decomposition faces (VTP) where paths are given");
   m.def("check_mesh", &check, py::arg("mesh"), py::arg("solid") = nullptr,

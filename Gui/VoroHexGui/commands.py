@@ -1,8 +1,10 @@
 # The "Hex mesh" command: one Part feature selected -> a VoroHex mesh object (added to the
 # active FEM analysis if there is one, as FEM's own mesh commands do) and its task panel.
+import time
+
 import FreeCAD
 import FreeCADGui
-from PySide import QtGui
+from PySide import QtCore, QtGui
 
 import VoroHexGui
 import VoroHexObjects
@@ -59,6 +61,65 @@ class HexMeshCommand:
             "FreeCADGui.getDocument('{}').setEdit(_hexmesh.Name)".format(doc.Name))
 
 
+class Busy:
+    """Progress for a long recompute: a busy dialog (shown after half a second) whose Cancel
+    stops it; the callback keeps the GUI responsive."""
+
+    current = None
+
+    def __init__(self, text):
+        self.text, self.dialog, self.cancelled = text, None, False
+        self.start = time.time()
+        Busy.current = self
+
+    def __call__(self, stage, fraction):
+        if self.dialog is None and time.time() - self.start > 0.5:
+            self.dialog = QtGui.QProgressDialog(self.text, "Cancel", 0, 0,
+                                                FreeCADGui.getMainWindow())
+            self.dialog.setObjectName("vorohex_busy")
+            self.dialog.setWindowTitle("VoroHex")
+            self.dialog.setWindowModality(QtCore.Qt.WindowModal)
+            self.dialog.canceled.connect(self.cancel)
+            self.dialog.show()
+        QtGui.QApplication.processEvents()
+        if self.dialog is not None and self.dialog.wasCanceled():
+            self.cancelled = True
+        return not self.cancelled
+
+    def cancel(self):
+        self.cancelled = True
+
+    def close(self):
+        if self.dialog is not None:
+            self.dialog.close()
+            self.dialog.deleteLater()
+        Busy.current = None
+
+
+def run_cancellable(doc, label, command):
+    """Runs `command` (console text making one object) in a transaction with a Busy dialog;
+    a cancelled run removes what it made, leaving the document as it was. Returns the new
+    object or None."""
+    before = set(o.Name for o in doc.Objects)
+    doc.openTransaction(label)
+    busy = Busy("{}...".format(label))
+    try:
+        FreeCADGui.doCommand(command)
+    finally:
+        busy.close()
+    made = [o for o in doc.Objects if o.Name not in before]
+    if busy.cancelled:
+        names = [o.Name for o in made]
+        doc.abortTransaction()
+        for name in names:  # in case the transaction did not hold them
+            if doc.getObject(name) is not None:
+                doc.removeObject(name)
+        FreeCAD.Console.PrintMessage("VoroHex: {} cancelled\n".format(label))
+        return None
+    doc.commitTransaction()
+    return made[0] if made else None
+
+
 class VoronoiGraphCommand:
     def GetResources(self):
         return {
@@ -79,12 +140,15 @@ class VoronoiGraphCommand:
             QtGui.QMessageBox.warning(FreeCADGui.getMainWindow(), "VoroHex: no graph", error)
             return
         doc = part.Document
-        doc.openTransaction("Voronoi graph")
         FreeCADGui.addModule("VoroHexGraph")
-        FreeCADGui.doCommand(
+        FreeCADGui.addModule("VoroHexGui.commands")
+        made = run_cancellable(
+            doc, "Voronoi graph",
             "_graph = VoroHexGraph.makeVoronoiGraph(FreeCAD.getDocument('{}'), "
-            "FreeCAD.getDocument('{}').getObject('{}'))".format(doc.Name, doc.Name, part.Name))
-        doc.commitTransaction()
+            "FreeCAD.getDocument('{}').getObject('{}'), "
+            "progress=VoroHexGui.commands.Busy.current)".format(doc.Name, doc.Name, part.Name))
+        if made is None:
+            return
         FreeCADGui.Selection.clearSelection()
         FreeCADGui.doCommand(
             "FreeCADGui.getDocument('{}').setEdit(_graph.Name)".format(doc.Name))
@@ -111,15 +175,15 @@ class DecompositionCommand:
                                       error)
             return
         doc = part.Document
-        doc.openTransaction("Decomposition")
         FreeCADGui.addModule("VoroHexParts")
-        try:
-            FreeCADGui.doCommand(
-                "_parts = VoroHexParts.makeDecomposition(FreeCAD.getDocument('{}'), "
-                "FreeCAD.getDocument('{}').getObject('{}'))".format(doc.Name, doc.Name,
-                                                                     part.Name))
-        finally:
-            doc.commitTransaction()
+        FreeCADGui.addModule("VoroHexGui.commands")
+        made = run_cancellable(
+            doc, "Decomposition",
+            "_parts = VoroHexParts.makeDecomposition(FreeCAD.getDocument('{}'), "
+            "FreeCAD.getDocument('{}').getObject('{}'), "
+            "progress=VoroHexGui.commands.Busy.current)".format(doc.Name, doc.Name, part.Name))
+        if made is None:
+            return
         FreeCADGui.Selection.clearSelection()
         FreeCADGui.doCommand(
             "FreeCADGui.getDocument('{}').setEdit(_parts.Name)".format(doc.Name))

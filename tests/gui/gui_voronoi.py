@@ -260,6 +260,32 @@ def main():
           "screenshot saved to " + fig6_shot)
     close_panel(mw)
     g6[0].ViewObject.Visibility = False
+    # Cancel during a long command (the decomposition of this part takes about 2.4 s): the
+    # busy dialog's Cancel stops it, the GUI stays responsive (the timer that presses
+    # Cancel fires meanwhile) and the document is as it was.
+    names_before = sorted(o.Name for o in doc.Objects)
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(figure6)
+    pump()
+    pressed = []
+
+    def press_cancel():
+        for dialog in mw.findChildren(QtGui.QProgressDialog, "vorohex_busy"):
+            if dialog.isVisible():
+                for button in dialog.findChildren(QtGui.QPushButton):
+                    pressed.append(time.time())
+                    button.click()
+
+    QtCore.QTimer.singleShot(1200, press_cancel)
+    t0 = time.time()
+    Gui.runCommand("VoroHex_Decomposition")
+    done = time.time()
+    pump(0.5)
+    check(bool(pressed) and done - pressed[0] < 1.0,
+          "Cancel pressed in the busy dialog {:.1f} s into the run, which ended {:.2f} s "
+          "later".format(pressed[0] - t0 if pressed else -1, done - pressed[0] if pressed else -1))
+    check(sorted(o.Name for o in doc.Objects) == names_before and not Gui.Control.activeDialog(),
+          "cancelled: the document is as it was, no panel open")
     mesh6 = VoroHexObjects.makeHexMesh(doc, figure6, "Figure6Mesh", size=0.5)
     doc.recompute()
     check(mesh6.Status == "ok" and mesh6.MinScaledJacobianBeforeSmoothing >= 0.3,

@@ -5,6 +5,7 @@ import math
 import os
 import re
 import tempfile
+import time
 import unittest
 
 import FreeCAD
@@ -187,6 +188,20 @@ class TestVoroHexApi(unittest.TestCase):
             VoroHex.decompose(solid, sharp_angle=0)
         with self.assertRaisesRegex(TypeError, "merge"):
             VoroHex.decompose(solid, merge="yes")
+
+    def test_graph_and_decomposition_report_progress_and_can_be_cancelled(self):
+        # Both run in a child process: heartbeats reach the callback, False stops it.
+        fig6 = figure6_shape()
+        beats = []
+        d = VoroHex.decompose(fig6, progress=lambda stage, f: beats.append(stage) or True)
+        self.assertTrue(d.counts)  # it ran to the end (it fails on this part, see issue 5)
+        self.assertIn("decomposition", beats)
+        t0 = time.time()
+        with self.assertRaisesRegex(VoroHex.Cancelled, "cancelled"):
+            VoroHex.decompose(fig6, progress=lambda stage, f: False)
+        self.assertLess(time.time() - t0, 2.0)  # the whole run takes about 2.4 s here
+        graph = VoroHex.voronoi_graph(fig6, progress=lambda stage, f: True)
+        self.assertEqual(graph.counts["edges"], 240)
 
     def test_tapered_brick_meshes(self):
         bottom = Part.makePolygon([FreeCAD.Vector(*p) for p in
@@ -423,6 +438,24 @@ def snapshot(doc):
     return out
 
 
+def figure6_shape():
+    """The Figure 6 part of tests/cpp/fixtures/solids.h (a hexagonal ring, six triangular
+    protrusions)."""
+    V = FreeCAD.Vector
+    outer, inner = [], []
+    apothem = 5 * math.cos(math.pi / 6)
+    for k in range(6):
+        a0, am = math.pi / 3 * k, math.pi / 3 * (k + 0.5)
+        cx, cy = apothem * math.cos(am), apothem * math.sin(am)
+        tx, ty = -math.sin(am), math.cos(am)
+        outer += [V(5 * math.cos(a0), 5 * math.sin(a0), 0), V(cx - 0.75 * tx, cy - 0.75 * ty, 0),
+                  V((apothem + 1.5) * math.cos(am), (apothem + 1.5) * math.sin(am), 0),
+                  V(cx + 0.75 * tx, cy + 0.75 * ty, 0)]
+        inner.append(V(4 * math.cos(a0), 4 * math.sin(a0), 0))
+    face = Part.Face([Part.makePolygon(outer + outer[:1]), Part.makePolygon(inner + inner[:1])])
+    return face.extrude(V(0, 0, 3))
+
+
 class TestVoroHexObject(unittest.TestCase):
     def setUp(self):
         self.doc = FreeCAD.newDocument("VoroHexTest")
@@ -437,6 +470,14 @@ class TestVoroHexObject(unittest.TestCase):
         obj = VoroHexObjects.makeHexMesh(self.doc, self.box, size=size)
         self.doc.recompute()
         return obj
+
+    def test_cancelled_decomposition_object_says_so(self):
+        part = self.doc.addObject("Part::Feature", "Figure6")
+        part.Shape = figure6_shape()
+        self.doc.recompute()
+        obj = VoroHexParts.makeDecomposition(self.doc, part, progress=lambda stage, f: False)
+        self.assertEqual((obj.Status, obj.Message), ("error", "cancelled"))
+        self.assertFalse(obj.isValid())
 
     def test_voronoi_graph_object(self):
         pts = [(0, 0, 0), (4, 0, 0), (4, 1, 0), (1, 1, 0), (1, 3, 0), (0, 3, 0), (0, 0, 0)]
