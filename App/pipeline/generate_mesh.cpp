@@ -407,9 +407,10 @@ MeshResult generate_parts(const occ::Solid& whole, const MeshOptions& options, d
       result.stats.sub_volumes = whole.num_solids();
       result.stats.seconds_meshing = seconds_since(t0);
       std::ostringstream s;
+      const int shared = whole.num_interface_faces();
       s << whole.num_solids() << " solids meshed with one interval assignment over "
-        << m.stats.curves << " curves, so that their meshes match on the "
-        << whole.num_interface_faces() << " shared faces; " << m.stats.nodes_merged
+        << m.stats.curves << " curves, so that their meshes match on the " << shared
+        << (shared == 1 ? " face they share; " : " faces they share; ") << m.stats.nodes_merged
         << " nodes merged.";
       result.diagnostics.push_back(core::make_info("solids_joined", s.str()));
       finish(result, whole, options, progress);
@@ -458,9 +459,10 @@ MeshResult generate_parts(const occ::Solid& whole, const MeshOptions& options, d
   result.stats.sub_volumes = whole.num_solids();
   result.stats.seconds_meshing = seconds_since(t0);
   std::ostringstream s;
+  const int shared = whole.num_interface_faces();
   s << whole.num_solids() << " solids meshed one by one and joined; " << merged << " nodes on the "
-    << whole.num_interface_faces() << " shared faces (with their edges and "
-    << "vertices) merged.";
+    << shared << (shared == 1 ? " shared face" : " shared faces")
+    << " (with their edges and vertices) merged.";
   result.diagnostics.push_back(core::make_info("solids_joined", s.str()));
   finish(result, whole, options, progress);
   return result;
