@@ -57,6 +57,31 @@ class TaskPanel:
             v = QtGui.QDoubleValidator(0.0, 1.0, 15, self.form)
             v.setNotation(QtGui.QDoubleValidator.ScientificNotation)
             getattr(self.form, name).setValidator(v)
+        # Stage 2, decomposition: its options and a preview of graph and cut before meshing.
+        dec_box = QtGui.QGroupBox("Decomposition (where no single scheme applies)", self.form)
+        dec_box.setObjectName("gb_decomposition")
+        dec_form = QtGui.QFormLayout(dec_box)
+        self.decompose = QtGui.QCheckBox("Cut into sub-volumes before any fallback", dec_box)
+        self.decompose.setObjectName("cb_decompose")
+        dec_form.addRow(self.decompose)
+        self.decomposition_time = QtGui.QDoubleSpinBox(dec_box)
+        self.decomposition_time.setObjectName("sb_decomposition_time_limit")
+        self.decomposition_time.setRange(1, 3600)
+        self.decomposition_time.setSuffix(" s")
+        dec_form.addRow("Time limit:", self.decomposition_time)
+        self.preview = QtGui.QPushButton("Preview graph and decomposition", dec_box)
+        self.preview.setObjectName("pb_preview")
+        self.preview.setToolTip("Computes the Voronoi graph and the decomposition of the solid "
+                                "as document objects, to see where it will be cut (Cancel "
+                                "in the busy dialog stops it)")
+        dec_form.addRow(self.preview)
+        self.preview_status = QtGui.QLabel("", dec_box)
+        self.preview_status.setObjectName("lbl_preview")
+        self.preview_status.setWordWrap(True)
+        dec_form.addRow(self.preview_status)
+        layout = self.form.layout()
+        layout.insertWidget(layout.indexOf(self.form.gb_smoothing) + 1, dec_box)
+        self.preview.clicked.connect(self.run_preview)
         # Sub-volumes of the last run; selecting one highlights the nodes of its hexahedra.
         sv_box = QtGui.QGroupBox("Sub-volumes (select one to highlight it)", self.form)
         sv_box.setObjectName("gb_sub_volumes")
@@ -101,6 +126,10 @@ class TaskPanel:
 
     # Widgets <-> properties ------------------------------------------------------------
     def _widget(self, option):
+        if option.name == "decompose":
+            return self.decompose
+        if option.name == "decomposition_time_limit":
+            return self.decomposition_time
         name = WIDGETS.get(option.name)
         return getattr(self.form, name) if name else None
 
@@ -110,6 +139,8 @@ class TaskPanel:
             w, value = self._widget(option), _get_property(self.obj, option)
             if isinstance(w, QtGui.QLineEdit):
                 w.setText("{:g}".format(value))
+            elif isinstance(w, QtGui.QCheckBox):
+                w.setChecked(bool(value))
             elif w is not None:
                 w.setValue(value)
 
@@ -125,6 +156,8 @@ class TaskPanel:
                     value = float(w.text())
                 except ValueError:
                     continue  # keep the property; the validator flags the text
+            elif isinstance(w, QtGui.QCheckBox):
+                value = w.isChecked()
             else:
                 value = w.value()
             if value != _get_property(self.obj, option):
@@ -172,6 +205,49 @@ class TaskPanel:
 
     def stop(self):
         self.stop_requested = True
+
+    def run_preview(self):
+        """Voronoi graph and decomposition of the solid as document objects (one undo step;
+        a cancelled preview leaves the document as it was)."""
+        part = self.obj.Part
+        if part is None or self.running:
+            return
+        import VoroHexGraph
+        import VoroHexParts
+        from VoroHexGui.commands import Busy
+
+        doc = self.obj.Document
+        before = set(o.Name for o in doc.Objects)
+        doc.openTransaction("VoroHex preview")
+        busy = Busy("Voronoi graph and decomposition of {}...".format(part.Label))
+        try:
+            graph = VoroHexGraph.makeVoronoiGraph(doc, part, progress=busy)
+            parts = None
+            if not busy.cancelled:
+                parts = VoroHexParts.makeDecomposition(doc, part, progress=busy)
+        finally:
+            busy.close()
+        if busy.cancelled:
+            names = [o.Name for o in doc.Objects if o.Name not in before]
+            doc.abortTransaction()
+            for name in names:
+                if doc.getObject(name) is not None:
+                    doc.removeObject(name)
+            self.preview_status.setText("Preview cancelled.")
+            return
+        doc.commitTransaction()
+        text = "Graph: {}.".format(graph.Message)
+        if parts.Status in ("ok", "partial"):
+            text += " Decomposition: {} sub-volumes ({}).".format(
+                parts.SubVolumeCount, ", ".join(sorted(set(parts.Schemes))))
+        else:
+            text += " Decomposition failed: {}".format(parts.Message)
+        self.preview_status.setText(text)
+        for o in (graph, parts):
+            if o.ViewObject is not None:
+                o.ViewObject.Visibility = True
+        if part.ViewObject is not None:
+            part.ViewObject.Transparency = 70
 
     def highlight_sub_volume(self):
         """Highlights the nodes of the selected sub-volume's hexahedra in the mesh view."""

@@ -195,6 +195,23 @@ def main():
     pump(0.5)
     selected = [n for s in Gui.Selection.getSelectionEx() for n in s.SubElementNames]
     check(sorted(selected) == sorted(named), "selecting it selects {} on the solid".format(named))
+    # Preview: graph and decomposition of the solid as document objects, before meshing.
+    check(mw.findChild(QtGui.QCheckBox, "cb_decompose").isChecked() == chamfered.Decompose,
+          "decomposition options in the panel")
+    names_before = set(o.Name for o in doc.Objects)
+    mw.findChild(QtGui.QPushButton, "pb_preview").click()
+    pump(0.5)
+    made = [o for o in doc.Objects if o.Name not in names_before]
+    check(sorted(o.Proxy.__class__.__name__ for o in made) == ["Decomposition", "VoronoiGraph"]
+          and all(o.Part == prism for o in made), "Preview made the graph and decomposition")
+    preview = mw.findChild(QtGui.QLabel, "lbl_preview").text()
+    check(preview.startswith("Graph: ") and "Decomposition" in preview, "preview: " + preview)
+    for o in made:
+        o.ViewObject.Visibility = False
+    Gui.Selection.clearSelection()
+    listing.setCurrentRow(-1)
+    listing.setCurrentRow(tiny[0])
+    pump(0.3)
     # For the screenshot: only the solid, looking at the chamfer with the named edges
     # selected, and the panel scrolled down to the messages.
     for o in (chamfered, mesh, box):
