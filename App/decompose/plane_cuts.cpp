@@ -4,10 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <map>
 #include <memory>
-#include <set>
-#include <stdexcept>
 
 #include "core/option_checks.h"
 #include "mesh/map_block.h"
@@ -39,13 +36,11 @@ bool meshable(const occ::Solid& s) {
 }
 
 // Each part of the glued pieces a block or a sweep (gluing imprints a neighbour's edges).
-bool all_meshable(const std::vector<const occ::Solid*>& pieces,
-                  std::unique_ptr<occ::Solid>* glued) {
-  occ::ReadResult r = occ::glue_solids(pieces, "The plane cut");
+bool all_meshable(const std::vector<const occ::Solid*>& pieces) {
+  const occ::ReadResult r = occ::glue_solids(pieces, "The plane cut");
   if (!r.ok()) return false;
   for (int k = 0; k < r.solid->num_solids(); ++k)
     if (!meshable(r.solid->part(k))) return false;
-  if (glued) *glued = std::move(r.solid);
   return true;
 }
 
@@ -148,7 +143,7 @@ PlaneCutResult cut_at_concave_edges(const occ::Solid& solid, const PlaneCutOptio
     for (const occ::Solid& s : v) out.push_back(&s);
     return out;
   };
-  if (!all_meshable(pointers(pieces), nullptr)) {
+  if (!all_meshable(pointers(pieces))) {
     r.why_not =
         "the planes of its concave edges leave a piece that is neither a block nor "
         "a sweep";
@@ -169,7 +164,7 @@ PlaneCutResult cut_at_concave_edges(const occ::Solid& solid, const PlaneCutOptio
         for (std::size_t k = 0; k < pieces.size(); ++k)
           if (k != a && k != b) next.push_back(pieces[k].clone());
         next.push_back(std::move(*u));
-        if (!all_meshable(pointers(next), nullptr)) continue;
+        if (!all_meshable(pointers(next))) continue;
         pieces = std::move(next);
         merged = true;
       }

@@ -96,15 +96,15 @@ class Busy:
         Busy.current = None
 
 
-def run_cancellable(doc, label, command):
-    """Runs `command` (console text making one object) in a transaction with a Busy dialog;
-    a cancelled run removes what it made, leaving the document as it was. Returns the new
-    object or None."""
+def run_cancellable(doc, label, work):
+    """Runs work(busy) (which makes document objects, passing `busy` as their progress) in
+    one transaction with a Busy dialog; a cancelled run removes what it made, leaving the
+    document as it was. Returns the objects made, or None when cancelled."""
     before = set(o.Name for o in doc.Objects)
     doc.openTransaction(label)
     busy = Busy("{}...".format(label))
     try:
-        FreeCADGui.doCommand(command)
+        work(busy)
     finally:
         busy.close()
     made = [o for o in doc.Objects if o.Name not in before]
@@ -117,7 +117,7 @@ def run_cancellable(doc, label, command):
         FreeCAD.Console.PrintMessage("VoroHex: {} cancelled\n".format(label))
         return None
     doc.commitTransaction()
-    return made[0] if made else None
+    return made
 
 
 class VoronoiGraphCommand:
@@ -142,11 +142,10 @@ class VoronoiGraphCommand:
         doc = part.Document
         FreeCADGui.addModule("VoroHexGraph")
         FreeCADGui.addModule("VoroHexGui.commands")
-        made = run_cancellable(
-            doc, "Voronoi graph",
+        made = run_cancellable(doc, "Voronoi graph", lambda busy: FreeCADGui.doCommand(
             "_graph = VoroHexGraph.makeVoronoiGraph(FreeCAD.getDocument('{}'), "
             "FreeCAD.getDocument('{}').getObject('{}'), "
-            "progress=VoroHexGui.commands.Busy.current)".format(doc.Name, doc.Name, part.Name))
+            "progress=VoroHexGui.commands.Busy.current)".format(doc.Name, doc.Name, part.Name)))
         if made is None:
             return
         FreeCADGui.Selection.clearSelection()
@@ -177,11 +176,10 @@ class DecompositionCommand:
         doc = part.Document
         FreeCADGui.addModule("VoroHexParts")
         FreeCADGui.addModule("VoroHexGui.commands")
-        made = run_cancellable(
-            doc, "Decomposition",
+        made = run_cancellable(doc, "Decomposition", lambda busy: FreeCADGui.doCommand(
             "_parts = VoroHexParts.makeDecomposition(FreeCAD.getDocument('{}'), "
             "FreeCAD.getDocument('{}').getObject('{}'), "
-            "progress=VoroHexGui.commands.Busy.current)".format(doc.Name, doc.Name, part.Name))
+            "progress=VoroHexGui.commands.Busy.current)".format(doc.Name, doc.Name, part.Name)))
         if made is None:
             return
         FreeCADGui.Selection.clearSelection()

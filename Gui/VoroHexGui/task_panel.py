@@ -214,28 +214,20 @@ class TaskPanel:
             return
         import VoroHexGraph
         import VoroHexParts
-        from VoroHexGui.commands import Busy
+        from VoroHexGui.commands import run_cancellable
 
-        doc = self.obj.Document
-        before = set(o.Name for o in doc.Objects)
-        doc.openTransaction("VoroHex preview")
-        busy = Busy("Voronoi graph and decomposition of {}...".format(part.Label))
-        try:
-            graph = VoroHexGraph.makeVoronoiGraph(doc, part, progress=busy)
-            parts = None
+        made = {}
+
+        def work(busy):
+            made["graph"] = VoroHexGraph.makeVoronoiGraph(self.obj.Document, part, progress=busy)
             if not busy.cancelled:
-                parts = VoroHexParts.makeDecomposition(doc, part, progress=busy)
-        finally:
-            busy.close()
-        if busy.cancelled:
-            names = [o.Name for o in doc.Objects if o.Name not in before]
-            doc.abortTransaction()
-            for name in names:
-                if doc.getObject(name) is not None:
-                    doc.removeObject(name)
+                made["parts"] = VoroHexParts.makeDecomposition(self.obj.Document, part,
+                                                               progress=busy)
+
+        if run_cancellable(self.obj.Document, "VoroHex preview", work) is None:
             self.preview_status.setText("Preview cancelled.")
             return
-        doc.commitTransaction()
+        graph, parts = made["graph"], made["parts"]
         text = "Graph: {}.".format(graph.Message)
         if parts.Status in ("ok", "partial"):
             text += " Decomposition: {} sub-volumes ({}).".format(

@@ -231,6 +231,8 @@ def main():
     # walls (the "main faces") meet in six corners, with six triangular protrusions, each
     # a thin region holding an f_s face. Its graph, with the counts per type; its mesh.
     figure6 = doc.addObject("Part::Feature", "Figure6Part")
+    from TestVoroHex import figure6_shape  # the same part as the Python tests (staged)
+
     figure6.Shape = figure6_shape()
     doc.recompute()
     Gui.Selection.clearSelection()
@@ -298,28 +300,6 @@ def main():
     mesh6_shot = SHOT.replace("gui_voronoi_l", "gui_hexmesh_figure6")
     check(QtGui.QGuiApplication.primaryScreen().grabWindow(0).save(mesh6_shot),
           "screenshot saved to " + mesh6_shot)
-
-
-def figure6_shape():
-    """Hexagonal ring (outer circumradius 5, inner 4, height 3) with a triangular
-    protrusion (base 1.5, 1.5 out) in the middle of each outer wall; tests/cpp/fixtures."""
-    import math
-
-    import Part
-
-    V = FreeCAD.Vector
-    outer, inner = [], []
-    apothem = 5 * math.cos(math.pi / 6)
-    for k in range(6):
-        a0, am = math.pi / 3 * k, math.pi / 3 * (k + 0.5)
-        cx, cy = apothem * math.cos(am), apothem * math.sin(am)
-        tx, ty = -math.sin(am), math.cos(am)
-        outer += [V(5 * math.cos(a0), 5 * math.sin(a0), 0), V(cx - 0.75 * tx, cy - 0.75 * ty, 0),
-                  V((apothem + 1.5) * math.cos(am), (apothem + 1.5) * math.sin(am), 0),
-                  V(cx + 0.75 * tx, cy + 0.75 * ty, 0)]
-        inner.append(V(4 * math.cos(a0), 4 * math.sin(a0), 0))
-    face = Part.Face([Part.makePolygon(outer + outer[:1]), Part.makePolygon(inner + inner[:1])])
-    return face.extrude(V(0, 0, 3))
 
 
 def close_panel(mw):
