@@ -82,13 +82,18 @@ TopoDS_Solid without_internal_faces(const TopoDS_Solid& solid, int* dropped) {
   for (TopExp_Explorer sh(solid, TopAbs_SHELL); sh.More(); sh.Next()) {
     TopoDS_Shell shell;
     b.MakeShell(shell);
+    int kept = 0;
     for (TopExp_Explorer ex(sh.Current(), TopAbs_FACE); ex.More(); ex.Next()) {
       if (ex.Current().Orientation() == TopAbs_INTERNAL) {
         ++*dropped;
         continue;
       }
       b.Add(shell, ex.Current());
+      ++kept;
     }
+    // A shell made only of internal faces (OCCT puts a dangling tool face in a shell of
+    // its own) leaves nothing: an empty shell would make the piece "not closed".
+    if (kept == 0) continue;
     shell.Closed(true);
     b.Add(out, shell);
   }
