@@ -20,7 +20,8 @@ namespace vorohex::cli {
 const char* const kMeshUsage =
     "usage: vorohex mesh IN -o OUT [--size H] [--report REPORT.json] [--max-hexes N]\n"
     "                    [--smooth-iterations N] [--smooth-passes N] [--no-smooth]\n"
-    "                    [--no-decompose] [--decomposition-time-limit S] [--no-fallback]\n"
+    "                    [--no-decompose] [--decomposition-time-limit S] [--sharp-angle A]\n"
+    "                    [--eps E] [--delta D] [--max-depth N] [--no-fallback]\n"
     "                    [--time-limit S] [--keep-invalid] [--quiet]\n"
     "  IN    a solid as STEP (.step/.stp), BREP (.brep/.brp) or IGES (.iges/.igs)\n"
     "  OUT   the hex mesh: .vtu (ParaView), .msh (Gmsh 4.1) or .inp (Abaqus/CalculiX)\n"
@@ -35,6 +36,10 @@ const char* const kMeshUsage =
     "                  Voronoi graph (by default its sub-volumes are meshed into one mesh)\n"
     "  --decomposition-time-limit S  seconds the graph and the cut may take (default 60),\n"
     "                  then the fallback takes over\n"
+    "  --sharp-angle A dihedral angle (degrees, default 60) below which the decomposition\n"
+    "                  cuts along both faces of a model edge ([1s] edges)\n"
+    "  --eps E, --delta D, --max-depth N  the Voronoi graph the decomposition cuts along\n"
+    "                  (as for vorohex voronoi: 0.01, 0.001 of the diagonal, depth 9)\n"
     "  --no-fallback   refuse a solid that neither one scheme (map, sweep, midpoint) nor its\n"
     "                  decomposition meshes, instead of meshing it as tetrahedra split into\n"
     "                  hexahedra\n"
@@ -175,7 +180,8 @@ int mesh_command(const std::vector<std::string>& argv) {
   const Args args =
       parse(argv,
             {"-o", "--output", "--size", "--report", "--max-hexes", "--smooth-iterations",
-             "--smooth-passes", "--time-limit", "--decomposition-time-limit"},
+             "--smooth-passes", "--time-limit", "--decomposition-time-limit", "--sharp-angle",
+             "--eps", "--delta", "--max-depth"},
             {"--no-smooth", "--no-fallback", "--no-decompose", "--keep-invalid", "--quiet"});
   if (args.positional.size() != 1)
     throw UsageError("expected exactly one input file, got " +
@@ -207,6 +213,16 @@ int mesh_command(const std::vector<std::string>& argv) {
         parse_positive("--decomposition-time-limit", args.values.at("--decomposition-time-limit"));
   if (args.values.count("--time-limit"))
     options.time_limit = parse_positive("--time-limit", args.values.at("--time-limit"));
+  if (args.values.count("--sharp-angle"))
+    options.sharp_angle = parse_positive("--sharp-angle", args.values.at("--sharp-angle"));
+  if (args.values.count("--eps"))
+    options.graph.eps = parse_positive("--eps", args.values.at("--eps"));
+  if (args.values.count("--delta"))
+    options.graph.delta = parse_positive("--delta", args.values.at("--delta"));
+  if (args.values.count("--max-depth"))
+    options.graph.max_depth =
+        int(std::min<std::size_t>(parse_count("--max-depth", args.values.at("--max-depth")), 1000));
+  options.validate();  // before reading the file: a bad combination is a usage error
   const bool quiet = args.flags.count("--quiet") > 0;
 
   const auto t0 = std::chrono::steady_clock::now();
@@ -268,6 +284,13 @@ int mesh_command(const std::vector<std::string>& argv) {
     j["size"] = result.stats.size_used;
     j["intervals"] = result.stats.intervals;
     j["sub_volumes"] = result.stats.sub_volumes;
+    j["sub_volume_schemes"] = result.stats.sub_volume_schemes;
+    j["sub_volume_types"] = result.stats.sub_volume_types;
+    j["decomposition"] = {{"decompose", options.decompose},
+                          {"sharp_angle", options.sharp_angle},
+                          {"eps", options.graph.eps},
+                          {"delta", options.graph.delta},
+                          {"max_depth", options.graph.max_depth}};
     j["smoothing"] = {{"laplacian_iterations", options.smoothing.laplacian_iterations},
                       {"optimisation_passes", options.smoothing.optimisation_passes},
                       {"min_scaled_jacobian_before", result.stats.min_sj_before_smoothing},

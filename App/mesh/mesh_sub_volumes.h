@@ -30,7 +30,11 @@ struct SubVolumeMeshOptions {
 
 struct SubVolumeMeshStats {
   std::vector<std::string> schemes;  // per sub-volume: "map" or "sweep"
-  int curves = 0;                    // curves in the interval assignment
+  // Per sub-volume: "Vs" when swept between two faces of the whole (not shared with a
+  // neighbour: the paper's volumes around an f_s face), else "Ve" (blocks, and sweeps from
+  // or to a cut face).
+  std::vector<std::string> types;
+  int curves = 0;  // curves in the interval assignment
   int constraints = 0;
   double interval_deviation = 0;  // the assignment's objective (see IntervalResult)
   std::size_t nodes_merged = 0;   // sub-volume nodes that became a common node

@@ -75,12 +75,24 @@ std::vector<core::Diagnostic> small_features(const occ::Solid& solid, double siz
   return out;
 }
 
+// The sub-volume type of a solid meshed by one scheme: a sweep runs between two of its
+// faces (Vs), a block or a midpoint cell is Ve, the tetrahedral fallback is neither.
+std::string type_of_scheme(const std::string& scheme) {
+  if (scheme == "sweep") return "Vs";
+  return scheme == "map" || scheme == "midpoint" ? "Ve" : "-";
+}
+
 // Smoothing and the validity check every result goes through.
 void finish(MeshResult& result, const occ::Solid& solid, const MeshOptions& options,
             const core::Progress& progress) {
   if (result.stats.sub_volumes == 0) result.stats.sub_volumes = 1;
   if (result.stats.sub_volume_schemes.empty())
     result.stats.sub_volume_schemes.assign(result.stats.sub_volumes, result.stats.scheme);
+  if (result.stats.sub_volume_types.size() != result.stats.sub_volume_schemes.size()) {
+    result.stats.sub_volume_types.clear();
+    for (const std::string& s : result.stats.sub_volume_schemes)
+      result.stats.sub_volume_types.push_back(type_of_scheme(s));
+  }
 
   if (progress.cancelled()) {
     result.diagnostics.push_back(core::make_error("cancelled", "Meshing was cancelled."));
@@ -157,6 +169,12 @@ void MeshOptions::validate() const {
     s << "time_limit must be a number of seconds >= 0 (0: none), got " << time_limit;
     throw std::invalid_argument(s.str());
   }
+  if (std::string why = graph.validate(); !why.empty()) throw std::invalid_argument(why);
+  if (!std::isfinite(sharp_angle) || sharp_angle <= 0 || sharp_angle > 180) {
+    std::ostringstream s;
+    s << "sharp_angle must be in (0, 180] degrees, got " << sharp_angle;
+    throw std::invalid_argument(s.str());
+  }
   smoothing.validate();
   check.validate();
 }
@@ -208,8 +226,7 @@ std::string joined_schemes(const std::vector<std::string>& schemes) {
 bool mesh_decomposed(const occ::Solid& solid, const MeshOptions& options, double size,
                      const core::Progress& progress, MeshResult& result, std::string& why_not) {
   const auto t0 = std::chrono::steady_clock::now();
-  const detail::IsolatedDecomposition d =
-      detail::decompose_isolated(solid, options.decomposition_time_limit, progress);
+  const detail::IsolatedDecomposition d = detail::decompose_isolated(solid, options, progress);
   if (d.cancelled) {
     result.diagnostics.push_back(core::make_error("cancelled", "Meshing was cancelled."));
     return false;
@@ -247,6 +264,7 @@ bool mesh_decomposed(const occ::Solid& solid, const MeshOptions& options, double
   for (const std::string& s : m.stats.schemes) ++count[s];
   result.stats.scheme = joined_schemes(m.stats.schemes);
   result.stats.sub_volume_schemes = m.stats.schemes;
+  result.stats.sub_volume_types = m.stats.types;
   result.stats.sub_volumes = n;
   result.stats.intervals = {0, 0, 0};
   result.stats.seconds_meshing = seconds_since(t0);
@@ -404,6 +422,7 @@ MeshResult generate_parts(const occ::Solid& whole, const MeshOptions& options, d
       result.mesh = std::move(m.mesh);
       result.stats.scheme = joined_schemes(m.stats.schemes);
       result.stats.sub_volume_schemes = m.stats.schemes;
+      result.stats.sub_volume_types = m.stats.types;
       result.stats.sub_volumes = whole.num_solids();
       result.stats.seconds_meshing = seconds_since(t0);
       std::ostringstream s;
@@ -443,6 +462,9 @@ MeshResult generate_parts(const occ::Solid& whole, const MeshOptions& options, d
     if (std::find(schemes.begin(), schemes.end(), one.stats.scheme) == schemes.end())
       schemes.push_back(one.stats.scheme);
     result.stats.sub_volume_schemes.push_back(one.stats.scheme);
+    result.stats.sub_volume_types.push_back(one.stats.sub_volume_types.size() == 1
+                                                ? one.stats.sub_volume_types[0]
+                                                : type_of_scheme(one.stats.scheme));
     if (result.mesh.num_hexes() > options.max_hexes) {
       std::ostringstream s;
       s << "The solids' meshes have " << result.mesh.num_hexes() << " hexahedra after solid "

@@ -13,6 +13,7 @@
 #include "occ/solid.h"
 #include "quality/check_mesh.h"
 #include "smooth/smooth_mesh.h"
+#include "voronoi/voronoi_graph.h"
 
 namespace vorohex::pipeline {
 
@@ -30,6 +31,8 @@ struct MeshOptions {
   // after decomposition_time_limit seconds (> 0).
   bool decompose = true;
   double decomposition_time_limit = 60;
+  voronoi::VoronoiOptions graph;  // the Voronoi graph the decomposition cuts along
+  double sharp_angle = 60;        // degrees (decompose::DecomposeOptions::sharp_angle)
   // Seconds after which meshing stops like a cancel, with a `time_limit` error (0: none).
   // Checked between and inside stages; the tetrahedral fallback's CGAL step is not
   // interrupted.
@@ -52,6 +55,9 @@ struct MeshStats {
   std::string scheme;
   // Per sub-volume (SubVolume cell data 1, 2, ...): its scheme.
   std::vector<std::string> sub_volume_schemes;
+  // Per sub-volume: "Vs" (swept between two faces of the solid, the paper's f_s volumes),
+  // "Ve" (a block, or a sweep from or to a cut face); one entry "Vs"/"Ve" for one scheme.
+  std::vector<std::string> sub_volume_types;
 };
 
 struct MeshResult {

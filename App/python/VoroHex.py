@@ -28,7 +28,7 @@ except ImportError:  # pragma: no cover - numpy is installed with FreeCAD on Deb
 
 __all__ = ["mesh", "check", "voronoi_graph", "MeshResult", "MeshStats", "VoronoiGraph",
            "CancelToken", "OPTIONS", "ShapeError", "from_femmesh", "SMESH_FROM_VTK",
-           "decompose", "Decomposition", "element_quality"]
+           "decompose", "Decomposition", "element_quality", "validate_options"]
 
 MOD_DIR = os.path.dirname(os.path.abspath(__file__))
 CancelToken = _core.CancelToken
@@ -47,7 +47,8 @@ class _Option:
     """One pipeline option: its keyword, the FreeCAD property that carries it, and how.
 
     kind decides the check: "length" > 0, "count" whole >= 1, "iterations" whole >= 0,
-    "fraction" in (0, 1], "tolerance" >= 0, "flag" True or False. limits = (min, max, step) of a constraint
+    "fraction" in (0, 1], "angle" in (0, 180] degrees, "tolerance" >= 0, "flag" True or
+    False. limits = (min, max, step) of a constraint
     property (App::PropertyIntegerConstraint / PropertyFloatConstraint), else None."""
 
     def __init__(self, name, prop, prop_type, group, doc, kind, auto_zero=False, limits=None):
@@ -78,10 +79,22 @@ OPTIONS = (
             "Where no structured scheme (map, sweep, midpoint) applies, mesh tetrahedra split "
             "into hexahedra (poorer elements, reported as a warning); false refuses instead",
             "flag"),
-    _Option("decompose", "Decompose", "App::PropertyBool", "Mesh",
+    _Option("eps", "Eps", "App::PropertyFloat", "Voronoi graph",
+            "Merge tolerance and finest octree cell of the Voronoi graph, relative to the "
+            "bounding-box diagonal, in (0, 0.25]", "fraction"),
+    _Option("delta", "Delta", "App::PropertyFloat", "Voronoi graph",
+            "Accuracy the Voronoi graph is embedded to, relative to the diagonal, in (0, Eps]",
+            "fraction"),
+    _Option("max_depth", "MaxDepth", "App::PropertyIntegerConstraint", "Voronoi graph",
+            "Maximum octree depth of the Voronoi graph, 1..12", "count", limits=(1, 12, 1)),
+    _Option("decompose", "Decompose", "App::PropertyBool", "Decomposition",
             "Where no single scheme applies, cut the solid into sub-volumes along its Voronoi "
             "graph and mesh them into one conforming mesh (before any fallback)", "flag"),
-    _Option("decomposition_time_limit", "DecompositionTimeLimit", "App::PropertyFloat", "Mesh",
+    _Option("sharp_angle", "SharpAngle", "App::PropertyFloatConstraint", "Decomposition",
+            "Dihedral angle (degrees) below which the cut follows both faces of a model edge "
+            "([1s] edges), in (0, 180]", "angle", limits=(1.0, 180.0, 5.0)),
+    _Option("decomposition_time_limit", "DecompositionTimeLimit", "App::PropertyFloat",
+            "Decomposition",
             "Seconds the Voronoi graph and the cut may take before the fallback takes over (> 0)",
             "tolerance"),
     _Option("smooth_iterations", "SmoothIterations", "App::PropertyIntegerConstraint",
@@ -127,6 +140,9 @@ def _check_range(option, value):
             if option.auto_zero else ""))
     if kind == "fraction" and not 0 < value <= 1:
         raise ValueError("VoroHex: option '{}' must be in (0, 1], got {}".format(name, value))
+    if kind == "angle" and not 0 < value <= 180:
+        raise ValueError("VoroHex: option '{}' must be in (0, 180] degrees, got {}".format(
+            name, value))
     if value < 0:
         raise ValueError("VoroHex: option '{}' must be >= 0, got {}".format(name, value))
     if option.integer and value > 2**31 - 1 and kind != "count":
@@ -154,6 +170,12 @@ def _make_options(kwargs):
         setattr(opts, name, value)
     opts.validate()
     return opts
+
+
+def validate_options(**options):
+    """Raises TypeError (unknown option, wrong type) or ValueError (bad value) naming the
+    option, for keyword options of VoroHex.OPTIONS; returns None when they are fine."""
+    _make_options(options)
 
 
 def _shape_of(shape):
@@ -328,10 +350,13 @@ class MeshResult:
 
     def sub_volume_table(self):
         """Per sub-volume (SubVolume cell data 1, 2, ...; 0 for a solid meshed whole): a dict
-        with id, scheme, hexes and the min and mean scaled Jacobian of its hexes."""
+        with id, type ("Vs": swept between two faces of the solid, "Ve": a block or a sweep
+        from or to a cut face, "-": the tetrahedral fallback), scheme, hexes and the min and
+        mean scaled Jacobian of its hexes."""
         ids = array("i", self._mesh.sub_volume_bytes())
         sj = self._core.scaled_jacobian
         schemes = list(self._core.stats.sub_volume_schemes)
+        types = list(self._core.stats.sub_volume_types)
         rows = {}
         for k, sv in enumerate(ids):
             r = rows.setdefault(sv, {"id": sv, "hexes": 0, "min_scaled_jacobian": float("inf"),
@@ -347,6 +372,7 @@ class MeshResult:
             # A solid meshed whole carries sub-volume 0 on its hexes: it is the one scheme.
             k = max(sv, 1) - 1
             r["scheme"] = schemes[k] if k < len(schemes) else ""
+            r["type"] = types[k] if k < len(types) else ""
             table.append(r)
         return table
 

@@ -152,6 +152,7 @@ void bind_types(py::module_& m) {
       .def_readonly("mean_sj_before_smoothing", &S::mean_sj_before_smoothing)
       .def_readonly("sub_volumes", &S::sub_volumes)
       .def_readonly("sub_volume_schemes", &S::sub_volume_schemes)
+      .def_readonly("sub_volume_types", &S::sub_volume_types)
       .def_readonly("scheme", &S::scheme);
 
   // Flat option names: the one list VoroHex.py maps FreeCAD properties onto.
@@ -170,6 +171,18 @@ void bind_types(py::module_& m) {
                      "sub-volumes into one conforming mesh (before any fallback)")
       .def_readwrite("decomposition_time_limit", &O::decomposition_time_limit,
                      "seconds the graph and the cut may take (> 0), then the fallback")
+      .def_readwrite("sharp_angle", &O::sharp_angle,
+                     "decomposition: dihedral angle (degrees) below which a [1] edge is [1s]")
+      .def_property(
+          "eps", [](const O& o) { return o.graph.eps; }, [](O& o, double v) { o.graph.eps = v; },
+          "Voronoi graph: merge tolerance and finest cell, x bounding-box diagonal")
+      .def_property(
+          "delta", [](const O& o) { return o.graph.delta; },
+          [](O& o, double v) { o.graph.delta = v; },
+          "Voronoi graph: embedding accuracy, x bounding-box diagonal")
+      .def_property(
+          "max_depth", [](const O& o) { return o.graph.max_depth; },
+          [](O& o, int v) { o.graph.max_depth = v; }, "Voronoi graph: maximum octree depth, 1..12")
       .def_property(
           "smooth_iterations", [](const O& o) { return o.smoothing.laplacian_iterations; },
           [](O& o, int v) { o.smoothing.laplacian_iterations = v; },

@@ -214,6 +214,36 @@ class MeshCommand(unittest.TestCase):
         self.expect_bad_input([step, "--decomposition-time-limit", "0"],
                               "--decomposition-time-limit")
 
+    def test_graph_and_decomposition_options(self):
+        step = os.path.join(EXAMPLES, "box_3x2x1.step")
+        for flag, value, phrase in (("--eps", "0.5", "eps"), ("--delta", "0.5", "delta"),
+                                    ("--max-depth", "13", "max_depth"),
+                                    ("--max-depth", "2.5", "--max-depth"),
+                                    ("--sharp-angle", "200", "sharp_angle"),
+                                    ("--sharp-angle", "sharp", "--sharp-angle")):
+            self.expect_bad_input([step, flag, value], phrase)
+        sys.path.append("/usr/lib/freecad-python3/lib")
+        import FreeCAD  # noqa: F401  (FreeCAD must be imported before Part)
+        import Part
+        path = os.path.join(self.dir, "post.step")
+        Part.makeBox(4, 4, 1).fuse(Part.makeBox(1, 1, 3, FreeCAD.Vector(1.5, 1.5, 1))) \
+            .removeSplitter().exportStep(path)
+        out, rep = os.path.join(self.dir, "post.vtu"), os.path.join(self.dir, "post.json")
+        code, stdout, stderr = run("mesh", path, "-o", out, "--size", "0.5", "--report", rep,
+                                   "--eps", "0.02", "--delta", "0.002", "--max-depth", "8",
+                                   "--sharp-angle", "45", "--quiet")
+        self.assertEqual(code, 0, stdout + stderr)
+        with open(rep) as f:
+            report = json.load(f)
+        self.assertEqual(report["decomposition"], {"decompose": True, "sharp_angle": 45,
+                                                   "eps": 0.02, "delta": 0.002,
+                                                   "max_depth": 8})
+        n = report["sub_volumes"]
+        self.assertGreater(n, 1)
+        self.assertEqual(len(report["sub_volume_schemes"]), n)
+        self.assertEqual(len(report["sub_volume_types"]), n)
+        self.assertLessEqual(set(report["sub_volume_types"]), {"Vs", "Ve"})
+
     def test_fallback_meshes_what_no_scheme_accepts_and_says_so(self):
         sys.path.append("/usr/lib/freecad-python3/lib")
         import FreeCAD  # noqa: F401  (FreeCAD must be imported before Part)

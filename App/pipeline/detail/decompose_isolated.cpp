@@ -25,11 +25,12 @@ std::string to_text(int before_merge, const char* method,
 }
 
 // Runs in the child: the Voronoi decomposition, or throws with the reason.
-std::string voronoi_decomposition(const occ::Solid& solid, double time_limit) {
-  const voronoi::VoronoiResult graph = voronoi::compute_voronoi_graph(solid);
+std::string voronoi_decomposition(const occ::Solid& solid, const MeshOptions& mesh_options) {
+  const voronoi::VoronoiResult graph = voronoi::compute_voronoi_graph(solid, mesh_options.graph);
   if (!graph.ok()) throw std::runtime_error("its Voronoi graph could not be computed");
   decompose::DecomposeOptions options;
-  options.split_time_limit = std::min(30.0, time_limit);
+  options.sharp_angle = mesh_options.sharp_angle;
+  options.split_time_limit = std::min(30.0, mesh_options.decomposition_time_limit);
   const decompose::DecompositionResult d = decompose::decompose(solid, graph, options);
   if (!d.ok()) {
     for (const core::Diagnostic& diag : d.diagnostics)
@@ -57,11 +58,12 @@ std::string voronoi_decomposition(const occ::Solid& solid, double time_limit) {
 }
 
 // Runs in the child: the Voronoi decomposition, else exact plane cuts at concave edges.
-std::string decompose_to_text(const occ::Solid& solid, double time_limit) {
+std::string decompose_to_text(const occ::Solid& solid, const MeshOptions& mesh_options) {
   const auto t0 = std::chrono::steady_clock::now();
+  const double time_limit = mesh_options.decomposition_time_limit;
   std::string why;
   try {
-    return voronoi_decomposition(solid, time_limit);
+    return voronoi_decomposition(solid, mesh_options);
   } catch (const std::exception& e) {
     why = e.what();
   }
@@ -80,15 +82,15 @@ std::string decompose_to_text(const occ::Solid& solid, double time_limit) {
 
 }  // namespace
 
-IsolatedDecomposition decompose_isolated(const occ::Solid& solid, double time_limit,
+IsolatedDecomposition decompose_isolated(const occ::Solid& solid, const MeshOptions& options,
                                          const core::Progress& progress) {
+  const double time_limit = options.decomposition_time_limit;
   IsolatedDecomposition out;
   const auto t0 = std::chrono::steady_clock::now();
   core::IsolatedCallOptions io;
   io.stage = "decompose";
-  const core::IsolatedResult run =
-      core::isolated_call([&] { return decompose_to_text(solid, time_limit); },
-                          progress.with_time_limit(time_limit), io);
+  const core::IsolatedResult run = core::isolated_call(
+      [&] { return decompose_to_text(solid, options); }, progress.with_time_limit(time_limit), io);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   switch (run.status) {
     case core::IsolatedResult::Status::ok:

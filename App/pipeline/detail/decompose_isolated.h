@@ -12,6 +12,7 @@
 
 #include "core/progress.h"
 #include "occ/solid.h"
+#include "pipeline/generate_mesh.h"
 
 namespace vorohex::pipeline::detail {
 
@@ -24,8 +25,9 @@ struct IsolatedDecomposition {
   double seconds = 0;
 };
 
-// time_limit: seconds (> 0) the child may take before it is stopped.
-IsolatedDecomposition decompose_isolated(const occ::Solid& solid, double time_limit,
+// Uses options.graph, sharp_angle and decomposition_time_limit (seconds the child may
+// take before it is stopped).
+IsolatedDecomposition decompose_isolated(const occ::Solid& solid, const MeshOptions& options,
                                          const core::Progress& progress);
 
 }  // namespace vorohex::pipeline::detail

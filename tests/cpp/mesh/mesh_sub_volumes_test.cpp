@@ -71,6 +71,9 @@ TEST(MeshSubVolumes, DecomposedSolidsGiveOneConformingValidMesh) {
     SubVolumeMeshResult r = mesh_sub_volumes(*p.glued, o);
     ASSERT_TRUE(r.ok) << messages(r.diagnostics);
     EXPECT_EQ(r.stats.schemes.size(), c.pieces);
+    ASSERT_EQ(r.stats.types.size(), c.pieces);
+    for (std::size_t k = 0; k < c.pieces; ++k)
+      if (r.stats.schemes[k] == "map") EXPECT_EQ(r.stats.types[k], "Ve");
     EXPECT_GT(r.stats.nodes_merged, 0u);
     // Against the glued pieces: conforming, closed, every hex positive.
     const quality::CheckReport pieces_check = quality::check_mesh(r.mesh, p.glued.get(), {});

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <functional>
+
 #include <array>
 #include <chrono>
 #include <memory>
@@ -90,6 +92,13 @@ TEST(GenerateMesh, SolidsNeedingSeveralSubVolumesAreCutAndMeshedAsOne) {
     ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
     EXPECT_GE(r.stats.sub_volumes, 2);
     EXPECT_EQ(r.stats.sub_volume_schemes.size(), std::size_t(r.stats.sub_volumes));
+    // Types from how each is meshed: a mapped block is Ve; a sweep is Vs only between two
+    // faces of the solid (a cut face as source or target makes it Ve).
+    ASSERT_EQ(r.stats.sub_volume_types.size(), std::size_t(r.stats.sub_volumes));
+    for (int k = 0; k < r.stats.sub_volumes; ++k) {
+      if (r.stats.sub_volume_schemes[k] == "map") EXPECT_EQ(r.stats.sub_volume_types[k], "Ve");
+      EXPECT_TRUE(r.stats.sub_volume_types[k] == "Vs" || r.stats.sub_volume_types[k] == "Ve");
+    }
     EXPECT_NE(r.stats.scheme, "tet-split");
     EXPECT_EQ(testing::find_diagnostic(r.diagnostics, "fallback"), nullptr);
     const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "decomposed");
@@ -321,6 +330,34 @@ TEST(GenerateMesh, AStructuredSchemeThatFailsHandsOverToTheFallback) {
   const core::Diagnostic* e = testing::find_diagnostic(refused.diagnostics, "inverted_elements");
   ASSERT_NE(e, nullptr);
   EXPECT_EQ(e->severity, core::Severity::error);
+}
+
+// The Voronoi graph's and the decomposition's options are mesh options: refused with the
+// option named before any work.
+TEST(GenerateMesh, GraphAndSharpAngleOptionsAreValidated) {
+  const occ::Solid box = occ::make_box(3, 2, 1);
+  const auto why = [&](const std::function<void(MeshOptions&)>& set) {
+    MeshOptions opt;
+    set(opt);
+    try {
+      generate_mesh(box, opt);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(why([](MeshOptions& o) { o.graph.eps = 0.5; }).find("eps"), std::string::npos);
+  EXPECT_NE(why([](MeshOptions& o) { o.graph.delta = 0.1; }).find("delta"), std::string::npos);
+  EXPECT_NE(why([](MeshOptions& o) { o.graph.max_depth = 0; }).find("max_depth"),
+            std::string::npos);
+  EXPECT_NE(why([](MeshOptions& o) { o.sharp_angle = 0; }).find("sharp_angle"), std::string::npos);
+  EXPECT_NE(why([](MeshOptions& o) { o.sharp_angle = 181; }).find("sharp_angle"),
+            std::string::npos);
+  EXPECT_EQ(why([](MeshOptions& o) {
+              o.graph.eps = 0.02;
+              o.sharp_angle = 45;
+            }),
+            "");
 }
 
 TEST(GenerateMesh, TimeLimitStopsMeshingWithADiagnostic) {
