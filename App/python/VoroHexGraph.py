@@ -27,6 +27,8 @@ EDGE_TYPES = (
 )
 TYPE_NAMES = [t[0] for t in EDGE_TYPES]
 COLOURS = {t[0]: t[1] for t in EDGE_TYPES}
+FS_COLOUR = (0.55, 0.75, 1.0)  # f_s faces (translucent) and their outlines
+COLOURS["f_s"] = FS_COLOUR
 
 RESULTS = (
     ("Status", "App::PropertyString", "ok, or error when the last recompute failed"),
@@ -38,7 +40,9 @@ RESULTS = (
     ("EdgeTypeCounts", "App::PropertyMap", "Voronoi edges per type (the whole graph)"),
     ("ShownEdgeCounts", "App::PropertyMap", "Voronoi edges drawn per type"),
     ("SegmentTypes", "App::PropertyStringList",
-     "Type of every edge of the Shape (one per Voronoi edge drawn), in Shape.Edges order"),
+     "Type of every edge of the Shape (one per Voronoi edge drawn; f_s for the outline "
+     "edges of the f_s faces), in Shape.Edges order"),
+    ("FsFacesDrawn", "App::PropertyInteger", "f_s faces drawn (their outline closes)"),
 )
 
 
@@ -59,10 +63,16 @@ class VoronoiGraph:
             obj.addProperty("App::PropertyFloatConstraint", "SharpAngle", "Voronoi graph",
                             "Dihedral angle (degrees) below which a [1] edge is [1s]")
             obj.SharpAngle = (60.0, 1.0, 180.0, 5.0)
+        VoroHexObjects.add_option_properties(obj, VoroHexObjects.GRAPH_OPTIONS)
         if not hasattr(obj, "ShownTypes"):
             obj.addProperty("App::PropertyStringList", "ShownTypes", "Voronoi graph",
                             "Edge types drawn (" + ", ".join(TYPE_NAMES) + ")")
             obj.ShownTypes = TYPE_NAMES
+        if not hasattr(obj, "ShowFsFaces"):
+            obj.addProperty("App::PropertyBool", "ShowFsFaces", "Voronoi graph",
+                            "Draw the f_s faces (between two unconnected model faces: where "
+                            "the solid is swept) as translucent faces")
+            obj.ShowFsFaces = True
         if not hasattr(obj, "ShowVertices"):
             obj.addProperty("App::PropertyBool", "ShowVertices", "Voronoi graph",
                             "Draw the Voronoi vertices as points")
@@ -89,10 +99,14 @@ class VoronoiGraph:
         if error is None:
             try:
                 graph = VoroHex.voronoi_graph(obj.Part, sharp_angle=obj.SharpAngle,
-                                              progress=getattr(self, "progress", None))
+                                              progress=getattr(self, "progress", None),
+                                              **VoroHexObjects.graph_options_of(obj))
             except VoroHex.Cancelled:
                 obj.Status, obj.Message = "error", "cancelled"
                 raise RuntimeError("VoroHex: the Voronoi graph was cancelled")
+            except ValueError as e:  # a bad Eps, Delta or MaxDepth, named
+                obj.Status, obj.Message = "error", str(e).replace("VoroHex: ", "")
+                raise RuntimeError("VoroHex: " + obj.Message)
             if not graph.ok:
                 error = "; ".join(d.get("message", "") for d in graph.diagnostics) or \
                     "the Voronoi graph could not be computed"
@@ -118,9 +132,20 @@ class VoronoiGraph:
                 shapes.append(wire)
                 segment_types += [t] * len(wire.Edges)
                 shown[t] = shown.get(t, 0) + 1
+        fs_drawn = 0
+        if obj.ShowFsFaces:
+            by_id = {e["id"]: e for e in graph.elements}
+            for f in graph.fs_faces():
+                face = fs_face([by_id[i].get("polyline", []) for i in f.get("incident", [])
+                                if by_id.get(i, {}).get("kind") == "edge"])
+                if face is not None:
+                    shapes.append(face)
+                    segment_types += ["f_s"] * len(face.Edges)
+                    fs_drawn += 1
         if obj.ShowVertices:
             shapes += [Part.Vertex(FreeCAD.Vector(*v["point"])) for v in graph.of_kind("vertex")]
         obj.Shape = Part.makeCompound(shapes)
+        obj.FsFacesDrawn = fs_drawn
         obj.SegmentTypes = segment_types
         obj.EdgeTypeCounts = {t: str(n) for t, n in graph.type_counts().items()}
         obj.ShownEdgeCounts = {t: str(n) for t, n in shown.items()}
@@ -132,6 +157,40 @@ class VoronoiGraph:
             obj.VertexCount, obj.EdgeCount,
             ", ".join("{} {}".format(n, t) for t, n in sorted(graph.type_counts().items())),
             obj.FaceCount, obj.FsFaceCount)
+
+
+def fs_face(polylines, tol=1e-9):
+    """The face bounded by a Voronoi face's edges (their polylines chained into one loop):
+    planar when its points are, else a filling surface; None when they do not close."""
+    chains = [[FreeCAD.Vector(*p) for p in pl] for pl in polylines if len(pl) >= 2]
+    if len(chains) < 2:
+        return None
+    scale = max((p - q).Length for c in chains for p in c for q in (chains[0][0],)) or 1.0
+    close = 1e-6 * scale
+    loop = list(chains.pop(0))
+    while chains:
+        end = loop[-1]
+        for k, c in enumerate(chains):
+            if (c[0] - end).Length <= close:
+                loop += c[1:]
+                break
+            if (c[-1] - end).Length <= close:
+                loop += list(reversed(c))[1:]
+                break
+        else:
+            return None  # the edges do not chain: no face drawn
+        chains.pop(k)
+    if (loop[0] - loop[-1]).Length > close or len(loop) < 4:
+        return None
+    loop[-1] = loop[0]
+    try:
+        wire = Part.makePolygon(loop)
+        plane = wire.findPlane(close)
+        if plane is not None:
+            return Part.Face(wire)
+        return Part.makeFilledFace(wire.Edges)
+    except Exception:  # OCCT could not make a face of it: the outline is drawn as edges
+        return None
 
 
 def polyline(points):
@@ -151,17 +210,23 @@ def polyline(points):
     return curve.toShape()
 
 
-def makeVoronoiGraph(doc, part, name="VoronoiGraph", progress=None):
+def makeVoronoiGraph(doc, part, name="VoronoiGraph", progress=None, **options):
     """Adds a Voronoi graph object for `part` to `doc` and computes it. Raises ValueError
     (and leaves the document as it was) when `part` holds no single solid. progress(stage,
     fraction) is called while it computes and may return False to cancel (the object then
-    has Status error, Message cancelled)."""
+    has Status error, Message cancelled). options: sharp_angle, eps, delta, max_depth (as
+    for VoroHex.voronoi_graph), set as the object's properties before it computes."""
     error = VoroHexObjects.source_error(part)
     if error is not None:
         raise ValueError("VoroHex: " + error)
     obj = doc.addObject("Part::FeaturePython", name)
     VoronoiGraph(obj)
     obj.Part = part
+    try:
+        VoroHexObjects.set_options(obj, options)
+    except (TypeError, ValueError):
+        doc.removeObject(obj.Name)  # the document as it was
+        raise
     if FreeCAD.GuiUp:
         from VoroHexGui import graph_view
 

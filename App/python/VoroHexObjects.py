@@ -26,6 +26,9 @@ RESULTS = (
     ("ScaledJacobianHistogram", "App::PropertyIntegerList",
      "Hexes per scaled Jacobian bin of 0.1 from -1 to 1"),
     ("SubVolumeSchemes", "App::PropertyStringList", "Per sub-volume (1, 2, ...): its scheme"),
+    ("SubVolumeTypes", "App::PropertyStringList",
+     "Per sub-volume: Vs (swept between two faces of the solid), Ve (a block, or a sweep "
+     "from or to a cut face), - (the tetrahedral fallback)"),
     ("SubVolumeHexCounts", "App::PropertyIntegerList", "Per sub-volume: its hexahedra"),
     ("SubVolumeMinScaledJacobian", "App::PropertyFloatList",
      "Per sub-volume: the smallest scaled Jacobian of its hexahedra"),
@@ -58,6 +61,43 @@ def source_error(part, several=False):
     except (TypeError, ValueError) as e:
         return "'{}': {}".format(part.Label, str(e).replace("VoroHex: ", ""))
     return None
+
+
+# The Voronoi graph's options (eps, delta, max_depth), shared by the mesh, graph and
+# decomposition objects under the same property names.
+GRAPH_OPTIONS = tuple(o for o in VoroHex.OPTIONS if o.group == "Voronoi graph")
+
+
+def add_option_properties(obj, options, group=None):
+    """Adds the properties of `options` (VoroHex.OPTIONS entries) the object lacks, with
+    their defaults; sets the limits of constraint properties again (FreeCAD does not save
+    them), so it also serves on restore."""
+    for o in options:
+        if not hasattr(obj, o.prop):
+            obj.addProperty(o.prop_type, o.prop, group or o.group, o.doc)
+            value = 0 if o.auto_zero else o.default
+            setattr(obj, o.prop, (value,) + o.limits if o.limits else value)
+        elif o.limits:
+            setattr(obj, o.prop, (getattr(obj, o.prop),) + o.limits)
+
+
+def set_options(obj, options):
+    """Sets the properties of keyword options (eps=..., sharp_angle=...; None keeps the
+    default) through VoroHex.OPTIONS; TypeError or ValueError naming a bad option or one
+    the object does not have."""
+    by_name = {o.name: o for o in VoroHex.OPTIONS}
+    VoroHex.validate_options(**options)
+    for name, value in options.items():
+        o = by_name.get(name)
+        if o is None or not hasattr(obj, o.prop):
+            raise TypeError("VoroHex: {} has no option '{}'".format(obj.Label, name))
+        if value is not None:
+            setattr(obj, o.prop, value)
+
+
+def graph_options_of(obj):
+    """Keyword options eps, delta, max_depth for VoroHex.voronoi_graph / decompose."""
+    return {o.name: getattr(obj, o.prop) for o in GRAPH_OPTIONS if hasattr(obj, o.prop)}
 
 
 def options_of(obj):
@@ -139,6 +179,7 @@ class HexMesh:
         obj.ScaledJacobianHistogram = [int(c) for c in s.histogram]
         table = result.sub_volume_table()
         obj.SubVolumeSchemes = [r["scheme"] for r in table]
+        obj.SubVolumeTypes = [r["type"] for r in table]
         obj.SubVolumeHexCounts = [r["hexes"] for r in table]
         obj.SubVolumeMinScaledJacobian = [float(r["min_scaled_jacobian"]) for r in table]
         obj.Status, obj.Message = "ok", result.message

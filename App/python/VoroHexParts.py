@@ -52,6 +52,7 @@ class Decomposition:
             obj.addProperty("App::PropertyFloatConstraint", "SharpAngle", "Decomposition",
                             "Dihedral angle (degrees) below which a [1] edge is [1s]")
             obj.SharpAngle = (60.0, 1.0, 180.0, 5.0)
+        VoroHexObjects.add_option_properties(obj, VoroHexObjects.GRAPH_OPTIONS)
         if not hasattr(obj, "Merge"):
             obj.addProperty("App::PropertyBool", "Merge", "Decomposition",
                             "Unite neighbouring sub-volumes whose union is a sweep")
@@ -78,10 +79,14 @@ class Decomposition:
         if error is None:
             try:
                 d = VoroHex.decompose(obj.Part, sharp_angle=obj.SharpAngle, merge=obj.Merge,
-                                      progress=getattr(self, "progress", None))
+                                      progress=getattr(self, "progress", None),
+                                      **VoroHexObjects.graph_options_of(obj))
             except VoroHex.Cancelled:
                 obj.Status, obj.Message = "error", "cancelled"
                 raise RuntimeError("VoroHex: the decomposition was cancelled")
+            except ValueError as e:  # a bad Eps, Delta or MaxDepth, named
+                obj.Status, obj.Message = "error", str(e).replace("VoroHex: ", "")
+                raise RuntimeError("VoroHex: " + obj.Message)
             if not d.ok or not d.shapes:
                 error = "; ".join(x.get("message", "") for x in d.diagnostics
                                   if x.get("severity") == "error") or "the decomposition failed"
@@ -134,16 +139,22 @@ def face_roles(compound, d):
     return roles
 
 
-def makeDecomposition(doc, part, name="Decomposition", merge=True, progress=None):
+def makeDecomposition(doc, part, name="Decomposition", merge=True, progress=None, **options):
     """Adds a decomposition object for `part` to `doc` and computes it. Raises ValueError
     (and leaves the document as it was) when `part` holds no single solid. progress as for
-    VoroHexGraph.makeVoronoiGraph."""
+    VoroHexGraph.makeVoronoiGraph; options: sharp_angle, eps, delta, max_depth, set as the
+    object's properties before it computes."""
     error = VoroHexObjects.source_error(part)
     if error is not None:
         raise ValueError("VoroHex: " + error)
     obj = doc.addObject("Part::FeaturePython", name)
     Decomposition(obj)
     obj.Part = part
+    try:
+        VoroHexObjects.set_options(obj, options)
+    except (TypeError, ValueError):
+        doc.removeObject(obj.Name)  # the document as it was
+        raise
     obj.Merge = merge
     if FreeCAD.GuiUp:
         from VoroHexGui import parts_view

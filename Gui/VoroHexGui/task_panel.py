@@ -57,37 +57,78 @@ class TaskPanel:
             v = QtGui.QDoubleValidator(0.0, 1.0, 15, self.form)
             v.setNotation(QtGui.QDoubleValidator.ScientificNotation)
             getattr(self.form, name).setValidator(v)
-        # Stage 2, decomposition: its options and a preview of graph and cut before meshing.
+        # The stages before meshing, in pipeline order after the Mesh group: the Voronoi
+        # graph, the decomposition (with a preview of both and the edge-type legend).
+        layout = self.form.layout()
+        graph_box = QtGui.QGroupBox("Voronoi graph (what the decomposition cuts along)",
+                                    self.form)
+        graph_box.setObjectName("gb_graph")
+        graph_form = QtGui.QFormLayout(graph_box)
+        self.eps = QtGui.QLineEdit(graph_box)
+        self.eps.setObjectName("le_eps")
+        graph_form.addRow("Eps (x diagonal):", self.eps)
+        self.delta = QtGui.QLineEdit(graph_box)
+        self.delta.setObjectName("le_delta")
+        graph_form.addRow("Delta (x diagonal):", self.delta)
+        for w in (self.eps, self.delta):
+            v = QtGui.QDoubleValidator(0.0, 0.25, 15, w)
+            v.setNotation(QtGui.QDoubleValidator.ScientificNotation)
+            w.setValidator(v)
+        self.max_depth = QtGui.QSpinBox(graph_box)
+        self.max_depth.setObjectName("sb_max_depth")
+        self.max_depth.setRange(1, 12)
+        graph_form.addRow("Max. octree depth:", self.max_depth)
         dec_box = QtGui.QGroupBox("Decomposition (where no single scheme applies)", self.form)
         dec_box.setObjectName("gb_decomposition")
         dec_form = QtGui.QFormLayout(dec_box)
         self.decompose = QtGui.QCheckBox("Cut into sub-volumes before any fallback", dec_box)
         self.decompose.setObjectName("cb_decompose")
         dec_form.addRow(self.decompose)
+        self.sharp_angle = QtGui.QDoubleSpinBox(dec_box)
+        self.sharp_angle.setObjectName("sb_sharp_angle")
+        self.sharp_angle.setRange(1, 180)
+        self.sharp_angle.setSuffix(" \u00b0")
+        dec_form.addRow("Sharp angle:", self.sharp_angle)
         self.decomposition_time = QtGui.QDoubleSpinBox(dec_box)
         self.decomposition_time.setObjectName("sb_decomposition_time_limit")
         self.decomposition_time.setRange(1, 3600)
         self.decomposition_time.setSuffix(" s")
         dec_form.addRow("Time limit:", self.decomposition_time)
+        for w in (self.eps, self.delta, self.max_depth, self.decompose, self.sharp_angle,
+                  self.decomposition_time):
+            option = next(o for o in VoroHex.OPTIONS if self._widget(o) is w)
+            w.setToolTip(option.doc)
         self.preview = QtGui.QPushButton("Preview graph and decomposition", dec_box)
         self.preview.setObjectName("pb_preview")
         self.preview.setToolTip("Computes the Voronoi graph and the decomposition of the solid "
-                                "as document objects, to see where it will be cut (Cancel "
-                                "in the busy dialog stops it)")
+                                "with these options, as document objects, to see where it "
+                                "will be cut (Cancel in the busy dialog stops it)")
         dec_form.addRow(self.preview)
         self.preview_status = QtGui.QLabel("", dec_box)
         self.preview_status.setObjectName("lbl_preview")
         self.preview_status.setWordWrap(True)
         dec_form.addRow(self.preview_status)
-        layout = self.form.layout()
-        layout.insertWidget(layout.indexOf(self.form.gb_smoothing) + 1, dec_box)
+        # The previewed graph's edge types: count per type, a check box shows or hides it.
+        from VoroHexGui.graph_view import EdgeTypeTable
+
+        self.edge_types = EdgeTypeTable(dec_box)
+        self.edge_types.setObjectName("tbl_preview_edge_types")
+        self.edge_types.setMinimumHeight(160)
+        self.edge_types.setVisible(False)
+        dec_form.addRow(self.edge_types)
+        after_mesh = layout.indexOf(self.form.gb_params) + 1
+        layout.insertWidget(after_mesh, graph_box)
+        layout.insertWidget(after_mesh + 1, dec_box)
         self.preview.clicked.connect(self.run_preview)
         # Sub-volumes of the last run; selecting one highlights the nodes of its hexahedra.
         sv_box = QtGui.QGroupBox("Sub-volumes (select one to highlight it)", self.form)
         sv_box.setObjectName("gb_sub_volumes")
-        self.sub_volumes = QtGui.QTableWidget(0, 4, sv_box)
+        self.sub_volumes = QtGui.QTableWidget(0, 5, sv_box)
         self.sub_volumes.setObjectName("tw_sub_volumes")
-        self.sub_volumes.setHorizontalHeaderLabels(["id", "scheme", "hexes", "min SJ"])
+        self.sub_volumes.setHorizontalHeaderLabels(["id", "type", "scheme", "hexes", "min SJ"])
+        self.sub_volumes.horizontalHeaderItem(1).setToolTip(
+            "Vs: swept between two faces of the solid (around an f_s face); Ve: a block, or a "
+            "sweep from or to a cut face; -: the tetrahedral fallback")
         self.sub_volumes.verticalHeader().setVisible(False)
         self.sub_volumes.setSelectionBehavior(QtGui.QAbstractItemView.SelectRows)
         self.sub_volumes.setSelectionMode(QtGui.QAbstractItemView.SingleSelection)
@@ -126,10 +167,11 @@ class TaskPanel:
 
     # Widgets <-> properties ------------------------------------------------------------
     def _widget(self, option):
-        if option.name == "decompose":
-            return self.decompose
-        if option.name == "decomposition_time_limit":
-            return self.decomposition_time
+        own = {"decompose": "decompose", "decomposition_time_limit": "decomposition_time",
+               "sharp_angle": "sharp_angle", "eps": "eps", "delta": "delta",
+               "max_depth": "max_depth"}
+        if option.name in own:
+            return getattr(self, own[option.name], None)
         name = WIDGETS.get(option.name)
         return getattr(self.form, name) if name else None
 
@@ -213,16 +255,22 @@ class TaskPanel:
         if part is None or self.running:
             return
         import VoroHexGraph
+        import VoroHexObjects
         import VoroHexParts
         from VoroHexGui.commands import run_cancellable
 
         made = {}
 
+        self.store()  # the preview uses the panel's graph and decomposition options
+        options = VoroHexObjects.graph_options_of(self.obj)
+        options["sharp_angle"] = self.obj.SharpAngle
+
         def work(busy):
-            made["graph"] = VoroHexGraph.makeVoronoiGraph(self.obj.Document, part, progress=busy)
+            made["graph"] = VoroHexGraph.makeVoronoiGraph(self.obj.Document, part, progress=busy,
+                                                          **options)
             if not busy.cancelled:
                 made["parts"] = VoroHexParts.makeDecomposition(self.obj.Document, part,
-                                                               progress=busy)
+                                                               progress=busy, **options)
 
         if run_cancellable(self.obj.Document, "VoroHex preview", work) is None:
             self.preview_status.setText("Preview cancelled.")
@@ -230,11 +278,14 @@ class TaskPanel:
         graph, parts = made["graph"], made["parts"]
         text = "Graph: {}.".format(graph.Message)
         if parts.Status in ("ok", "partial"):
-            text += " Decomposition: {} sub-volumes ({}).".format(
-                parts.SubVolumeCount, ", ".join(sorted(set(parts.Schemes))))
+            n = parts.SubVolumeCount
+            text += " Decomposition: {} sub-volume{} ({}).".format(
+                n, "" if n == 1 else "s", ", ".join(sorted(set(parts.Schemes))))
         else:
             text += " Decomposition failed: {}".format(parts.Message)
         self.preview_status.setText(text)
+        self.edge_types.set_graph(graph)
+        self.edge_types.setVisible(True)
         for o in (graph, parts):
             if o.ViewObject is not None:
                 o.ViewObject.Visibility = True
@@ -281,11 +332,14 @@ class TaskPanel:
     def show_result(self):
         self.sub_volumes.setRowCount(0)
         if self.obj.Status == "ok":
+            types = list(getattr(self.obj, "SubVolumeTypes", []))
             rows = list(zip(self.obj.SubVolumeSchemes, self.obj.SubVolumeHexCounts,
                             self.obj.SubVolumeMinScaledJacobian))
             self.sub_volumes.setRowCount(len(rows))
             for k, (scheme, hexes, min_sj) in enumerate(rows):
-                for c, text in enumerate((str(k + 1), scheme, str(hexes), "{:.3f}".format(min_sj))):
+                kind = types[k] if k < len(types) else ""
+                for c, text in enumerate((str(k + 1), kind, scheme, str(hexes),
+                                          "{:.3f}".format(min_sj))):
                     self.sub_volumes.setItem(k, c, QtGui.QTableWidgetItem(text))
             self.sub_volumes.resizeColumnsToContents()
         self.diagnostics.clear()

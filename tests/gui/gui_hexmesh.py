@@ -262,8 +262,11 @@ def main():
     pump(1.0)
     table = mw.findChild(QtGui.QTableWidget, "tw_sub_volumes")
     check(table is not None and table.rowCount() == 2, "the panel's table lists 2 sub-volumes")
-    check([table.item(r, 1).text() for r in range(2)] == list(joined.SubVolumeSchemes),
+    check([table.item(r, 2).text() for r in range(2)] == list(joined.SubVolumeSchemes),
           "with their schemes " + str(list(joined.SubVolumeSchemes)))
+    check([table.item(r, 1).text() for r in range(2)] == list(joined.SubVolumeTypes)
+          and len(joined.SubVolumeTypes) == 2,
+          "and types " + str(list(joined.SubVolumeTypes)))
     table.selectRow(1)
     pump(0.5)
     check(len(joined.ViewObject.HighlightedNodes) == 9 * 9 * 7,

@@ -112,6 +112,12 @@ def main():
     check(QtGui.QGuiApplication.primaryScreen().grabWindow(0).save(SHOT),
           "screenshot saved to " + SHOT)
 
+    fs = mw.findChild(QtGui.QCheckBox, "cb_fs_faces")
+    check(fs is not None and fs.isChecked() and g.FsFacesDrawn == g.FsFaceCount > 0
+          and len(g.Shape.Faces) == g.FsFaceCount
+          and "{} of {}".format(g.FsFaceCount, g.FsFaceCount) in fs.text(),
+          "the f_s faces drawn, translucent ({})".format(fs.text() if fs else None))
+    check(g.ViewObject.Transparency > 0, "f_s faces translucent")
     # Unchecking [C] in the legend hides its edges.
     row = [r for r in range(table.rowCount()) if table.item(r, 0).text() == "[C]"][0]
     table.item(row, 0).setCheckState(QtCore.Qt.Unchecked)
@@ -177,8 +183,71 @@ def main():
     check(not Gui.Control.activeDialog(), "decomposition panel closed")
     d.ViewObject.Visibility = False
 
-    # Mesh quality of a sphere meshed by the fallback (a varied quality to look at).
+    # The hex mesh panel holds the whole pipeline: its graph and decomposition options go
+    # to the preview, whose edge-type legend counts and toggles types; then Run meshes.
     import VoroHexObjects
+
+    lmesh = VoroHexObjects.makeHexMesh(doc, l_shape, "LMesh", size=2.5)
+    Gui.ActiveDocument.setEdit(lmesh.Name)
+    pump(1.0)
+    for name, kind in (("gb_graph", QtGui.QGroupBox), ("gb_decomposition", QtGui.QGroupBox),
+                       ("gb_smoothing", QtGui.QGroupBox), ("gb_check", QtGui.QGroupBox)):
+        check(mw.findChild(kind, name) is not None, "stage group " + name + " in the panel")
+    mw.findChild(QtGui.QLineEdit, "le_eps").setText("0.02")
+    mw.findChild(QtGui.QDoubleSpinBox, "sb_sharp_angle").setValue(50)
+    before = set(o.Name for o in doc.Objects)
+    mw.findChild(QtGui.QPushButton, "pb_preview").click()
+    pump(0.5)
+    made = [o for o in doc.Objects if o.Name not in before]
+    pg = [o for o in made if hasattr(o, "SegmentTypes")]
+    check(len(pg) == 1 and len(made) == 2, "Preview made a graph and a decomposition")
+    pg = pg[0]
+    check((pg.Eps, pg.SharpAngle, lmesh.Eps, lmesh.SharpAngle) == (0.02, 50, 0.02, 50),
+          "the panel's eps and sharp angle went to the mesh object and the preview")
+    expected = VoroHex.voronoi_graph(l_shape, eps=0.02, sharp_angle=50).type_counts()
+    legend = mw.findChild(QtGui.QTableWidget, "tbl_preview_edge_types")
+    check(legend is not None and legend.isVisible(), "the panel shows the preview's legend")
+    counts = {legend.item(r, 0).text(): int(legend.item(r, 1).text())
+              for r in range(legend.rowCount())}
+    check(all(counts[t] == n for t, n in expected.items())
+          and sum(counts.values()) == sum(expected.values()),
+          "its counts per type equal the graph's {}".format(expected))
+    row = [r for r in range(legend.rowCount()) if legend.item(r, 0).text() == "[C]"][0]
+    legend.item(row, 0).setCheckState(QtCore.Qt.Unchecked)
+    pump(0.5)
+    check("[C]" not in pg.ShownTypes and "[C]" not in pg.SegmentTypes,
+          "unchecking [C] in the panel hides the preview's [C] edges")
+    mw.findChild(QtGui.QPushButton, "pb_run").click()
+    pump(0.5)
+    check(lmesh.Status == "ok", "Run meshed the L: " + lmesh.Message)
+    sv = mw.findChild(QtGui.QTableWidget, "tw_sub_volumes")
+    check(sv.rowCount() == 1 and sv.item(0, 1).text() == "Vs" and sv.item(0, 2).text() == "sweep",
+          "sub-volume table: one Vs swept")
+    for o in made:
+        o.ViewObject.Visibility = o in (pg,)
+    lmesh.ViewObject.Visibility = False
+    l_shape.ViewObject.Visibility = True
+    l_shape.ViewObject.Transparency = 80
+    view.viewIsometric()
+    view.fitAll()
+    for area in mw.findChildren(QtGui.QScrollArea):
+        if area.isVisible() and area.widget() and area.widget().findChild(
+                QtGui.QTableWidget, "tbl_preview_edge_types"):
+            area.ensureWidgetVisible(legend)
+    pump(1.0)
+    pipeline_shot = SHOT.replace("gui_voronoi_l", "gui_pipeline_l")
+    check(QtGui.QGuiApplication.primaryScreen().grabWindow(0).save(pipeline_shot),
+          "screenshot saved to " + pipeline_shot)
+    for box in mw.findChildren(QtGui.QDialogButtonBox):
+        b = box.button(QtGui.QDialogButtonBox.Ok)
+        if b is not None and b.isVisible():
+            b.click()
+    pump(0.3)
+    check(not Gui.Control.activeDialog(), "mesh panel closed with OK")
+    for o in made + [l_shape]:
+        o.ViewObject.Visibility = False
+
+    # Mesh quality of a sphere meshed by the fallback (a varied quality to look at).
 
     sphere = doc.addObject("Part::Sphere", "Sphere")
     sphere.Radius = 10
@@ -240,7 +309,7 @@ def main():
     pump()
     Gui.runCommand("VoroHex_VoronoiGraph")
     pump(0.5)
-    g6 = [o for o in doc.Objects if hasattr(o, "SegmentTypes") and o != g]
+    g6 = [o for o in doc.Objects if hasattr(o, "SegmentTypes") and o.Part == figure6]
     check(len(g6) == 1 and g6[0].Status == "ok", "Figure 6 part: graph computed")
     graph6 = VoroHex.voronoi_graph(figure6)
     table = mw.findChild(QtGui.QTableWidget, "tbl_edge_types")

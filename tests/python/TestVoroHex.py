@@ -255,6 +255,7 @@ class TestVoroHexApi(unittest.TestCase):
         self.assertEqual([t["id"] for t in table], [1, 2])
         self.assertEqual([t["hexes"] for t in table], [48, 48])
         self.assertEqual([t["scheme"] for t in table], ["map", "map"])
+        self.assertEqual([t["type"] for t in table], ["Ve", "Ve"])  # blocks
         self.assertAlmostEqual(table[0]["min_scaled_jacobian"], 1.0, places=9)
         ids = array.array("i")
         ids.frombytes(r.core_mesh.sub_volume_bytes())
@@ -262,6 +263,29 @@ class TestVoroHexApi(unittest.TestCase):
         # The graph and the decomposition take one solid and say so.
         with self.assertRaisesRegex(ValueError, "2 solids"):
             VoroHex.voronoi_graph(Part.makeCompound([self.box, other]))
+
+    def test_graph_and_decomposition_options(self):
+        # The Voronoi graph's eps, delta, max_depth and the decomposition's sharp_angle are
+        # mesh options too (they shape the cut of a solid no single scheme meshes).
+        for bad, word in ((dict(eps=0.5), "eps"), (dict(delta=0.02), "delta"),
+                          (dict(max_depth=13), "max_depth"), (dict(sharp_angle=0), "sharp_angle"),
+                          (dict(sharp_angle=200), "sharp_angle")):
+            with self.assertRaisesRegex(ValueError, word):
+                VoroHex.mesh(self.box, **bad)
+            with self.assertRaisesRegex(ValueError, word):
+                VoroHex.validate_options(**bad)
+        with self.assertRaisesRegex(TypeError, "max_depth"):
+            VoroHex.mesh(self.box, max_depth="9")
+        r = VoroHex.mesh(post_on_plate(), size=0.5, eps=0.02, delta=0.002, max_depth=8,
+                         sharp_angle=45)
+        self.assertTrue(r.ok, r.message)
+        self.assertGreater(r.stats.sub_volumes, 1)
+        table = r.sub_volume_table()
+        self.assertEqual({t["type"] for t in table} <= {"Vs", "Ve"}, True)
+        self.assertEqual(len(table), r.stats.sub_volumes)
+        # A sweep of one solid runs between two of its faces: Vs.
+        self.assertEqual([t["type"] for t in VoroHex.mesh(Part.makeCylinder(5, 10), size=2)
+                          .sub_volume_table()], ["Vs"])
 
     def test_too_many_hexes_is_a_diagnostic(self):
         r = VoroHex.mesh(self.box, size=1, max_hexes=100)
@@ -438,6 +462,13 @@ def snapshot(doc):
     return out
 
 
+def post_on_plate():
+    """A 4 x 4 x 1 plate with a 1 x 1 x 3 post standing on its middle (no single scheme
+    meshes it; it is cut into sub-volumes)."""
+    return Part.makeBox(4, 4, 1).fuse(
+        Part.makeBox(1, 1, 3, FreeCAD.Vector(1.5, 1.5, 1))).removeSplitter()
+
+
 def figure6_shape():
     """The Figure 6 part of tests/cpp/fixtures/solids.h (a hexagonal ring, six triangular
     protrusions)."""
@@ -508,6 +539,34 @@ class TestVoroHexObject(unittest.TestCase):
         self.assertNotIn(hidden, g.SegmentTypes)
         self.assertNotIn(hidden, g.ShownEdgeCounts)
         self.assertEqual(len(g.SegmentTypes), len(g.Shape.Edges))
+        # The f_s faces are drawn as faces (translucent in the view), their outline edges
+        # typed f_s; ShowFsFaces off leaves the lines only.
+        self.assertGreater(g.FsFaceCount, 0)
+        self.assertEqual((g.FsFacesDrawn, len(g.Shape.Faces)), (g.FsFaceCount, g.FsFaceCount))
+        self.assertIn("f_s", g.SegmentTypes)
+        g.ShowFsFaces = False
+        self.doc.recompute()
+        self.assertEqual((g.FsFacesDrawn, len(g.Shape.Faces)), (0, 0))
+        self.assertNotIn("f_s", g.SegmentTypes)
+        self.assertEqual(len(g.SegmentTypes), len(g.Shape.Edges))
+        # The graph's own options, set at creation; a bad one is refused before anything is
+        # added to the document.
+        fine = VoroHexGraph.makeVoronoiGraph(self.doc, l_shape, eps=0.02, delta=0.002,
+                                             sharp_angle=45)
+        self.assertEqual((fine.Eps, fine.Delta, fine.MaxDepth, fine.SharpAngle),
+                         (0.02, 0.002, 9, 45))
+        self.assertEqual(fine.EdgeCount, VoroHex.voronoi_graph(l_shape, eps=0.02, delta=0.002)
+                         .counts["edges"])
+        names = [o.Name for o in self.doc.Objects]
+        with self.assertRaisesRegex(ValueError, "eps"):
+            VoroHexGraph.makeVoronoiGraph(self.doc, l_shape, eps=0.5)
+        with self.assertRaisesRegex(ValueError, "max_depth"):
+            VoroHexParts.makeDecomposition(self.doc, l_shape, max_depth=20)
+        self.assertEqual([o.Name for o in self.doc.Objects], names)
+        fine.Eps = 0.3  # edited later: the recompute fails with the reason
+        self.doc.recompute()
+        self.assertEqual(fine.Status, "error")
+        self.assertIn("eps", fine.Message)
         # Saved and reopened, the object keeps its properties.
         with tempfile.TemporaryDirectory() as tmp:
             path = os.path.join(tmp, "graph.FCStd")
