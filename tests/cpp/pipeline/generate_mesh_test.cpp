@@ -306,6 +306,26 @@ TEST(GenerateMesh, TinyEdgesAndSliverFacesAreNamed) {
   EXPECT_EQ(testing::find_diagnostic(box.diagnostics, "sliver_faces"), nullptr);
 }
 
+// Curved HexMe solids at the default size (diagonal / 20): valid, boundary nodes on the CAD
+// within 1e-6 x diagonal, min scaled Jacobian >= 0.3 after smoothing. s07 (a box with a
+// cylindrical notch) and s17 (a sphere) go through the tetrahedral fallback, whose worst
+// hexahedra the smoothing's max-min phase raises (0.157 and 0.177 before it was added);
+// s15 (a cylinder) is a sweep.
+TEST(GenerateMesh, CurvedSolidsAreValidOnTheCadAndAbove03) {
+  for (const char* name : {"s07o_notch", "s15o_cylinder", "s17o_sphere"}) {
+    SCOPED_TRACE(name);
+    const occ::ReadResult in =
+        occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/" + name + ".step");
+    if (!in.ok()) GTEST_SKIP() << "HexMe model " << name << " not found in " << VOROHEX_HEXME_DIR;
+    const MeshResult r = generate_mesh(*in.solid, MeshOptions{});
+    ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
+    EXPECT_TRUE(r.check.valid);
+    EXPECT_LE(r.check.max_boundary_distance_rel, 1e-6);
+    EXPECT_GE(r.check.scaled_jacobian.min, 0.3);
+    EXPECT_GE(r.check.scaled_jacobian.min, r.stats.min_sj_before_smoothing);
+  }
+}
+
 // HexMe n03 is a sweep whose layers fold: the sweep's failure goes into the fallback's
 // warning and the fallback meshes it valid; without the fallback the sweep's error stands.
 TEST(GenerateMesh, AStructuredSchemeThatFailsHandsOverToTheFallback) {
