@@ -287,6 +287,22 @@ class TestVoroHexApi(unittest.TestCase):
         self.assertEqual([t["type"] for t in VoroHex.mesh(Part.makeCylinder(5, 10), size=2)
                           .sub_volume_table()], ["Vs"])
 
+    def test_curved_solids_are_valid_on_the_cad(self):
+        # Issue 7's curved solids without HexMe: a cylinder and a plate with two round
+        # holes (both swept), at the default size and at a finer one.
+        V = FreeCAD.Vector
+        plate = Part.makeBox(8, 4, 0.5).cut(Part.makeCylinder(0.8, 1, V(2, 2, -0.2))).cut(
+            Part.makeCylinder(0.8, 1, V(6, 2, -0.2))).removeSplitter()
+        for shape in (Part.makeCylinder(5, 10), plate):
+            for size in (None, shape.BoundBox.DiagonalLength / 40):
+                r = VoroHex.mesh(shape, size=size)
+                self.assertTrue(r.ok, r.message)
+                self.assertEqual(r.stats.scheme, "sweep")
+                self.assertGreaterEqual(r.stats.min_scaled_jacobian, 0.2)
+                self.assertLessEqual(r.stats.max_boundary_distance,
+                                     1e-6 * shape.BoundBox.DiagonalLength)
+                self.assertLess(r.stats.volume_rel_error, 1e-2)  # chords of the circles
+
     def test_too_many_hexes_is_a_diagnostic(self):
         r = VoroHex.mesh(self.box, size=1, max_hexes=100)
         self.assertFalse(r.ok)
