@@ -44,17 +44,28 @@ bool all_meshable(const std::vector<const occ::Solid*>& pieces) {
   return true;
 }
 
-// The planes of the planar faces at concave edges; false (with why) when a concave edge
-// has a curved face (no exact plane to cut along).
-bool concave_planes(const occ::Solid& s, std::vector<Plane>& planes, std::string& why) {
+// The same cylinder (axis line and radius within `tol`).
+bool same_cylinder(const occ::CutCylinder& a, const occ::CutCylinder& b, double tol) {
+  if (std::abs(a.axis.dot(b.axis)) < 1 - 1e-9 || std::abs(a.radius - b.radius) > tol) return false;
+  const Vec3 d = b.origin - a.origin;
+  return (d - d.dot(a.axis) * a.axis).norm() <= tol;
+}
+
+// The surfaces of the faces at concave edges: planes, and cylinders (a post of round
+// section on a plate, a round boss); false (with why) when a concave edge has a face of
+// another kind (no exact surface to cut along).
+bool concave_surfaces(const occ::Solid& s, std::vector<Plane>& planes,
+                      std::vector<occ::CutCylinder>& cylinders, std::string& why) {
   const double diag = s.diagonal(), eps = 1e-3 * diag, tol = 1e-7 * diag;
   for (EdgeId e : s.edges()) {
     if (s.edge_is_degenerated(e)) continue;
     const std::vector<FaceId> faces = s.edge_faces(e);
     if (faces.size() != 2) continue;
-    const std::vector<Vec3> p = s.edge_points_by_length(e, 2);
-    const Vec3 m = p[1];
-    const Vec3 t = (p[2] - p[0]).normalized();
+    // The middle and the tangent there (a chord around it: a closed edge such as a
+    // circle starts and ends at one point).
+    const std::vector<Vec3> p = s.edge_points_by_length(e, 16);
+    const Vec3 m = p[8];
+    const Vec3 t = (p[9] - p[7]).normalized();
     const Vec3 n1 = s.face_normal(faces[0], m), n2 = s.face_normal(faces[1], m);
     // The direction from the edge into the first face, across the edge.
     Vec3 d1 = n1.cross(t).normalized();
@@ -62,9 +73,28 @@ bool concave_planes(const occ::Solid& s, std::vector<Plane>& planes, std::string
       d1 = -d1;
     if (d1.dot(n2) <= std::sin(M_PI / 180)) continue;  // convex or smooth
     for (FaceId f : faces) {
+      occ::CutCylinder cyl;
+      if (!s.face_is_planar(f) && occ::face_cylinder(s, f, &cyl)) {
+        // Along the whole solid: the axial range of the bounding box's corners.
+        const core::BoundingBox box = s.bounding_box();
+        double lo = 0, hi = 0;
+        for (int k = 0; k < 8; ++k) {
+          const Vec3 c((k & 1) ? box.max.x() : box.min.x(), (k & 2) ? box.max.y() : box.min.y(),
+                       (k & 4) ? box.max.z() : box.min.z());
+          const double t = (c - cyl.origin).dot(cyl.axis);
+          lo = k ? std::min(lo, t) : t;
+          hi = k ? std::max(hi, t) : t;
+        }
+        cyl.from = lo - 0.1 * diag;
+        cyl.to = hi + 0.1 * diag;
+        bool known = false;
+        for (const occ::CutCylinder& c : cylinders) known = known || same_cylinder(c, cyl, tol);
+        if (!known) cylinders.push_back(cyl);
+        continue;
+      }
       if (!s.face_is_planar(f)) {
         why = "its concave " + core::entity_name(e) + " borders the curved " +
-              core::entity_name(f) + " (no plane to cut along)";
+              core::entity_name(f) + " (neither a plane nor a cylinder to cut along)";
         return false;
       }
       const Vec3 n = s.face_normal(f, m);
@@ -111,28 +141,30 @@ PlaneCutResult cut_at_concave_edges(const occ::Solid& solid, const PlaneCutOptio
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   };
   std::vector<Plane> planes;
-  if (!concave_planes(solid, planes, r.why_not)) return r;
-  if (planes.empty()) {
+  std::vector<occ::CutCylinder> cylinders;
+  if (!concave_surfaces(solid, planes, cylinders, r.why_not)) return r;
+  if (planes.empty() && cylinders.empty()) {
     r.why_not = "it has no concave edge to cut at";
     return r;
   }
-  if (int(planes.size()) > options.max_planes) {
-    r.why_not = "its concave edges give " + std::to_string(planes.size()) +
-                " cut planes, more than " + std::to_string(options.max_planes);
+  if (int(planes.size() + cylinders.size()) > options.max_planes) {
+    r.why_not = "its concave edges give " + std::to_string(planes.size() + cylinders.size()) +
+                " cut surfaces, more than " + std::to_string(options.max_planes);
     return r;
   }
   std::vector<std::vector<Vec3>> tools;
   for (const Plane& pl : planes) tools.push_back(covering_square(solid, pl));
   occ::SplitResult split =
-      occ::split_solid(solid, tools, 1e-6 * solid.diagonal(), options.time_limit);
+      occ::split_solid(solid, tools, cylinders, 1e-6 * solid.diagonal(), options.time_limit);
   if (!split.ok) {
-    r.why_not = "OCCT could not cut it along the planes of its concave edges";
+    r.why_not = "OCCT could not cut it along the surfaces of its concave edges";
     return r;
   }
   r.planes = int(planes.size());
+  r.cylinders = int(cylinders.size());
   r.pieces_before_merge = int(split.pieces.size());
   if (r.pieces_before_merge > options.max_pieces) {
-    r.why_not = "the planes of its concave edges cut it into " +
+    r.why_not = "the surfaces of its concave edges cut it into " +
                 std::to_string(r.pieces_before_merge) + " pieces, more than " +
                 std::to_string(options.max_pieces);
     return r;
@@ -145,7 +177,7 @@ PlaneCutResult cut_at_concave_edges(const occ::Solid& solid, const PlaneCutOptio
   };
   if (!all_meshable(pointers(pieces))) {
     r.why_not =
-        "the planes of its concave edges leave a piece that is neither a block nor "
+        "the surfaces of its concave edges leave a piece that is neither a block nor "
         "a sweep";
     return r;
   }
@@ -172,7 +204,7 @@ PlaneCutResult cut_at_concave_edges(const occ::Solid& solid, const PlaneCutOptio
   progress.report("plane_cuts", 1.0);
   r.pieces = std::move(pieces);
   r.ok = r.pieces.size() >= 2;
-  if (!r.ok) r.why_not = "its plane cuts merge back into one piece";
+  if (!r.ok) r.why_not = "its cuts merge back into one piece";
   return r;
 }
 

@@ -18,7 +18,7 @@
 namespace vorohex::decompose {
 
 struct PlaneCutOptions {
-  int max_planes = 16;     // more distinct cut planes than this: not attempted (>= 1)
+  int max_planes = 16;     // more distinct cut surfaces than this: not attempted (>= 1)
   int max_pieces = 60;     // more pieces after cutting: not attempted (>= 2)
   double time_limit = 30;  // seconds for the whole (> 0); OCCT splits stop at it
   void validate() const;   // throws std::invalid_argument naming the bad field
@@ -27,12 +27,15 @@ struct PlaneCutOptions {
 struct PlaneCutResult {
   std::vector<occ::Solid> pieces;  // each a block or a sweep once glued to the others
   int planes = 0;                  // distinct cut planes used
+  int cylinders = 0;               // distinct cut cylinders used
   int pieces_before_merge = 0;
   bool ok = false;
   std::string why_not;  // when not ok: a sentence fragment
 };
 
-// Only solids whose concave edges all lie between planar faces are attempted.
+// Only solids whose concave edges all lie between planar or cylindrical faces are
+// attempted; a cylinder is extended along its axis through the whole solid (the round post
+// on a plate: the plate is cut around the post's circle and under it).
 PlaneCutResult cut_at_concave_edges(const occ::Solid& solid, const PlaneCutOptions& options = {},
                                     const core::Progress& progress = {});
 

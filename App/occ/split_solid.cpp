@@ -1,5 +1,6 @@
 #include "occ/split_solid.h"
 
+#include <BRepAdaptor_Surface.hxx>
 #include <BRepAlgoAPI_Common.hxx>
 #include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepAlgoAPI_Splitter.hxx>
@@ -26,6 +27,7 @@
 #include <TopoDS_Compound.hxx>
 #include <TopoDS_Shell.hxx>
 #include <TopoDS_Solid.hxx>
+#include <gp_Cylinder.hxx>
 #include <gp_Pln.hxx>
 
 #include <Eigen/Geometry>
@@ -124,6 +126,29 @@ TopoDS_Shape unified(const TopoDS_Shape& s) {
 
 SplitResult split_solid(const Solid& solid, const std::vector<std::vector<Vec3>>& tools,
                         double tolerance, double time_limit) {
+  return split_solid(solid, tools, {}, tolerance, time_limit);
+}
+
+bool face_cylinder(const Solid& solid, FaceId f, CutCylinder* cylinder) {
+  const BRepAdaptor_Surface surface(TopoDS::Face(solid.impl().faces(f.value())));
+  if (surface.GetType() != GeomAbs_Cylinder) return false;
+  const gp_Cylinder c = surface.Cylinder();
+  const gp_Pnt o = c.Location();
+  const gp_Dir d = c.Axis().Direction();
+  // The face's seam is where its u range starts (not always u = 0).
+  double u0, u1, v0, v1;
+  BRepTools::UVBounds(TopoDS::Face(solid.impl().faces(f.value())), u0, u1, v0, v1);
+  const gp_Dir x = c.Position().XDirection().Rotated(c.Axis(), u0);
+  cylinder->origin = Vec3(o.X(), o.Y(), o.Z());
+  cylinder->axis = Vec3(d.X(), d.Y(), d.Z());
+  cylinder->seam = Vec3(x.X(), x.Y(), x.Z());
+  cylinder->radius = c.Radius();
+  return true;
+}
+
+SplitResult split_solid(const Solid& solid, const std::vector<std::vector<Vec3>>& tools,
+                        const std::vector<CutCylinder>& cylinders, double tolerance,
+                        double time_limit) {
   SplitResult out;
   try {
     TopTools_ListOfShape args, tool_list;
@@ -131,6 +156,12 @@ SplitResult split_solid(const Solid& solid, const std::vector<std::vector<Vec3>>
     for (const auto& t : tools) {
       const TopoDS_Shape f = tool_face(t, tolerance);
       if (!f.IsNull()) tool_list.Append(f);
+    }
+    for (const CutCylinder& c : cylinders) {
+      const gp_Ax3 frame(pnt(c.origin), gp_Dir(c.axis.x(), c.axis.y(), c.axis.z()),
+                         gp_Dir(c.seam.x(), c.seam.y(), c.seam.z()));
+      BRepBuilderAPI_MakeFace mf(gp_Cylinder(frame, c.radius), 0, 2 * M_PI, c.from, c.to);
+      if (mf.IsDone()) tool_list.Append(mf.Face());
     }
     TopoDS_Shape result = solid.impl().solid;
     if (!tool_list.IsEmpty()) {

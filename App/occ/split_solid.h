@@ -28,6 +28,24 @@ struct SplitResult {
 SplitResult split_solid(const Solid& solid, const std::vector<std::vector<Vec3>>& tools,
                         double tolerance, double time_limit = 0);
 
+// A cylinder to cut along: a point on its axis, the unit axis direction, the radius, and
+// the axial range [from, to] measured from `origin` (the tool is the full round face).
+struct CutCylinder {
+  Vec3 origin{0, 0, 0};
+  Vec3 axis{0, 0, 1};
+  Vec3 seam{1, 0, 0};  // where the round face's seam lies (the model face's, so they agree)
+  double radius = 0;
+  double from = 0, to = 0;
+};
+
+// The same with cylinders among the tools (curved faces at concave edges extended).
+SplitResult split_solid(const Solid& solid, const std::vector<std::vector<Vec3>>& tools,
+                        const std::vector<CutCylinder>& cylinders, double tolerance,
+                        double time_limit = 0);
+
+// The cylinder a face lies on (radius, axis through `origin`), if it is cylindrical.
+bool face_cylinder(const Solid& solid, FaceId f, CutCylinder* cylinder);
+
 // Whether every shell of the solid is closed (each edge bounds two of its faces with
 // opposite orientations).
 bool is_closed(const Solid& solid);

@@ -55,20 +55,42 @@ TEST(PlaneCuts, CutCubeGivesBlocks) {
   EXPECT_EQ(r.pieces.size(), 7u);
 }
 
-TEST(PlaneCuts, NothingToCutOrNoExactPlaneIsSaid) {
+TEST(PlaneCuts, NothingToCutOrNoExactSurfaceIsSaid) {
   const PlaneCutResult box = cut_at_concave_edges(occ::make_box(2, 1, 1));
   EXPECT_FALSE(box.ok);
   EXPECT_NE(box.why_not.find("no concave edge"), std::string::npos) << box.why_not;
-  // A cylinder standing on a plate: its concave edge borders the curved face.
-  std::unique_ptr<occ::Solid> boss =
-      occ::fuse_solids(occ::make_box(4, 4, 1), occ::make_cylinder(1, 3));
-  ASSERT_TRUE(boss);
-  const PlaneCutResult r = cut_at_concave_edges(*boss);
-  EXPECT_FALSE(r.ok);
-  EXPECT_NE(r.why_not.find("curved"), std::string::npos) << r.why_not;
   PlaneCutOptions bad;
   bad.max_planes = 0;
-  EXPECT_THROW(cut_at_concave_edges(*boss, bad), std::invalid_argument);
+  EXPECT_THROW(cut_at_concave_edges(occ::make_box(2, 1, 1), bad), std::invalid_argument);
+  // HexMe s05: a cube with a sphere on a face; its concave edge borders the sphere, which
+  // has no plane or cylinder to extend.
+  const occ::ReadResult in =
+      occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/s05o_cube_sphere.step");
+  if (!in.ok()) GTEST_SKIP() << "HexMe model s05 not found in " << VOROHEX_HEXME_DIR;
+  const PlaneCutResult r = cut_at_concave_edges(*in.solid);
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(r.why_not.find("neither a plane nor a cylinder"), std::string::npos) << r.why_not;
+}
+
+// A round post standing on a plate (a cylinder fused onto a box): the plate's plane at the
+// post's foot and the post's cylinder extended down through the plate cut it into the post,
+// the column under it and the plate around it, each a sweep once glued (the seams of the
+// cut cylinder and the post's face agree, so no circle is split twice).
+TEST(PlaneCuts, RoundPostOnPlateIsCutAroundAndUnderThePost) {
+  const occ::Solid post = testing::make_round_post_on_plate();
+  const PlaneCutResult r = cut_at_concave_edges(post);
+  expect_valid(post, r);
+  EXPECT_EQ(r.planes, 1);
+  EXPECT_EQ(r.cylinders, 1);
+  EXPECT_EQ(r.pieces_before_merge, 3);
+  EXPECT_EQ(r.pieces.size(), 3u);  // post + column is a cylinder, but split by the plate's circle
+  // The cylinder at the plate's corner (a quarter of it over the plate): cut as well.
+  std::unique_ptr<occ::Solid> corner =
+      occ::fuse_solids(occ::make_box(4, 4, 1), occ::make_cylinder(1, 3));
+  ASSERT_TRUE(corner);
+  const PlaneCutResult c = cut_at_concave_edges(*corner);
+  expect_valid(*corner, c);
+  EXPECT_EQ(c.cylinders, 1);
 }
 
 }  // namespace
