@@ -43,6 +43,7 @@ struct Part {
   occ::Solid solid;
   std::array<std::vector<EdgeId>, 3> block;  // non-empty: mapped block
   SweepStructure sweep;                      // else: sweep
+  std::vector<int> shared_faces;             // part face ids shared with a neighbour
   std::vector<int> whole_edge;               // by part edge id
   bool is_block() const { return !block[0].empty(); }
 };
@@ -76,6 +77,8 @@ void add_constraints(Curves& c, const occ::Solid& pieces, const Part& part, int 
     return;
   }
   const SweepStructure& s = part.sweep;
+  // Every linking edge is a curve of the problem, also a lone one (a cylinder's seam).
+  if (!s.linking.empty()) cv(s.linking[0]);
   for (std::size_t i = 1; i < s.linking.size(); ++i)
     c.problem.equal.push_back(
         {{cv(s.linking[0])}, {cv(s.linking[i])}, who + " (sweep): its layers"});
@@ -145,6 +148,7 @@ PartMesh mesh_part(const Part& part, const std::vector<int>& counts,
     o.max_intervals = options.max_intervals;
     o.smoothing_passes = options.smoothing_passes;
     o.edge_intervals = counts;
+    o.avoid_sources = part.shared_faces;
     SweepResult r = sweep(part.solid, o, progress);
     out.ok = r.ok;
     out.mesh = std::move(r.mesh);
@@ -170,7 +174,14 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
     p.whole_edge = pieces.part_ids(p.solid, 1);
     p.block = map_block_edge_groups(p.solid);
     if (!p.is_block()) {
-      p.sweep = sweep_structure(p.solid);
+      // A face shared with a neighbour is the sweep's target where possible: its mesh is
+      // then the projection of this part's own far end, and two sweeps meeting there (a
+      // post on the column under it) project congruent ends onto it the same way.
+      const std::vector<int> whole_face = pieces.part_ids(p.solid, 2);
+      for (std::size_t f = 1; f < whole_face.size(); ++f)
+        if (whole_face[f] > 0 && pieces.face_is_interface(core::FaceId(whole_face[f])))
+          p.shared_faces.push_back(int(f));
+      p.sweep = sweep_structure(p.solid, p.shared_faces);
       if (!p.sweep.source.valid()) {
         const Applicability map = map_block_applicable(p.solid);
         const SweepApplicability sw = sweep_applicable(p.solid);

@@ -161,9 +161,12 @@ std::string find_topology(const Solid& s, FaceId S, Topology& topo) {
 }
 
 // Among all sources, the pair with the shortest linking edges, then the largest source.
-std::string choose(const Solid& s, Topology& best) {
+std::string choose(const Solid& s, Topology& best, const std::vector<int>& avoid = {}) {
   std::string first_reason;
   bool found = false;
+  auto avoided = [&](FaceId f) {
+    return std::find(avoid.begin(), avoid.end(), f.value()) != avoid.end();
+  };
   for (FaceId f : s.faces()) {
     Topology t;
     const std::string why = find_topology(s, f, t);
@@ -174,6 +177,11 @@ std::string choose(const Solid& s, Topology& best) {
     if (!found) {
       best = std::move(t);
       found = true;
+      continue;
+    }
+    // A source to avoid loses to any other; then the shortest links, the largest source.
+    if (avoided(f) != avoided(best.source)) {
+      if (!avoided(f)) best = std::move(t);
       continue;
     }
     const double tol = 1e-9 * std::max(1.0, best.link_length);
@@ -357,7 +365,7 @@ Plan plan(const Solid& solid, const SweepOptions& options) {
   options.validate();
   Plan p;
   try {
-    const std::string why = choose(solid, p.topo);
+    const std::string why = choose(solid, p.topo, options.avoid_sources);
     if (!why.empty()) {
       p.diagnostics.push_back(
           core::make_error("not_applicable", "The solid is not a one-to-one sweep: " + why + "."));
@@ -520,11 +528,11 @@ SweepApplicability sweep_applicable(const occ::Solid& solid) {
   return a;
 }
 
-SweepStructure sweep_structure(const occ::Solid& solid) {
+SweepStructure sweep_structure(const occ::Solid& solid, const std::vector<int>& avoid_sources) {
   SweepStructure out;
   Topology t;
   try {
-    if (!choose(solid, t).empty()) return out;
+    if (!choose(solid, t, avoid_sources).empty()) return out;
   } catch (const std::exception&) {
     return out;
   }

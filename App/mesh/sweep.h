@@ -29,6 +29,9 @@ struct SweepOptions {
   // edges whose opposite counts agree is meshed by transfinite interpolation, and so is
   // the target: a neighbour meshing the same face as a mapped face gets the same nodes.
   std::vector<int> edge_intervals;
+  // Face ids not to take as the source while another source/target pair exists (as for
+  // sweep_structure, so that both choose the same pair).
+  std::vector<int> avoid_sources;
   void validate() const;  // throws std::invalid_argument naming the bad field
 };
 
@@ -52,7 +55,9 @@ struct SweepStructure {
   std::vector<std::vector<std::pair<core::EdgeId, core::EdgeId>>> loops;
   std::vector<core::EdgeId> linking;  // every linking edge (all have the layer count)
 };
-SweepStructure sweep_structure(const occ::Solid& solid);
+// `avoid_sources`: face ids not to take as the source while another pair exists (faces
+// shared with a neighbour: their mesh is then the projection of the far end's).
+SweepStructure sweep_structure(const occ::Solid& solid, const std::vector<int>& avoid_sources = {});
 
 struct SweepEstimate {
   int layers = 0;

@@ -256,6 +256,21 @@ bool mesh_decomposed(const occ::Solid& solid, const MeshOptions& options, double
         "its " + std::to_string(n) + " sub-volumes could not be meshed together (" + errors + ")";
     return false;
   }
+  // Faces two sub-volumes share are meshed by both (mesh/mesh_sub_volumes.h): identical
+  // for grids and lattices, not always for unstructured sweep ends. A mesh that does not
+  // conform across them is no result; the fallback takes over.
+  quality::CheckOptions conformity;
+  conformity.volume_rel_tol = 1;  // the final check measures the volume; this one, the joins
+  const quality::CheckReport joined = quality::check_mesh(m.mesh, d.pieces.get(), conformity);
+  if (!joined.valid) {
+    std::string errors;
+    for (const core::Diagnostic& diag : joined.diagnostics)
+      if (diag.severity == core::Severity::error)
+        errors += (errors.empty() ? "" : ", ") + diag.code;
+    why_not = "the meshes of its " + std::to_string(n) +
+              " sub-volumes do not match where they meet (" + errors + ")";
+    return false;
+  }
   const double tolerance = std::max(1e-9 * solid.diagonal(), solid.tolerance());
   const smooth::RestoreStats restored =
       smooth::restore_topology(m.mesh, *d.pieces, solid, tolerance);
@@ -269,8 +284,9 @@ bool mesh_decomposed(const occ::Solid& solid, const MeshOptions& options, double
   result.stats.intervals = {0, 0, 0};
   result.stats.seconds_meshing = seconds_since(t0);
   std::ostringstream s;
-  s << (d.method == "voronoi" ? "Cut along its Voronoi graph into "
-                              : "Cut along the planes of its concave edges into ")
+  s << (d.method == "voronoi"
+            ? "Cut along its Voronoi graph into "
+            : "Cut along the faces at its concave edges, extended through it, into ")
     << n << " sub-volumes (" << d.before_merge << " before merging; ";
   bool first = true;
   for (const auto& [name, k] : count)

@@ -273,15 +273,15 @@ def main():
     total = sum(int(bands.item(r, 1).text()) for r in range(bands.rowCount()))
     check(total == mesh.HexCount, "legend counts all {} hexahedra".format(total))
     threshold = mw.findChild(QtGui.QDoubleSpinBox, "sb_worst_threshold")
-    threshold.setValue(0.3)
+    threshold.setValue(0.5)
     mw.findChild(QtGui.QPushButton, "pb_highlight_worst").click()
     pump(0.3)
     import VoroHex
 
     sj = VoroHex.element_quality(mesh)
-    below = [e for e, v in sj.items() if v < 0.3]
+    below = [e for e, v in sj.items() if v < 0.5]
     check(len(below) > 0 and len(mesh.ViewObject.HighlightedNodes) > 0,
-          "{} hexahedra below 0.3 highlighted".format(len(below)))
+          "{} hexahedra below 0.5 highlighted".format(len(below)))
     check(abs(min(sj.values()) - mesh.MinScaledJacobian) < 1e-6,
           "colours from the same values as the object's minimum")
     Gui.Selection.clearSelection()

@@ -73,7 +73,7 @@ std::string decompose_to_text(const occ::Solid& solid, const MeshOptions& mesh_o
       time_limit - std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   const decompose::PlaneCutResult cut = decompose::cut_at_concave_edges(solid, options);
   if (!cut.ok)
-    throw std::runtime_error(why + "; cutting along the planes at its concave edges " +
+    throw std::runtime_error(why + "; cutting along the faces at its concave edges " +
                              "did not help either (" + cut.why_not + ")");
   std::vector<const occ::Solid*> solids;
   for (const occ::Solid& s : cut.pieces) solids.push_back(&s);

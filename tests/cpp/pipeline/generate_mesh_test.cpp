@@ -53,17 +53,15 @@ TEST(GenerateMesh, PlanarSolidsAreValidAndGoodBeforeSmoothing) {
   }
 }
 
-// Neither one scheme nor a decomposition meshes a cylinder standing on a plate (its
-// Voronoi decomposition fails, and its concave edge borders a curved face, so there is no
-// exact plane to cut along): without the fallback it is refused, saying why.
+// Neither one scheme nor a decomposition meshes a cube with a pyramid pit (its Voronoi
+// decomposition fails, and the planes of the pit's faces leave wedges): without the
+// fallback it is refused, saying why.
 TEST(GenerateMesh, WithoutTheFallbackSolidsThatNothingMeshesAreRefused) {
-  std::unique_ptr<occ::Solid> boss =
-      occ::fuse_solids(occ::make_box(4, 4, 1), occ::make_cylinder(1, 3));
-  ASSERT_TRUE(boss);
+  const occ::Solid pit = testing::make_pyramid_pit();
   MeshOptions opt;
   opt.size = 0.25;
   opt.fallback = false;
-  const MeshResult r = generate_mesh(*boss, opt);
+  const MeshResult r = generate_mesh(pit, opt);
   EXPECT_FALSE(r.ok);
   EXPECT_EQ(r.mesh.num_hexes(), 0u);
   const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "not_supported_yet");
@@ -71,7 +69,7 @@ TEST(GenerateMesh, WithoutTheFallbackSolidsThatNothingMeshesAreRefused) {
   EXPECT_NE(d->message.find("Not a block"), std::string::npos) << d->message;
   // The user learns why the decomposition did not help.
   EXPECT_NE(d->message.find("its decomposition"), std::string::npos) << d->message;
-  EXPECT_NE(d->message.find("curved"), std::string::npos) << d->message;
+  EXPECT_NE(d->message.find("neither a block nor a sweep"), std::string::npos) << d->message;
 }
 
 // Solids that need several sub-volumes: a post on a plate and the cut cube. The Voronoi
@@ -118,6 +116,45 @@ TEST(GenerateMesh, SolidsNeedingSeveralSubVolumesAreCutAndMeshedAsOne) {
   }
 }
 
+// A round post on a plate and HexMe s11 (a cylinder on a cube): cut along the plate's plane
+// and the post's cylinder extended through it, three sweeps meshed as one (s11 was the
+// fallback's, min scaled Jacobian 0.062 before smoothing).
+TEST(GenerateMesh, RoundPostsAreCutAroundAndUnderAndSwept) {
+  std::vector<Named> solids;
+  solids.push_back({"round post on plate", testing::make_round_post_on_plate()});
+  const occ::ReadResult s11 =
+      occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/s11o_cube_cyl.step");
+  if (s11.ok()) solids.push_back({"HexMe s11", s11.solid->clone()});
+  for (const Named& s : solids) {
+    SCOPED_TRACE(s.name);
+    MeshOptions opt;
+    opt.fallback = false;
+    const MeshResult r = generate_mesh(s.solid, opt);
+    ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
+    EXPECT_EQ(r.stats.scheme, "sweep");
+    EXPECT_EQ(r.stats.sub_volumes, 3);
+    EXPECT_EQ(r.stats.sub_volume_types, (std::vector<std::string>{"Vs", "Ve", "Ve"}))
+        << "the plate around the post is swept between the solid's faces";
+    EXPECT_GE(r.check.scaled_jacobian.min, 0.3);
+    EXPECT_GE(r.check.scaled_jacobian.mean, 0.85);
+    EXPECT_LE(r.check.max_boundary_distance_rel, 1e-6);
+    EXPECT_EQ(r.check.open_boundary_edges, 0u);
+  }
+  // A cylinder standing on a plate's corner, three quarters of it beside the plate: the
+  // plate's side planes cut the cylinder too (9 sub-volumes), no fallback either.
+  const std::unique_ptr<occ::Solid> corner =
+      occ::fuse_solids(occ::make_box(4, 4, 1), occ::make_cylinder(1, 3));
+  ASSERT_NE(corner, nullptr);
+  MeshOptions opt;
+  opt.fallback = false;
+  const MeshResult c = generate_mesh(*corner, opt);
+  ASSERT_TRUE(c.ok) << (c.diagnostics.empty() ? "" : core::format(c.diagnostics.back()));
+  EXPECT_GE(c.stats.sub_volumes, 3);
+  EXPECT_GE(c.check.scaled_jacobian.min, 0.3);
+  EXPECT_LE(c.check.max_boundary_distance_rel, 1e-6);
+  if (!s11.ok()) GTEST_SKIP() << "HexMe model s11 not found in " << VOROHEX_HEXME_DIR;
+}
+
 // Convex polyhedra that are neither blocks nor sweeps go through midpoint subdivision.
 TEST(GenerateMesh, ConvexPolyhedraAreMidpointSubdivided) {
   const occ::Solid tetrahedron =
@@ -133,16 +170,12 @@ TEST(GenerateMesh, ConvexPolyhedraAreMidpointSubdivided) {
   EXPECT_NEAR(r.check.mesh_volume, tetrahedron.volume(), 1e-9 * tetrahedron.volume());
 }
 
-// What neither a structured scheme nor a decomposition meshes (here a curved solid; the
-// cube with a corner notch that was here is now cut into blocks, see below) is meshed by
-// the tetrahedral fallback: valid against the CAD, and said so in a warning.
+// What neither a structured scheme nor a decomposition meshes (the cube with a corner notch
+// and the box with a cylinder that were here are now cut into blocks and sweeps) is meshed
+// by the tetrahedral fallback: valid against the CAD, and said so in a warning.
 TEST(GenerateMesh, TheFallbackMeshesWhatNoSchemeAcceptsAndSaysSo) {
   std::vector<Named> solids;
-  // A box with a cylinder through one corner: curved and neither block nor sweep.
-  const std::unique_ptr<occ::Solid> box_cyl =
-      occ::fuse_solids(occ::make_box(2, 2, 1), occ::make_cylinder(0.6, 2));
-  ASSERT_NE(box_cyl, nullptr);
-  solids.push_back({"box with cylinder", box_cyl->clone()});
+  solids.push_back({"cube with a pyramid pit", testing::make_pyramid_pit()});
   for (const Named& s : solids) {
     SCOPED_TRACE(s.name);
     MeshOptions opt;
