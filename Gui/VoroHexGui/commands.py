@@ -91,6 +91,9 @@ class Busy:
 
     def close(self):
         if self.dialog is not None:
+            # Closing a QProgressDialog emits `canceled`: a run that finished after its
+            # dialog had appeared was then taken as cancelled and its result thrown away.
+            self.dialog.canceled.disconnect(self.cancel)
             self.dialog.close()
             self.dialog.deleteLater()
         Busy.current = None
