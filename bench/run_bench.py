@@ -45,20 +45,28 @@ def measure(cmd, timeout=1800, memory_gb=8):
     return os.waitstatus_to_exitcode(status), seconds, usage.ru_maxrss / 1024.0, text
 
 
+def prism(outline, depth, holes=()):
+    """The extrusion along z of a polygon (x, y) with polygonal holes (FreeCAD's Part)."""
+    sys.path.append("/usr/lib/freecad-python3/lib")
+    import FreeCAD  # noqa: F401  (FreeCAD must be imported before Part)
+    import Part
+    V = FreeCAD.Vector
+    face = Part.Face(Part.makePolygon([V(x, y, 0) for x, y in outline + outline[:1]]))
+    for h in holes:
+        face = face.cut(Part.Face(Part.makePolygon([V(x, y, 0) for x, y in h + h[:1]])))
+    return face.extrude(V(0, 0, depth))
+
+
+def square(x, y, a):
+    return [(x, y), (x + a, y), (x + a, y + a), (x, y + a)]
+
+
 def write_fixtures(work):
     """STEP files of the parametric test solids (FreeCAD's Part module)."""
     sys.path.append("/usr/lib/freecad-python3/lib")
     import FreeCAD  # noqa: F401  (FreeCAD must be imported before Part)
     import Part
     V = FreeCAD.Vector
-
-    def prism(outline, depth, holes=()):
-        face = Part.Face(Part.makePolygon([V(x, y, 0) for x, y in outline + outline[:1]]))
-        for h in holes:
-            face = face.cut(Part.Face(Part.makePolygon([V(x, y, 0) for x, y in h + h[:1]])))
-        return face.extrude(V(0, 0, depth))
-
-    square = lambda x, y, a: [(x, y), (x + a, y), (x + a, y + a), (x, y + a)]
     solids = {
         "unit_cube": Part.makeBox(1, 1, 1),
         "l_shape": prism([(0, 0), (4, 0), (4, 1), (1, 1), (1, 3), (0, 3)], 3),

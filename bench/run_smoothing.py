@@ -24,14 +24,8 @@ def write_solids(work):
     import FreeCAD  # noqa: F401  (FreeCAD must be imported before Part)
     import Part
     V = FreeCAD.Vector
-
-    def prism(outline, depth, holes=()):
-        face = Part.Face(Part.makePolygon([V(x, y, 0) for x, y in outline + outline[:1]]))
-        for h in holes:
-            face = face.cut(Part.Face(Part.makePolygon([V(x, y, 0) for x, y in h + h[:1]])))
-        return face.extrude(V(0, 0, depth))
-
-    square = lambda x, y, a: [(x, y), (x + a, y), (x + a, y + a), (x, y + a)]
+    sys.path.insert(0, HERE)
+    from run_bench import prism, square  # noqa: E402
     sys.path.insert(0, os.path.join(REPO, "tests", "python"))
     from TestVoroHex import figure6_shape  # the Figure 6 part of the tests
 

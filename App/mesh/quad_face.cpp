@@ -22,6 +22,19 @@ void QuadFaceOptions::validate() const {
 
 namespace {
 
+// The 2-D scaled Jacobians of the mesher's quads, in its chart.
+void set_quality(const detail::QuadMesh2d& m, QuadFaceMesh& out) {
+  double sum = 0, lo = 1;
+  for (const auto& q : m.quads) {
+    const double x =
+        detail::quad_quality(m.points[q[0]], m.points[q[1]], m.points[q[2]], m.points[q[3]]);
+    sum += x;
+    lo = std::min(lo, x);
+  }
+  out.min_quality = lo;
+  out.mean_quality = m.quads.empty() ? 0 : sum / m.quads.size();
+}
+
 double loops_area(const std::vector<std::vector<Vec2>>& loops) {
   double area = 0;
   for (const auto& l : loops)
@@ -108,18 +121,11 @@ QuadFaceMesh planar_quad_face(const occ::Solid& solid, core::FaceId face,
   for (std::size_t i = out.num_boundary; i < m.points.size(); ++i)
     out.points.push_back(offset * n + m.points[i].x() * u + m.points[i].y() * v);
   auto index = [&](int k) { return k < int(given.size()) ? given[k] : k; };
-  double sum = 0, lo = 1;
-  for (const auto& q : m.quads) {
+  for (const auto& q : m.quads)
     out.quads.push_back(
         reversed ? std::array<int, 4>{index(q[0]), index(q[3]), index(q[2]), index(q[1])}
                  : std::array<int, 4>{index(q[0]), index(q[1]), index(q[2]), index(q[3])});
-    const double x =
-        detail::quad_quality(m.points[q[0]], m.points[q[1]], m.points[q[2]], m.points[q[3]]);
-    sum += x;
-    lo = std::min(lo, x);
-  }
-  out.min_quality = lo;
-  out.mean_quality = m.quads.empty() ? 0 : sum / m.quads.size();
+  set_quality(m, out);
   out.ok = true;
   return out;
 }
@@ -170,15 +176,7 @@ QuadFaceMesh quad_face(const occ::Solid& solid, core::FaceId face,
       out.points.push_back(chart.to_surface(q));
     }
     out.quads = m.quads;
-    double sum = 0, lo = 1;
-    for (const auto& q : m.quads) {
-      const double x =
-          detail::quad_quality(m.points[q[0]], m.points[q[1]], m.points[q[2]], m.points[q[3]]);
-      sum += x;
-      lo = std::min(lo, x);
-    }
-    out.min_quality = lo;
-    out.mean_quality = m.quads.empty() ? 0 : sum / m.quads.size();
+    set_quality(m, out);
   } catch (const std::exception& e) {
     return fail(e.what());
   }
