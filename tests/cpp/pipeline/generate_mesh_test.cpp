@@ -341,9 +341,10 @@ TEST(GenerateMesh, TinyEdgesAndSliverFacesAreNamed) {
 
 // Curved HexMe solids at the default size (diagonal / 20): valid, boundary nodes on the CAD
 // within 1e-6 x diagonal, min scaled Jacobian >= 0.3 after smoothing. s07 (a box with a
-// cylindrical notch) and s17 (a sphere) go through the tetrahedral fallback, whose worst
-// hexahedra the smoothing's max-min phase raises (0.157 and 0.177 before it was added);
-// s15 (a cylinder) is a sweep.
+// cylindrical notch) is cut along the notch's cylinder and plane into three sweeps (it was
+// the fallback's: 0.157); s17 (a sphere) goes through the tetrahedral fallback, whose worst
+// hexahedra the smoothing's max-min phase raises (0.177 before it was added); s15 (a
+// cylinder) is one sweep.
 TEST(GenerateMesh, CurvedSolidsAreValidOnTheCadAndAbove03) {
   for (const char* name : {"s07o_notch", "s15o_cylinder", "s17o_sphere"}) {
     SCOPED_TRACE(name);
