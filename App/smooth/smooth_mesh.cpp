@@ -68,8 +68,8 @@ class Smoother {
     const auto t1 = std::chrono::steady_clock::now();
     if (!cancelled()) optimisation_phase(true);
     if (!cancelled()) optimisation_phase(false);
-    if (!cancelled()) maxmin_phase();
-    if (!cancelled()) optimisation_phase(false);  // what max-min traded, where it can
+    if (!cancelled() && maxmin_phase() > 0 && !cancelled())
+      optimisation_phase(false);  // what max-min traded, where it can
     result_.seconds_optimisation = seconds_since(t1);
 
     // Recomputed from scratch, not taken from the running values.
@@ -467,20 +467,32 @@ class Smoother {
   // after). Here a node of a hex below the target moves along the gradient of its worst
   // incident hexes whenever that raises the smallest scaled Jacobian around it: every hex
   // it changes ends above the old local minimum, so the global minimum never falls.
-  void maxmin_phase() {
+  // Returns the number of moves made. Each pass takes the 200 worst hexes (the minimum is
+  // the aim; 2000 cost HexMe i08, 189,000 hexes, minutes); passes stop once three in a row
+  // raised the smallest positive scaled Jacobian by less than 1e-4.
+  std::size_t maxmin_phase() {
     const int passes = 3 * options_.optimisation_passes;
     const std::size_t nh = mesh_.num_hexes();
     std::vector<char> seen(mesh_.num_nodes(), 0);
+    std::size_t total = 0;
+    double last_worst = -1;
+    int stalled = 0;
     for (int pass = 0; pass < passes; ++pass) {
-      if (cancelled()) return;
+      if (cancelled()) return total;
       progress_.report("smooth", 0.95 + 0.05 * pass / passes);
       std::vector<std::pair<double, std::int32_t>> bad;
       for (std::size_t h = 0; h < nh; ++h)
         if (sj_[h] > 0 && sj_[h] < options_.quality_target)
           bad.emplace_back(sj_[h], static_cast<std::int32_t>(h));
-      if (bad.empty()) return;
+      if (bad.empty()) return total;
       std::sort(bad.begin(), bad.end());
-      bad.resize(std::min<std::size_t>(bad.size(), 2000));
+      if (bad[0].first < last_worst + 1e-4) {
+        if (++stalled >= 3) return total;
+      } else {
+        stalled = 0;
+        last_worst = bad[0].first;
+      }
+      bad.resize(std::min<std::size_t>(bad.size(), 200));
       std::vector<std::int32_t> nodes;
       for (const auto& [value, h] : bad)
         for (std::int32_t node : mesh_.hexes()[h])
@@ -491,8 +503,10 @@ class Smoother {
         for (int step = 0; step < 8 && maxmin_step(node); ++step) ++moves;
       }
       result_.optimisation_moves += moves;
-      if (moves == 0) return;
+      total += moves;
+      if (moves == 0) return total;
     }
+    return total;
   }
 
   // One max-min move of node n; true if the smallest incident scaled Jacobian rose.
