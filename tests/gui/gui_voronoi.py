@@ -173,12 +173,7 @@ def main():
     Gui.Selection.clearSelection()
     table.clearSelection()
     l_shape.ViewObject.Visibility = False
-    view.viewIsometric()
-    view.fitAll()
-    pump(0.5)
-    parts_shot = SHOT.replace("gui_voronoi_l", "gui_decomposition_l")
-    check(QtGui.QGuiApplication.primaryScreen().grabWindow(0).save(parts_shot),
-          "screenshot saved to " + parts_shot)
+    screenshot(view, "gui_decomposition_l")
     close_panel(mw)
     check(not Gui.Control.activeDialog(), "decomposition panel closed")
     d.ViewObject.Visibility = False
@@ -285,12 +280,7 @@ def main():
     check(abs(min(sj.values()) - mesh.MinScaledJacobian) < 1e-6,
           "colours from the same values as the object's minimum")
     Gui.Selection.clearSelection()
-    view.viewIsometric()
-    view.fitAll()
-    pump(0.5)
-    quality_shot = SHOT.replace("gui_voronoi_l", "gui_quality_sphere")
-    check(QtGui.QGuiApplication.primaryScreen().grabWindow(0).save(quality_shot),
-          "screenshot saved to " + quality_shot)
+    screenshot(view, "gui_quality_sphere")
     close_panel(mw)
     check(not Gui.Control.activeDialog() and quality_view.current is None
           and not panel.colours, "quality panel closed, colours reset")
@@ -323,12 +313,7 @@ def main():
           "f_s faces in the six walls and six protrusions ({})".format(
               graph6.counts["f_s"]))
     figure6.ViewObject.Transparency = 80
-    view.viewIsometric()
-    view.fitAll()
-    pump(0.5)
-    fig6_shot = SHOT.replace("gui_voronoi_l", "gui_voronoi_figure6")
-    check(QtGui.QGuiApplication.primaryScreen().grabWindow(0).save(fig6_shot),
-          "screenshot saved to " + fig6_shot)
+    screenshot(view, "gui_voronoi_figure6")
     close_panel(mw)
     g6[0].ViewObject.Visibility = False
     # Cancel during a long command (the decomposition of this part takes about 2.4 s): the
@@ -363,12 +348,7 @@ def main():
           "Figure 6 part meshed ({}, min scaled Jacobian {:.3f})".format(
               mesh6.Scheme, mesh6.MinScaledJacobianBeforeSmoothing))
     figure6.ViewObject.Visibility = False
-    view.viewIsometric()
-    view.fitAll()
-    pump(0.5)
-    mesh6_shot = SHOT.replace("gui_voronoi_l", "gui_hexmesh_figure6")
-    check(QtGui.QGuiApplication.primaryScreen().grabWindow(0).save(mesh6_shot),
-          "screenshot saved to " + mesh6_shot)
+    screenshot(view, "gui_hexmesh_figure6")
     # Its mesh quality: every hexahedron coloured, the legend counts them all.
     Gui.Selection.clearSelection()
     Gui.Selection.addSelection(mesh6)
@@ -379,12 +359,7 @@ def main():
     total = sum(int(bands.item(r, 1).text()) for r in range(bands.rowCount()))
     check(total == mesh6.HexCount, "Figure 6 part: the quality legend counts all {} "
           "hexahedra".format(total))
-    view.viewIsometric()
-    view.fitAll()
-    pump(0.5)
-    quality6_shot = SHOT.replace("gui_voronoi_l", "gui_quality_figure6")
-    check(QtGui.QGuiApplication.primaryScreen().grabWindow(0).save(quality6_shot),
-          "screenshot saved to " + quality6_shot)
+    screenshot(view, "gui_quality_figure6")
     close_panel(mw)
     mesh6.ViewObject.Visibility = False
     # The Decomposition command run to the end on this part (long enough for its busy
@@ -402,13 +377,18 @@ def main():
     summary = mw.findChild(QtGui.QLabel, "lbl_parts_summary")
     check(summary is not None and summary.text() == d6[0].Message, "and its panel shows it")
     figure6.ViewObject.Visibility = False  # the decomposition's faces, not the solid's
+    screenshot(view, "gui_decomposition_figure6")
+    close_panel(mw)
+
+
+def screenshot(view, name):
+    """The whole window, isometric and fitted, as SHOT's folder/<name>.png."""
     view.viewIsometric()
     view.fitAll()
     pump(0.5)
-    dec6_shot = SHOT.replace("gui_voronoi_l", "gui_decomposition_figure6")
-    check(QtGui.QGuiApplication.primaryScreen().grabWindow(0).save(dec6_shot),
-          "screenshot saved to " + dec6_shot)
-    close_panel(mw)
+    path = SHOT.replace("gui_voronoi_l", name)
+    check(QtGui.QGuiApplication.primaryScreen().grabWindow(0).save(path),
+          "screenshot saved to " + path)
 
 
 def close_panel(mw):
