@@ -97,16 +97,10 @@ class VoronoiGraph:
         error = VoroHexObjects.source_error(obj.Part)
         graph = None
         if error is None:
-            try:
-                graph = VoroHex.voronoi_graph(obj.Part, sharp_angle=obj.SharpAngle,
-                                              progress=getattr(self, "progress", None),
-                                              **VoroHexObjects.graph_options_of(obj))
-            except VoroHex.Cancelled:
-                obj.Status, obj.Message = "error", "cancelled"
-                raise RuntimeError("VoroHex: the Voronoi graph was cancelled")
-            except ValueError as e:  # a bad Eps, Delta or MaxDepth, named
-                obj.Status, obj.Message = "error", str(e).replace("VoroHex: ", "")
-                raise RuntimeError("VoroHex: " + obj.Message)
+            graph = VoroHexObjects.compute_or_raise(obj, "Voronoi graph", lambda: (
+                VoroHex.voronoi_graph(obj.Part, sharp_angle=obj.SharpAngle,
+                                      progress=getattr(self, "progress", None),
+                                      **VoroHexObjects.graph_options_of(obj))))
             if not graph.ok:
                 error = "; ".join(d.get("message", "") for d in graph.diagnostics) or \
                     "the Voronoi graph could not be computed"

@@ -95,6 +95,19 @@ def set_options(obj, options):
             setattr(obj, o.prop, value)
 
 
+def compute_or_raise(obj, what, compute):
+    """compute() for an object's execute: a cancel or a bad option (ValueError, named) sets
+    Status "error" and Message, and raises RuntimeError so FreeCAD marks the object."""
+    try:
+        return compute()
+    except VoroHex.Cancelled:
+        obj.Status, obj.Message = "error", "cancelled"
+        raise RuntimeError("VoroHex: the {} was cancelled".format(what))
+    except ValueError as e:  # a bad Eps, Delta, MaxDepth or SharpAngle
+        obj.Status, obj.Message = "error", str(e).replace("VoroHex: ", "")
+        raise RuntimeError("VoroHex: " + obj.Message)
+
+
 def graph_options_of(obj):
     """Keyword options eps, delta, max_depth for VoroHex.voronoi_graph / decompose."""
     return {o.name: getattr(obj, o.prop) for o in GRAPH_OPTIONS if hasattr(obj, o.prop)}

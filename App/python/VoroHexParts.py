@@ -77,16 +77,10 @@ class Decomposition:
         error = VoroHexObjects.source_error(obj.Part)
         d = None
         if error is None:
-            try:
-                d = VoroHex.decompose(obj.Part, sharp_angle=obj.SharpAngle, merge=obj.Merge,
-                                      progress=getattr(self, "progress", None),
-                                      **VoroHexObjects.graph_options_of(obj))
-            except VoroHex.Cancelled:
-                obj.Status, obj.Message = "error", "cancelled"
-                raise RuntimeError("VoroHex: the decomposition was cancelled")
-            except ValueError as e:  # a bad Eps, Delta or MaxDepth, named
-                obj.Status, obj.Message = "error", str(e).replace("VoroHex: ", "")
-                raise RuntimeError("VoroHex: " + obj.Message)
+            d = VoroHexObjects.compute_or_raise(obj, "decomposition", lambda: (
+                VoroHex.decompose(obj.Part, sharp_angle=obj.SharpAngle, merge=obj.Merge,
+                                  progress=getattr(self, "progress", None),
+                                  **VoroHexObjects.graph_options_of(obj))))
             if not d.ok or not d.shapes:
                 error = "; ".join(x.get("message", "") for x in d.diagnostics
                                   if x.get("severity") == "error") or "the decomposition failed"
