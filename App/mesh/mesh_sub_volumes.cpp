@@ -194,14 +194,11 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
       }
     }
     result.stats.schemes.push_back(p.is_block() ? "map" : "sweep");
-    bool own_ends = !p.is_block();
-    if (own_ends) {
-      const std::vector<int> whole_face = pieces.part_ids(p.solid, 2);
-      for (core::FaceId end : {p.sweep.source, p.sweep.target}) {
-        const int id = whole_face[end.value()];
-        own_ends = own_ends && id > 0 && !pieces.face_is_interface(core::FaceId(id));
-      }
-    }
+    auto shared = [&](core::FaceId f) {
+      return std::find(p.shared_faces.begin(), p.shared_faces.end(), f.value()) !=
+             p.shared_faces.end();
+    };
+    const bool own_ends = !p.is_block() && !shared(p.sweep.source) && !shared(p.sweep.target);
     result.stats.types.push_back(own_ends ? "Vs" : "Ve");
     parts.push_back(std::move(p));
   }

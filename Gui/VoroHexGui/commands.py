@@ -123,6 +123,28 @@ def run_cancellable(doc, label, work):
     return made
 
 
+def make_and_edit(part, label, module, factory):
+    """`module.factory(doc, part, progress=...)` as a recorded, cancellable command (the
+    busy dialog), then the new object's task panel; a message if `part` is no solid."""
+    error = VoroHexObjects.source_error(part)
+    if error is not None:
+        FreeCAD.Console.PrintError("VoroHex: {}\n".format(error))
+        QtGui.QMessageBox.warning(FreeCADGui.getMainWindow(), "VoroHex: " + label, error)
+        return
+    doc = part.Document
+    FreeCADGui.addModule(module)
+    FreeCADGui.addModule("VoroHexGui.commands")
+    made = run_cancellable(doc, label, lambda busy: FreeCADGui.doCommand(
+        "_made = {}.{}(FreeCAD.getDocument('{}'), FreeCAD.getDocument('{}').getObject('{}'), "
+        "progress=VoroHexGui.commands.Busy.current)".format(module, factory, doc.Name,
+                                                            doc.Name, part.Name)))
+    if not made:  # cancelled, or nothing was made
+        return
+    FreeCADGui.Selection.clearSelection()
+    FreeCADGui.doCommand("FreeCADGui.getDocument('{}').setEdit('{}')".format(doc.Name,
+                                                                             made[0].Name))
+
+
 class VoronoiGraphCommand:
     def GetResources(self):
         return {
@@ -136,24 +158,7 @@ class VoronoiGraphCommand:
         return selected_part() is not None
 
     def Activated(self):
-        part = selected_part()
-        error = VoroHexObjects.source_error(part)
-        if error is not None:
-            FreeCAD.Console.PrintError("VoroHex: {}\n".format(error))
-            QtGui.QMessageBox.warning(FreeCADGui.getMainWindow(), "VoroHex: no graph", error)
-            return
-        doc = part.Document
-        FreeCADGui.addModule("VoroHexGraph")
-        FreeCADGui.addModule("VoroHexGui.commands")
-        made = run_cancellable(doc, "Voronoi graph", lambda busy: FreeCADGui.doCommand(
-            "_graph = VoroHexGraph.makeVoronoiGraph(FreeCAD.getDocument('{}'), "
-            "FreeCAD.getDocument('{}').getObject('{}'), "
-            "progress=VoroHexGui.commands.Busy.current)".format(doc.Name, doc.Name, part.Name)))
-        if made is None:
-            return
-        FreeCADGui.Selection.clearSelection()
-        FreeCADGui.doCommand(
-            "FreeCADGui.getDocument('{}').setEdit(_graph.Name)".format(doc.Name))
+        make_and_edit(selected_part(), "Voronoi graph", "VoroHexGraph", "makeVoronoiGraph")
 
 
 class DecompositionCommand:
@@ -169,25 +174,7 @@ class DecompositionCommand:
         return selected_part() is not None
 
     def Activated(self):
-        part = selected_part()
-        error = VoroHexObjects.source_error(part)
-        if error is not None:
-            FreeCAD.Console.PrintError("VoroHex: {}\n".format(error))
-            QtGui.QMessageBox.warning(FreeCADGui.getMainWindow(), "VoroHex: no decomposition",
-                                      error)
-            return
-        doc = part.Document
-        FreeCADGui.addModule("VoroHexParts")
-        FreeCADGui.addModule("VoroHexGui.commands")
-        made = run_cancellable(doc, "Decomposition", lambda busy: FreeCADGui.doCommand(
-            "_parts = VoroHexParts.makeDecomposition(FreeCAD.getDocument('{}'), "
-            "FreeCAD.getDocument('{}').getObject('{}'), "
-            "progress=VoroHexGui.commands.Busy.current)".format(doc.Name, doc.Name, part.Name)))
-        if made is None:
-            return
-        FreeCADGui.Selection.clearSelection()
-        FreeCADGui.doCommand(
-            "FreeCADGui.getDocument('{}').setEdit(_parts.Name)".format(doc.Name))
+        make_and_edit(selected_part(), "Decomposition", "VoroHexParts", "makeDecomposition")
 
 
 def selected_fem_mesh():
