@@ -41,7 +41,7 @@ const char* const kDecomposeUsage =
     "  --vtp FILE             the decomposition faces as VTK PolyData for ParaView\n"
     "  --sharp-angle DEG      dihedral angle below which a [1] edge becomes [1s] (60)\n"
     "  --no-merge             keep the sub-volumes of the first split\n" VOROHEX_GRAPH_OPTIONS_HELP
-    "exit: 0 written, 1 decomposition failed, 2 bad input\n";
+    "exit: 0 written, 1 decomposition failed (the report, if asked for, says why), 2 bad input\n";
 
 #undef VOROHEX_GRAPH_OPTIONS_HELP
 
@@ -182,8 +182,13 @@ int run_decompose(const std::vector<std::string>& args) {
   if (int code = read_and_graph(input, graph_options, &solid, &graph); code >= 0) return code;
   const decompose::DecompositionResult result = decompose::decompose(*solid, graph, options);
   print_problems(result.diagnostics);
-  if (!result.ok()) return kExitInvalid;
   std::string error;
+  if (!result.ok()) {
+    // The report says why (status failed, the diagnostics); no sub-volumes are written.
+    if (!json_path.empty() && !decompose::write_decomposition(result, "", json_path, &error))
+      std::cerr << "vorohex: " << error << "\n";
+    return kExitInvalid;
+  }
   if (!decompose::write_decomposition(result, brep_path, json_path, &error, vtp_path)) {
     std::cerr << "vorohex: " << error << "\n";
     return kExitBadInput;

@@ -9,6 +9,7 @@
 #include <set>
 
 #include "mesh/map_block.h"
+#include "mesh/midpoint.h"
 #include "mesh/sweep.h"
 #include "occ/split_solid.h"
 
@@ -30,6 +31,8 @@ const char* scheme_name(Scheme s) {
       return "sweep";
     case Scheme::map:
       return "map";
+    case Scheme::midpoint:
+      return "midpoint";
     case Scheme::none:
       return "none";
   }
@@ -356,7 +359,8 @@ void snap_coplanar(const occ::Solid& solid, std::vector<DecompositionQuad>& quad
       corners[{p.x(), p.y(), p.z()}].emplace_back(i, k);
     }
   // How firmly each point was placed: 0 not moved, 1 onto a fitted plane, 2 onto a plane
-  // through exact anchors, 3 onto a model face's plane. A shared corner takes the firmest.
+  // through exact anchors, 3 onto a model face's plane, 4 kept on its straight edge. A
+  // shared corner takes the firmest.
   std::vector<std::vector<int>> firmness(quads.size());
   for (std::size_t i = 0; i < quads.size(); ++i) firmness[i].assign(quads[i].points.size(), 0);
   std::vector<int> cluster(quads.size(), -1);
@@ -431,7 +435,16 @@ void snap_coplanar(const occ::Solid& solid, std::vector<DecompositionQuad>& quad
           const auto ends = solid.edge_points_by_length(EdgeId(sup.id), 1);
           dir = (ends.back() - ends.front()).normalized();
         }
-        if (std::abs(dir.dot(n)) < 0.2) dir = n;  // support nearly parallel to the plane
+        if (std::abs(dir.dot(n)) < 0.2) {
+          // A point on a straight edge that (nearly) lies in the plane is exact: moving it
+          // across would put it beside the edge, and the split would leave a sliver between
+          // (the Figure 6 part lost 3e-9 of its volume). It stays, and wins its corner.
+          if (sup.id > 0 && sup.kind == EntityKind::edge) {
+            firmness[m][k] = 4;
+            continue;
+          }
+          dir = n;  // a face support nearly parallel to the plane
+        }
         q -= off / dir.dot(n) * dir;
         firmness[m][k] = extended ? 3 : anchors.empty() ? 1 : 2;
       }
@@ -544,9 +557,13 @@ void type_sub_volume(const VoronoiGraph& g, const DecompositionResult& r, int in
                     : "Ve: a topological hexahedron";
   } else if (sweep.ok) {
     use_sweep("Ve: sweep along its Voronoi edges");
+  } else if (const mesh::Applicability mid = mesh::midpoint_applicable(*sv.solid); mid.ok) {
+    sv.scheme = Scheme::midpoint;
+    sv.reason = "Ve: a convex cell (midpoint subdivision)";
   } else {
     sv.scheme = Scheme::none;
-    sv.reason = "no scheme: sweep: " + sweep.reason + "; map: " + map.reason;
+    sv.reason = "no scheme: sweep: " + sweep.reason + "; map: " + map.reason +
+                "; midpoint: " + mid.reason;
   }
 }
 
@@ -609,10 +626,18 @@ void merge_pass(const occ::Solid& solid, const VoronoiGraph& g, double tol, doub
                                  std::to_string(r.sub_volumes.size()) + " sub-volumes left)"));
         return;
       }
-      std::unique_ptr<occ::Solid> u =
-          occ::fuse_solids(*r.sub_volumes[group[0]].solid, *r.sub_volumes[group[1]].solid);
-      for (std::size_t k = 2; u && k < group.size(); ++k)
-        u = occ::fuse_solids(*u, *r.sub_volumes[group[k]].solid);
+      // All sub-volumes together are the solid itself (the self-check found them a
+      // partition): take it exactly. Fusing the pieces instead keeps the vertices the split
+      // put on model edges and the slivers of slightly tilted cuts, and the union of a
+      // prism's pieces was then no sweep.
+      std::unique_ptr<occ::Solid> u;
+      if (int(group.size()) == n) {
+        u = std::make_unique<occ::Solid>(solid.clone());
+      } else {
+        u = occ::fuse_solids(*r.sub_volumes[group[0]].solid, *r.sub_volumes[group[1]].solid);
+        for (std::size_t k = 2; u && k < group.size(); ++k)
+          u = occ::fuse_solids(*u, *r.sub_volumes[group[k]].solid);
+      }
       if (!u || !mesh::sweep_applicable(*u).ok) {
         rejected.insert(key);
         continue;

@@ -104,9 +104,11 @@ struct VirtualTopology {
 };
 
 enum class SubVolumeType { vs, ve };
-enum class Scheme { sweep, map, none };
+// midpoint: a convex cell for midpoint subdivision (Ve); it is meshed on its own only (its
+// faces' subdivision is not the mapped grid a neighbour would put on them).
+enum class Scheme { sweep, map, midpoint, none };
 const char* sub_volume_type_name(SubVolumeType t);  // "Vs", "Ve"
-const char* scheme_name(Scheme s);                  // "sweep", "map", "none"
+const char* scheme_name(Scheme s);                  // "sweep", "map", "midpoint", "none"
 
 struct SubVolume {
   std::shared_ptr<const occ::Solid> solid;

@@ -364,18 +364,30 @@ def main():
     mesh6.ViewObject.Visibility = False
     # The Decomposition command run to the end on this part (long enough for its busy
     # dialog: closing that dialog once took the finished run for a cancelled one and threw
-    # the object away): what it gives, in its panel.
+    # the object away): what it gives, in its panel. Merged, the prism is one sweep; not
+    # merged, the walls, corners and protrusions the Voronoi graph cut apart.
     Gui.Selection.clearSelection()
     Gui.Selection.addSelection(figure6)
     pump()
     Gui.runCommand("VoroHex_Decomposition")  # about 2.5 s: its busy dialog appears
     pump(0.5)
     d6 = [o for o in doc.Objects if hasattr(o, "FaceRoles") and o.Part == figure6]
-    check(len(d6) == 1 and d6[0].Status in ("error", "partial") and d6[0].Message,
-          "Figure 6 part: the decomposition says what it gives or why it fails: " +
+    check(len(d6) == 1 and d6[0].Status == "ok" and list(d6[0].Schemes) == ["sweep"] and
+          d6[0].SubVolumesBeforeMerge >= 12,
+          "Figure 6 part: the decomposition is cut, then merged into one sweep: " +
           (d6[0].Message if d6 else "?"))
     summary = mw.findChild(QtGui.QLabel, "lbl_parts_summary")
     check(summary is not None and summary.text() == d6[0].Message, "and its panel shows it")
+    close_panel(mw)
+    d6[0].Merge = False
+    doc.recompute()
+    pump(0.5)
+    check(d6[0].SubVolumeCount == d6[0].SubVolumesBeforeMerge and
+          len(d6[0].Shape.Solids) == d6[0].SubVolumeCount,
+          "not merged: the cut's {} sub-volumes ({})".format(d6[0].SubVolumeCount,
+                                                             d6[0].Message))
+    Gui.ActiveDocument.setEdit(d6[0].Name)
+    pump(0.5)
     figure6.ViewObject.Visibility = False  # the decomposition's faces, not the solid's
     screenshot(view, "gui_decomposition_figure6")
     close_panel(mw)

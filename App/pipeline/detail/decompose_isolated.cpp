@@ -52,6 +52,10 @@ std::string voronoi_decomposition(const occ::Solid& solid, const MeshOptions& me
     if (sv.scheme == decompose::Scheme::none)
       throw std::runtime_error("sub-volume " + std::to_string(k + 1) + " of its decomposition " +
                                "has no scheme (" + sv.reason + ")");
+    if (sv.scheme == decompose::Scheme::midpoint)
+      throw std::runtime_error("sub-volume " + std::to_string(k + 1) + " of its decomposition " +
+                               "is a convex cell for midpoint subdivision, which is meshed only " +
+                               "on its own (not joined to swept or mapped neighbours)");
     solids.push_back(sv.solid.get());
   }
   return to_text(d.stats.sub_volumes_before_merge, "voronoi", solids);
