@@ -562,8 +562,8 @@ void type_sub_volume(const VoronoiGraph& g, const DecompositionResult& r, int in
     sv.reason = "Ve: a convex cell (midpoint subdivision)";
   } else {
     sv.scheme = Scheme::none;
-    sv.reason = "no scheme: sweep: " + sweep.reason + "; map: " + map.reason +
-                "; midpoint: " + mid.reason;
+    sv.reason =
+        "no scheme: sweep: " + sweep.reason + "; map: " + map.reason + "; midpoint: " + mid.reason;
   }
 }
 
