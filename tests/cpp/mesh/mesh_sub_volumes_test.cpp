@@ -73,7 +73,9 @@ TEST(MeshSubVolumes, DecomposedSolidsGiveOneConformingValidMesh) {
     EXPECT_EQ(r.stats.schemes.size(), c.pieces);
     ASSERT_EQ(r.stats.types.size(), c.pieces);
     for (std::size_t k = 0; k < c.pieces; ++k)
-      if (r.stats.schemes[k] == "map") EXPECT_EQ(r.stats.types[k], "Ve");
+      if (r.stats.schemes[k] == "map") {
+        EXPECT_EQ(r.stats.types[k], "Ve");
+      }
     EXPECT_GT(r.stats.nodes_merged, 0u);
     // Against the glued pieces: conforming, closed, every hex positive.
     const quality::CheckReport pieces_check = quality::check_mesh(r.mesh, p.glued.get(), {});
@@ -91,9 +93,11 @@ TEST(MeshSubVolumes, DecomposedSolidsGiveOneConformingValidMesh) {
     for (std::size_t i = 0; i < r.mesh.num_nodes(); ++i) {
       const core::NodeClass k = r.mesh.node_class(core::NodeId(std::int32_t(i)));
       const core::Vec3& x = r.mesh.point(core::NodeId(std::int32_t(i)));
-      if (k.dim == 2) EXPECT_LE(c.solid.distance_to_face(core::FaceId(k.id), x), 1e-7);
-      if (k.dim == 1) EXPECT_LE(c.solid.distance_to_edge(core::EdgeId(k.id), x), 1e-7);
-      if (k.dim == 0) EXPECT_LE(c.solid.distance_to_vertex(core::VertexId(k.id), x), 1e-7);
+      double d = 0;
+      if (k.dim == 2) d = c.solid.distance_to_face(core::FaceId(k.id), x);
+      if (k.dim == 1) d = c.solid.distance_to_edge(core::EdgeId(k.id), x);
+      if (k.dim == 0) d = c.solid.distance_to_vertex(core::VertexId(k.id), x);
+      EXPECT_LE(d, 1e-7) << "node " << i << " on entity of dimension " << k.dim;
     }
   }
 }
