@@ -36,6 +36,14 @@ def errors(diagnostics):
     return ", ".join(sorted({d["code"] for d in diagnostics if d["severity"] == "error"})) or "?"
 
 
+def failed_decomposition(report):
+    """"failed: <error codes>" from the report a failed `vorohex decompose` writes, else None
+    (its stderr's last line is often a warning printed after the error)."""
+    if not report or report.get("status") != "failed":
+        return None
+    return "failed: " + errors(report.get("diagnostics", []))
+
+
 def previous_gmsh(path):
     """Gmsh columns per model from an existing table (for --no-gmsh)."""
     out = {}
@@ -73,6 +81,12 @@ def main():
                                 row.pop(k, None)
                             row["v"] = "killed after %.0f s (300 s limit)" % row["v_sec"]
                         by_model[row["model"]] = row
+        # Failed decompositions: the error codes from their report, when they wrote one.
+        for row in by_model.values():
+            if row.get("d", "").startswith("failed:") and "killed" not in row["d"]:
+                why = failed_decomposition(
+                    load(os.path.join(HERE, "work", "hexme", row["model"] + ".decomposition.json")))
+                row["d"] = why or row["d"]
         # Logs from before v_mean_before was recorded: the run's own report still has it.
         for row in by_model.values():
             rep = load(os.path.join(HERE, "work", "hexme", row["model"] + ".json"))
@@ -112,6 +126,8 @@ def main():
             size = row["size"] = r["size"]
             row["v"] = errors(r["diagnostics"])
         drep = os.path.join(work, name + ".decomposition.json")
+        if os.path.exists(drep):
+            os.remove(drep)
         code, dsec, _, derr = measure([vorohex, "decompose", step, "-o",
                                        os.path.join(work, name + ".parts.brep"), "--report", drep],
                                       timeout=30, memory_gb=3)
@@ -125,6 +141,8 @@ def main():
             row["d"] = "%s -> %s (%s)" % (counts.get("sub_volumes_before_merge", "?"),
                                           counts.get("sub_volumes", len(subs)),
                                           ", ".join("%d %s" % (n, s) for s, n in sorted(schemes.items())))
+        elif failed_decomposition(load(drep)):
+            row["d"] = failed_decomposition(load(drep))
         else:
             last = [l for l in derr.strip().split("\n") if l][-1:] or ["exit %d" % code]
             if dsec >= 29.5 or code == -9:
@@ -177,6 +195,8 @@ def write_table(rows):
         return fmt % v if isinstance(v, (int, float)) else (v if v is not None else "")
 
     valid = sum(1 for r in rows if r.get("v", "").startswith("valid"))
+    decomposed = [r for r in rows if r.get("d", "") and not r["d"].startswith("failed")]
+    schemed = [r for r in decomposed if " none" not in r["d"]]
     lines = [
         "# HexMe: VoroHex beside Gmsh's automatic all-hex, and VoroHex's decomposition",
         "",
@@ -198,6 +218,9 @@ def write_table(rows):
         "VoroHex meshes %d of %d models today (VoroHex columns measured at commit %s%s)." % (
             valid, len(rows), BUILT_FROM,
             "; Gmsh columns kept from the previous table" if any("g_kept" in r for r in rows) else ""),
+        "Its decomposition completes on %d of them, and gives sub-volumes that all have a scheme"
+        " on %d (the others fail: errors named, or stopped at the limit)." % (len(decomposed),
+                                                                              len(schemed)),
         "",
         "| model | VoroHex | hexes | min SJ | mean SJ | s | Gmsh | hexes | min SJ | mean SJ | inverted | s | decomposition | s |",
         "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|",
