@@ -81,12 +81,13 @@ def main():
                                 row.pop(k, None)
                             row["v"] = "killed after %.0f s (300 s limit)" % row["v_sec"]
                         by_model[row["model"]] = row
-        # Failed decompositions: the error codes from their report, when they wrote one.
+        # Failed decompositions: the error codes from their report, when they wrote one (only
+        # a run that ended on its own writes a failed report).
         for row in by_model.values():
-            if row.get("d", "").startswith("failed:") and "killed" not in row["d"]:
+            if row.get("d", "").startswith("failed:"):
                 why = failed_decomposition(
                     load(os.path.join(HERE, "work", "hexme", row["model"] + ".decomposition.json")))
-                row["d"] = why or row["d"]
+                row["d"] = why or row["d"].replace("(30 s or 3 GB limit)", "(30 s limit)")
         # Logs from before v_mean_before was recorded: the run's own report still has it.
         for row in by_model.values():
             rep = load(os.path.join(HERE, "work", "hexme", row["model"] + ".json"))
@@ -145,8 +146,10 @@ def main():
             row["d"] = failed_decomposition(load(drep))
         else:
             last = [l for l in derr.strip().split("\n") if l][-1:] or ["exit %d" % code]
-            if dsec >= 29.5 or code == -9:
-                last = ["killed after %.0f s (30 s or 3 GB limit)" % dsec]
+            if code == -9:  # killed at the time limit (a run ending at 29.6 s is not)
+                last = ["killed after %.0f s (30 s limit)" % dsec]
+            elif "bad_alloc" in derr:
+                last = ["out of memory (3 GB limit)"]
             elif code < 0:
                 last = ["crash (signal %d)" % -code]
             row["d"] = "failed: " + last[0].replace("vorohex: ", "")[:90].replace("|", "/")
