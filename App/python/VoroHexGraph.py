@@ -101,6 +101,8 @@ class VoronoiGraph:
                 VoroHex.voronoi_graph(obj.Part, sharp_angle=obj.SharpAngle,
                                       progress=getattr(self, "progress", None),
                                       **VoroHexObjects.graph_options_of(obj))))
+            if graph is None:  # cancelled (Status and Message say so)
+                return
             if not graph.ok:
                 error = "; ".join(d.get("message", "") for d in graph.diagnostics) or \
                     "the Voronoi graph could not be computed"
@@ -207,9 +209,10 @@ def polyline(points):
 def makeVoronoiGraph(doc, part, name="VoronoiGraph", progress=None, **options):
     """Adds a Voronoi graph object for `part` to `doc` and computes it. Raises ValueError
     (and leaves the document as it was) when `part` holds no single solid. progress(stage,
-    fraction) is called while it computes and may return False to cancel (the object then
-    has Status error, Message cancelled). options: sharp_angle, eps, delta, max_depth (as
-    for VoroHex.voronoi_graph), set as the object's properties before it computes."""
+    fraction) is called while it computes and may return False to cancel (the object is
+    then taken out again and VoroHex.Cancelled raised). options: sharp_angle, eps, delta,
+    max_depth (as for VoroHex.voronoi_graph), set as the object's properties before it
+    computes."""
     error = VoroHexObjects.source_error(part)
     if error is not None:
         raise ValueError("VoroHex: " + error)
@@ -225,9 +228,5 @@ def makeVoronoiGraph(doc, part, name="VoronoiGraph", progress=None, **options):
         from VoroHexGui import graph_view
 
         graph_view.ViewProviderVoronoiGraph(obj.ViewObject)
-    obj.Proxy.progress = progress
-    try:
-        obj.recompute()
-    finally:
-        obj.Proxy.progress = None
+    VoroHexObjects.compute_new(obj, progress)
     return obj

@@ -96,16 +96,35 @@ def set_options(obj, options):
 
 
 def compute_or_raise(obj, what, compute):
-    """compute() for an object's execute: a cancel or a bad option (ValueError, named) sets
-    Status "error" and Message, and raises RuntimeError so FreeCAD marks the object."""
+    """compute() for an object's execute: a bad option (ValueError, named) sets Status
+    "error" and Message, and raises RuntimeError so FreeCAD marks the object. A cancel sets
+    Status "error", Message "cancelled" and returns None without raising (FreeCAD would
+    print a traceback for it): compute_new, which passed the progress callback, then takes
+    the object out again and raises VoroHex.Cancelled."""
     try:
         return compute()
     except VoroHex.Cancelled:
         obj.Status, obj.Message = "error", "cancelled"
-        raise RuntimeError("VoroHex: the {} was cancelled".format(what))
+        obj.Proxy.cancelled = "the {} was cancelled".format(what)
+        return None
     except ValueError as e:  # a bad Eps, Delta, MaxDepth or SharpAngle
         obj.Status, obj.Message = "error", str(e).replace("VoroHex: ", "")
         raise RuntimeError("VoroHex: " + obj.Message)
+
+
+def compute_new(obj, progress):
+    """Computes an object just added by a make* function, calling progress(stage, fraction)
+    (False cancels). A cancelled run removes the object, leaving the document as it was,
+    and raises VoroHex.Cancelled."""
+    obj.Proxy.progress, obj.Proxy.cancelled = progress, None
+    try:
+        obj.recompute()
+    finally:
+        obj.Proxy.progress = None
+    why = getattr(obj.Proxy, "cancelled", None)
+    if why:
+        obj.Document.removeObject(obj.Name)
+        raise VoroHex.Cancelled("VoroHex: " + why)
 
 
 def graph_options_of(obj):

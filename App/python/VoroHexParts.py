@@ -81,6 +81,8 @@ class Decomposition:
                 VoroHex.decompose(obj.Part, sharp_angle=obj.SharpAngle, merge=obj.Merge,
                                   progress=getattr(self, "progress", None),
                                   **VoroHexObjects.graph_options_of(obj))))
+            if d is None:  # cancelled (Status and Message say so)
+                return
             if not d.ok or not d.shapes:
                 error = "; ".join(x.get("message", "") for x in d.diagnostics
                                   if x.get("severity") == "error") or "the decomposition failed"
@@ -154,9 +156,5 @@ def makeDecomposition(doc, part, name="Decomposition", merge=True, progress=None
         from VoroHexGui import parts_view
 
         parts_view.ViewProviderDecomposition(obj.ViewObject)
-    obj.Proxy.progress = progress
-    try:
-        obj.recompute()
-    finally:
-        obj.Proxy.progress = None
+    VoroHexObjects.compute_new(obj, progress)
     return obj

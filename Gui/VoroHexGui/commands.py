@@ -96,6 +96,7 @@ class Busy:
             self.dialog.canceled.disconnect(self.cancel)
             self.dialog.close()
             self.dialog.deleteLater()
+            self.dialog = None
         Busy.current = None
 
 
@@ -108,6 +109,11 @@ def run_cancellable(doc, label, work):
     busy = Busy("{}...".format(label))
     try:
         work(busy)
+    except Exception:  # VoroHex.Cancelled from a make* function, also through doCommand
+        if not busy.cancelled:
+            busy.close()
+            doc.abortTransaction()
+            raise
     finally:
         busy.close()
     made = [o for o in doc.Objects if o.Name not in before]

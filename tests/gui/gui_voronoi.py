@@ -333,10 +333,14 @@ def main():
                     button.click()
 
     QtCore.QTimer.singleShot(1200, press_cancel)
+    report_before = report_text(mw)
     t0 = time.time()
     Gui.runCommand("VoroHex_Decomposition")
     done = time.time()
     pump(0.5)
+    said = report_text(mw)[len(report_before):]
+    check("cancelled" in said and "Traceback" not in said and "Exception" not in said,
+          "the Report view says it was cancelled, with no traceback: " + repr(said.strip()))
     check(bool(pressed) and done - pressed[0] < 1.0,
           "Cancel pressed in the busy dialog {:.1f} s into the run, which ended {:.2f} s "
           "later".format(pressed[0] - t0 if pressed else -1, done - pressed[0] if pressed else -1))
@@ -391,6 +395,14 @@ def main():
     figure6.ViewObject.Visibility = False  # the decomposition's faces, not the solid's
     screenshot(view, "gui_decomposition_figure6")
     close_panel(mw)
+
+
+def report_text(mw):
+    """What FreeCAD's Report view shows."""
+    for w in mw.findChildren(QtGui.QTextEdit):
+        if "report" in w.objectName().lower():
+            return w.toPlainText()
+    raise AssertionError("no Report view found")
 
 
 def screenshot(view, name):

@@ -524,13 +524,18 @@ class TestVoroHexObject(unittest.TestCase):
         self.doc.recompute()
         return obj
 
-    def test_cancelled_decomposition_object_says_so(self):
+    def test_cancelled_graph_or_decomposition_leaves_the_document_as_it_was(self):
         part = self.doc.addObject("Part::Feature", "Figure6")
         part.Shape = figure6_shape()
         self.doc.recompute()
-        obj = VoroHexParts.makeDecomposition(self.doc, part, progress=lambda stage, f: False)
-        self.assertEqual((obj.Status, obj.Message), ("error", "cancelled"))
-        self.assertFalse(obj.isValid())
+        names = sorted(o.Name for o in self.doc.Objects)
+        with self.assertRaisesRegex(VoroHex.Cancelled, "decomposition was cancelled"):
+            VoroHexParts.makeDecomposition(self.doc, part, progress=lambda stage, f: False)
+        self.assertEqual(sorted(o.Name for o in self.doc.Objects), names)
+        # Not cancelled, the same call makes the object. (The graph of this part takes 0.1 s,
+        # less than the first progress call: it cannot be cancelled in time to test it.)
+        obj = VoroHexParts.makeDecomposition(self.doc, part, progress=lambda stage, f: True)
+        self.assertEqual((obj.Status, obj.SubVolumeCount), ("ok", 1))
 
     def test_voronoi_graph_object(self):
         pts = [(0, 0, 0), (4, 0, 0), (4, 1, 0), (1, 1, 0), (1, 3, 0), (0, 3, 0), (0, 0, 0)]
