@@ -270,6 +270,158 @@ TEST(VertexTable, Row0e2CC) {
   EXPECT_TRUE(v.open.empty());
 }
 
+// Runs classification and vertex treatment until the [1] edges to sharpen are stable (as
+// decompose() does globally), and prints what came out for the failure message.
+VertexTreatment treat_until_stable(const std::vector<EntityRef>& g, const Table& t) {
+  std::vector<std::pair<EntityRef, EntityRef>> sharp;
+  VertexTreatment v = treat_vertex(g, edges_of(g, t), t);
+  for (int i = 0; i < 4 && !v.sharpen.empty(); ++i) {
+    sharp.insert(sharp.end(), v.sharpen.begin(), v.sharpen.end());
+    v = treat_vertex(g, edges_of(g, t, sharp), t);
+  }
+  return v;
+}
+
+std::string describe(const VertexTreatment& v) {
+  std::string s = v.row + " points:";
+  for (const auto& [f, target] : v.points) s += " " + f.name() + "->" + target.name();
+  s += " rectangles:";
+  for (const auto& r : v.rectangles) s += " (" + r.a.name() + "," + r.b.name() + ")";
+  s += " open:";
+  for (const auto& f : v.open) s += " " + f.name();
+  return s;
+}
+
+// Row [0,1,1,2]: a chain 1-2-3 of shared edges, face 4 alone. Faces 1 and 3 are asked for
+// a face point ([0]) and a shared-edge point ([1]), face 2 for two shared edges: both [1]
+// edges become [1s]; the [2] chain closes with rectangles (1,2) and (2,3).
+TEST(VertexTable, Row0112) {
+  Table t;
+  t.share(1, 2, 12);
+  t.share(2, 3, 23);
+  const std::vector<EntityRef> g{F(1), F(2), F(3), F(4)};
+  EXPECT_EQ(treat_vertex(g, edges_of(g, t), t).row, "[0,1,1,2]");
+  const VertexTreatment v = treat_until_stable(g, t);
+  EXPECT_EQ(v.row, "[0,1s,1s,2]") << describe(v);
+  for (int f : {1, 2, 3, 4}) EXPECT_EQ(v.point_of(F(f)), F(f)) << describe(v);
+  EXPECT_TRUE(has_rect(v, 1, 2) && has_rect(v, 2, 3)) << describe(v);
+  EXPECT_TRUE(v.open.empty()) << describe(v);
+}
+
+// Row [1,1,2,2]: a chain 1-2-3-4. Faces 1 and 4 are asked for themselves and for a shared
+// edge: the [1] edges become [1s]; the two [2] chains close with (1,2), (2,3), (3,4).
+TEST(VertexTable, Row1122) {
+  Table t;
+  t.share(1, 2, 12);
+  t.share(2, 3, 23);
+  t.share(3, 4, 34);
+  const std::vector<EntityRef> g{F(1), F(2), F(3), F(4)};
+  EXPECT_EQ(treat_vertex(g, edges_of(g, t), t).row, "[1,1,2,2]");
+  const VertexTreatment v = treat_until_stable(g, t);
+  EXPECT_EQ(v.row, "[1s,1s,2,2]") << describe(v);
+  EXPECT_TRUE(has_rect(v, 1, 2) && has_rect(v, 2, 3) && has_rect(v, 3, 4)) << describe(v);
+  EXPECT_TRUE(v.open.empty()) << describe(v);
+}
+
+// Row [1,1,1,3]: faces 1, 2, 3 share edges pairwise (no common vertex), face 4 alone. The
+// [3] edge asks each of 1, 2, 3 for a face point, so the [1] edges become [1s]: four
+// direct points, no rectangles.
+TEST(VertexTable, Row1113) {
+  Table t;
+  t.share(1, 2, 12);
+  t.share(2, 3, 23);
+  t.share(1, 3, 13);
+  const std::vector<EntityRef> g{F(1), F(2), F(3), F(4)};
+  EXPECT_EQ(treat_vertex(g, edges_of(g, t), t).row, "[1,1,1,3]");
+  const VertexTreatment v = treat_until_stable(g, t);
+  EXPECT_EQ(v.row, "[1s,1s,1s,3]") << describe(v);
+  for (int f : {1, 2, 3, 4}) EXPECT_EQ(v.point_of(F(f)), F(f)) << describe(v);
+  EXPECT_TRUE(v.rectangles.empty()) << describe(v);
+  EXPECT_TRUE(v.open.empty()) << describe(v);
+}
+
+// Row [1,1,1,C]: the same faces 1, 2, 3 meeting at a model vertex ([C]); each of them is
+// asked for two shared edges by the [1] edges, which become [1s]: four direct points.
+TEST(VertexTable, Row111C) {
+  Table t;
+  t.share(1, 2, 12);
+  t.share(2, 3, 23);
+  t.share(1, 3, 13);
+  t.corners.push_back({F(1), F(2), F(3)});
+  const std::vector<EntityRef> g{F(1), F(2), F(3), F(4)};
+  EXPECT_EQ(treat_vertex(g, edges_of(g, t), t).row, "[1,1,1,C]");
+  const VertexTreatment v = treat_until_stable(g, t);
+  EXPECT_EQ(v.row, "[1s,1s,1s,C]") << describe(v);
+  for (int f : {1, 2, 3, 4}) EXPECT_EQ(v.point_of(F(f)), F(f)) << describe(v);
+  EXPECT_TRUE(v.open.empty()) << describe(v);
+}
+
+// Row [1,2,2,3]: a cycle 1-2-3 and face 4 sharing an edge with 3. The [3] edge asks 1, 2,
+// 3 for face points, so the [1] edge (4 and edge 12) becomes [1s]; the [2] chains 2-3-4
+// and 1-3-4 close with rectangles (2,3), (1,3) and (3,4).
+TEST(VertexTable, Row1223) {
+  Table t;
+  t.share(1, 2, 12);
+  t.share(2, 3, 23);
+  t.share(1, 3, 13);
+  t.share(3, 4, 34);
+  const std::vector<EntityRef> g{F(1), F(2), F(3), F(4)};
+  EXPECT_EQ(treat_vertex(g, edges_of(g, t), t).row, "[1,2,2,3]");
+  const VertexTreatment v = treat_until_stable(g, t);
+  EXPECT_EQ(v.row, "[1s,2,2,3]") << describe(v);
+  for (int f : {1, 2, 3, 4}) EXPECT_EQ(v.point_of(F(f)), F(f)) << describe(v);
+  EXPECT_TRUE(has_rect(v, 2, 3) && has_rect(v, 1, 3) && has_rect(v, 3, 4)) << describe(v);
+  EXPECT_TRUE(v.open.empty()) << describe(v);
+}
+
+// Row [2,2,3,3]: every pair shares an edge but 2-4. The [3] edges give all four faces a
+// point; the [2] chains 2-3-4 and 2-1-4 close with (2,3), (3,4), (1,2), (1,4).
+TEST(VertexTable, Row2233) {
+  Table t;
+  t.share(1, 2, 12);
+  t.share(2, 3, 23);
+  t.share(1, 3, 13);
+  t.share(1, 4, 14);
+  t.share(3, 4, 34);
+  const std::vector<EntityRef> g{F(1), F(2), F(3), F(4)};
+  const VertexTreatment v = treat_until_stable(g, t);
+  EXPECT_EQ(v.row, "[2,2,3,3]") << describe(v);
+  for (int f : {1, 2, 3, 4}) EXPECT_EQ(v.point_of(F(f)), F(f)) << describe(v);
+  EXPECT_TRUE(has_rect(v, 2, 3) && has_rect(v, 3, 4) && has_rect(v, 1, 2) && has_rect(v, 1, 4))
+      << describe(v);
+  EXPECT_TRUE(v.open.empty()) << describe(v);
+}
+
+// Row [C,C,C,C]: four faces around one model vertex (a pyramid's apex): nothing.
+TEST(VertexTable, RowCCCC) {
+  Table t;
+  t.share(1, 2, 12);
+  t.share(2, 3, 23);
+  t.share(3, 4, 34);
+  t.share(4, 1, 41);
+  t.touching.insert({1, 3});
+  t.touching.insert({2, 4});
+  t.corners.push_back({F(1), F(2), F(3), F(4)});
+  const std::vector<EntityRef> g{F(1), F(2), F(3), F(4)};
+  const VertexTreatment v = treat_until_stable(g, t);
+  EXPECT_EQ(v.row, "[C,C,C,C]") << describe(v);
+  EXPECT_TRUE(v.points.empty()) << describe(v);
+  EXPECT_TRUE(v.rectangles.empty()) << describe(v);
+  EXPECT_TRUE(v.open.empty()) << describe(v);
+}
+
+// A degenerate vertex: five mutually unconnected faces (its edges have four governors
+// each). The per-governor rule projects each face onto itself: five direct points.
+TEST(VertexTable, DegenerateVertexOfFiveFaces) {
+  Table t;
+  const std::vector<EntityRef> g{F(1), F(2), F(3), F(4), F(5)};
+  const VertexTreatment v = treat_until_stable(g, t);
+  EXPECT_EQ(v.points.size(), 5u) << describe(v);
+  for (int f : {1, 2, 3, 4, 5}) EXPECT_EQ(v.point_of(F(f)), F(f)) << describe(v);
+  EXPECT_TRUE(v.rectangles.empty()) << describe(v);
+  EXPECT_TRUE(v.open.empty()) << describe(v);
+}
+
 // A [C] gap: a [0e]-like edge projects onto face 1 only next to a [C] corner of faces
 // 1, 2, 3; the open cut on face 1 is closed by rectangles around the [C] edge.
 TEST(VertexTable, GapAtCEdgeIsClosed) {
