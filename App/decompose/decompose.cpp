@@ -11,6 +11,7 @@
 #include "mesh/map_block.h"
 #include "mesh/midpoint.h"
 #include "mesh/sweep.h"
+#include "model/brep_model.h"
 #include "occ/split_solid.h"
 
 namespace vorohex::decompose {
@@ -688,11 +689,32 @@ bool boxes_overlap(const core::BoundingBox& a, const core::BoundingBox& b, doubl
   return true;
 }
 
+// The smallest interior angle of the sub-volumes at the edges of each decomposition face
+// (DecompositionFace::min_angle), from the dihedral angles of each sub-volume's edges.
+void measure_face_angles(DecompositionResult& r) {
+  for (DecompositionFace& df : r.faces) df.min_angle = 180;
+  for (std::size_t i = 0; i < r.sub_volumes.size(); ++i) {
+    const model::ModelResult m = model::build_model(*r.sub_volumes[i].solid);
+    if (!m.ok()) continue;
+    for (const VirtualFace& vf : r.topology.faces) {
+      if (vf.sub_volume != int(i) || vf.decomposition_face < 0) continue;
+      DecompositionFace& df = r.faces[vf.decomposition_face];
+      for (EdgeId e : m.model->face(vf.face).edges) {
+        const model::ModelEdge& me = m.model->edge(e);
+        if (me.faces.size() == 2 && !me.degenerated)
+          df.min_angle = std::min(df.min_angle, me.dihedral * 180 / kPi);
+      }
+    }
+  }
+}
+
 // The invariants of a decomposition (docs/decomposition.md): closed sub-volumes, pairwise
 // disjoint, volumes summing to the solid's, every decomposition face a quadrilateral
-// between two sub-volumes. A violation downgrades the status: never an invalid "ok".
-// `pairs`: also the pairwise booleans (the costly part).
-void self_check(const occ::Solid& solid, double tol, bool pairs, DecompositionResult& r) {
+// between two sub-volumes meeting its neighbours at no angle below `sharp_angle`
+// (degrees). A violation downgrades the status: never an invalid "ok". `pairs`: the final
+// check, also with the pairwise booleans and the angles (the costly part).
+void self_check(const occ::Solid& solid, double tol, bool pairs, double sharp_angle,
+                DecompositionResult& r) {
   const double total = solid.volume();
   bool partition = true, faces_ok = true;
   double sum = 0;
@@ -732,14 +754,22 @@ void self_check(const occ::Solid& solid, double tol, bool pairs, DecompositionRe
                                                    std::to_string(j) + " overlap (common volume " +
                                                    std::to_string(c) + ")"));
     }
+  if (pairs) measure_face_angles(r);
   for (std::size_t f = 0; f < r.faces.size(); ++f) {
     const DecompositionFace& df = r.faces[f];
     std::string why;
-    if (df.num_edges != 4)
+    if (df.num_edges != 4) {
       why = std::to_string(df.num_edges) + " edges, not 4";
-    else if (df.sub_volumes[0] < 0 || df.sub_volumes[1] < 0)
+    } else if (df.sub_volumes[0] < 0 || df.sub_volumes[1] < 0) {
       why = "it bounds only sub-volume " +
             std::to_string(std::max(df.sub_volumes[0], df.sub_volumes[1]));
+    } else if (df.min_angle < sharp_angle) {
+      char text[120];
+      std::snprintf(text, sizeof text,
+                    "it meets a neighbouring face at %.1f degrees, below the sharp angle %.1f",
+                    df.min_angle, sharp_angle);
+      why = text;
+    }
     if (why.empty()) continue;
     faces_ok = false;
     std::vector<std::string> elements;
@@ -817,7 +847,7 @@ DecompositionResult decompose(const occ::Solid& solid, const voronoi::VoronoiRes
   r.stats.sub_volumes_before_merge = int(r.sub_volumes.size());
   // Pieces that are not closed or lose volume cannot be repaired by merging: report now.
   r.status = DecompositionStatus::ok;
-  self_check(solid, tol, false, r);
+  self_check(solid, tol, false, options.sharp_angle, r);
   if (r.status == DecompositionStatus::failed) {
     r.stats.sub_volumes = int(r.sub_volumes.size());
     return finish(r, t0);
@@ -843,7 +873,7 @@ DecompositionResult decompose(const occ::Solid& solid, const voronoi::VoronoiRes
   for (const auto& d : r.diagnostics)
     if (d.code == "open_vertex_gap" || d.code == "unusable_voronoi_edge") complete = false;
   r.status = complete ? DecompositionStatus::ok : DecompositionStatus::partial;
-  self_check(solid, tol, true, r);
+  self_check(solid, tol, true, options.sharp_angle, r);
   return finish(r, t0);
 }
 

@@ -85,6 +85,9 @@ struct DecompositionFace {
   std::array<int, 2> sub_volumes{-1, -1};  // the sub-volumes on either side (-1: none)
   int num_edges = 0;
   double area = 0;
+  // The smallest interior angle (degrees) of its sub-volumes at its edges: between it and
+  // each neighbouring face, on either side (180 until measured by the final self-check).
+  double min_angle = 180;
   Vec3 point{0, 0, 0};        // a point inside it
   std::vector<int> quads;     // the generating quads lying on it
   std::vector<int> elements;  // their Voronoi elements (sorted, unique)

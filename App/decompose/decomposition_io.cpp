@@ -65,6 +65,7 @@ std::string decomposition_json(const DecompositionResult& r) {
                                         {"sub_volumes", {f.sub_volumes[0], f.sub_volumes[1]}},
                                         {"edges", f.num_edges},
                                         {"area", f.area},
+                                        {"min_angle", f.min_angle},
                                         {"voronoi_elements", f.elements},
                                         {"governors", governors}});
   }

@@ -8,7 +8,7 @@
 //    "sub_volumes": [{"id": i, "type": "Vs"|"Ve", "scheme": "sweep"|"map"|"midpoint"|"none",
 //                     "reason": "...", "volume": v, "merged_from": n,
 //                     "f_s_face": voronoi id or null, "source": "Face3", "target": "Face5"}],
-//    "decomposition_faces": [{"id": i, "sub_volumes": [a, b], "edges": n, "area": a,
+//    "decomposition_faces": [{"id": i, "sub_volumes": [a, b], "edges": n, "area": a, "min_angle": degrees,
 //                             "voronoi_elements": [ids], "governors": ["Face1", ...]}],
 //    "edges": [{"voronoi_id": i, "type": "[1e]", "targets": ["Face2", "Edge7"]}]
 //             (edges of interest and [C] edges only),

@@ -55,8 +55,9 @@ Decomposed run(const occ::Solid& solid, DecomposeOptions opt = {}) {
   return r;
 }
 
-// Closed, disjoint sub-volumes filling the solid; quadrilateral decomposition faces.
-void expect_valid(const occ::Solid& solid, const Decomposed& run) {
+// Closed, disjoint sub-volumes filling the solid; quadrilateral decomposition faces that
+// meet their neighbours at no angle below the sharp angle (60 degrees by default).
+void expect_valid(const occ::Solid& solid, const Decomposed& run, double sharp_angle = 60) {
   const DecompositionResult& r = run.result;
   EXPECT_EQ(r.status, DecompositionStatus::ok) << describe(run);  // the self-check agrees
   double sum = 0;
@@ -77,6 +78,8 @@ void expect_valid(const occ::Solid& solid, const Decomposed& run) {
     EXPECT_GE(f.sub_volumes[0], 0);
     EXPECT_GE(f.sub_volumes[1], 0);  // a decomposition face separates two sub-volumes
     EXPECT_FALSE(f.quads.empty());
+    EXPECT_GE(f.min_angle, sharp_angle) << describe(run);
+    EXPECT_LT(f.min_angle, 180);  // measured
   }
   for (const VirtualFace& vf : r.topology.faces)
     EXPECT_TRUE(vf.original.valid() != (vf.decomposition_face >= 0));
@@ -121,6 +124,25 @@ TEST(Decompose, ThickLIsThreeBeforeMerging) {
   EXPECT_EQ(ve, 1) << describe(r);
   EXPECT_EQ(r.result.faces.size(), 2u) << describe(r);
   expect_valid(l, r);
+}
+
+// The angle invariant is checked, not assumed: the thick L's cuts meet the walls at 90
+// degrees, which a sharp angle of 95 refuses (the decomposition is then partial, each face
+// named), while the default 60 accepts them (above).
+TEST(Decompose, DecompositionFacesBelowTheSharpAngleAreReported) {
+  const occ::Solid l = make_l(3);
+  DecomposeOptions opt;
+  opt.merge = false;
+  opt.sharp_angle = 95;
+  const Decomposed r = run(l, opt);
+  ASSERT_FALSE(r.result.faces.empty()) << describe(r);
+  EXPECT_EQ(r.result.status, DecompositionStatus::partial) << describe(r);
+  int reported = 0;
+  for (const auto& d : r.result.diagnostics)
+    reported += d.code == "invalid_decomposition_face" &&
+                d.message.find("below the sharp angle 95.0") != std::string::npos;
+  for (const DecompositionFace& f : r.result.faces) EXPECT_NEAR(f.min_angle, 90, 1e-6);
+  EXPECT_EQ(reported, int(r.result.faces.size())) << describe(r);
 }
 
 TEST(Decompose, ThinLIsOneSweepAfterMerging) {
