@@ -596,9 +596,10 @@ class Decomposition:
     "sub_volumes", "decomposition_faces", "quads", ...}; sub_volumes: list of dicts with
     "id", "type" ("Vs"/"Ve"), "scheme" ("sweep"/"map"/"midpoint"/"none"), "reason", "volume",
     "merged_from", "source"/"target" (sweeps); faces: the decomposition faces ("id",
-    "sub_volumes", "edges", "area", "voronoi_elements", "governors"); diagnostics: list of
-    dicts; shapes: the sub-volumes as Part.Solid, in the order of sub_volumes (empty when
-    the decomposition failed).
+    "sub_volumes", "edges", "area", "min_angle" (degrees, its smallest angle with a
+    neighbouring face), "voronoi_elements", "governors"); diagnostics: list of dicts;
+    shapes: the sub-volumes as Part.Solid, in the order of sub_volumes (empty when the
+    decomposition failed).
     """
 
     def __init__(self, data, shapes):

@@ -181,6 +181,8 @@ class TestVoroHexApi(unittest.TestCase):
         self.assertEqual(sorted(sv["type"] for sv in d.sub_volumes), ["Ve", "Vs", "Vs"])
         self.assertAlmostEqual(sum(s.Volume for s in d.shapes), solid.Volume, places=6)
         self.assertTrue(d.faces)
+        # The cuts meet the walls square: 90 degrees, above the default sharp angle (60).
+        self.assertEqual([round(f["min_angle"], 6) for f in d.faces], [90.0] * len(d.faces))
         merged = VoroHex.decompose(solid)
         self.assertEqual(len(merged.shapes), 1)
         self.assertEqual(merged.sub_volumes[0]["scheme"], "sweep")
