@@ -525,6 +525,63 @@ void build_topology(const occ::Solid& solid, double tol, DecompositionResult& r)
   r.stats.decomposition_faces = int(r.faces.size());
 }
 
+// Step 5b, once the sub-volumes are final: where every edge of every sub-volume lies.
+// Checked at its two ends and its middle: on an original edge if all three are within
+// `tol` of it; else in the original face of an adjacent sub-volume face lying on one, or
+// of the original face its middle lies on (a sliver touching the boundary along a line).
+void build_virtual_edges(const occ::Solid& solid, double tol, DecompositionResult& r) {
+  r.topology.edges.clear();
+  // Boxes of the original edges and faces (from samples, widened for the chords) to skip
+  // the exact distances that cannot succeed.
+  auto box_of = [](const std::vector<Vec3>& pts, double margin) {
+    core::BoundingBox b;
+    b.min = b.max = pts.front();
+    for (const Vec3& p : pts) b.min = b.min.cwiseMin(p), b.max = b.max.cwiseMax(p);
+    b.min -= Vec3::Constant(margin), b.max += Vec3::Constant(margin);
+    return b;
+  };
+  auto inside = [](const core::BoundingBox& b, const Vec3& p) {
+    return (p.array() >= b.min.array()).all() && (p.array() <= b.max.array()).all();
+  };
+  std::vector<core::BoundingBox> edge_box;
+  for (EdgeId e : solid.edges()) {
+    const std::vector<Vec3> pts = solid.edge_points_by_length(e, 16);
+    edge_box.push_back(
+        box_of(pts, tol + 0.05 * (pts.front() - pts.back()).norm() + 0.02 * solid.diagonal()));
+  }
+  for (std::size_t i = 0; i < r.sub_volumes.size(); ++i) {
+    const occ::Solid& piece = *r.sub_volumes[i].solid;
+    std::map<int, FaceId> original_of;  // the piece's faces on original faces
+    for (const VirtualFace& vf : r.topology.faces)
+      if (vf.sub_volume == int(i) && vf.original.valid())
+        original_of[vf.face.value()] = vf.original;
+    for (EdgeId e : piece.edges()) {
+      VirtualEdge ve;
+      ve.sub_volume = int(i);
+      ve.edge = e;
+      const std::vector<Vec3> pts = piece.edge_points_by_length(e, 2);
+      for (EdgeId o : solid.edges()) {
+        if (!inside(edge_box[o.value() - 1], pts[1])) continue;
+        bool on = true;
+        for (const Vec3& p : pts) on = on && solid.distance_to_edge(o, p) <= tol;
+        if (on) {
+          ve.original = o;
+          break;
+        }
+      }
+      if (!ve.original.valid()) {
+        for (FaceId f : piece.edge_faces(e))
+          if (const auto it = original_of.find(f.value()); it != original_of.end())
+            ve.original_face = it->second;
+        for (FaceId f : solid.faces())
+          if (!ve.original_face.valid() && solid.distance_to_face(f, pts[1]) <= tol)
+            ve.original_face = f;
+      }
+      r.topology.edges.push_back(ve);
+    }
+  }
+}
+
 // Step 6: type and scheme of one sub-volume.
 void type_sub_volume(const VoronoiGraph& g, const DecompositionResult& r, int index,
                      SubVolume& sv) {
@@ -859,6 +916,7 @@ DecompositionResult decompose(const occ::Solid& solid, const voronoi::VoronoiRes
                       r.diagnostics.end());
 
   if (options.merge) merge_pass(solid, g, tol, options.split_time_limit, r);
+  build_virtual_edges(solid, tol, r);
 
   r.stats.sub_volumes = int(r.sub_volumes.size());
   bool complete = true;

@@ -102,8 +102,18 @@ struct VirtualFace {
   int num_edges = 0;
   double area = 0;
 };
+// Every edge of every sub-volume: the original edge it lies on (a piece of it, or all of
+// it), else the original face it lies in (a cut crossing that face), else neither (inside
+// the solid, where decomposition faces meet).
+struct VirtualEdge {
+  int sub_volume = -1;
+  core::EdgeId edge;           // the edge in the sub-volume's solid
+  core::EdgeId original;       // the original edge it lies on (invalid if none)
+  core::FaceId original_face;  // else the original face it lies in (invalid if none)
+};
 struct VirtualTopology {
   std::vector<VirtualFace> faces;
+  std::vector<VirtualEdge> edges;  // filled once the sub-volumes are final
 };
 
 enum class SubVolumeType { vs, ve };

@@ -53,6 +53,23 @@ std::string decomposition_json(const DecompositionResult& r) {
       s["source"] = face_name(sv.source);
       s["target"] = face_name(sv.target);
     }
+    // The virtual topology: where each of its faces and edges lies in the original solid.
+    s["faces"] = json::array();
+    for (const VirtualFace& vf : r.topology.faces)
+      if (vf.sub_volume == int(i))
+        s["faces"].push_back(
+            {{"face", face_name(vf.face)},
+             {"on", vf.original.valid() ? json(face_name(vf.original)) : json(nullptr)},
+             {"decomposition_face",
+              vf.decomposition_face >= 0 ? json(vf.decomposition_face) : json(nullptr)}});
+    s["edges"] = json::array();
+    for (const VirtualEdge& ve : r.topology.edges)
+      if (ve.sub_volume == int(i))
+        s["edges"].push_back(
+            {{"edge", "Edge" + std::to_string(ve.edge.value())},
+             {"on", ve.original.valid()        ? json("Edge" + std::to_string(ve.original.value()))
+                    : ve.original_face.valid() ? json(face_name(ve.original_face))
+                                               : json(nullptr)}});
     j["sub_volumes"].push_back(s);
   }
   j["decomposition_faces"] = json::array();

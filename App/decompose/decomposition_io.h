@@ -7,7 +7,10 @@
 //               "quads": n, "edges_of_interest": n, "projected_edges": n},
 //    "sub_volumes": [{"id": i, "type": "Vs"|"Ve", "scheme": "sweep"|"map"|"midpoint"|"none",
 //                     "reason": "...", "volume": v, "merged_from": n,
-//                     "f_s_face": voronoi id or null, "source": "Face3", "target": "Face5"}],
+//                     "f_s_face": voronoi id or null, "source": "Face3", "target": "Face5",
+//                     "faces": [{"face": "Face1", "on": "Face4" or null,
+//                                "decomposition_face": k or null}],
+//                     "edges": [{"edge": "Edge1", "on": "Edge7" | "Face4" | null}]}],
 //    "decomposition_faces": [{"id": i, "sub_volumes": [a, b], "edges": n, "area": a, "min_angle": degrees,
 //                             "voronoi_elements": [ids], "governors": ["Face1", ...]}],
 //    "edges": [{"voronoi_id": i, "type": "[1e]", "targets": ["Face2", "Edge7"]}]

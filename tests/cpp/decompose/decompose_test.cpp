@@ -3,9 +3,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <map>
+#include <set>
 #include <sstream>
 
 #include "decompose/decomposition_io.h"
@@ -55,6 +58,40 @@ Decomposed run(const occ::Solid& solid, DecomposeOptions opt = {}) {
   return r;
 }
 
+// Every edge of every sub-volume knows where it lies: on an original edge (all of it
+// within the tolerance), in an original face, or inside the solid (away from every face);
+// and the pieces on each original edge cover it exactly.
+void expect_virtual_edges(const occ::Solid& solid, const DecompositionResult& r) {
+  const double tol = 1e-6 * solid.diagonal();
+  std::size_t edges = 0;
+  for (const SubVolume& sv : r.sub_volumes) edges += std::size_t(sv.solid->num_edges());
+  ASSERT_EQ(r.topology.edges.size(), edges);
+  std::map<int, std::vector<std::pair<Vec3, double>>> pieces;  // original edge -> pieces
+  for (const VirtualEdge& ve : r.topology.edges) {
+    const occ::Solid& piece = *r.sub_volumes[ve.sub_volume].solid;
+    const std::vector<Vec3> pts = piece.edge_points_by_length(ve.edge, 4);
+    if (ve.original.valid()) {
+      for (const Vec3& p : pts) EXPECT_LE(solid.distance_to_edge(ve.original, p), tol);
+      auto& list = pieces[ve.original.value()];
+      const bool seen = std::any_of(list.begin(), list.end(), [&](const auto& x) {
+        return (x.first - pts[2]).norm() <= tol;
+      });
+      if (!seen) list.emplace_back(pts[2], piece.edge_length(ve.edge));
+    } else if (ve.original_face.valid()) {
+      for (const Vec3& p : pts) EXPECT_LE(solid.distance_to_face(ve.original_face, p), tol);
+    } else {
+      for (core::FaceId f : solid.faces()) EXPECT_GT(solid.distance_to_face(f, pts[2]), tol);
+    }
+  }
+  for (const auto& [edge, list] : pieces) {
+    double length = 0;
+    for (const auto& piece : list) length += piece.second;
+    EXPECT_NEAR(length, solid.edge_length(core::EdgeId(edge)), 1e-6 * solid.diagonal())
+        << "original Edge" << edge;
+  }
+  EXPECT_EQ(int(pieces.size()), solid.num_edges());  // no original edge is lost
+}
+
 // Closed, disjoint sub-volumes filling the solid; quadrilateral decomposition faces that
 // meet their neighbours at no angle below the sharp angle (60 degrees by default).
 void expect_valid(const occ::Solid& solid, const Decomposed& run, double sharp_angle = 60) {
@@ -83,6 +120,7 @@ void expect_valid(const occ::Solid& solid, const Decomposed& run, double sharp_a
   }
   for (const VirtualFace& vf : r.topology.faces)
     EXPECT_TRUE(vf.original.valid() != (vf.decomposition_face >= 0));
+  expect_virtual_edges(solid, r);
 }
 
 using testing::make_l;
@@ -124,6 +162,16 @@ TEST(Decompose, ThickLIsThreeBeforeMerging) {
   EXPECT_EQ(ve, 1) << describe(r);
   EXPECT_EQ(r.result.faces.size(), 2u) << describe(r);
   expect_valid(l, r);
+  // The concave edge (x = y = 1) is an edge of all three: each leg along its own face,
+  // and the corner block, whose two faces there are both decomposition faces.
+  std::set<int> touching;
+  for (const VirtualEdge& ve : r.result.topology.edges) {
+    if (!ve.original.valid()) continue;
+    const Vec3 mid = l.edge_points_by_length(ve.original, 2)[1];
+    if (std::abs(mid.x() - 1) < 1e-9 && std::abs(mid.y() - 1) < 1e-9)
+      touching.insert(ve.sub_volume);
+  }
+  EXPECT_EQ(touching.size(), 3u) << describe(r);
 }
 
 // The angle invariant is checked, not assumed: the thick L's cuts meet the walls at 90
