@@ -11,7 +11,8 @@
 //                     "faces": [{"face": "Face1", "on": "Face4" or null,
 //                                "decomposition_face": k or null}],
 //                     "edges": [{"edge": "Edge1", "on": "Edge7" | "Face4" | null}]}],
-//    "decomposition_faces": [{"id": i, "sub_volumes": [a, b], "edges": n, "area": a, "min_angle": degrees,
+//    "decomposition_faces": [{"id": i, "sub_volumes": [a, b], "edges": n, "area": a, "min_angle":
+//    degrees,
 //                             "voronoi_elements": [ids], "governors": ["Face1", ...]}],
 //    "edges": [{"voronoi_id": i, "type": "[1e]", "targets": ["Face2", "Edge7"]}]
 //             (edges of interest and [C] edges only),
