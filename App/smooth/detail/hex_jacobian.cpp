@@ -69,7 +69,7 @@ double hex_scaled_jacobian(const std::array<Vec3, 8>& p) {
     const bool* rev = kFrame.reversed[c];
     // Negation is exact, so flipping signs afterwards equals using the reversed vectors.
     double det = e[ed[0]].dot(e[ed[1]].cross(e[ed[2]]));
-    if (rev[0] != rev[1] != rev[2]) det = -det;
+    if ((rev[0] != rev[1]) != rev[2]) det = -det;  // an odd number of reversed vectors
     m = std::min(m, det / std::sqrt(len2[ed[0]] * len2[ed[1]] * len2[ed[2]]));
   }
   return std::clamp(m, -1.0, 1.0);
