@@ -144,8 +144,10 @@ void build_virtual_edges(const occ::Solid& solid, double tol, DecompositionResul
       ve.sub_volume = int(i);
       ve.edge = e;
       const std::vector<Vec3> pts = piece.edge_points_by_length(e, 2);
+      const bool point = piece.edge_is_degenerated(e);  // a pole: on a pole, not a seam
       for (EdgeId o : solid.edges()) {
-        if (!inside(edge_box[o.value() - 1], pts[1])) continue;
+        if (point != solid.edge_is_degenerated(o) || !inside(edge_box[o.value() - 1], pts[1]))
+          continue;
         bool on = true;
         for (const Vec3& p : pts) on = on && solid.distance_to_edge(o, p) <= tol;
         if (on) {

@@ -14,6 +14,7 @@
 #include "decompose/decomposition_io.h"
 #include "fixtures/solids.h"
 #include "occ/primitives.h"
+#include "occ/shape_io.h"
 #include "occ/split_solid.h"
 
 namespace vorohex::decompose {
@@ -289,6 +290,25 @@ TEST(Decompose, TetrahedronIsOneCellForMidpointSubdivision) {
   EXPECT_EQ(r.result.sub_volumes[0].type, SubVolumeType::ve);
   EXPECT_STREQ(scheme_name(Scheme::midpoint), "midpoint");
   expect_valid(tet, r);
+}
+
+// A sphere (HexMe s17) is one piece no scheme accepts; its virtual edges are its own:
+// the seam on the seam and each pole (a degenerate edge) on its pole, not on the seam that
+// passes through it.
+TEST(Decompose, SphereEdgesAreTheirOwnPolesAndSeam) {
+  const occ::ReadResult in = occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/s17o_sphere.step");
+  if (!in.ok()) GTEST_SKIP() << "HexMe model s17 not found in " << VOROHEX_HEXME_DIR;
+  const Decomposed r = run(*in.solid);
+  ASSERT_EQ(r.result.sub_volumes.size(), 1u) << describe(r);
+  const occ::Solid& piece = *r.result.sub_volumes[0].solid;
+  ASSERT_EQ(r.result.topology.edges.size(), std::size_t(piece.num_edges()));
+  int poles = 0;
+  for (const VirtualEdge& ve : r.result.topology.edges) {
+    ASSERT_TRUE(ve.original.valid());
+    EXPECT_EQ(in.solid->edge_is_degenerated(ve.original), piece.edge_is_degenerated(ve.edge));
+    poles += piece.edge_is_degenerated(ve.edge);
+  }
+  EXPECT_EQ(poles, 2);
 }
 
 TEST(Decompose, WritesCompoundAndReport) {
