@@ -96,7 +96,6 @@ class Busy:
             self.dialog.canceled.disconnect(self.cancel)
             self.dialog.close()
             self.dialog.deleteLater()
-            self.dialog = None
         Busy.current = None
 
 
@@ -111,7 +110,6 @@ def run_cancellable(doc, label, work):
         work(busy)
     except Exception:  # VoroHex.Cancelled from a make* function, also through doCommand
         if not busy.cancelled:
-            busy.close()
             doc.abortTransaction()
             raise
     finally:
