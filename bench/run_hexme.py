@@ -21,7 +21,7 @@ import os
 import subprocess
 import sys
 
-from run_bench import HEXME, HERE, REPO, measure
+from run_bench import HEXME, HERE, REPO, hexme_available, measure
 
 
 def load(path):
@@ -99,6 +99,8 @@ def main():
     work = os.path.join(HERE, "work", "hexme")
     os.makedirs(work, exist_ok=True)
     prefixes = tuple(args.only.split(","))
+    if not hexme_available("every model is"):
+        sys.exit(2)
     models = sorted(f for f in os.listdir(HEXME) if f.endswith(".step") and f.startswith(prefixes))
     rows = []
     kept = previous_gmsh(os.path.join(HERE, "results", "hexme.md")) if args.no_gmsh else {}

@@ -15,7 +15,7 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(HERE)
-HEXME = os.path.join(REPO, "..", "shared", "models", "hexme")
+from run_bench import HEXME, hexme_available  # noqa: E402
 
 
 def write_solids(work):
@@ -57,6 +57,8 @@ def write_solids(work):
         path = os.path.join(work, name.replace(" ", "_").replace(",", "") + ".step")
         solid.exportStep(path)
         paths[name] = path
+    if not hexme_available("the HexMe rows (s07, s11, s15) are"):
+        return paths
     for name in ("s07o_notch", "s11o_cube_cyl", "s15o_cylinder"):
         path = os.path.join(HEXME, name + ".step")
         if os.path.exists(path):

@@ -13,6 +13,8 @@
 #include <IGESControl_Reader.hxx>
 #include <Interface_Check.hxx>
 #include <Interface_CheckIterator.hxx>
+#include <Interface_EntityIterator.hxx>
+#include <Interface_Graph.hxx>
 #include <Interface_InterfaceModel.hxx>
 #include <STEPControl_Reader.hxx>
 #include <STEPControl_Writer.hxx>
@@ -38,6 +40,7 @@
 #include <cmath>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <sstream>
 #include <unordered_set>
 
@@ -442,38 +445,74 @@ ReadResult analyse(const TopoDS_Shape& shape, const std::string& where,
 // Entities that OCCT failed to load (an unresolved reference, an entity of the wrong type, a
 // number that is not one) keep null references, which OCCT's translators (StepToGeom,
 // StepToTopoDS, IGESToBRep) dereference: they crash. A file in which an entity of geometry
-// or topology failed is refused before the transfer (true, with an error in r). Failures of
-// metadata (units, products, names; HexMe's i12 has an SI unit with a wrong parameter count)
-// and of unknown entity types are left to the translator, which copes with them.
+// or topology failed, or an entity that one of them refers to, is refused before the
+// transfer. Failures of entities the shape does not need (presentation: styles, colours,
+// point markers, layers; metadata: units, products, names, validation properties; unknown
+// entity types) are a warning naming them: the transfer of the shape never reads them, and
+// every CAD tool opens such files (Gmsh's benchmark universal joint has 182 point styles with
+// an illegal marker).
 bool is_step_shape_entity(const std::string& type) {
-  return type.rfind("StepBasic_", 0) != 0 && type != "StepData_UndefinedEntity";
+  if (type.rfind("StepGeom_", 0) == 0 || type.rfind("StepShape_", 0) == 0) return true;
+  if (type.rfind("StepRepr_", 0) != 0) return false;
+  // Representations and their relations carry the shape and the placements of an
+  // assembly's parts; their properties and descriptive items do not.
+  for (const char* metadata : {"Property", "Descriptive", "Measure", "Value", "Integer", "Real",
+                               "ShapeAspect", "Characterized", "ProductDefinitionShape"})
+    if (type.find(metadata) != std::string::npos) return false;
+  return true;
 }
 bool is_iges_shape_entity(const std::string& type) {
   return type.rfind("IGESGeom_", 0) == 0 || type.rfind("IGESSolid_", 0) == 0;
 }
 
+// Sorts the entities that failed to load into those the shape needs (an error in r, true:
+// the file is refused) and the others (a warning, ignored_entities, in warnings).
 bool refuse_damaged(const XSControl_Reader& reader, bool (*is_shape_entity)(const std::string&),
-                    const std::string& where, const char* kind, ReadResult& r) {
+                    const std::string& where, const char* kind, ReadResult& r,
+                    std::vector<core::Diagnostic>& warnings) {
   const Handle(Interface_InterfaceModel) model = reader.Model();
   Interface_CheckIterator checks = reader.WS()->ModelCheckList(false);  // load checks only
-  std::vector<std::string> failures;
+  std::vector<std::string> failures, ignored;
+  std::map<std::string, int> ignored_types;
   for (checks.Start(); checks.More(); checks.Next()) {
     const Handle(Interface_Check)& check = checks.Value();
     if (!check->HasFailed() || checks.Number() < 1 || checks.Number() > model->NbEntities())
       continue;
     const Handle(Standard_Transient) entity = model->Value(checks.Number());
     const std::string type = entity->DynamicType()->Name();
-    if (!is_shape_entity(type)) continue;
-    failures.push_back(std::string(model->StringLabel(entity)->ToCString()) + " " + type + ": " +
-                       check->CFail(1));
+    bool needed = is_shape_entity(type);
+    for (Interface_EntityIterator users = reader.WS()->Graph().Sharings(entity);
+         !needed && users.More(); users.Next())
+      needed = is_shape_entity(users.Value()->DynamicType()->Name());
+    const std::string what =
+        std::string(model->StringLabel(entity)->ToCString()) + " " + type + ": " + check->CFail(1);
+    if (needed) {
+      failures.push_back(what);
+    } else {
+      ignored.push_back(what);
+      ++ignored_types[type];
+    }
   }
-  if (failures.empty()) return false;
-  r.diagnostics.push_back(make_error(
-      "unreadable_file", where + " is a damaged " + kind +
-                             " file: " + std::to_string(failures.size()) +
-                             (failures.size() == 1 ? " entity fails" : " entities fail") +
-                             " to load (" + join_names(failures, 3) + ")."));
-  return true;
+  if (!failures.empty()) {
+    r.diagnostics.push_back(make_error(
+        "unreadable_file", where + " is a damaged " + kind +
+                               " file: " + std::to_string(failures.size()) +
+                               (failures.size() == 1 ? " entity" : " entities") +
+                               " of its shape fail to load (" + join_names(failures, 3) + ")."));
+    return true;
+  }
+  if (!ignored.empty()) {
+    std::vector<std::string> types;
+    for (const auto& [type, n] : ignored_types) types.push_back(std::to_string(n) + " " + type);
+    warnings.push_back(make_warning(
+        "ignored_entities",
+        where + ": " + std::to_string(ignored.size()) +
+            (ignored.size() == 1 ? " entity" : " entities") + " that the shape does not need " +
+            (ignored.size() == 1 ? "fails" : "fail") + " to load and " +
+            (ignored.size() == 1 ? "is" : "are") + " ignored (" + join_names(types, 5) +
+            "; first: " + join_names(ignored, 2) + ")."));
+  }
+  return false;
 }
 
 // Instance names (#n) of a STEP file given twice, referred to but never given, or referred
@@ -633,6 +672,7 @@ ReadResult read_solid(const std::string& path, const ReadOptions& options) {
   const std::string where = "The file " + path;
   const char* kind = format == Format::step ? "STEP" : format == Format::iges ? "IGES" : "BREP";
   TopoDS_Shape shape;
+  std::vector<core::Diagnostic> warnings;  // entities of the file the shape does not need
   try {
     bool read = false;
     if (format == Format::step) {
@@ -645,7 +685,7 @@ ReadResult read_solid(const std::string& path, const ReadOptions& options) {
       }
       STEPControl_Reader reader;
       if (reader.ReadFile(path.c_str()) == IFSelect_RetDone) {
-        if (refuse_damaged(reader, is_step_shape_entity, where, kind, r)) return r;
+        if (refuse_damaged(reader, is_step_shape_entity, where, kind, r, warnings)) return r;
         if (reader.TransferRoots() > 0) {
           shape = reader.OneShape();
           read = !shape.IsNull();
@@ -662,7 +702,7 @@ ReadResult read_solid(const std::string& path, const ReadOptions& options) {
       }
       IGESControl_Reader reader;
       if (reader.ReadFile(path.c_str()) == IFSelect_RetDone) {
-        if (refuse_damaged(reader, is_iges_shape_entity, where, kind, r)) return r;
+        if (refuse_damaged(reader, is_iges_shape_entity, where, kind, r, warnings)) return r;
         if (reader.TransferRoots() > 0) {
           shape = reader.OneShape();
           read = !shape.IsNull();
@@ -689,7 +729,9 @@ ReadResult read_solid(const std::string& path, const ReadOptions& options) {
                                                                 " file (no shape could be read)."));
       return r;
     }
-    return analyse(shape, where, options);
+    ReadResult analysed = analyse(shape, where, options);
+    analysed.diagnostics.insert(analysed.diagnostics.begin(), warnings.begin(), warnings.end());
+    return analysed;
   } catch (const std::ios_base::failure&) {
     r.diagnostics.push_back(make_error("unreadable_file", where + " is not a readable " + kind +
                                                               " file: " + kBrepMalformed + "."));

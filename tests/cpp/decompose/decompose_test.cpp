@@ -297,7 +297,7 @@ TEST(Decompose, TetrahedronIsOneCellForMidpointSubdivision) {
 // passes through it.
 TEST(Decompose, SphereEdgesAreTheirOwnPolesAndSeam) {
   const occ::ReadResult in = occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/s17o_sphere.step");
-  if (!in.ok()) GTEST_SKIP() << "HexMe model s17 not found in " << VOROHEX_HEXME_DIR;
+  ASSERT_TRUE(in.ok()) << "HexMe model s17 not found in " << VOROHEX_HEXME_DIR;
   const Decomposed r = run(*in.solid);
   ASSERT_EQ(r.result.sub_volumes.size(), 1u) << describe(r);
   const occ::Solid& piece = *r.result.sub_volumes[0].solid;

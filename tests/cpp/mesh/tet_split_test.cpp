@@ -81,7 +81,7 @@ TEST(TetSplit, MeshesACylinderInAChildProcessAndPlacesItOnTheCad) {
 // and the failure names the edges where the boundary triangulation is open.
 TEST(TetSplit, AnOpenBoundaryTriangulationNamesItsEdges) {
   const occ::ReadResult in = occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/i16o_s9.step");
-  if (!in.ok()) GTEST_SKIP() << "HexMe model i16 not found in " << VOROHEX_HEXME_DIR;
+  ASSERT_TRUE(in.ok()) << "HexMe model i16 not found in " << VOROHEX_HEXME_DIR;
   TetSplitOptions opt;
   opt.size = in.solid->diagonal() / 20;
   const TetSplitResult r = tet_split(*in.solid, opt);
@@ -97,7 +97,7 @@ TEST(TetSplit, AnOpenBoundaryTriangulationNamesItsEdges) {
 // cells are put back: every boundary edge of the hex mesh lies in exactly two boundary quads.
 TEST(TetSplit, APinchedEdgeIsFilledSoTheBoundaryCloses) {
   const occ::ReadResult in = occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/i02o_m2.step");
-  if (!in.ok()) GTEST_SKIP() << "HexMe model i02 not found in " << VOROHEX_HEXME_DIR;
+  ASSERT_TRUE(in.ok()) << "HexMe model i02 not found in " << VOROHEX_HEXME_DIR;
   TetSplitOptions opt;
   opt.size = in.solid->diagonal() / 20;
   const TetSplitResult r = tet_split(*in.solid, opt);

@@ -268,8 +268,14 @@ TEST(ReadSolidFromBrepString, GarbageAndEmptyStringsFailCleanly) {
   EXPECT_FALSE(r.ok());
 }
 
-// Every HexMe benchmark model reads as one valid solid with positive volume.
+// Every HexMe model the tests carry (tests/data/hexme, listed in its INDEX.md) reads as one
+// valid solid with positive volume. The whole benchmark of 57 is read by bench/run_hexme.py.
 TEST(ReadSolid, HexMeModelsReadAsSolids) {
+  std::ifstream index(std::string(VOROHEX_HEXME_DIR) + "/INDEX.md");
+  ASSERT_TRUE(index) << "INDEX.md missing in " << VOROHEX_HEXME_DIR;
+  int listed = 0;
+  for (std::string line; std::getline(index, line);)
+    if (line.rfind("| ", 0) == 0 && line.find("model") == std::string::npos) ++listed;
   int models = 0;
   for (const auto& entry : std::filesystem::directory_iterator(VOROHEX_HEXME_DIR)) {
     if (entry.path().extension() != ".step") continue;
@@ -280,7 +286,8 @@ TEST(ReadSolid, HexMeModelsReadAsSolids) {
     EXPECT_GT(r.solid->volume(), 0) << entry.path();
     EXPECT_GE(r.solid->num_faces(), 1) << entry.path();
   }
-  EXPECT_EQ(models, 57);
+  EXPECT_GE(models, 10);
+  EXPECT_EQ(models, listed);
 }
 
 }  // namespace

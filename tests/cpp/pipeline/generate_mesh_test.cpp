@@ -152,7 +152,7 @@ TEST(GenerateMesh, RoundPostsAreCutAroundAndUnderAndSwept) {
   EXPECT_GE(c.stats.sub_volumes, 3);
   EXPECT_GE(c.check.scaled_jacobian.min, 0.3);
   EXPECT_LE(c.check.max_boundary_distance_rel, 1e-6);
-  if (!s11.ok()) GTEST_SKIP() << "HexMe model s11 not found in " << VOROHEX_HEXME_DIR;
+  ASSERT_TRUE(s11.ok()) << "HexMe model s11 not found in " << VOROHEX_HEXME_DIR;
 }
 
 // Convex polyhedra that are neither blocks nor sweeps go through midpoint subdivision.
@@ -350,7 +350,7 @@ TEST(GenerateMesh, CurvedSolidsAreValidOnTheCadAndAbove03) {
     SCOPED_TRACE(name);
     const occ::ReadResult in =
         occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/" + name + ".step");
-    if (!in.ok()) GTEST_SKIP() << "HexMe model " << name << " not found in " << VOROHEX_HEXME_DIR;
+    ASSERT_TRUE(in.ok()) << "HexMe model " << name << " not found in " << VOROHEX_HEXME_DIR;
     const MeshResult r = generate_mesh(*in.solid, MeshOptions{});
     ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
     EXPECT_TRUE(r.check.valid);
@@ -365,7 +365,7 @@ TEST(GenerateMesh, CurvedSolidsAreValidOnTheCadAndAbove03) {
 TEST(GenerateMesh, AStructuredSchemeThatFailsHandsOverToTheFallback) {
   const occ::ReadResult in =
       occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/n03o_skijump_box_cyl.step");
-  if (!in.ok()) GTEST_SKIP() << "HexMe model n03 not found in " << VOROHEX_HEXME_DIR;
+  ASSERT_TRUE(in.ok()) << "HexMe model n03 not found in " << VOROHEX_HEXME_DIR;
   MeshOptions opt;
   const MeshResult r = generate_mesh(*in.solid, opt);
   ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
