@@ -41,7 +41,7 @@ const char* const kMeshUsage =
     "  --eps E, --delta D, --max-depth N  the Voronoi graph the decomposition cuts along\n"
     "                  (as for vorohex voronoi: 0.01, 0.001 of the diagonal, depth 9)\n"
     "  --schemes LIST  the single-solid schemes to try, in order, comma-separated (default\n"
-    "                  map,sweep,multisweep,midpoint); one left out is never used\n"
+    "                  map,sweep,multisweep,revolve,midpoint); one left out is never used\n"
     "  --no-fallback   refuse a solid that neither one scheme nor its\n"
     "                  decomposition meshes, instead of meshing it as tetrahedra split into\n"
     "                  hexahedra\n"

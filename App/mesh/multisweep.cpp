@@ -9,6 +9,7 @@
 #include <unordered_map>
 
 #include "core/option_checks.h"
+#include "mesh/detail/cad_lookup.h"
 #include "mesh/face_set.h"
 #include "occ/prismatic.h"
 
@@ -175,15 +176,7 @@ MultisweepResult multisweep(const occ::Solid& solid, const MultisweepOptions& op
   // Which CAD entity a node at (arrangement entity, height index) lies on. Regions are
   // decided from the caps; edges and vertices of the arrangement by the CAD's distance.
   const double tol = std::max(1e-6 * solid.diagonal(), 10 * solid.tolerance());
-  auto lookup = [&](const Vec3& q) {
-    for (core::VertexId v : solid.vertices())
-      if (solid.distance_to_vertex(v, q) <= tol) return NodeClass::on(v);
-    const core::EdgeId e = solid.nearest_edge(q);
-    if (e.valid() && solid.distance_to_edge(e, q) <= tol) return NodeClass::on(e);
-    const core::FaceId f = solid.nearest_face(q);
-    if (f.valid() && solid.distance_to_face(f, q) <= tol) return NodeClass::on(f);
-    return NodeClass::interior();
-  };
+  auto lookup = [&](const Vec3& q) { return detail::cad_entity_at(solid, q, tol); };
   std::map<std::tuple<int, int, int>, NodeClass> classes;
   auto classify = [&](NodeClass on, int z) {
     const auto key = std::make_tuple(int(on.dim), on.id, z);

@@ -7,6 +7,7 @@
 #include "mesh/map_block.h"
 #include "mesh/midpoint.h"
 #include "mesh/multisweep.h"
+#include "mesh/revolve.h"
 #include "mesh/sweep.h"
 
 namespace vorohex::pipeline::detail {
@@ -109,6 +110,45 @@ class MultisweepScheme : public Scheme {
   }
 };
 
+class RevolveScheme : public Scheme {
+ public:
+  const char* name() const override { return "revolve"; }
+  SchemeCheck applicable(const occ::Solid& solid) override {
+    const mesh::RevolveApplicability a = mesh::revolve_applicable(solid);
+    return {a.ok, "Not of revolution: " + a.reason};
+  }
+  SchemeEstimate evaluate(const occ::Solid& solid, double size) override {
+    mesh::RevolveOptions o;
+    o.size = size;
+    const mesh::RevolveEstimate e = mesh::revolve_evaluate(solid, o);
+    return {e.hexes, {0, 0, e.sectors}};
+  }
+  SchemeMesh compute(const occ::Solid& solid, double size,
+                     const core::Progress& progress) override {
+    mesh::RevolveOptions o;
+    o.size = size;
+    mesh::RevolveResult r = mesh::revolve(solid, o, progress);
+    SchemeMesh m;
+    m.ok = r.ok;
+    m.intervals = {0, 0, r.sectors};
+    m.diagnostics = std::move(r.diagnostics);
+    if (r.ok) {
+      m.mesh = std::move(r.mesh);
+      std::ostringstream s;
+      s << "Revolved about the axis through (" << r.origin.x() << ", " << r.origin.y() << ", "
+        << r.origin.z() << ") along (" << r.axis.x() << ", " << r.axis.y() << ", " << r.axis.z()
+        << ") in " << r.sectors << " sectors: its meridian section meshed with quads (min 2-D "
+        << "quality " << std::setprecision(3) << r.section_min_quality << ")";
+      if (r.cores > 0)
+        s << ", with " << r.cores << (r.cores == 1 ? " core" : " cores") << " of radius "
+          << r.core_radius << " swept along the axis from an O-grid disc";
+      s << ".";
+      m.summary = core::make_info("revolve", s.str());
+    }
+    return m;
+  }
+};
+
 class MidpointScheme : public Scheme {
  public:
   const char* name() const override { return "midpoint"; }
@@ -147,7 +187,8 @@ class MidpointScheme : public Scheme {
 }  // namespace
 
 const std::vector<std::string>& scheme_names() {
-  static const std::vector<std::string> names = {"map", "sweep", "multisweep", "midpoint"};
+  static const std::vector<std::string> names = {"map", "sweep", "multisweep", "revolve",
+                                                 "midpoint"};
   return names;
 }
 
@@ -160,6 +201,8 @@ std::vector<std::unique_ptr<Scheme>> make_schemes(const std::vector<std::string>
       out.push_back(std::make_unique<SweepScheme>());
     else if (n == "multisweep")
       out.push_back(std::make_unique<MultisweepScheme>());
+    else if (n == "revolve")
+      out.push_back(std::make_unique<RevolveScheme>());
     else if (n == "midpoint")
       out.push_back(std::make_unique<MidpointScheme>());
     else {
