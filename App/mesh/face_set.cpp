@@ -62,8 +62,8 @@ bool mappable(const occ::Solid& s, FaceId f) {
 }
 
 struct Plan {
-  std::vector<Scheme> scheme;                 // per face id
-  std::vector<std::vector<int>> submap_dirs;  // per face id, when submapped
+  std::vector<Scheme> scheme;           // per face id
+  std::vector<SubmapStructure> submap;  // per face id, when submapped
 };
 
 // The interval problem: one curve per edge (index = edge id - 1); constraints per face.
@@ -86,9 +86,12 @@ IntervalProblem problem_for(const occ::Solid& s, const Plan& plan, const FaceSet
         break;
       }
       case Scheme::submap: {
-        std::vector<int> curves;
-        for (const OrientedEdge& oe : wires[0]) curves.push_back(oe.edge.value() - 1);
-        add_submap_balance(p, plan.submap_dirs[f.value()], curves, name);
+        std::vector<std::vector<int>> curves;
+        for (const auto& w : wires) {
+          curves.emplace_back();
+          for (const OrientedEdge& oe : w) curves.back().push_back(oe.edge.value() - 1);
+        }
+        add_submap_balance(p, plan.submap[f.value()], curves, name);
         break;
       }
       case Scheme::quad: {
@@ -121,13 +124,13 @@ FaceSetMesh mesh_face_set(const occ::Solid& s, const FaceSetOptions& options,
   const int nf = s.num_faces(), ne = s.num_edges(), nv = s.num_vertices();
   Plan plan;
   plan.scheme.assign(nf + 1, Scheme::quad);
-  plan.submap_dirs.assign(nf + 1, {});
+  plan.submap.assign(nf + 1, {});
   for (FaceId f : s.faces()) {
     if (mappable(s, f)) {
       plan.scheme[f.value()] = Scheme::map;
     } else {
-      plan.submap_dirs[f.value()] = submap_directions(s, f);
-      if (!plan.submap_dirs[f.value()].empty()) plan.scheme[f.value()] = Scheme::submap;
+      plan.submap[f.value()] = submap_structure(s, f);
+      if (plan.submap[f.value()].ok) plan.scheme[f.value()] = Scheme::submap;
     }
   }
   IntervalOptions io;
@@ -184,9 +187,10 @@ FaceSetMesh mesh_face_set(const occ::Solid& s, const FaceSetOptions& options,
     for (FaceId f : s.faces()) {
       std::vector<std::vector<Vec3>> loops;
       std::vector<int> ids;  // global id of each loop node, loop after loop
-      std::vector<int> counts;
+      std::vector<std::vector<int>> counts;
       for (const auto& w : s.face_wires(f)) {
         loops.emplace_back();
+        counts.emplace_back();
         for (const OrientedEdge& oe : w) {
           std::vector<int> nodes = out.edge_nodes[oe.edge.value()];
           if (!oe.forward) std::reverse(nodes.begin(), nodes.end());
@@ -194,15 +198,15 @@ FaceSetMesh mesh_face_set(const occ::Solid& s, const FaceSetOptions& options,
             ids.push_back(nodes[i]);
             loops.back().push_back(out.points[nodes[i]]);
           }
-          counts.push_back(out.edge_counts[oe.edge.value()]);
+          counts.back().push_back(out.edge_counts[oe.edge.value()]);
         }
       }
       QuadFaceMesh m;
       const Scheme scheme = plan.scheme[f.value()];
       if (scheme == Scheme::map) {
-        m = detail::grid_face(s, f, loops[0], counts[0], counts[1]);
+        m = detail::grid_face(s, f, loops[0], counts[0][0], counts[0][1]);
       } else if (scheme == Scheme::submap) {
-        m = submap_face(s, f, loops[0], counts, plan.submap_dirs[f.value()]);
+        m = submap_face(s, f, loops, counts, plan.submap[f.value()]);
       } else {
         QuadFaceOptions qo;
         qo.size = options.size;

@@ -260,9 +260,11 @@ class MeshCommand(unittest.TestCase):
         Part.makeBox(4, 4, 1).fuse(Part.makeBox(1, 1, 3, FreeCAD.Vector(1.5, 1.5, 1))) \
             .removeSplitter().exportStep(path)
         out, rep = os.path.join(self.dir, "post.vtu"), os.path.join(self.dir, "post.json")
+        # Without the multisweep, which meshes the post and its plate as one prismatic solid.
         code, stdout, stderr = run("mesh", path, "-o", out, "--size", "0.5", "--report", rep,
                                    "--eps", "0.02", "--delta", "0.002", "--max-depth", "8",
-                                   "--sharp-angle", "45", "--quiet")
+                                   "--sharp-angle", "45", "--schemes", "map,sweep,midpoint",
+                                   "--quiet")
         self.assertEqual(code, 0, stdout + stderr)
         with open(rep) as f:
             report = json.load(f)
@@ -318,8 +320,32 @@ class MeshCommand(unittest.TestCase):
     def test_hexme_i15_ends_with_a_diagnostic_not_a_crash(self):
         # CGAL's sliver exuder raised SIGFPE on this model (a NaN weight inside GMP); the
         # fallback now optimises with ODT and perturbation instead.
-        # (The decomposition is left out: these tests are about the fallback.)
-        self.assertEqual(self.mesh_hexme("i15o_s8", "--no-decompose")["scheme"], "tet-split")
+        # (The decomposition and the multisweep, which meshes i15 whole, are left out: these
+        # tests are about the fallback.)
+        self.assertEqual(self.mesh_hexme("i15o_s8", "--no-decompose", "--schemes",
+                                         "map,sweep")["scheme"], "tet-split")
+
+    def test_hexme_i15_is_one_multisweep(self):
+        # A tube with lugs, every face parallel or perpendicular to one axis: structured by
+        # the multisweep with the default options, nothing falls back.
+        r = self.mesh_hexme("i15o_s8")
+        self.assertTrue(r["ok"])
+        self.assertEqual(r["scheme"], "multisweep")
+        self.assertGreaterEqual(r["check"]["scaled_jacobian"]["min"], 0.5)
+        self.assertIn("multisweep", [d["code"] for d in r["diagnostics"]])
+
+    def test_schemes_option(self):
+        step = os.path.join(EXAMPLES, "box_3x2x1.step")
+        self.expect_bad_input([step, "--schemes", "map,loft"], "loft")
+        self.expect_bad_input([step, "--schemes", "map,,sweep"], "--schemes")
+        self.expect_bad_input([step, "--schemes", "map,map"], "twice")
+        # Only the sweep allowed: the box is swept, not mapped.
+        out, rep = os.path.join(self.dir, "box.vtu"), os.path.join(self.dir, "box.json")
+        code, stdout, stderr = run("mesh", step, "-o", out, "--report", rep, "--schemes",
+                                   "sweep", "--quiet")
+        self.assertEqual(code, 0, stdout + stderr)
+        with open(rep) as f:
+            self.assertEqual(json.load(f)["scheme"], "sweep")
 
     def test_hexme_i09_survives_a_crash_inside_cgal(self):
         # CGAL 5.5's ODT optimiser crashes (SIGSEGV) on this model's tetrahedra; the
