@@ -68,6 +68,16 @@ def prism(outline, depth, holes=()):
     return face.extrude(V(0, 0, depth))
 
 
+def revolved(rz):
+    """The solid of revolution about z of a polygon in the (r, z) half-plane (FreeCAD's Part)."""
+    sys.path.append("/usr/lib/freecad-python3/lib")
+    import FreeCAD  # noqa: F401  (FreeCAD must be imported before Part)
+    import Part
+    V = FreeCAD.Vector
+    face = Part.Face(Part.makePolygon([V(r, 0, z) for r, z in rz + rz[:1]]))
+    return Part.Solid(face.revolve(V(0, 0, 0), V(0, 0, 1), 360))
+
+
 def square(x, y, a):
     return [(x, y), (x + a, y), (x + a, y + a), (x, y + a)]
 
@@ -85,6 +95,15 @@ def write_fixtures(work):
                                         [square(2, 2, 2), square(6, 2, 2)]),
         "cylinder": Part.makeCylinder(1, 2),
         "plate_round_hole": Part.makeBox(10, 6, 1).cut(Part.makeCylinder(1.5, 1, V(5, 3, 0))),
+        # Issue 20's machined parts, as in tests/cpp/fixtures/machined.h.
+        "plate_boss_holes": Part.makeBox(60, 40, 8).fuse(Part.makeCylinder(8, 12, V(30, 20, 8)))
+        .cut(Part.makeCylinder(3, 40, V(10, 10, -5))).cut(Part.makeCylinder(3, 40, V(50, 30, -5)))
+        .cut(Part.makeCylinder(4, 40, V(30, 20, -5))).removeSplitter(),
+        "pulley": revolved([(8, 0), (20, 0), (20, 6), (32, 6), (32, 0), (40, 0), (40, 4),
+                            (32, 10), (40, 16), (40, 20), (32, 20), (32, 14), (20, 14),
+                            (20, 20), (8, 20)]),
+        "chamfered_shaft": revolved([(0, 0), (10, 0), (12, 2), (12, 30), (15, 33), (15, 50),
+                                     (8, 50), (8, 75), (0, 75)]),
     }
     paths = {}
     for name, solid in solids.items():
@@ -111,6 +130,11 @@ def models():
         # Gmsh would make tens of millions of hexes here: VoroHex only (the 1M-hex targets).
         ("unit cube 1M hexes (map)", f["unit_cube"], 0.01, False),
         ("plate, two square holes 1M hexes (sweep)", f["plate_two_square_holes"], 0.037, False),
+        ("plate with boss and holes (multisweep)", f["plate_boss_holes"], 3.0, True),
+        ("pulley (revolve)", f["pulley"], 3.0, True),
+        ("chamfered shaft (revolve, O-grid core)", f["chamfered_shaft"], 2.0, True),
+        ("plate with boss and holes 1M hexes (multisweep)", f["plate_boss_holes"], 0.27, False),
+        ("pulley 1M hexes (revolve)", f["pulley"], 0.4, False),
     ]
     if hexme_available("the HexMe s01 cube row is"):
         out.insert(3, ("HexMe s01 cube", os.path.join(HEXME, "s01o_cube.step"), None, True))

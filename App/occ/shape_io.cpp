@@ -480,10 +480,15 @@ bool refuse_damaged(const XSControl_Reader& reader, bool (*is_shape_entity)(cons
       continue;
     const Handle(Standard_Transient) entity = model->Value(checks.Number());
     const std::string type = entity->DynamicType()->Name();
+    // Needed: an entity of the shape, or one that an entity of the shape refers to, other
+    // than a representation context (its units and uncertainty are metadata: HexMe's i12 has
+    // an SI unit with a wrong parameter count, which the translator copes with).
     bool needed = is_shape_entity(type);
     for (Interface_EntityIterator users = reader.WS()->Graph().Sharings(entity);
-         !needed && users.More(); users.Next())
-      needed = is_shape_entity(users.Value()->DynamicType()->Name());
+         !needed && users.More(); users.Next()) {
+      const std::string user = users.Value()->DynamicType()->Name();
+      needed = is_shape_entity(user) && user.find("Context") == std::string::npos;
+    }
     const std::string what =
         std::string(model->StringLabel(entity)->ToCString()) + " " + type + ": " + check->CFail(1);
     if (needed) {

@@ -65,6 +65,22 @@ TEST(StepEntities, FailedPresentationEntitiesAreAWarningNamingThem) {
   EXPECT_EQ(testing::find_diagnostic(r.diagnostics, "unreadable_file"), nullptr);
 }
 
+// A unit with a wrong parameter count (as in HexMe's i12): the representation context refers
+// to it, but units are metadata the translator copes with, so the file is read.
+TEST(StepEntities, AFailedUnitOfTheContextIsAWarning) {
+  std::string text = box_step_text();
+  const std::string unit = "SI_UNIT($,.STERADIAN.)";
+  const std::size_t at = text.find(unit);
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, unit.size(), "SI_UNIT(.STERADIAN.)");
+  const ReadResult r = read_solid(write("unit.step", text));
+  ASSERT_TRUE(r.ok()) << (r.diagnostics.empty() ? "" : format(r.diagnostics[0]));
+  EXPECT_NEAR(r.solid->volume(), 6.0, 1e-9);
+  const core::Diagnostic* w = testing::find_diagnostic(r.diagnostics, "ignored_entities");
+  ASSERT_NE(w, nullptr);
+  EXPECT_NE(w->message.find("StepBasic_SiUnitAndSolidAngleUnit"), std::string::npos) << w->message;
+}
+
 TEST(StepEntities, AFileWithoutFailuresHasNoWarning) {
   const ReadResult r = read_solid(write("plain.step", box_step_text()));
   ASSERT_TRUE(r.ok());
