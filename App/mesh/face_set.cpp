@@ -16,9 +16,9 @@ namespace vorohex::mesh {
 using core::EdgeId;
 using core::FaceId;
 using core::NodeClass;
+using core::OrientedEdge;
 using core::Vec3;
 using core::VertexId;
-using occ::OrientedEdge;
 
 void FaceSetOptions::validate() const {
   core::require_positive("FaceSetOptions.size", size);
@@ -40,7 +40,7 @@ enum class Scheme { map, submap, quad };
 
 // Whether a face is a mapped face: one wire of four edges turning by 45 to 135 degrees at
 // each corner (about the face normal), so that the transfinite grid stays fair.
-bool mappable(const occ::Solid& s, FaceId f) {
+bool mappable(const core::MeshDomain& s, FaceId f) {
   const auto wires = s.face_wires(f);
   if (wires.size() != 1 || wires[0].size() != 4) return false;
   const auto& w = wires[0];
@@ -67,7 +67,7 @@ struct Plan {
 };
 
 // The interval problem: one curve per edge (index = edge id - 1); constraints per face.
-IntervalProblem problem_for(const occ::Solid& s, const Plan& plan, const FaceSetOptions& o) {
+IntervalProblem problem_for(const core::MeshDomain& s, const Plan& plan, const FaceSetOptions& o) {
   IntervalProblem p;
   for (EdgeId e : s.edges()) p.add_curve(std::max(s.edge_length(e), 1e-300), core::entity_name(e));
   p.fixed.assign(s.num_edges(), 0);
@@ -117,7 +117,7 @@ IntervalProblem problem_for(const occ::Solid& s, const Plan& plan, const FaceSet
 
 }  // namespace
 
-FaceSetMesh mesh_face_set(const occ::Solid& s, const FaceSetOptions& options,
+FaceSetMesh mesh_face_set(const core::MeshDomain& s, const FaceSetOptions& options,
                           const core::Progress& progress) {
   options.validate();
   FaceSetMesh out;

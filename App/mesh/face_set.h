@@ -14,8 +14,8 @@
 #include "core/diagnostic.h"
 #include "core/geometry.h"
 #include "core/hex_mesh.h"
+#include "core/mesh_domain.h"
 #include "core/progress.h"
-#include "occ/solid.h"
 
 namespace vorohex::mesh {
 
@@ -44,9 +44,9 @@ struct FaceSetMesh {
   std::size_t num_quads() const;
 };
 
-// `faces`: a Solid whose faces are the set (a compound of faces: occ::Solid accepts any
+// `faces`: a domain whose faces are the set (e.g. an occ::Solid of a compound of faces, any
 // shape); every face is meshed. Errors: intervals_infeasible, quad_face_failed, cancelled.
-FaceSetMesh mesh_face_set(const occ::Solid& faces, const FaceSetOptions& options,
+FaceSetMesh mesh_face_set(const core::MeshDomain& faces, const FaceSetOptions& options,
                           const core::Progress& progress = {});
 
 }  // namespace vorohex::mesh

@@ -39,8 +39,8 @@ struct Block {
   std::array<FaceId, 6> faces;  // faces[2d + b]: the face where bit d equals b
 };
 
-using occ::OrientedEdge;
-using occ::Solid;
+using core::OrientedEdge;
+using Solid = core::MeshDomain;
 
 VertexId start_of(const Solid& s, const OrientedEdge& e) {
   return e.forward ? s.edge_first_vertex(e.edge) : s.edge_last_vertex(e.edge);
@@ -246,7 +246,7 @@ Plan plan(const Solid& solid, const MapBlockOptions& options) {
 
 }  // namespace
 
-Applicability map_block_applicable(const occ::Solid& solid) {
+Applicability map_block_applicable(const core::MeshDomain& solid) {
   Block block;
   std::vector<std::string> entities;
   Applicability a;
@@ -259,7 +259,7 @@ Applicability map_block_applicable(const occ::Solid& solid) {
   return a;
 }
 
-std::array<std::vector<core::EdgeId>, 3> map_block_edge_groups(const occ::Solid& solid) {
+std::array<std::vector<core::EdgeId>, 3> map_block_edge_groups(const core::MeshDomain& solid) {
   std::array<std::vector<core::EdgeId>, 3> groups;
   Block block;
   std::vector<std::string> entities;
@@ -273,7 +273,7 @@ std::array<std::vector<core::EdgeId>, 3> map_block_edge_groups(const occ::Solid&
   return groups;
 }
 
-MapBlockEstimate map_block_evaluate(const occ::Solid& solid, const MapBlockOptions& options) {
+MapBlockEstimate map_block_evaluate(const core::MeshDomain& solid, const MapBlockOptions& options) {
   const Plan p = plan(solid, options);
   MapBlockEstimate e;
   if (!p.ok) return e;  // map_block refuses: it produces nothing
@@ -284,7 +284,7 @@ MapBlockEstimate map_block_evaluate(const occ::Solid& solid, const MapBlockOptio
   return e;
 }
 
-MapBlockResult map_block(const occ::Solid& solid, const MapBlockOptions& options,
+MapBlockResult map_block(const core::MeshDomain& solid, const MapBlockOptions& options,
                          const core::Progress& progress) {
   MapBlockResult result;
   Plan p = plan(solid, options);  // throws std::invalid_argument on bad options

@@ -11,8 +11,8 @@
 
 #include "core/diagnostic.h"
 #include "core/hex_mesh.h"
+#include "core/mesh_domain.h"
 #include "core/progress.h"
-#include "occ/solid.h"
 
 namespace vorohex::mesh {
 
@@ -31,18 +31,18 @@ struct Applicability {
 };
 
 // The block structure of a solid that map_block accepts.
-Applicability map_block_applicable(const occ::Solid& solid);
+Applicability map_block_applicable(const core::MeshDomain& solid);
 
 // The block's edges by direction: three groups of four parallel edges (empty groups when
 // the solid is not a block). What an interval assignment must keep equal.
-std::array<std::vector<core::EdgeId>, 3> map_block_edge_groups(const occ::Solid& solid);
+std::array<std::vector<core::EdgeId>, 3> map_block_edge_groups(const core::MeshDomain& solid);
 
 // Intervals per block direction and the node and hex counts compute() will produce.
 struct MapBlockEstimate {
   std::array<int, 3> intervals{};
   std::size_t nodes = 0, hexes = 0;
 };
-MapBlockEstimate map_block_evaluate(const occ::Solid& solid, const MapBlockOptions& options);
+MapBlockEstimate map_block_evaluate(const core::MeshDomain& solid, const MapBlockOptions& options);
 
 struct MapBlockResult {
   core::HexMesh mesh;
@@ -51,7 +51,7 @@ struct MapBlockResult {
   std::vector<core::Diagnostic> diagnostics;
 };
 
-MapBlockResult map_block(const occ::Solid& solid, const MapBlockOptions& options,
+MapBlockResult map_block(const core::MeshDomain& solid, const MapBlockOptions& options,
                          const core::Progress& progress = {});
 
 }  // namespace vorohex::mesh

@@ -47,7 +47,7 @@ FaceId fid(int i) {
 }
 
 // Builds the polyhedron or says why the solid is not a convex one.
-std::string read_polyhedron(const occ::Solid& s, Polyhedron& p) {
+std::string read_polyhedron(const core::MeshDomain& s, Polyhedron& p) {
   const double tol = 1e-7 * s.diagonal();
   for (VertexId v : s.vertices()) p.vertex.push_back(s.vertex_point(v));
   for (EdgeId e : s.edges()) {
@@ -67,7 +67,7 @@ std::string read_polyhedron(const occ::Solid& s, Polyhedron& p) {
     const auto wires = s.face_wires(f);
     if (wires.size() != 1) return core::entity_name(f) + " has a hole";
     std::vector<int> edges;
-    for (const occ::OrientedEdge& oe : wires[0]) edges.push_back(oe.edge.value() - 1);
+    for (const core::OrientedEdge& oe : wires[0]) edges.push_back(oe.edge.value() - 1);
     const Vec3 a = p.vertex[p.edge[edges[0]][0]];
     const Vec3 n = s.face_normal(f, a);
     p.face_edges.push_back(edges);
@@ -228,7 +228,7 @@ struct Plan {
   std::string error;
 };
 
-Plan plan(const occ::Solid& solid, const MidpointOptions& options) {
+Plan plan(const core::MeshDomain& solid, const MidpointOptions& options) {
   options.validate();
   Plan pl;
   pl.error = read_polyhedron(solid, pl.poly);
@@ -249,13 +249,13 @@ Plan plan(const occ::Solid& solid, const MidpointOptions& options) {
 
 }  // namespace
 
-Applicability midpoint_applicable(const occ::Solid& solid) {
+Applicability midpoint_applicable(const core::MeshDomain& solid) {
   Polyhedron p;
   const std::string why = read_polyhedron(solid, p);
   return {why.empty(), why};
 }
 
-MidpointEstimate midpoint_evaluate(const occ::Solid& solid, const MidpointOptions& options) {
+MidpointEstimate midpoint_evaluate(const core::MeshDomain& solid, const MidpointOptions& options) {
   const Plan pl = plan(solid, options);
   MidpointEstimate e;
   if (!pl.error.empty()) return e;
@@ -267,7 +267,7 @@ MidpointEstimate midpoint_evaluate(const occ::Solid& solid, const MidpointOption
   return e;
 }
 
-MidpointResult midpoint_subdivide(const occ::Solid& solid, const MidpointOptions& options,
+MidpointResult midpoint_subdivide(const core::MeshDomain& solid, const MidpointOptions& options,
                                   const core::Progress& progress) {
   progress.report("midpoint", 0.0);
   MidpointResult r;

@@ -12,9 +12,9 @@
 
 #include "core/diagnostic.h"
 #include "core/hex_mesh.h"
+#include "core/mesh_domain.h"
 #include "core/progress.h"
 #include "mesh/map_block.h"
-#include "occ/solid.h"
 
 namespace vorohex::mesh {
 
@@ -26,14 +26,14 @@ struct MidpointOptions {
 
 // Convex with planar faces, straight edges and one wire per face; the reason names the
 // first entity that is not.
-Applicability midpoint_applicable(const occ::Solid& solid);
+Applicability midpoint_applicable(const core::MeshDomain& solid);
 
 struct MidpointEstimate {
   bool per_vertex = false;  // one coarse hexahedron per vertex (else via tetrahedra)
   int subdivisions = 0;     // n
   std::size_t coarse_hexes = 0, nodes = 0, hexes = 0;  // exactly what midpoint() produces
 };
-MidpointEstimate midpoint_evaluate(const occ::Solid& solid, const MidpointOptions& options);
+MidpointEstimate midpoint_evaluate(const core::MeshDomain& solid, const MidpointOptions& options);
 
 struct MidpointResult {
   core::HexMesh mesh;
@@ -43,7 +43,7 @@ struct MidpointResult {
   std::vector<core::Diagnostic> diagnostics;
 };
 
-MidpointResult midpoint_subdivide(const occ::Solid& solid, const MidpointOptions& options,
+MidpointResult midpoint_subdivide(const core::MeshDomain& solid, const MidpointOptions& options,
                                   const core::Progress& progress = {});
 
 }  // namespace vorohex::mesh

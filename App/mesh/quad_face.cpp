@@ -8,7 +8,6 @@
 
 #include "core/option_checks.h"
 #include "mesh/detail/quad_mesh_2d.h"
-#include "occ/face_chart.h"
 
 namespace vorohex::mesh {
 
@@ -52,11 +51,12 @@ double loops_area(const std::vector<std::vector<Vec2>>& loops) {
 // counter-clockwise from its lowest node. Two congruent faces facing opposite ways (the two
 // ends of a post and of the column under it, swept onto the face they share) then get the
 // same quads, so their projections onto a shared face coincide.
-QuadFaceMesh planar_quad_face(const occ::Solid& solid, core::FaceId face,
+QuadFaceMesh planar_quad_face(const core::MeshDomain& solid, core::FaceId face,
                               const std::vector<std::vector<Vec3>>& loops,
                               const QuadFaceOptions& options, const std::string& name) {
   QuadFaceMesh out;
-  const occ::FaceChart chart(solid, face);
+  const std::unique_ptr<core::SurfaceChart> chart_ptr = solid.face_chart(face);
+  const core::SurfaceChart& chart = *chart_ptr;
   const Vec3 o3 = chart.to_surface(Vec2(0, 0));
   Vec3 n = (chart.to_surface(Vec2(1, 0)) - o3).cross(chart.to_surface(Vec2(0, 1)) - o3);
   n.normalize();
@@ -132,7 +132,7 @@ QuadFaceMesh planar_quad_face(const occ::Solid& solid, core::FaceId face,
 
 }  // namespace
 
-QuadFaceMesh quad_face(const occ::Solid& solid, core::FaceId face,
+QuadFaceMesh quad_face(const core::MeshDomain& solid, core::FaceId face,
                        const std::vector<std::vector<Vec3>>& loops,
                        const QuadFaceOptions& options) {
   options.validate();
@@ -145,7 +145,8 @@ QuadFaceMesh quad_face(const occ::Solid& solid, core::FaceId face,
   };
   try {
     if (solid.face_is_planar(face)) return planar_quad_face(solid, face, loops, options, name);
-    const occ::FaceChart chart(solid, face);
+    const std::unique_ptr<core::SurfaceChart> chart_ptr = solid.face_chart(face);
+    const core::SurfaceChart& chart = *chart_ptr;
     // Chart the loops; mirror the chart if the loops run clockwise in it (signed area < 0).
     std::vector<std::vector<Vec2>> loops2;
     double area = 0;

@@ -1,5 +1,5 @@
 // General all-quad meshing of one face (planar or curved, with holes) whose boundary nodes
-// are given: the face is charted in 2-D (occ::FaceChart), meshed there by
+// are given: the face is charted in 2-D (MeshDomain::face_chart), meshed there by
 // detail::quad_mesh_2d (constrained Delaunay of every other boundary node plus a lattice,
 // triangle pairs merged, cells split into quads, quality-guarded smoothing) and mapped back
 // onto the surface. The given boundary nodes are kept exactly.
@@ -11,7 +11,7 @@
 #include "core/diagnostic.h"
 #include "core/geometry.h"
 #include "core/ids.h"
-#include "occ/solid.h"
+#include "core/mesh_domain.h"
 
 namespace vorohex::mesh {
 
@@ -33,11 +33,11 @@ struct QuadFaceMesh {
 };
 
 // loops: the face's boundary as closed cycles of nodes (first node not repeated), in the
-// order and orientation of occ::Solid::face_wires (outer first; face on the left seen from
+// order and orientation of MeshDomain::face_wires (outer first; face on the left seen from
 // outside). Every loop must have an even number of nodes (segments), at least 6, or exactly
 // 4 for a face without holes; this per-loop parity is what the mesher needs (an even total
 // alone is not enough).
-QuadFaceMesh quad_face(const occ::Solid& solid, core::FaceId face,
+QuadFaceMesh quad_face(const core::MeshDomain& solid, core::FaceId face,
                        const std::vector<std::vector<core::Vec3>>& loops,
                        const QuadFaceOptions& options);
 

@@ -8,12 +8,11 @@
 #include <sstream>
 
 #include "mesh/detail/quad_quality.h"
-#include "occ/face_chart.h"
 
 namespace vorohex::mesh {
 
+using core::OrientedEdge;
 using core::Vec3;
-using occ::OrientedEdge;
 using Vec2 = Eigen::Vector2d;
 
 const char* vertex_type_name(VertexType t) {
@@ -34,24 +33,24 @@ namespace {
 const double kPi = 3.14159265358979323846;
 
 // An edge as its wire runs it: sample points from its start to its end.
-std::vector<Vec3> run(const occ::Solid& s, const OrientedEdge& oe) {
+std::vector<Vec3> run(const core::MeshDomain& s, const OrientedEdge& oe) {
   std::vector<Vec3> p = s.edge_points_by_length(oe.edge, 16);
   if (!oe.forward) std::reverse(p.begin(), p.end());
   return p;
 }
 
-core::VertexId start_vertex(const occ::Solid& s, const OrientedEdge& oe) {
+core::VertexId start_vertex(const core::MeshDomain& s, const OrientedEdge& oe) {
   return oe.forward ? s.edge_first_vertex(oe.edge) : s.edge_last_vertex(oe.edge);
 }
 
-double chart_angle(const occ::FaceChart& chart, const std::vector<Vec3>& p) {
+double chart_angle(const core::SurfaceChart& chart, const std::vector<Vec3>& p) {
   const Vec2 d = chart.to_chart(p[1]) - chart.to_chart(p[0]);
   return std::atan2(d.y(), d.x());
 }
 
 }  // namespace
 
-SubmapStructure submap_structure(const occ::Solid& solid, core::FaceId face, bool mapped_too,
+SubmapStructure submap_structure(const core::MeshDomain& solid, core::FaceId face, bool mapped_too,
                                  double slack) {
   SubmapStructure out;
   const std::string fname = core::entity_name(face);
@@ -121,7 +120,8 @@ SubmapStructure submap_structure(const occ::Solid& solid, core::FaceId face, boo
     }
     // Directions: the outer loop from +i; each hole from its first edge's angle to the
     // outer loop's first edge in the face's chart (mirrored charts turn the other way).
-    const occ::FaceChart chart(solid, face);
+    const std::unique_ptr<core::SurfaceChart> chart_ptr = solid.face_chart(face);
+    const core::SurfaceChart& chart = *chart_ptr;
     double area = 0;
     for (const auto& r : runs[0])
       for (std::size_t i = 0; i + 1 < r.size(); ++i) {
@@ -155,7 +155,7 @@ SubmapStructure submap_structure(const occ::Solid& solid, core::FaceId face, boo
   return out;
 }
 
-QuadFaceMesh submap_face(const occ::Solid& solid, core::FaceId face,
+QuadFaceMesh submap_face(const core::MeshDomain& solid, core::FaceId face,
                          const std::vector<std::vector<Vec3>>& loops,
                          const std::vector<std::vector<int>>& counts,
                          const SubmapStructure& structure) {
@@ -187,7 +187,8 @@ QuadFaceMesh submap_face(const occ::Solid& solid, core::FaceId face,
       return fail("the intervals along opposite sides of a loop differ");
     if (ij[w].size() != loops[w].size()) return fail("the boundary node count does not match");
   }
-  const occ::FaceChart chart(solid, face);
+  const std::unique_ptr<core::SurfaceChart> chart_ptr = solid.face_chart(face);
+  const core::SurfaceChart& chart = *chart_ptr;
   std::vector<std::vector<Vec2>> uv(nw);
   for (std::size_t w = 0; w < nw; ++w)
     for (const Vec3& p : loops[w]) uv[w].push_back(chart.to_chart(p));
@@ -384,14 +385,15 @@ void add_submap_balance(IntervalProblem& problem, const SubmapStructure& structu
   }
 }
 
-std::vector<int> submap_directions(const occ::Solid& solid, core::FaceId face) {
+std::vector<int> submap_directions(const core::MeshDomain& solid, core::FaceId face) {
   const SubmapStructure s = submap_structure(solid, face);
   if (!s.ok || s.directions.size() != 1) return {};
   return s.directions[0];
 }
 
-QuadFaceMesh submap_face(const occ::Solid& solid, core::FaceId face, const std::vector<Vec3>& loop,
-                         const std::vector<int>& counts, const std::vector<int>& directions) {
+QuadFaceMesh submap_face(const core::MeshDomain& solid, core::FaceId face,
+                         const std::vector<Vec3>& loop, const std::vector<int>& counts,
+                         const std::vector<int>& directions) {
   SubmapStructure s;
   s.ok = true;
   s.directions = {directions};

@@ -13,9 +13,9 @@
 #include <vector>
 
 #include "core/geometry.h"
+#include "core/mesh_domain.h"
 #include "mesh/interval_assignment.h"
 #include "mesh/quad_face.h"
-#include "occ/solid.h"
 
 namespace vorohex::mesh {
 
@@ -27,7 +27,7 @@ struct SubmapStructure {
   // Why not, naming the vertex and its angle ("Vertex7 of Face3 has an interior angle of
   // 130 degrees, not near 90, 180, 270 or 360"), or the loop that does not turn once.
   std::string reason;
-  // Per wire (occ::Solid::face_wires order), per edge: 0 (+i), 1 (+j), 2 (-i), 3 (-j).
+  // Per wire (MeshDomain::face_wires order), per edge: 0 (+i), 1 (+j), 2 (-i), 3 (-j).
   std::vector<std::vector<int>> directions;
   // Per wire, per edge: the type and interior angle (degrees) of the vertex it starts at.
   std::vector<std::vector<VertexType>> types;
@@ -36,13 +36,13 @@ struct SubmapStructure {
 
 // Angles within `slack` degrees of a multiple of 90 take that type. Faces of one wire of
 // four End vertices are mapped faces: refused unless `mapped_too`.
-SubmapStructure submap_structure(const occ::Solid& solid, core::FaceId face,
+SubmapStructure submap_structure(const core::MeshDomain& solid, core::FaceId face,
                                  bool mapped_too = false, double slack = 25);
 
 // `loops`: the boundary nodes per wire in wire order (first node not repeated); `counts`:
 // per wire, intervals per edge. ok false (submap_failed, with the reason) when the counts do
 // not balance, a hole does not fit in the lattice, or the lattice folds on the surface.
-QuadFaceMesh submap_face(const occ::Solid& solid, core::FaceId face,
+QuadFaceMesh submap_face(const core::MeshDomain& solid, core::FaceId face,
                          const std::vector<std::vector<core::Vec3>>& loops,
                          const std::vector<std::vector<int>>& counts,
                          const SubmapStructure& structure);
@@ -54,8 +54,8 @@ void add_submap_balance(IntervalProblem& problem, const SubmapStructure& structu
 
 // One-wire forms (sweep sources): directions of a face of one wire that is submappable but
 // not mapped (else empty), its lattice mesh and its balance.
-std::vector<int> submap_directions(const occ::Solid& solid, core::FaceId face);
-QuadFaceMesh submap_face(const occ::Solid& solid, core::FaceId face,
+std::vector<int> submap_directions(const core::MeshDomain& solid, core::FaceId face);
+QuadFaceMesh submap_face(const core::MeshDomain& solid, core::FaceId face,
                          const std::vector<core::Vec3>& loop, const std::vector<int>& counts,
                          const std::vector<int>& directions);
 void add_submap_balance(IntervalProblem& problem, const std::vector<int>& directions,

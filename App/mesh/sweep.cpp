@@ -24,10 +24,10 @@ namespace vorohex::mesh {
 using core::EdgeId;
 using core::FaceId;
 using core::NodeClass;
+using core::OrientedEdge;
 using core::Vec3;
 using core::VertexId;
-using occ::OrientedEdge;
-using occ::Solid;
+using Solid = core::MeshDomain;
 
 void SweepOptions::validate() const {
   core::require_positive("SweepOptions.size", size);
@@ -465,7 +465,7 @@ class AffineFit {
 
 }  // namespace
 
-SweepApplicability sweep_applicable(const occ::Solid& solid) {
+SweepApplicability sweep_applicable(const core::MeshDomain& solid) {
   SweepApplicability a;
   try {
     Topology t;
@@ -478,7 +478,8 @@ SweepApplicability sweep_applicable(const occ::Solid& solid) {
   return a;
 }
 
-SweepStructure sweep_structure(const occ::Solid& solid, const std::vector<int>& avoid_sources) {
+SweepStructure sweep_structure(const core::MeshDomain& solid,
+                               const std::vector<int>& avoid_sources) {
   SweepStructure out;
   Topology t;
   try {
@@ -500,7 +501,7 @@ SweepStructure sweep_structure(const occ::Solid& solid, const std::vector<int>& 
   return out;
 }
 
-SweepEstimate sweep_evaluate(const occ::Solid& solid, const SweepOptions& options) {
+SweepEstimate sweep_evaluate(const core::MeshDomain& solid, const SweepOptions& options) {
   const Plan p = plan(solid, options);
   SweepEstimate e;
   if (!p.ok) return e;
@@ -510,7 +511,7 @@ SweepEstimate sweep_evaluate(const occ::Solid& solid, const SweepOptions& option
   return e;
 }
 
-SweepResult sweep(const occ::Solid& solid, const SweepOptions& options,
+SweepResult sweep(const core::MeshDomain& solid, const SweepOptions& options,
                   const core::Progress& progress) {
   SweepResult result;
   Plan p = plan(solid, options);  // throws std::invalid_argument on bad options

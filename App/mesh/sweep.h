@@ -13,8 +13,8 @@
 
 #include "core/diagnostic.h"
 #include "core/hex_mesh.h"
+#include "core/mesh_domain.h"
 #include "core/progress.h"
-#include "occ/solid.h"
 
 namespace vorohex::mesh {
 
@@ -44,7 +44,7 @@ struct SweepApplicability {
 // Finds a source/target pair: two faces sharing no vertex such that every other face is a
 // four-sided linking face joining their loops. Among several pairs it prefers the shortest
 // linking edges (fewest layers), then the largest source face.
-SweepApplicability sweep_applicable(const occ::Solid& solid);
+SweepApplicability sweep_applicable(const core::MeshDomain& solid);
 
 // The chosen sweep's structure (what an interval assignment must respect): empty when
 // sweep_applicable refuses.
@@ -57,14 +57,15 @@ struct SweepStructure {
 };
 // `avoid_sources`: face ids not to take as the source while another pair exists (faces
 // shared with a neighbour: their mesh is then the projection of the far end's).
-SweepStructure sweep_structure(const occ::Solid& solid, const std::vector<int>& avoid_sources = {});
+SweepStructure sweep_structure(const core::MeshDomain& solid,
+                               const std::vector<int>& avoid_sources = {});
 
 struct SweepEstimate {
   int layers = 0;
   std::size_t nodes = 0, hexes = 0;  // exactly what sweep() produces (0 when refused)
 };
 // Plans intervals and meshes the source face (cheap next to the volume) to count exactly.
-SweepEstimate sweep_evaluate(const occ::Solid& solid, const SweepOptions& options);
+SweepEstimate sweep_evaluate(const core::MeshDomain& solid, const SweepOptions& options);
 
 struct SweepResult {
   core::HexMesh mesh;
@@ -75,7 +76,7 @@ struct SweepResult {
   std::vector<core::Diagnostic> diagnostics;
 };
 
-SweepResult sweep(const occ::Solid& solid, const SweepOptions& options,
+SweepResult sweep(const core::MeshDomain& solid, const SweepOptions& options,
                   const core::Progress& progress = {});
 
 }  // namespace vorohex::mesh

@@ -11,16 +11,16 @@
 
 namespace vorohex::occ {
 
-class FaceChart {
+class FaceChart : public core::SurfaceChart {
  public:
   // Throws std::runtime_error when the surface cannot be evaluated.
   FaceChart(const Solid& solid, FaceId face);
   FaceChart(FaceChart&&) noexcept;
-  ~FaceChart();
+  ~FaceChart() override;
 
-  Eigen::Vector2d to_chart(const Vec3& p) const;    // p on or near the face
-  Vec3 to_surface(const Eigen::Vector2d& q) const;  // the surface point of chart point q
-  bool planar() const { return planar_; }
+  Eigen::Vector2d to_chart(const Vec3& p) const override;    // p on or near the face
+  Vec3 to_surface(const Eigen::Vector2d& q) const override;  // the surface point of q
+  bool planar() const override { return planar_; }
 
  private:
   struct Surface;  // OCCT side (curved faces only)

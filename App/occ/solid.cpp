@@ -36,6 +36,7 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "occ/face_chart.h"
 #include "occ/solid_impl.h"
 
 namespace vorohex::occ {
@@ -166,22 +167,6 @@ int Solid::num_edges() const {
 }
 int Solid::num_vertices() const {
   return impl_->vertices.Extent();
-}
-
-std::vector<FaceId> Solid::faces() const {
-  std::vector<FaceId> ids;
-  for (int i = 1; i <= num_faces(); ++i) ids.emplace_back(i);
-  return ids;
-}
-std::vector<EdgeId> Solid::edges() const {
-  std::vector<EdgeId> ids;
-  for (int i = 1; i <= num_edges(); ++i) ids.emplace_back(i);
-  return ids;
-}
-std::vector<VertexId> Solid::vertices() const {
-  std::vector<VertexId> ids;
-  for (int i = 1; i <= num_vertices(); ++i) ids.emplace_back(i);
-  return ids;
 }
 
 // The face in the map carries its orientation in the solid, and exploring it composes
@@ -373,14 +358,6 @@ Vec3 Solid::project_to_edge(EdgeId e, const Vec3& p) const {
   return best;
 }
 
-double Solid::distance_to_edge(EdgeId e, const Vec3& p) const {
-  return (project_to_edge(e, p) - p).norm();
-}
-
-double Solid::distance_to_vertex(VertexId v, const Vec3& p) const {
-  return (vertex_point(v) - p).norm();
-}
-
 namespace {
 
 // A surface projector per face and thread, initialised once: OCCT's point-on-surface
@@ -475,10 +452,6 @@ Vec3 Solid::project_to_face(FaceId f, const Vec3& p) const {
   return nearest_on_face(*this, *impl_, f.value(), p).point;
 }
 
-double Solid::distance_to_face(FaceId f, const Vec3& p) const {
-  return (project_to_face(f, p) - p).norm();
-}
-
 double Solid::tolerance() const {
   double t = 0;
   for (TopExp_Explorer ex(impl_->solid, TopAbs_VERTEX); ex.More(); ex.Next())
@@ -553,6 +526,101 @@ Vec3 Solid::face_normal(FaceId f, const Vec3& p) const {
   }
   Vec3 r(n.X(), n.Y(), n.Z());
   return c.reversed ? Vec3(-r) : r;
+}
+
+core::SurfaceInfo Solid::surface_info(FaceId f) const {
+  check_id(f.value(), num_faces(), "face");
+  const FaceCache& c = impl_->face(f.value());
+  core::SurfaceInfo info;
+  try {
+    GeomAdaptor_Surface s(c.surface);
+    auto axis = [&](const gp_Ax1& a) {
+      info.origin = to_vec(a.Location());
+      info.direction = Vec3(a.Direction().X(), a.Direction().Y(), a.Direction().Z());
+    };
+    switch (s.GetType()) {
+      case GeomAbs_Plane: {
+        info.kind = core::SurfaceKind::plane;
+        info.origin = to_vec(s.Plane().Location());
+        // The normal as du x dv: a plane's own axis may be left-handed.
+        gp_Pnt q;
+        gp_Vec du, dv;
+        c.surface->D1(0.5 * (c.umin + c.umax), 0.5 * (c.vmin + c.vmax), q, du, dv);
+        const gp_Vec n = du.Crossed(dv);
+        info.direction = Vec3(n.X(), n.Y(), n.Z()).normalized();
+        break;
+      }
+      case GeomAbs_Cylinder:
+        info.kind = core::SurfaceKind::cylinder;
+        axis(s.Cylinder().Axis());
+        info.radius = s.Cylinder().Radius();
+        break;
+      case GeomAbs_Cone:
+        info.kind = core::SurfaceKind::cone;
+        axis(s.Cone().Axis());
+        info.radius = s.Cone().RefRadius();
+        break;
+      case GeomAbs_Sphere:
+        info.kind = core::SurfaceKind::sphere;
+        info.origin = to_vec(s.Sphere().Location());
+        info.radius = s.Sphere().Radius();
+        break;
+      case GeomAbs_Torus:
+        info.kind = core::SurfaceKind::torus;
+        axis(s.Torus().Axis());
+        info.radius = s.Torus().MajorRadius();
+        break;
+      case GeomAbs_SurfaceOfRevolution:
+        info.kind = core::SurfaceKind::revolution;
+        axis(s.AxeOfRevolution());
+        break;
+      case GeomAbs_SurfaceOfExtrusion:
+        info.kind = core::SurfaceKind::extrusion;
+        info.direction = Vec3(s.Direction().X(), s.Direction().Y(), s.Direction().Z());
+        break;
+      default:
+        info.kind = c.planar ? core::SurfaceKind::plane : core::SurfaceKind::other;
+        if (c.planar) {
+          const Vec3 q = vertex_point(edge_first_vertex(face_wires(f)[0][0].edge));
+          info.origin = q;
+          info.direction = face_normal(f, q) * (c.reversed ? -1.0 : 1.0);
+        }
+        break;
+    }
+  } catch (const Standard_Failure&) {
+    info = core::SurfaceInfo();
+  }
+  return info;
+}
+
+core::CurveInfo Solid::curve_info(EdgeId e) const {
+  check_id(e.value(), num_edges(), "edge");
+  const EdgeCache& c = impl_->edge(e.value());
+  core::CurveInfo info;
+  if (c.curve.IsNull()) return info;
+  try {
+    GeomAdaptor_Curve ac(c.curve, c.first, c.last);
+    if (ac.GetType() == GeomAbs_Line) {
+      info.kind = core::CurveKind::line;
+      info.origin = to_vec(ac.Line().Location());
+      const gp_Dir d = ac.Line().Direction();
+      info.direction = Vec3(d.X(), d.Y(), d.Z());
+    } else if (ac.GetType() == GeomAbs_Circle) {
+      info.kind = core::CurveKind::circle;
+      info.origin = to_vec(ac.Circle().Location());
+      const gp_Dir d = ac.Circle().Axis().Direction();
+      info.direction = Vec3(d.X(), d.Y(), d.Z());
+      info.radius = ac.Circle().Radius();
+    }
+  } catch (const Standard_Failure&) {
+    info = core::CurveInfo();
+  }
+  return info;
+}
+
+std::unique_ptr<core::SurfaceChart> Solid::face_chart(FaceId f) const {
+  check_id(f.value(), num_faces(), "face");
+  return std::make_unique<FaceChart>(*this, f);
 }
 
 std::string Solid::to_brep_string() const {

@@ -10,6 +10,7 @@
 
 #include "core/geometry.h"
 #include "core/ids.h"
+#include "core/mesh_domain.h"
 
 namespace vorohex::occ {
 
@@ -19,13 +20,11 @@ using core::FaceId;
 using core::Vec3;
 using core::VertexId;
 
-// An edge of a face boundary as it is traversed (forward = from first to last vertex).
-struct OrientedEdge {
-  EdgeId edge;
-  bool forward = true;
-};
+using core::OrientedEdge;
 
-struct Solid {
+// A solid (or several glued at their common faces) read from CAD: the MeshDomain every
+// mesher works on, over an OCCT shape.
+class Solid : public core::MeshDomain {
  public:
   struct Impl;  // holds the TopoDS_Solid and its MapShapes maps (occ/solid_impl.h)
 
@@ -38,50 +37,46 @@ struct Solid {
   Solid clone() const;
 
   // Topology ------------------------------------------------------------------------
-  int num_faces() const;
-  int num_edges() const;
-  int num_vertices() const;
-  std::vector<FaceId> faces() const;  // 1..num_faces
-  std::vector<EdgeId> edges() const;
-  std::vector<VertexId> vertices() const;
+  int num_faces() const override;
+  int num_edges() const override;
+  int num_vertices() const override;
 
   // The wires of a face: outer first, each a closed cycle of oriented edges in order,
   // oriented so that the face material lies on the left seen from outside the solid.
-  std::vector<std::vector<OrientedEdge>> face_wires(FaceId f) const;
-  std::vector<FaceId> edge_faces(EdgeId e) const;  // faces an edge bounds
-  VertexId edge_first_vertex(EdgeId e) const;      // in the edge's own orientation
-  VertexId edge_last_vertex(EdgeId e) const;
-  bool edge_is_degenerated(EdgeId e) const;  // e.g. a sphere's pole
+  std::vector<std::vector<OrientedEdge>> face_wires(FaceId f) const override;
+  std::vector<FaceId> edge_faces(EdgeId e) const override;  // faces an edge bounds
+  VertexId edge_first_vertex(EdgeId e) const override;      // in the edge's own orientation
+  VertexId edge_last_vertex(EdgeId e) const override;
+  bool edge_is_degenerated(EdgeId e) const override;  // e.g. a sphere's pole
 
   // Geometry ------------------------------------------------------------------------
-  double volume() const;
-  double area(FaceId f) const;
-  BoundingBox bounding_box() const;  // tight (optimal) box
-  double diagonal() const { return bounding_box().diagonal(); }
-  bool face_is_planar(FaceId f) const;
+  double volume() const override;
+  double area(FaceId f) const override;
+  BoundingBox bounding_box() const override;  // tight (optimal) box
+  bool face_is_planar(FaceId f) const override;
 
-  Vec3 vertex_point(VertexId v) const;
-  double edge_length(EdgeId e) const;
+  Vec3 vertex_point(VertexId v) const override;
+  double edge_length(EdgeId e) const override;
   // n+1 points dividing the edge into n segments of equal arc length, from its first to
   // its last vertex (end points are exactly the vertex points).
-  std::vector<Vec3> edge_points_by_length(EdgeId e, int n) const;
+  std::vector<Vec3> edge_points_by_length(EdgeId e, int n) const override;
 
   // Closest point on the face (its trimmed extent), and the distance to it.
-  Vec3 project_to_face(FaceId f, const Vec3& p) const;
-  double distance_to_face(FaceId f, const Vec3& p) const;
-  Vec3 project_to_edge(EdgeId e, const Vec3& p) const;
-  double distance_to_edge(EdgeId e, const Vec3& p) const;
-  double distance_to_vertex(VertexId v, const Vec3& p) const;
+  Vec3 project_to_face(FaceId f, const Vec3& p) const override;
+  Vec3 project_to_edge(EdgeId e, const Vec3& p) const override;
   // Distance to the whole boundary (nearest face), for meshes made by other tools.
   double distance_to_boundary(const Vec3& p) const;
   // OCCT's largest vertex, edge or face tolerance: geometry closer than this counts as
   // coincident (a healed solid can have tolerances well above the default 1e-7).
-  double tolerance() const;
+  double tolerance() const override;
   // The face / edge nearest to p (ties: the lowest index).
-  FaceId nearest_face(const Vec3& p) const;
-  EdgeId nearest_edge(const Vec3& p) const;
+  FaceId nearest_face(const Vec3& p) const override;
+  EdgeId nearest_edge(const Vec3& p) const override;
   // Outward unit normal of face f at the point of the face nearest to p.
-  Vec3 face_normal(FaceId f, const Vec3& p) const;
+  Vec3 face_normal(FaceId f, const Vec3& p) const override;
+  core::SurfaceInfo surface_info(FaceId f) const override;
+  core::CurveInfo curve_info(EdgeId e) const override;
+  std::unique_ptr<core::SurfaceChart> face_chart(FaceId f) const override;
 
   // Several solids ------------------------------------------------------------------
   // A Solid may hold several solids glued at the faces they have in common (read with

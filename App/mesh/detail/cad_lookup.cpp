@@ -4,7 +4,8 @@ namespace vorohex::mesh::detail {
 
 using core::NodeClass;
 
-NodeClass cad_entity_at(const occ::Solid& solid, const core::Vec3& p, double tol, NodeClass hint) {
+NodeClass cad_entity_at(const core::MeshDomain& solid, const core::Vec3& p, double tol,
+                        NodeClass hint) {
   for (core::VertexId v : solid.vertices())
     if (solid.distance_to_vertex(v, p) <= tol) return NodeClass::on(v);
   if (hint.dim == 1 && solid.distance_to_edge(core::EdgeId(hint.id), p) <= tol) return hint;

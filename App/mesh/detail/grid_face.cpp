@@ -8,7 +8,7 @@ namespace vorohex::mesh::detail {
 
 using core::FaceId;
 using core::Vec3;
-using occ::Solid;
+using Solid = core::MeshDomain;
 
 std::vector<Vec3> grid_inner_nodes(const Solid& solid, FaceId face, const std::vector<Vec3>& loop,
                                    int n0, int n1) {

@@ -7,7 +7,7 @@ namespace vorohex::mesh::detail {
 
 using core::Vec3;
 
-void measure_quads(const occ::Solid& solid, core::FaceId face, QuadFaceMesh& m) {
+void measure_quads(const core::MeshDomain& solid, core::FaceId face, QuadFaceMesh& m) {
   double orientation = 0;
   for (const auto& q : m.quads) {
     const Vec3 a = m.points[q[1]] - m.points[q[0]], b = m.points[q[3]] - m.points[q[0]];

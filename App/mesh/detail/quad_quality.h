@@ -4,12 +4,12 @@
 #pragma once
 
 #include "core/geometry.h"
+#include "core/mesh_domain.h"
 #include "mesh/quad_face.h"
-#include "occ/solid.h"
 
 namespace vorohex::mesh::detail {
 
 // Sets m.min_quality and m.mean_quality from m.points and m.quads.
-void measure_quads(const occ::Solid& solid, core::FaceId face, QuadFaceMesh& m);
+void measure_quads(const core::MeshDomain& solid, core::FaceId face, QuadFaceMesh& m);
 
 }  // namespace vorohex::mesh::detail
