@@ -162,7 +162,7 @@ class VoronoiGraph:
         if obj.ShowVertices:
             shapes += [Part.Vertex(FreeCAD.Vector(*v["point"])) for v in graph.of_kind("vertex")]
         obj.Shape = Part.makeCompound(shapes)
-        obj.FsFacesDrawn = len(graph.fs_faces()) - len(missing)
+        obj.FsFacesDrawn = len(graph.fs_faces()) - len(missing) if obj.ShowFsFaces else 0
         obj.FsFacesNotDrawn = missing
         obj.FsFacePoints = points
         obj.FsFaceTriangles = triangles
