@@ -261,6 +261,10 @@ def main():
     check(all(bin_colour(-1 + 0.1 * k).getRgbF()[:3] == tuple(
         QtGui.QColor.fromRgbF(*palette.band_colour(-0.95 + 0.1 * k)).getRgbF()[:3])
         for k in range(20)), "histogram bars use the quality view's colour scale")
+    for o in (sketch, face, other, tet_mesh, idle):
+        o.ViewObject.Visibility = False
+    Gui.ActiveDocument.ActiveView.viewIsometric()
+    Gui.SendMsgToActiveView("ViewFit")
     screenshot("")
 
     # A size whose predicted count exceeds the limit: refused before any work starts.
