@@ -203,6 +203,11 @@ def compute(shape, sharp_angle, options, progress=None):
     return {"graph": graph, "fs": fs}
 
 
+def compute_work(report, brep, sharp_angle, options):
+    """compute() of the shape `brep` (exportBrepToString()), in a VoroHexJobs child."""
+    return compute(VoroHexObjects.shape_from_brep(brep), sharp_angle, options, report)
+
+
 def polyline(points):
     """One edge through the points (a degree-1 B-spline, so the view shows no vertex at
     every sample), consecutive duplicates dropped; None if degenerate."""

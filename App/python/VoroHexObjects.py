@@ -319,6 +319,56 @@ def femmesh_of(payload):
     return builder.femmesh
 
 
+def shape_from_brep(brep):
+    """A Part.Shape from exportBrepToString()'s text (how shapes reach a child process)."""
+    import Part
+
+    shape = Part.Shape()
+    shape.importBrepFromString(brep, False)
+    return shape
+
+
+def mesh_work(report, brep, options):
+    """Meshes the shape `brep` with keyword `options`: what a VoroHexJobs.Job runs in its
+    child process for the task panel; returns mesh_payload()."""
+    return mesh_payload(VoroHex.mesh(shape_from_brep(brep), progress=report, **options))
+
+
+def is_structured(scheme):
+    """False for a scheme (or "map+grid") that has the tetrahedral fallback or the grid
+    mesher in it: not a structured mesh."""
+    return not any(s in ("tet-split", "grid") for s in (scheme or "").split("+"))
+
+
+def trials_work(report, brep, options, sizes):
+    """Meshes the shape at each size without the fallback and without smoothing (cheap),
+    each stopped after 10 s: [(size, scheme, hexes)] for the sizes that gave a structured
+    mesh. Run in a child process when a mesh was not structured."""
+    shape = shape_from_brep(brep)
+    trial = dict(options, fallback=False, smooth_iterations=0, smooth_passes=0,
+                 time_limit=10.0,
+                 decomposition_time_limit=min(10.0, options.get("decomposition_time_limit")
+                                              or 10.0))
+    found = []
+    for k, size in enumerate(sizes):
+        report("trying size {:.3g}".format(size), k / len(sizes))
+        r = VoroHex.mesh(shape, **dict(trial, size=size))
+        if r.ok and is_structured(r.stats.scheme):
+            found.append((size, r.stats.scheme, r.stats.hexes))
+    return found
+
+
+def preview_work(report, brep, sharp_angle, options):
+    """The Voronoi graph and the decomposition (merged) of the shape, as their compute()
+    values: the hex mesh panel's Preview, in one child process."""
+    import VoroHexGraph
+    import VoroHexParts
+
+    shape = shape_from_brep(brep)
+    return (VoroHexGraph.compute(shape, sharp_angle, options, report),
+            VoroHexParts.compute(shape, sharp_angle, True, options, report))
+
+
 def automatic_size(shape):
     """The size VoroHex uses for TargetSize 0: the bounding-box diagonal / 20."""
     return shape.BoundBox.DiagonalLength / 20.0

@@ -156,6 +156,11 @@ def compute(shape, sharp_angle, merge, options, progress=None):
     return {"decomposition": d, "solids": solids, "roles": roles}
 
 
+def compute_work(report, brep, sharp_angle, merge, options):
+    """compute() of the shape `brep` (exportBrepToString()), in a VoroHexJobs child."""
+    return compute(VoroHexObjects.shape_from_brep(brep), sharp_angle, merge, options, report)
+
+
 def set_children(obj, solids, roles):
     """One Part::Feature per sub-volume under the decomposition object (made, reused or
     removed so that there are as many as sub-volumes)."""

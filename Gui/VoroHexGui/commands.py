@@ -107,9 +107,10 @@ class Progress:
 RUNNING = []
 
 
-def start(label, work, on_done):
-    """Runs work(report) in a child process with a Progress dialog; on_done(value, error)
-    follows on the GUI thread: error is None, "cancelled", or why it failed."""
+def start(label, work, args, on_done):
+    """Runs work(report, *args) (a module-level function) in a child process with a
+    Progress dialog; on_done(value, error) follows on the GUI thread: error is None,
+    "cancelled", or why it failed."""
     import VoroHexJobs
     from VoroHexGui import widgets
 
@@ -132,7 +133,7 @@ def start(label, work, on_done):
             return
         on_done(value, None)
 
-    runner = widgets.JobRunner(VoroHexJobs.Job(work), progress.update, done,
+    runner = widgets.JobRunner(VoroHexJobs.Job(work, *args), progress.update, done,
                                parent=FreeCADGui.getMainWindow())
     RUNNING.append(runner)
     return runner
@@ -160,15 +161,15 @@ def make_object(doc, label, make):
     return obj
 
 
-def make_and_edit(part, label, module, factory, compute):
-    """Computes `compute(shape)` in a child process, then `module.factory(doc, part,
-    data=...)` and the new object's task panel; a message if `part` is no solid."""
+def make_and_edit(part, label, module, factory, work, args):
+    """Computes `work(report, brep, *args)` in a child process, then `module.factory(doc,
+    part, data=...)` and the new object's task panel; a message if `part` is no solid."""
     error = VoroHexObjects.source_error(part)
     if error is not None:
         FreeCAD.Console.PrintError("VoroHex: {}\n".format(error))
         QtGui.QMessageBox.warning(FreeCADGui.getMainWindow(), "VoroHex: " + label, error)
         return None
-    doc, shape = part.Document, part.Shape
+    doc = part.Document
     import importlib
 
     factory = getattr(importlib.import_module(module), factory)
@@ -182,7 +183,7 @@ def make_and_edit(part, label, module, factory, compute):
         FreeCADGui.Selection.clearSelection()
         FreeCADGui.getDocument(doc.Name).setEdit(obj.Name)
 
-    return start(label, lambda report: compute(shape, report), done)
+    return start(label, work, (part.Shape.exportBrepToString(),) + tuple(args), done)
 
 
 def make_preview(mesh_obj, part, options, on_done):
@@ -192,14 +193,9 @@ def make_preview(mesh_obj, part, options, on_done):
     import VoroHexGraph
     import VoroHexParts
 
-    doc, shape = part.Document, part.Shape
+    doc = part.Document
     graph_options = dict(options)
     angle = graph_options.pop("sharp_angle")
-
-    def work(report):
-        graph = VoroHexGraph.compute(shape, angle, graph_options, report)
-        parts = VoroHexParts.compute(shape, angle, True, graph_options, report)
-        return graph, parts
 
     def done(data, why):
         if data is None:
@@ -221,7 +217,8 @@ def make_preview(mesh_obj, part, options, on_done):
                 part.ViewObject.Transparency = 70
         on_done(made, None if made else "the preview failed (see the Report view)")
 
-    return start("Preview", work, done)
+    return start("Preview", VoroHexObjects.preview_work,
+                 (part.Shape.exportBrepToString(), angle, graph_options), done)
 
 
 def remove_preview(mesh_obj):
@@ -256,7 +253,7 @@ class VoronoiGraphCommand:
         import VoroHexGraph
 
         make_and_edit(selected_part(), "Voronoi graph", "VoroHexGraph", "makeVoronoiGraph",
-                      lambda shape, report: VoroHexGraph.compute(shape, 60.0, {}, report))
+                      VoroHexGraph.compute_work, (60.0, {}))
 
 
 class DecompositionCommand:
@@ -275,7 +272,7 @@ class DecompositionCommand:
         import VoroHexParts
 
         make_and_edit(selected_part(), "Decomposition", "VoroHexParts", "makeDecomposition",
-                      lambda shape, report: VoroHexParts.compute(shape, 60.0, True, {}, report))
+                      VoroHexParts.compute_work, (60.0, True, {}))
 
 
 def is_hex_mesh(obj):

@@ -67,8 +67,7 @@ def summary_text(obj):
 def mesh_job(shape, options):
     """A VoroHexJobs.Job meshing `shape` with keyword `options` in a child process; its
     result is VoroHexObjects.mesh_payload()."""
-    return VoroHexJobs.Job(lambda report: VoroHexObjects.mesh_payload(
-        VoroHex.mesh(shape, progress=report, **options)))
+    return VoroHexJobs.Job(VoroHexObjects.mesh_work, shape.exportBrepToString(), options)
 
 
 def trial_sizes(size):
@@ -78,24 +77,10 @@ def trial_sizes(size):
 
 
 def suggestion_job(shape, options, sizes):
-    """Meshes `shape` at each size without the fallback and without smoothing (cheap), in
-    a child process; the result lists (size, scheme) for each size that gave a structured
+    """VoroHexObjects.trials_work in a child process: the sizes that give a structured
     mesh."""
-    trial = dict(options, fallback=False, smooth_iterations=0, smooth_passes=0,
-                 time_limit=10.0,
-                 decomposition_time_limit=min(10.0, options.get("decomposition_time_limit")
-                                              or 10.0))
-
-    def work(report):
-        found = []
-        for k, size in enumerate(sizes):
-            report("trying size {:.3g}".format(size), k / len(sizes))
-            r = VoroHex.mesh(shape, **dict(trial, size=size))
-            if r.ok and not unstructured_parts(r.stats.scheme):
-                found.append((size, r.stats.scheme, r.stats.hexes))
-        return found
-
-    return VoroHexJobs.Job(work)
+    return VoroHexJobs.Job(VoroHexObjects.trials_work, shape.exportBrepToString(), options,
+                           sizes)
 
 
 class TaskPanel:

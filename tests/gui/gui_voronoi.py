@@ -14,7 +14,7 @@ import FreeCAD
 import FreeCADGui as Gui
 from PySide import QtCore, QtGui
 
-TIMEOUT_S = 100
+TIMEOUT_S = 170  # CI budget; under a heavy load (other builds) this test took 120 s
 SHOT = os.environ.get("VOROHEX_SCREENSHOT", os.path.abspath("gui_voronoi_l.png"))
 
 
