@@ -2,6 +2,8 @@
 # Fem::FemMeshObjectPython whose proxy re-meshes its linked Part on recompute.
 """VoroHex document objects (usable headless, in freecadcmd)."""
 
+from array import array
+
 import FreeCAD
 
 import VoroHex
@@ -33,6 +35,9 @@ RESULTS = (
     ("SubVolumeMinScaledJacobian", "App::PropertyFloatList",
      "Per sub-volume: the smallest scaled Jacobian of its hexahedra"),
     ("SizeUsed", "App::PropertyFloat", "The target size the last mesh was made with (mm)"),
+    ("ScaledJacobians", "App::PropertyFloatList",
+     "Scaled Jacobian of every hexahedron, element 1, 2, ... (the Mesh quality view reads "
+     "it instead of computing it again)"),
     ("Diagnostics", "App::PropertyStringList",
      "Messages of the last recompute, one per line: severity [code] message"),
     ("DiagnosticEntities", "App::PropertyStringList",
@@ -235,6 +240,7 @@ class HexMesh:
         obj.Scheme = s["scheme"]
         obj.VolumeError = s["volume_rel_error"]
         obj.ScaledJacobianHistogram = [int(c) for c in s["histogram"]]
+        obj.ScaledJacobians = array("d", payload.get("scaled_jacobian", b"")).tolist()
         if hasattr(obj, "SizeUsed"):
             obj.SizeUsed = s["size_used"]
         table = payload["sub_volumes"]
@@ -243,6 +249,7 @@ class HexMesh:
         obj.SubVolumeHexCounts = [r["hexes"] for r in table]
         obj.SubVolumeMinScaledJacobian = [float(r["min_scaled_jacobian"]) for r in table]
         obj.Status, obj.Message = "ok", payload["message"]
+        self.arrays = (payload["nodes"], payload["hexes"])  # the Mesh quality view's (not saved)
         return None
 
 
@@ -267,6 +274,7 @@ def mesh_payload(result):
         "sub_volumes": result.sub_volume_table() if result.ok else [],
         "nodes": mesh.node_bytes() if result.ok else b"",
         "hexes": mesh.hex_bytes() if result.ok else b"",
+        "scaled_jacobian": array("d", result.scaled_jacobian).tobytes() if result.ok else b"",
     }
 
 
