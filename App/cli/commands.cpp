@@ -22,7 +22,7 @@ const char* const kMeshUsage =
     "                    [--smooth-iterations N] [--smooth-passes N] [--no-smooth]\n"
     "                    [--no-decompose] [--decomposition-time-limit S] [--sharp-angle A]\n"
     "                    [--eps E] [--delta D] [--max-depth N] [--no-fallback]\n"
-    "                    [--time-limit S] [--keep-invalid] [--quiet]\n"
+    "                    [--schemes LIST] [--time-limit S] [--keep-invalid] [--quiet]\n"
     "  IN    a solid as STEP (.step/.stp), BREP (.brep/.brp) or IGES (.iges/.igs)\n"
     "  OUT   the hex mesh: .vtu (ParaView), .msh (Gmsh 4.1) or .inp (Abaqus/CalculiX)\n"
     "  --size H        target edge length in model units (default: diagonal / 20)\n"
@@ -40,7 +40,9 @@ const char* const kMeshUsage =
     "                  cuts along both faces of a model edge ([1s] edges)\n"
     "  --eps E, --delta D, --max-depth N  the Voronoi graph the decomposition cuts along\n"
     "                  (as for vorohex voronoi: 0.01, 0.001 of the diagonal, depth 9)\n"
-    "  --no-fallback   refuse a solid that neither one scheme (map, sweep, midpoint) nor its\n"
+    "  --schemes LIST  the single-solid schemes to try, in order, comma-separated (default\n"
+    "                  map,sweep,multisweep,revolve,midpoint); one left out is never used\n"
+    "  --no-fallback   refuse a solid that neither one scheme nor its\n"
     "                  decomposition meshes, instead of meshing it as tetrahedra split into\n"
     "                  hexahedra\n"
     "  --keep-invalid  write the mesh even when it fails the validity check\n"
@@ -181,7 +183,7 @@ int mesh_command(const std::vector<std::string>& argv) {
       parse(argv,
             {"-o", "--output", "--size", "--report", "--max-hexes", "--smooth-iterations",
              "--smooth-passes", "--time-limit", "--decomposition-time-limit", "--sharp-angle",
-             "--eps", "--delta", "--max-depth"},
+             "--eps", "--delta", "--max-depth", "--schemes"},
             {"--no-smooth", "--no-fallback", "--no-decompose", "--keep-invalid", "--quiet"});
   if (args.positional.size() != 1)
     throw UsageError("expected exactly one input file, got " +
@@ -222,6 +224,17 @@ int mesh_command(const std::vector<std::string>& argv) {
   if (args.values.count("--max-depth"))
     options.graph.max_depth =
         int(std::min<std::size_t>(parse_count("--max-depth", args.values.at("--max-depth")), 1000));
+  if (args.values.count("--schemes")) {
+    options.schemes.clear();
+    std::string list = args.values.at("--schemes");
+    for (std::size_t start = 0; start <= list.size();) {
+      const std::size_t comma = std::min(list.find(',', start), list.size());
+      const std::string name = list.substr(start, comma - start);
+      if (name.empty()) throw UsageError("--schemes has an empty name in '" + list + "'");
+      options.schemes.push_back(name);
+      start = comma + 1;
+    }
+  }
   options.validate();  // before reading the file: a bad combination is a usage error
   const bool quiet = args.flags.count("--quiet") > 0;
 

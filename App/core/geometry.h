@@ -2,6 +2,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>  // cross products and frames on Vec3 everywhere
 #include <array>
 
 namespace vorohex::core {

@@ -61,6 +61,7 @@ Solution solve(const IntervalProblem& p, const IntervalOptions& o, const Selecti
     const double target = p.lengths[c] / o.size;
     col_lb[c] = 1;
     col_ub[c] = o.max_intervals;
+    if (c < int(p.fixed.size()) && p.fixed[c] > 0) col_lb[c] = col_ub[c] = p.fixed[c];
     const double w = 1.0 / std::max(1.0, target);
     obj[nc + c] = obj[2 * nc + c] = w;
     // n - over + under = target

@@ -36,6 +36,9 @@ struct IntervalProblem {
     std::string why;
   };
   std::vector<AtLeast> at_least;
+  // Per curve: a count it must have (0 or missing: free), e.g. a curve whose nodes a
+  // neighbour has already placed.
+  std::vector<int> fixed;
 
   int add_curve(double length, std::string name);  // its index
 };

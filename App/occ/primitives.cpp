@@ -9,8 +9,10 @@
 #include <BRepGProp.hxx>
 #include <BRepLib.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
+#include <BRepPrimAPI_MakeCone.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRepPrimAPI_MakePrism.hxx>
+#include <BRepPrimAPI_MakeRevol.hxx>
 #include <BRepTools.hxx>
 #include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
@@ -27,6 +29,8 @@
 #include <TopoDS_Solid.hxx>
 #include <TopoDS_Vertex.hxx>
 #include <TopoDS_Wire.hxx>
+#include <gp_Ax1.hxx>
+#include <gp_Ax2.hxx>
 #include <gp_Circ.hxx>
 #include <gp_Vec.hxx>
 
@@ -142,6 +146,44 @@ Solid make_cylinder(double radius, double height) {
   if (!(radius > 0 && height > 0))
     throw std::invalid_argument("make_cylinder needs positive radius and height");
   return guarded("make_cylinder", [&] { return BRepPrimAPI_MakeCylinder(radius, height).Solid(); });
+}
+
+Solid make_box(double dx, double dy, double dz, const Vec3& corner) {
+  if (!(dx > 0 && dy > 0 && dz > 0))
+    throw std::invalid_argument("make_box needs positive dimensions");
+  return guarded("make_box", [&] { return BRepPrimAPI_MakeBox(pnt(corner), dx, dy, dz).Solid(); });
+}
+
+Solid make_cylinder(double radius, double height, const Vec3& base, const Vec3& axis) {
+  if (!(radius > 0 && height > 0) || !(axis.norm() > 0))
+    throw std::invalid_argument("make_cylinder needs positive radius and height and an axis");
+  return guarded("make_cylinder", [&] {
+    const gp_Ax2 frame(pnt(base), gp_Dir(axis.x(), axis.y(), axis.z()));
+    return BRepPrimAPI_MakeCylinder(frame, radius, height).Solid();
+  });
+}
+
+Solid make_cone(double r1, double r2, double height, const Vec3& base, const Vec3& axis) {
+  if (!(r1 >= 0 && r2 >= 0 && r1 + r2 > 0 && r1 != r2 && height > 0) || !(axis.norm() > 0))
+    throw std::invalid_argument("make_cone needs radii >= 0 (different), a height and an axis");
+  return guarded("make_cone", [&] {
+    const gp_Ax2 frame(pnt(base), gp_Dir(axis.x(), axis.y(), axis.z()));
+    return BRepPrimAPI_MakeCone(frame, r1, r2, height).Solid();
+  });
+}
+
+Solid make_revolved(const std::vector<std::array<double, 2>>& rz) {
+  if (rz.size() < 3) throw std::invalid_argument("make_revolved needs a polygon");
+  for (const auto& q : rz)
+    if (!(q[0] >= 0)) throw std::invalid_argument("make_revolved needs r >= 0");
+  return guarded("make_revolved", [&] {
+    BRepBuilderAPI_MakePolygon poly;
+    for (const auto& q : rz) poly.Add(gp_Pnt(q[0], 0, q[1]));
+    poly.Close();
+    const TopoDS_Face face = BRepBuilderAPI_MakeFace(poly.Wire(), true).Face();
+    const gp_Ax1 axis(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1));
+    return first_solid(BRepPrimAPI_MakeRevol(face, axis).Shape(), "make_revolved");
+  });
 }
 
 Solid make_ring_sector(double inner_radius, double outer_radius, double angle, double depth) {

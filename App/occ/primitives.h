@@ -26,6 +26,18 @@ Solid make_prism(const std::vector<std::array<double, 2>>& outline, double depth
 // Cylinder of the given radius and height on the z axis.
 Solid make_cylinder(double radius, double height);
 
+// Box with its minimum corner at `corner`.
+Solid make_box(double dx, double dy, double dz, const Vec3& corner);
+
+// Cylinder and cone (radius r1 at the base, r2 at the top, one of them may be 0) on the
+// axis through `base` along `axis` (any length, not 0).
+Solid make_cylinder(double radius, double height, const Vec3& base, const Vec3& axis);
+Solid make_cone(double r1, double r2, double height, const Vec3& base, const Vec3& axis);
+
+// The solid of revolution about the z axis of a simple polygon in the (r, z) half-plane
+// (r >= 0; edges on r = 0 lie on the axis), turned by a full turn: a turned part.
+Solid make_revolved(const std::vector<std::array<double, 2>>& rz);
+
 // Extrusion along +z by `depth` of an annulus sector around the z axis from angle 0 to
 // `angle` (radians, < pi): a topological block with two cylindrical faces.
 Solid make_ring_sector(double inner_radius, double outer_radius, double angle, double depth);

@@ -2,6 +2,7 @@
 
 #include <BRepAdaptor_Surface.hxx>
 #include <BRepAlgoAPI_Common.hxx>
+#include <BRepAlgoAPI_Cut.hxx>
 #include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepAlgoAPI_Splitter.hxx>
 #include <BRepBuilderAPI_MakeEdge.hxx>
@@ -266,6 +267,22 @@ std::unique_ptr<Solid> fuse_solids(const Solid& a, const Solid& b) {
     BRepAlgoAPI_Fuse fuse(a.impl().solid, b.impl().solid);
     if (!fuse.IsDone()) return nullptr;
     const TopoDS_Shape u = unified(fuse.Shape());
+    TopoDS_Solid only;
+    int n = 0;
+    for (TopExp_Explorer ex(u, TopAbs_SOLID); ex.More(); ex.Next(), ++n)
+      only = TopoDS::Solid(ex.Current());
+    if (n != 1) return nullptr;
+    return std::make_unique<Solid>(make_solid(only));
+  } catch (const Standard_Failure&) {
+    return nullptr;
+  }
+}
+
+std::unique_ptr<Solid> cut_solids(const Solid& a, const Solid& b) {
+  try {
+    BRepAlgoAPI_Cut cut(a.impl().solid, b.impl().solid);
+    if (!cut.IsDone()) return nullptr;
+    const TopoDS_Shape u = unified(cut.Shape());
     TopoDS_Solid only;
     int n = 0;
     for (TopExp_Explorer ex(u, TopAbs_SOLID); ex.More(); ex.Next(), ++n)

@@ -65,6 +65,9 @@ std::vector<FaceSample> sample_faces(const Solid& solid);
 // The union of two solids as one solid with unified faces, or null if it is not one solid.
 std::unique_ptr<Solid> fuse_solids(const Solid& a, const Solid& b);
 
+// The difference a - b as one solid with unified faces, or null if it is not one solid.
+std::unique_ptr<Solid> cut_solids(const Solid& a, const Solid& b);
+
 // Volume of the common part of two solids (0 when disjoint or touching).
 double common_volume(const Solid& a, const Solid& b);
 

@@ -9,12 +9,10 @@
 #include <stdexcept>
 
 #include "mesh/assemble.h"
-#include "mesh/map_block.h"
 #include "mesh/mesh_sub_volumes.h"
-#include "mesh/midpoint.h"
-#include "mesh/sweep.h"
 #include "mesh/tet_split.h"
 #include "pipeline/detail/decompose_isolated.h"
+#include "pipeline/detail/schemes.h"
 #include "smooth/restore_topology.h"
 
 namespace vorohex::pipeline {
@@ -78,7 +76,7 @@ std::vector<core::Diagnostic> small_features(const occ::Solid& solid, double siz
 // The sub-volume type of a solid meshed by one scheme: a sweep runs between two of its
 // faces (Vs), a block or a midpoint cell is Ve, the tetrahedral fallback is neither.
 std::string type_of_scheme(const std::string& scheme) {
-  if (scheme == "sweep") return "Vs";
+  if (scheme == "sweep" || scheme == "multisweep") return "Vs";
   return scheme == "map" || scheme == "midpoint" ? "Ve" : "-";
 }
 
@@ -177,6 +175,12 @@ void MeshOptions::validate() const {
   }
   smoothing.validate();
   check.validate();
+  for (std::size_t i = 0; i < schemes.size(); ++i) {
+    (void)detail::make_schemes({schemes[i]});  // throws naming an unknown scheme
+    for (std::size_t j = 0; j < i; ++j)
+      if (schemes[j] == schemes[i])
+        throw std::invalid_argument("scheme '" + schemes[i] + "' is given twice");
+  }
 }
 
 namespace {
@@ -307,18 +311,22 @@ bool mesh_solid(const occ::Solid& solid, const MeshOptions& options, double size
   result.stats.size_used = size;
 
   progress.report("scheme", 0.0);
-  // Scheme choice: a mapped block where the solid is a topological hexahedron, else a
-  // one-to-one sweep where two faces are joined by four-sided linking faces, else midpoint
-  // subdivision where it is a convex polyhedron.
-  const mesh::Applicability map = mesh::map_block_applicable(solid);
-  const mesh::SweepApplicability sweepable =
-      map.ok ? mesh::SweepApplicability{} : mesh::sweep_applicable(solid);
-  const mesh::Applicability midpoint =
-      map.ok || sweepable.ok ? mesh::Applicability{} : mesh::midpoint_applicable(solid);
-  const bool structured = map.ok || sweepable.ok || midpoint.ok;
-  const std::string why_not_structured = "Not a block: " + map.reason +
-                                         ". Not a sweep: " + sweepable.reason +
-                                         ". No midpoint subdivision: " + midpoint.reason + ".";
+  // Scheme choice: the first of options.schemes (map, sweep, multisweep, midpoint by
+  // default) that applies; each says why not otherwise.
+  std::vector<std::unique_ptr<detail::Scheme>> schemes = detail::make_schemes(options.schemes);
+  detail::Scheme* chosen = nullptr;
+  std::string why_not_structured;
+  for (const auto& scheme : schemes) {
+    const detail::SchemeCheck check = scheme->applicable(solid);
+    if (check.ok) {
+      chosen = scheme.get();
+      break;
+    }
+    why_not_structured += (why_not_structured.empty() ? "" : ". ") + check.reason;
+  }
+  if (schemes.empty()) why_not_structured = "No single-solid scheme is enabled";
+  why_not_structured += ".";
+  const bool structured = chosen != nullptr;
   std::string not_decomposed = "decomposition is off";
   if (!structured && options.decompose) {
     if (mesh_decomposed(solid, options, size, progress, result, not_decomposed)) return true;
@@ -336,27 +344,11 @@ bool mesh_solid(const occ::Solid& solid, const MeshOptions& options, double size
         "No structured scheme applies (" + why_not_structured + ") and " + not_decomposed + ".",
         progress, t0, result);
 
-  std::size_t predicted = 0;
-  mesh::MapBlockOptions map_options;
-  mesh::SweepOptions sweep_options;
-  mesh::MidpointOptions midpoint_options;
-  map_options.size = sweep_options.size = midpoint_options.size = size;
-  if (map.ok) {
-    const mesh::MapBlockEstimate estimate = mesh::map_block_evaluate(solid, map_options);
-    result.stats.intervals = estimate.intervals;
-    predicted = estimate.hexes;
-  } else if (sweepable.ok) {
-    const mesh::SweepEstimate estimate = mesh::sweep_evaluate(solid, sweep_options);
-    result.stats.intervals = {0, 0, estimate.layers};
-    predicted = estimate.hexes;
-  } else {
-    const mesh::MidpointEstimate estimate = mesh::midpoint_evaluate(solid, midpoint_options);
-    result.stats.intervals = {estimate.subdivisions, estimate.subdivisions, estimate.subdivisions};
-    predicted = estimate.hexes;
-  }
-  if (predicted > options.max_hexes) {
+  const detail::SchemeEstimate estimate = chosen->evaluate(solid, size);
+  result.stats.intervals = estimate.intervals;
+  if (estimate.hexes > options.max_hexes) {
     std::ostringstream s;
-    s << "The mesh would have " << predicted
+    s << "The mesh would have " << estimate.hexes
       << " hexahedra, more than max_hexes = " << options.max_hexes
       << "; increase the size or the limit.";
     result.diagnostics.push_back(core::make_error("too_many_hexes", s.str()));
@@ -364,42 +356,16 @@ bool mesh_solid(const occ::Solid& solid, const MeshOptions& options, double size
   }
 
   const std::size_t scheme_diagnostics = result.diagnostics.size();
-  bool meshed = false;
-  if (map.ok) {
-    mesh::MapBlockResult mapped = mesh::map_block(solid, map_options, progress);
-    append(result.diagnostics, mapped.diagnostics);
-    result.stats.intervals = mapped.intervals;
-    result.stats.scheme = "map";
-    if ((meshed = mapped.ok)) result.mesh = std::move(mapped.mesh);
-  } else if (sweepable.ok) {
-    mesh::SweepResult swept = mesh::sweep(solid, sweep_options, progress);
-    append(result.diagnostics, swept.diagnostics);
-    result.stats.intervals = {0, 0, swept.layers};
-    result.stats.scheme = "sweep";
-    if ((meshed = swept.ok)) {
-      result.mesh = std::move(swept.mesh);
-      result.diagnostics.push_back(core::make_info(
-          "sweep",
-          "Swept from " + core::entity_name(swept.source) + " to " +
-              core::entity_name(swept.target) + " in " + std::to_string(swept.layers) + " layers.",
-          {core::entity_name(swept.source), core::entity_name(swept.target)}));
-    }
-  } else {
-    mesh::MidpointResult sub = mesh::midpoint_subdivide(solid, midpoint_options, progress);
-    append(result.diagnostics, sub.diagnostics);
-    result.stats.scheme = "midpoint";
-    if ((meshed = sub.ok)) {
-      result.mesh = std::move(sub.mesh);
-      result.diagnostics.push_back(core::make_info(
-          "midpoint",
-          std::string("Midpoint subdivision of a convex polyhedron (") +
-              (sub.per_vertex ? "one hexahedron per vertex"
-                              : "four hexahedra per tetrahedron of centre, face centre and edge") +
-              "), refined " + std::to_string(sub.subdivisions) + " times per direction."));
-    }
+  detail::SchemeMesh meshed = chosen->compute(solid, size, progress);
+  append(result.diagnostics, meshed.diagnostics);
+  result.stats.intervals = meshed.intervals;
+  result.stats.scheme = chosen->name();
+  if (meshed.ok) {
+    result.mesh = std::move(meshed.mesh);
+    if (!meshed.summary.code.empty()) result.diagnostics.push_back(meshed.summary);
   }
   result.stats.seconds_meshing = seconds_since(t0);
-  if (meshed || !options.fallback || progress.cancelled()) return meshed;
+  if (meshed.ok || !options.fallback || progress.cancelled()) return meshed.ok;
   // The scheme applied but failed (a sweep whose layers fold, say): its errors go into the
   // fallback's warning and the fallback meshes the solid, as for a solid no scheme accepts.
   std::string why = "The " + result.stats.scheme + " scheme applied but failed (";

@@ -25,6 +25,11 @@ struct MeshOptions {
   // Where no structured scheme applies: a tetrahedral mesh split into hexahedra (poorer
   // elements, reported as a warning); false refuses such solids instead.
   bool fallback = true;
+  // The single-solid schemes tried in this order, the first that applies meshes the solid:
+  // "map" (topological hexahedron), "sweep" (one-to-one), "multisweep" (prismatic, many
+  // levels), "revolve" (solid of revolution), "midpoint" (convex polyhedron). Leaving one
+  // out forbids it (the decomposition and the fallback come after them all).
+  std::vector<std::string> schemes = {"map", "sweep", "multisweep", "revolve", "midpoint"};
   // Where no single scheme applies, first cut the solid into sub-volumes along its Voronoi
   // graph (paper §4) and mesh those into one conforming mesh (§5); the fallback (if on)
   // takes what that cannot mesh. The graph and the cut run in a child process stopped
@@ -49,8 +54,8 @@ struct MeshStats {
   // Scaled Jacobian before and after smoothing (equal when smoothing is off).
   double min_sj_before_smoothing = 0, mean_sj_before_smoothing = 0;
   int sub_volumes = 0;
-  // "map" (mapped block), "sweep" (one-to-one sweep), "midpoint" (convex polyhedron) or
-  // "tet-split" (the fallback); sub-volumes of a decomposition or several solids: their
+  // "map" (mapped block), "sweep" (one-to-one sweep), "multisweep" (prismatic), "revolve"
+  // (solid of revolution), "midpoint" (convex polyhedron) or "tet-split" (the fallback); sub-volumes of a decomposition or several solids: their
   // schemes joined by "+" ("map+sweep")
   std::string scheme;
   // Per sub-volume (SubVolume cell data 1, 2, ...): its scheme.

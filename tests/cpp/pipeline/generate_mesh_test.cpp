@@ -72,11 +72,12 @@ TEST(GenerateMesh, WithoutTheFallbackSolidsThatNothingMeshesAreRefused) {
   EXPECT_NE(d->message.find("neither a block nor a sweep"), std::string::npos) << d->message;
 }
 
-// Solids that need several sub-volumes: a post on a plate and the cut cube. The Voronoi
-// decomposition does not give meshable sub-volumes for them (its cuts are placed only as
-// accurately as the embedding); exact plane cuts at their concave edges do, and the
-// sub-volumes are meshed into one conforming mesh: structured, no fallback, every hex a
-// cube.
+// Solids that need several sub-volumes when meshed by blocks and one-to-one sweeps: a post
+// on a plate and the cut cube (with the multisweep, the default, each is one prismatic
+// solid: test MultisweepTakesPrismaticSolidsWhole). The Voronoi decomposition does not give
+// meshable sub-volumes for them (its cuts are placed only as accurately as the embedding);
+// exact plane cuts at their concave edges do, and the sub-volumes are meshed into one
+// conforming mesh: structured, no fallback, every hex a cube.
 TEST(GenerateMesh, SolidsNeedingSeveralSubVolumesAreCutAndMeshedAsOne) {
   std::vector<Named> solids;
   solids.push_back({"post on plate", testing::make_post_on_plate()});
@@ -86,6 +87,7 @@ TEST(GenerateMesh, SolidsNeedingSeveralSubVolumesAreCutAndMeshedAsOne) {
     MeshOptions opt;
     opt.size = 0.25;
     opt.fallback = false;
+    opt.schemes = {"map", "sweep", "midpoint"};
     const MeshResult r = generate_mesh(s.solid, opt);
     ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
     EXPECT_GE(r.stats.sub_volumes, 2);
@@ -116,9 +118,9 @@ TEST(GenerateMesh, SolidsNeedingSeveralSubVolumesAreCutAndMeshedAsOne) {
   }
 }
 
-// A round post on a plate and HexMe s11 (a cylinder on a cube): cut along the plate's plane
-// and the post's cylinder extended through it, three sweeps meshed as one (s11 was the
-// fallback's, min scaled Jacobian 0.062 before smoothing).
+// A round post on a plate and HexMe s11 (a cylinder on a cube), without the multisweep:
+// cut along the plate's plane and the post's cylinder extended through it, three sweeps
+// meshed as one (s11 was the fallback's, min scaled Jacobian 0.062 before smoothing).
 TEST(GenerateMesh, RoundPostsAreCutAroundAndUnderAndSwept) {
   std::vector<Named> solids;
   solids.push_back({"round post on plate", testing::make_round_post_on_plate()});
@@ -129,6 +131,7 @@ TEST(GenerateMesh, RoundPostsAreCutAroundAndUnderAndSwept) {
     SCOPED_TRACE(s.name);
     MeshOptions opt;
     opt.fallback = false;
+    opt.schemes = {"map", "sweep", "midpoint"};
     const MeshResult r = generate_mesh(s.solid, opt);
     ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
     EXPECT_EQ(r.stats.scheme, "sweep");
@@ -147,12 +150,60 @@ TEST(GenerateMesh, RoundPostsAreCutAroundAndUnderAndSwept) {
   ASSERT_NE(corner, nullptr);
   MeshOptions opt;
   opt.fallback = false;
+  opt.schemes = {"map", "sweep", "midpoint"};
   const MeshResult c = generate_mesh(*corner, opt);
   ASSERT_TRUE(c.ok) << (c.diagnostics.empty() ? "" : core::format(c.diagnostics.back()));
   EXPECT_GE(c.stats.sub_volumes, 3);
   EXPECT_GE(c.check.scaled_jacobian.min, 0.3);
   EXPECT_LE(c.check.max_boundary_distance_rel, 1e-6);
   ASSERT_TRUE(s11.ok()) << "HexMe model s11 not found in " << VOROHEX_HEXME_DIR;
+}
+
+// With the default schemes, the solids above are each one prismatic solid: the multisweep
+// meshes them whole, without a decomposition, at least as well.
+TEST(GenerateMesh, MultisweepTakesPrismaticSolidsWhole) {
+  std::vector<Named> solids;
+  solids.push_back({"post on plate", testing::make_post_on_plate()});
+  solids.push_back({"cut cube", testing::make_cut_cube()});
+  solids.push_back({"round post on plate", testing::make_round_post_on_plate()});
+  const occ::ReadResult s11 =
+      occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/s11o_cube_cyl.step");
+  ASSERT_TRUE(s11.ok());
+  solids.push_back({"HexMe s11", s11.solid->clone()});
+  for (const Named& s : solids) {
+    SCOPED_TRACE(s.name);
+    MeshOptions opt;
+    opt.fallback = false;
+    const MeshResult r = generate_mesh(s.solid, opt);
+    ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
+    EXPECT_EQ(r.stats.scheme, "multisweep");
+    EXPECT_EQ(r.stats.sub_volumes, 1);
+    EXPECT_EQ(r.stats.sub_volume_types, std::vector<std::string>{"Vs"});
+    EXPECT_NE(testing::find_diagnostic(r.diagnostics, "multisweep"), nullptr);
+    EXPECT_EQ(testing::find_diagnostic(r.diagnostics, "decomposed"), nullptr);
+    EXPECT_GE(r.check.scaled_jacobian.min, 0.3);
+    EXPECT_LE(r.check.max_boundary_distance_rel, 1e-6);
+  }
+}
+
+// Unknown or repeated scheme names are refused before any work.
+TEST(GenerateMesh, UnknownSchemesAreRefused) {
+  const occ::Solid box = occ::make_box(1, 1, 1);
+  MeshOptions opt;
+  opt.schemes = {"map", "loft"};
+  try {
+    generate_mesh(box, opt);
+    FAIL() << "an unknown scheme was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("loft"), std::string::npos) << e.what();
+  }
+  opt.schemes = {"map", "map"};
+  EXPECT_THROW(generate_mesh(box, opt), std::invalid_argument);
+  // No scheme at all: the fallback only.
+  opt.schemes = {};
+  opt.decompose = false;
+  const MeshResult r = generate_mesh(box, opt);
+  EXPECT_EQ(r.stats.scheme, "tet-split");
 }
 
 // Convex polyhedra that are neither blocks nor sweeps go through midpoint subdivision.

@@ -1,0 +1,247 @@
+#include "mesh/face_set.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "core/option_checks.h"
+#include "mesh/detail/grid_face.h"
+#include "mesh/interval_assignment.h"
+#include "mesh/quad_face.h"
+#include "mesh/submap_face.h"
+
+namespace vorohex::mesh {
+
+using core::EdgeId;
+using core::FaceId;
+using core::NodeClass;
+using core::Vec3;
+using core::VertexId;
+using occ::OrientedEdge;
+
+void FaceSetOptions::validate() const {
+  core::require_positive("FaceSetOptions.size", size);
+  core::require_at_least("FaceSetOptions.max_intervals", max_intervals, 1);
+  core::require_at_least("FaceSetOptions.smoothing_passes", smoothing_passes, 0);
+  core::require_positive("FaceSetOptions.interval_time_limit", interval_time_limit);
+  for (int n : fixed_counts) core::require_at_least("FaceSetOptions.fixed_counts", n, 0);
+}
+
+std::size_t FaceSetMesh::num_quads() const {
+  std::size_t n = 0;
+  for (const auto& q : quads) n += q.size();
+  return n;
+}
+
+namespace {
+
+enum class Scheme { map, submap, quad };
+
+// Whether a face is a mapped face: one wire of four edges turning by 45 to 135 degrees at
+// each corner (about the face normal), so that the transfinite grid stays fair.
+bool mappable(const occ::Solid& s, FaceId f) {
+  const auto wires = s.face_wires(f);
+  if (wires.size() != 1 || wires[0].size() != 4) return false;
+  const auto& w = wires[0];
+  const double kPi = 3.14159265358979323846;
+  for (std::size_t k = 0; k < 4; ++k) {
+    const OrientedEdge &a = w[k], &b = w[(k + 1) % 4];
+    if (s.edge_is_degenerated(a.edge) || s.edge_is_degenerated(b.edge)) return false;
+    std::vector<Vec3> pa = s.edge_points_by_length(a.edge, 16);
+    std::vector<Vec3> pb = s.edge_points_by_length(b.edge, 16);
+    if (!a.forward) std::reverse(pa.begin(), pa.end());
+    if (!b.forward) std::reverse(pb.begin(), pb.end());
+    const Vec3 t0 = (pa[pa.size() - 1] - pa[pa.size() - 2]).normalized();
+    const Vec3 t1 = (pb[1] - pb[0]).normalized();
+    const Vec3 n = s.face_normal(f, pb[0]);
+    const double turn = std::atan2(t0.cross(t1).dot(n), t0.dot(t1));
+    if (turn < kPi / 4 || turn > 3 * kPi / 4) return false;
+  }
+  return true;
+}
+
+struct Plan {
+  std::vector<Scheme> scheme;                 // per face id
+  std::vector<std::vector<int>> submap_dirs;  // per face id, when submapped
+};
+
+// The interval problem: one curve per edge (index = edge id - 1); constraints per face.
+IntervalProblem problem_for(const occ::Solid& s, const Plan& plan, const FaceSetOptions& o) {
+  IntervalProblem p;
+  for (EdgeId e : s.edges()) p.add_curve(std::max(s.edge_length(e), 1e-300), core::entity_name(e));
+  p.fixed.assign(s.num_edges(), 0);
+  for (EdgeId e : s.edges())
+    if (e.value() < int(o.fixed_counts.size())) p.fixed[e.value() - 1] = o.fixed_counts[e.value()];
+  for (FaceId f : s.faces()) {
+    const auto wires = s.face_wires(f);
+    const std::string name = core::entity_name(f);
+    switch (plan.scheme[f.value()]) {
+      case Scheme::map: {
+        const auto& w = wires[0];
+        for (int k = 0; k < 2; ++k)
+          p.equal.push_back({{w[k].edge.value() - 1},
+                             {w[k + 2].edge.value() - 1},
+                             name + ": opposite sides of a mapped face"});
+        break;
+      }
+      case Scheme::submap: {
+        std::vector<int> curves;
+        for (const OrientedEdge& oe : wires[0]) curves.push_back(oe.edge.value() - 1);
+        add_submap_balance(p, plan.submap_dirs[f.value()], curves, name);
+        break;
+      }
+      case Scheme::quad: {
+        const int minimum = wires.size() == 1 ? 4 : 6;
+        for (const auto& w : wires) {
+          std::vector<int> curves;
+          for (const OrientedEdge& oe : w) {
+            curves.push_back(oe.edge.value() - 1);
+            p.even.push_back({{oe.edge.value() - 1},
+                              name + ": " + core::entity_name(oe.edge) +
+                                  " even (its vertices are corner nodes of the quad mesh)"});
+          }
+          p.at_least.push_back(
+              {curves, minimum,
+               name + ": a loop of at least " + std::to_string(minimum) + " segments"});
+        }
+        break;
+      }
+    }
+  }
+  return p;
+}
+
+}  // namespace
+
+FaceSetMesh mesh_face_set(const occ::Solid& s, const FaceSetOptions& options,
+                          const core::Progress& progress) {
+  options.validate();
+  FaceSetMesh out;
+  const int nf = s.num_faces(), ne = s.num_edges(), nv = s.num_vertices();
+  Plan plan;
+  plan.scheme.assign(nf + 1, Scheme::quad);
+  plan.submap_dirs.assign(nf + 1, {});
+  for (FaceId f : s.faces()) {
+    if (mappable(s, f)) {
+      plan.scheme[f.value()] = Scheme::map;
+    } else {
+      plan.submap_dirs[f.value()] = submap_directions(s, f);
+      if (!plan.submap_dirs[f.value()].empty()) plan.scheme[f.value()] = Scheme::submap;
+    }
+  }
+  IntervalOptions io;
+  io.size = options.size;
+  io.max_intervals = options.max_intervals;
+  io.time_limit = options.interval_time_limit;
+
+  // Structured faces whose counts cannot be met, or whose grid folds, become quad faces.
+  for (int round = 0; round <= nf; ++round) {
+    if (progress.cancelled()) {
+      out.diagnostics.push_back(core::make_error("cancelled", "Meshing was cancelled."));
+      return out;
+    }
+    IntervalResult assigned = assign_intervals(problem_for(s, plan, options), io);
+    if (!assigned.ok()) {
+      // Structured faces over-constrain the counts (fixed counts, mapped faces in a ring):
+      // once more with every face meshed by quad_face, which needs only even counts.
+      bool structured = false;
+      for (FaceId f : s.faces()) structured |= plan.scheme[f.value()] != Scheme::quad;
+      if (!structured) {
+        out.diagnostics = assigned.diagnostics;
+        return out;
+      }
+      std::fill(plan.scheme.begin(), plan.scheme.end(), Scheme::quad);
+      continue;
+    }
+    out = FaceSetMesh();
+    out.edge_counts.assign(ne + 1, 0);
+    for (int e = 1; e <= ne; ++e) out.edge_counts[e] = assigned.intervals[e - 1];
+    // Nodes: vertices, then each edge's inner nodes.
+    std::vector<int> vertex_node(nv + 1, -1);
+    for (VertexId v : s.vertices()) {
+      vertex_node[v.value()] = int(out.points.size());
+      out.points.push_back(s.vertex_point(v));
+      out.on.push_back(NodeClass::on(v));
+    }
+    out.edge_nodes.assign(ne + 1, {});
+    for (EdgeId e : s.edges()) {
+      const std::vector<Vec3> p = s.edge_points_by_length(e, out.edge_counts[e.value()]);
+      auto& ids = out.edge_nodes[e.value()];
+      ids.push_back(vertex_node[s.edge_first_vertex(e).value()]);
+      for (std::size_t i = 1; i + 1 < p.size(); ++i) {
+        ids.push_back(int(out.points.size()));
+        out.points.push_back(p[i]);
+        out.on.push_back(NodeClass::on(e));
+      }
+      ids.push_back(vertex_node[s.edge_last_vertex(e).value()]);
+    }
+    out.quads.assign(nf + 1, {});
+    out.face_schemes.assign(nf + 1, "");
+    bool refold = false;
+    double sum = 0;
+    out.min_quality = 1;
+    for (FaceId f : s.faces()) {
+      std::vector<std::vector<Vec3>> loops;
+      std::vector<int> ids;  // global id of each loop node, loop after loop
+      std::vector<int> counts;
+      for (const auto& w : s.face_wires(f)) {
+        loops.emplace_back();
+        for (const OrientedEdge& oe : w) {
+          std::vector<int> nodes = out.edge_nodes[oe.edge.value()];
+          if (!oe.forward) std::reverse(nodes.begin(), nodes.end());
+          for (std::size_t i = 0; i + 1 < nodes.size(); ++i) {
+            ids.push_back(nodes[i]);
+            loops.back().push_back(out.points[nodes[i]]);
+          }
+          counts.push_back(out.edge_counts[oe.edge.value()]);
+        }
+      }
+      QuadFaceMesh m;
+      const Scheme scheme = plan.scheme[f.value()];
+      if (scheme == Scheme::map) {
+        m = detail::grid_face(s, f, loops[0], counts[0], counts[1]);
+      } else if (scheme == Scheme::submap) {
+        m = submap_face(s, f, loops[0], counts, plan.submap_dirs[f.value()]);
+      } else {
+        QuadFaceOptions qo;
+        qo.size = options.size;
+        qo.smoothing_passes = options.smoothing_passes;
+        m = quad_face(s, f, loops, qo);
+        if (!m.ok) {
+          out.diagnostics = m.diagnostics;
+          return out;
+        }
+      }
+      if (scheme != Scheme::quad && (!m.ok || m.min_quality <= 0)) {
+        plan.scheme[f.value()] = Scheme::quad;
+        refold = true;
+        continue;
+      }
+      out.face_schemes[f.value()] = scheme == Scheme::map      ? "map"
+                                    : scheme == Scheme::submap ? "submap"
+                                                               : "quad";
+      std::vector<int> local(m.points.size());
+      for (std::size_t i = 0; i < m.num_boundary; ++i) local[i] = ids[i];
+      for (std::size_t i = m.num_boundary; i < m.points.size(); ++i) {
+        local[i] = int(out.points.size());
+        out.points.push_back(m.points[i]);
+        out.on.push_back(NodeClass::on(f));
+      }
+      for (const auto& q : m.quads)
+        out.quads[f.value()].push_back({local[q[0]], local[q[1]], local[q[2]], local[q[3]]});
+      out.min_quality = std::min(out.min_quality, m.min_quality);
+      sum += m.mean_quality * double(m.quads.size());
+    }
+    if (refold) continue;
+    const std::size_t n = out.num_quads();
+    out.mean_quality = n > 0 ? sum / double(n) : 0;
+    out.ok = true;
+    return out;
+  }
+  out.diagnostics.push_back(
+      core::make_error("quad_face_failed", "The faces could not be meshed with conforming quads."));
+  return out;
+}
+
+}  // namespace vorohex::mesh

@@ -1,0 +1,280 @@
+#include "mesh/multisweep.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+#include <unordered_map>
+
+#include "core/option_checks.h"
+#include "mesh/detail/cad_lookup.h"
+#include "mesh/face_set.h"
+#include "occ/prismatic.h"
+
+namespace vorohex::mesh {
+
+using core::NodeClass;
+using core::Vec3;
+
+void MultisweepOptions::validate() const {
+  core::require_positive("MultisweepOptions.size", size);
+  core::require_at_least("MultisweepOptions.max_intervals", max_intervals, 1);
+  core::require_at_least("MultisweepOptions.smoothing_passes", smoothing_passes, 0);
+}
+
+namespace {
+
+// Everything both evaluate() and the meshing need: the structure, the regions' quads and
+// the layers of each slab.
+struct Plan {
+  occ::PrismaticStructure structure;
+  FaceSetMesh regions;
+  std::vector<int> layers;      // per slab
+  std::vector<int> level_z;     // per level: its index in the list of heights
+  std::vector<double> heights;  // every layer's height, bottom to top
+  bool ok = false;
+  std::vector<core::Diagnostic> diagnostics;
+};
+
+Plan plan(const occ::Solid& solid, const MultisweepOptions& options,
+          const core::Progress& progress) {
+  options.validate();
+  Plan p;
+  p.structure = occ::prismatic_structure(solid);
+  if (!p.structure.ok) {
+    p.diagnostics.push_back(core::make_error(
+        "not_applicable", "The solid is not prismatic: " + p.structure.reason + "."));
+    return p;
+  }
+  const occ::PrismaticStructure& s = p.structure;
+  FaceSetOptions fo;
+  fo.size = options.size;
+  fo.max_intervals = options.max_intervals;
+  fo.smoothing_passes = options.smoothing_passes;
+  p.regions = mesh_face_set(*s.arrangement, fo, progress);
+  if (!p.regions.ok) {
+    p.diagnostics = p.regions.diagnostics;
+    return p;
+  }
+  const std::size_t slabs = s.levels.size() - 1;
+  p.heights.push_back(s.levels[0]);
+  p.level_z.push_back(0);
+  for (std::size_t l = 0; l < slabs; ++l) {
+    const double t = s.levels[l + 1] - s.levels[l];
+    const double k = std::max(1.0, std::round(t / options.size));
+    if (k > options.max_intervals) {
+      std::ostringstream m;
+      m << "A slab " << t << " thick at size " << options.size << " needs " << k
+        << " layers, more than max_intervals = " << options.max_intervals << ".";
+      p.diagnostics.push_back(core::make_error("too_many_intervals", m.str()));
+      return p;
+    }
+    p.layers.push_back(int(k));
+    for (int i = 1; i <= int(k); ++i)
+      p.heights.push_back(i == int(k) ? s.levels[l + 1] : s.levels[l] + t * i / k);
+    p.level_z.push_back(int(p.heights.size()) - 1);
+  }
+  p.ok = true;
+  return p;
+}
+
+// Per 2-D node, whether it is used in each slab (a region around it lies inside the slab).
+std::vector<std::vector<bool>> node_slabs(const Plan& p) {
+  const auto& s = p.structure;
+  std::vector<std::vector<bool>> used(p.regions.points.size(),
+                                      std::vector<bool>(p.layers.size(), false));
+  for (int f = 1; f < int(p.regions.quads.size()); ++f)
+    for (std::size_t l = 0; l < p.layers.size(); ++l) {
+      if (!s.inside[f][l]) continue;
+      for (const auto& q : p.regions.quads[f])
+        for (int n : q) used[n][l] = true;
+    }
+  return used;
+}
+
+}  // namespace
+
+MultisweepApplicability multisweep_applicable(const occ::Solid& solid) {
+  MultisweepApplicability a;
+  const occ::PrismaticStructure s = occ::prismatic_structure(solid);
+  a.ok = s.ok;
+  a.reason = s.reason;
+  if (s.ok) {
+    a.axis = s.axis;
+    a.levels = int(s.levels.size());
+    a.regions = s.arrangement->num_faces();
+  }
+  return a;
+}
+
+namespace {
+MultisweepEstimate estimate(const Plan& p) {
+  MultisweepEstimate e;
+  if (!p.ok) return e;
+  for (int k : p.layers) e.layers += k;
+  for (int f = 1; f < int(p.regions.quads.size()); ++f)
+    for (std::size_t l = 0; l < p.layers.size(); ++l)
+      if (p.structure.inside[f][l]) e.hexes += p.regions.quads[f].size() * std::size_t(p.layers[l]);
+  // Nodes: per 2-D node, the heights of the slabs it is used in (levels counted once).
+  for (const std::vector<bool>& slabs : node_slabs(p)) {
+    std::size_t n = 0;
+    for (std::size_t l = 0; l < slabs.size(); ++l) {
+      if (!slabs[l]) continue;
+      n += std::size_t(p.layers[l]) + ((l == 0 || !slabs[l - 1]) ? 1 : 0);
+    }
+    e.nodes += n;
+  }
+  return e;
+}
+}  // namespace
+
+MultisweepEstimate multisweep_evaluate(const occ::Solid& solid, const MultisweepOptions& options) {
+  return estimate(plan(solid, options, {}));
+}
+
+MultisweepResult multisweep(const occ::Solid& solid, const MultisweepOptions& options,
+                            const core::Progress& progress) {
+  MultisweepResult r;
+  const char* stage = "multisweep";
+  progress.report(stage, 0.0);
+  Plan p = plan(solid, options, progress);
+  r.diagnostics = std::move(p.diagnostics);
+  if (!p.ok) return r;
+  const occ::PrismaticStructure& s = p.structure;
+  const occ::Solid& arr = *s.arrangement;
+  const FaceSetMesh& F = p.regions;
+  r.axis = s.axis;
+  r.levels = int(s.levels.size());
+  r.regions = arr.num_faces();
+  for (int k : p.layers) r.layers += k;
+  r.region_min_quality = F.min_quality;
+  r.region_mean_quality = F.mean_quality;
+  progress.report(stage, 0.2);
+
+  const std::size_t slabs = p.layers.size(), nz = p.heights.size();
+  // The slab of each height index strictly inside a slab; -1 at the levels.
+  std::vector<int> slab_of(nz, -1), level_of(nz, -1);
+  for (std::size_t l = 0; l <= slabs; ++l) level_of[p.level_z[l]] = int(l);
+  for (std::size_t l = 0; l < slabs; ++l)
+    for (int z = p.level_z[l] + 1; z < p.level_z[l + 1]; ++z) slab_of[z] = int(l);
+
+  // Regions around each arrangement edge and vertex.
+  std::vector<std::vector<int>> edge_regions(arr.num_edges() + 1),
+      vertex_regions(arr.num_vertices() + 1);
+  for (core::EdgeId e : arr.edges())
+    for (core::FaceId f : arr.edge_faces(e)) {
+      edge_regions[e.value()].push_back(f.value());
+      for (core::VertexId v : {arr.edge_first_vertex(e), arr.edge_last_vertex(e)})
+        if (v.valid()) vertex_regions[v.value()].push_back(f.value());
+    }
+  auto inside = [&](int f, int l) {
+    return l >= 0 && l < int(slabs) && s.inside[f][std::size_t(l)];
+  };
+
+  // Which CAD entity a node at (arrangement entity, height index) lies on. Regions are
+  // decided from the caps; edges and vertices of the arrangement by the CAD's distance.
+  const double tol = std::max(1e-6 * solid.diagonal(), 10 * solid.tolerance());
+  auto lookup = [&](const Vec3& q) { return detail::cad_entity_at(solid, q, tol); };
+  std::map<std::tuple<int, int, int>, NodeClass> classes;
+  auto classify = [&](NodeClass on, int z) {
+    const auto key = std::make_tuple(int(on.dim), on.id, z);
+    const auto it = classes.find(key);
+    if (it != classes.end()) return it->second;
+    const int lv = level_of[z];
+    const std::vector<int>* around = nullptr;
+    if (on.dim == 2) {
+      static thread_local std::vector<int> one(1);
+      one[0] = on.id;
+      around = &one;
+    } else {
+      around = on.dim == 1 ? &edge_regions[on.id] : &vertex_regions[on.id];
+    }
+    // Inside all around (below and above at a level): an interior node.
+    bool all_in = around->size() >= (on.dim == 2 ? 1u : 2u);
+    for (int f : *around)
+      all_in = all_in && (lv < 0 ? inside(f, slab_of[z]) : inside(f, lv - 1) && inside(f, lv));
+    NodeClass c = NodeClass::interior();
+    if (all_in && on.dim != 0) {
+      c = NodeClass::interior();
+    } else if (on.dim == 2) {
+      // On the cap covering the region at this level.
+      for (int k : s.covering_caps[on.id])
+        if (s.cap_level[k] == lv) c = NodeClass::on(s.caps[k]);
+    } else {
+      const Vec3 base = on.dim == 0 ? arr.vertex_point(core::VertexId(on.id))
+                                    : arr.edge_points_by_length(core::EdgeId(on.id), 2)[1];
+      const double h =
+          lv >= 0 ? s.levels[lv] : 0.5 * (s.levels[slab_of[z]] + s.levels[slab_of[z] + 1]);
+      c = lookup(base + (h - s.height(base)) * s.axis);
+    }
+    classes.emplace(key, c);
+    return c;
+  };
+
+  core::HexMesh& mesh = r.mesh;
+  std::unordered_map<std::uint64_t, std::int32_t> node_id;
+  const MultisweepEstimate expected = estimate(p);
+  node_id.reserve(expected.nodes);
+  mesh.reserve(expected.nodes, expected.hexes);
+  auto node = [&](int n2, int z) {
+    const std::uint64_t key = std::uint64_t(n2) * nz + std::uint64_t(z);
+    const auto it = node_id.find(key);
+    if (it != node_id.end()) return it->second;
+    const Vec3& b = F.points[n2];
+    const Vec3 q = b + (p.heights[z] - s.height(b)) * s.axis;
+    const std::int32_t id = mesh.add_node(q, classify(F.on[n2], z)).value();
+    node_id.emplace(key, id);
+    return id;
+  };
+  std::size_t done = 0;
+  const std::size_t total = std::max<std::size_t>(1, expected.hexes);
+  for (std::size_t l = 0; l < slabs; ++l) {
+    for (int f = 1; f <= arr.num_faces(); ++f) {
+      if (!s.inside[f][l]) continue;
+      for (const auto& q : F.quads[f]) {
+        for (int k = 0; k < p.layers[l]; ++k) {
+          const int z0 = p.level_z[l] + k, z1 = z0 + 1;
+          core::HexNodes h;
+          for (int c = 0; c < 4; ++c) {
+            h[c] = node(q[c], z0);
+            h[c + 4] = node(q[c], z1);
+          }
+          mesh.add_hex(h, 0);
+        }
+      }
+      done += F.quads[f].size() * std::size_t(p.layers[l]);
+      progress.report(stage, 0.2 + 0.8 * double(done) / double(total));
+      if (progress.cancelled()) {
+        r.mesh = core::HexMesh();
+        r.diagnostics.push_back(core::make_error("cancelled", "Meshing was cancelled."));
+        return r;
+      }
+    }
+  }
+  // The corners of an extruded quad are positive when the quad is; a region whose quads
+  // turned the wrong way would show here.
+  std::size_t folded = 0;
+  for (const core::HexNodes& h : mesh.hexes()) {
+    const auto c = [&](int i) -> const Vec3& { return mesh.points()[h[i]]; };
+    bool bad = false;
+    for (int i = 0; i < 4 && !bad; ++i) {
+      const int n = (i + 1) % 4, pv = (i + 3) % 4;
+      bad = (c(n) - c(i)).cross(c(pv) - c(i)).dot(c(i + 4) - c(i)) <= 0;
+    }
+    folded += bad;
+  }
+  if (folded > 0) {
+    r.diagnostics.push_back(core::make_error(
+        "inverted_elements", std::to_string(folded) +
+                                 " extruded hexahedra have a non-positive corner Jacobian (the "
+                                 "quads of their region fold)."));
+    r.mesh = core::HexMesh();
+    return r;
+  }
+  r.ok = true;
+  return r;
+}
+
+}  // namespace vorohex::mesh

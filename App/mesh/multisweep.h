@@ -1,0 +1,60 @@
+// Many-to-many sweeping of prismatic ("2.5-D") solids along a straight axis: every face is
+// a cap perpendicular to the axis or a wall parallel to it (occ/prismatic.h), at any number
+// of levels: stepped extrusions, plates with bosses, pockets and holes along the axis,
+// flanged pipes, turned shafts with only cylinders and shoulders. The caps' outlines are
+// overlaid in the base plane, the regions meshed once with conforming quads (face_set.h:
+// mapped, submapped or general quads), and each slab between two levels is the extrusion
+// of the regions inside it, so several sources at different levels sweep onto one target
+// and walls with steps are meshed as submapped faces, with no decomposition. The result is
+// independent of how the solid was modelled (edge order, seams, orientation): it depends
+// only on its geometry.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/diagnostic.h"
+#include "core/hex_mesh.h"
+#include "core/progress.h"
+#include "occ/solid.h"
+
+namespace vorohex::mesh {
+
+struct MultisweepOptions {
+  double size = 1.0;           // target edge length, model units (> 0)
+  int max_intervals = 100000;  // per edge and per slab (> 0)
+  int smoothing_passes = 30;   // of regions meshed by the general quad mesher (>= 0)
+  void validate() const;       // throws std::invalid_argument naming the bad field
+};
+
+struct MultisweepApplicability {
+  bool ok = false;
+  std::string reason;  // why not, naming the first face or edge that breaks the structure
+  core::Vec3 axis = core::Vec3::UnitZ();
+  int levels = 0, regions = 0;
+};
+
+MultisweepApplicability multisweep_applicable(const occ::Solid& solid);
+
+struct MultisweepEstimate {
+  int layers = 0;                    // along the axis, over all slabs
+  std::size_t nodes = 0, hexes = 0;  // exactly what multisweep() produces (0 when refused)
+};
+// Builds the structure and meshes the regions (cheap next to the volume) to count exactly.
+MultisweepEstimate multisweep_evaluate(const occ::Solid& solid, const MultisweepOptions& options);
+
+struct MultisweepResult {
+  core::HexMesh mesh;
+  core::Vec3 axis = core::Vec3::UnitZ();
+  int levels = 0, regions = 0, layers = 0;
+  double region_min_quality = 0, region_mean_quality = 0;  // 2-D quad scaled Jacobian
+  bool ok = false;
+  std::vector<core::Diagnostic> diagnostics;
+};
+
+// Errors: not_applicable (with the reason), intervals_infeasible, quad_face_failed,
+// too_many_intervals, inverted_elements, cancelled.
+MultisweepResult multisweep(const occ::Solid& solid, const MultisweepOptions& options,
+                            const core::Progress& progress = {});
+
+}  // namespace vorohex::mesh

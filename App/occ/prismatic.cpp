@@ -1,0 +1,340 @@
+#include "occ/prismatic.h"
+
+#include <BRepAdaptor_Surface.hxx>
+#include <BRepAlgoAPI_BuilderAlgo.hxx>
+#include <BRepBuilderAPI_Transform.hxx>
+#include <BRep_Builder.hxx>
+#include <GeomAbs_SurfaceType.hxx>
+#include <GeomAdaptor_Curve.hxx>
+#include <GeomAdaptor_Surface.hxx>
+#include <Standard_Failure.hxx>
+#include <TopExp.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
+#include <TopTools_ListOfShape.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Compound.hxx>
+#include <gp_Trsf.hxx>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "occ/solid_impl.h"
+
+namespace vorohex::occ {
+namespace {
+
+Vec3 to_vec(const gp_XYZ& p) {
+  return Vec3(p.X(), p.Y(), p.Z());
+}
+std::string face_name(int f) {
+  return "Face" + std::to_string(f);
+}
+std::string edge_name(int e) {
+  return "Edge" + std::to_string(e);
+}
+
+// Directions of the solid's planes (normals), cylinders (axes) and extrusions, one per line.
+std::vector<Vec3> candidate_axes(const Solid& solid) {
+  std::vector<Vec3> out;
+  auto add = [&](Vec3 d) {
+    if (d.norm() < 1e-12) return;
+    d.normalize();
+    for (const Vec3& o : out)
+      if (std::abs(std::abs(o.dot(d)) - 1) < 1e-12) return;
+    out.push_back(d);
+  };
+  for (FaceId f : solid.faces()) {
+    GeomAdaptor_Surface s(solid.impl().face(f.value()).surface);
+    switch (s.GetType()) {
+      case GeomAbs_Plane:
+        add(to_vec(s.Plane().Axis().Direction().XYZ()));
+        break;
+      case GeomAbs_Cylinder:
+        add(to_vec(s.Cylinder().Axis().Direction().XYZ()));
+        break;
+      case GeomAbs_SurfaceOfExtrusion:
+        add(to_vec(s.Direction().XYZ()));
+        break;
+      default:
+        break;
+    }
+  }
+  return out;
+}
+
+const char* surface_kind(GeomAbs_SurfaceType t) {
+  switch (t) {
+    case GeomAbs_Cone:
+      return "a cone";
+    case GeomAbs_Sphere:
+      return "a sphere";
+    case GeomAbs_Torus:
+      return "a torus";
+    case GeomAbs_SurfaceOfRevolution:
+      return "a surface of revolution";
+    default:
+      return "a surface";
+  }
+}
+
+// Whether every face is a cap or a wall and every edge vertical or horizontal for `a`;
+// fills caps (with their heights) or returns the reason.
+std::string check_faces_and_edges(const Solid& solid, const Vec3& a, const Vec3& origin, double tol,
+                                  std::vector<FaceId>& caps, std::vector<double>& cap_height,
+                                  std::vector<bool>& cap_up) {
+  const double kParallel = 1e-9;  // |cos| of the angle between unit directions
+  auto height = [&](const Vec3& p) { return (p - origin).dot(a); };
+  for (FaceId f : solid.faces()) {
+    const FaceCache& c = solid.impl().face(f.value());
+    GeomAdaptor_Surface s(c.surface, c.umin, c.umax, c.vmin, c.vmax);
+    const GeomAbs_SurfaceType type = s.GetType();
+    if (type == GeomAbs_Plane || (type != GeomAbs_Cylinder && c.planar)) {
+      const Vec3 q = solid.vertex_point(solid.edge_first_vertex(solid.face_wires(f)[0][0].edge));
+      const Vec3 n = solid.face_normal(f, q);
+      const double cosine = n.dot(a);
+      if (std::abs(std::abs(cosine) - 1) < kParallel) {
+        caps.push_back(f);
+        cap_height.push_back(height(q));
+        cap_up.push_back(cosine > 0);
+      } else if (std::abs(cosine) > kParallel) {
+        std::ostringstream why;
+        why << face_name(f.value()) << " is a plane at "
+            << std::acos(std::min(1.0, std::abs(cosine))) * 180 / 3.14159265358979323846
+            << " degrees to the axis";
+        return why.str();
+      }
+      continue;
+    }
+    if (type == GeomAbs_Cylinder) {
+      const Vec3 d = to_vec(s.Cylinder().Axis().Direction().XYZ());
+      if (std::abs(std::abs(d.dot(a)) - 1) > kParallel)
+        return face_name(f.value()) + " is a cylinder across the axis";
+      continue;
+    }
+    if (type == GeomAbs_SurfaceOfExtrusion) {
+      if (std::abs(std::abs(to_vec(s.Direction().XYZ()).dot(a)) - 1) > kParallel)
+        return face_name(f.value()) + " is an extrusion across the axis";
+      continue;
+    }
+    if (type == GeomAbs_Cone || type == GeomAbs_Sphere || type == GeomAbs_Torus ||
+        type == GeomAbs_SurfaceOfRevolution)
+      return face_name(f.value()) + " is " + surface_kind(type);
+    // Another surface (B-spline, offset...): a wall when its normal is across the axis at
+    // every sample of its parameter box.
+    for (int i = 0; i <= 4; ++i)
+      for (int j = 0; j <= 4; ++j) {
+        gp_Pnt p;
+        gp_Vec du, dv;
+        c.surface->D1(c.umin + (c.umax - c.umin) * i / 4, c.vmin + (c.vmax - c.vmin) * j / 4, p, du,
+                      dv);
+        gp_Vec n = du.Crossed(dv);
+        if (n.Magnitude() < 1e-300) continue;
+        n.Normalize();
+        if (std::abs(to_vec(n.XYZ()).dot(a)) > 1e-7)
+          return face_name(f.value()) + " is a curved surface not parallel to the axis";
+      }
+  }
+  for (EdgeId e : solid.edges()) {
+    if (solid.edge_is_degenerated(e)) return edge_name(e.value()) + " is degenerated";
+    const EdgeCache& c = solid.impl().edge(e.value());
+    if (c.line) {
+      const Vec3 d = to_vec(c.p_last.XYZ()) - to_vec(c.p_first.XYZ());
+      if (d.norm() > 0 && std::abs(std::abs(d.normalized().dot(a)) - 1) < kParallel) continue;
+    }
+    // Other curves (a B-spline that is a straight line, as STEP files often carry): along
+    // the axis when every sample lies on the axis line through the first, horizontal when
+    // every sample lies at the first one's height.
+    const std::vector<Vec3> p = solid.edge_points_by_length(e, 8);
+    bool vertical = true, horizontal = true;
+    for (const Vec3& q : p) {
+      const Vec3 d = q - p[0];
+      vertical = vertical && (d - d.dot(a) * a).norm() <= tol;
+      horizontal = horizontal && std::abs(d.dot(a)) <= tol;
+    }
+    if (!vertical && !horizontal)
+      return edge_name(e.value()) + " neither runs along the axis nor lies at one height";
+  }
+  if (caps.empty()) return "no face is perpendicular to the axis";
+  return "";
+}
+
+TopoDS_Shape translated(const TopoDS_Shape& s, const Vec3& by) {
+  gp_Trsf t;
+  t.SetTranslation(gp_Vec(by.x(), by.y(), by.z()));
+  return BRepBuilderAPI_Transform(s, t, true).Shape();
+}
+
+// The structure for one axis, or the reason why not.
+PrismaticStructure structure_for(const Solid& solid, const Vec3& a) {
+  PrismaticStructure r;
+  r.axis = a;
+  const BoundingBox box = solid.bounding_box();
+  r.origin = box.min;
+  const double diag = std::max(box.diagonal(), 1e-300);
+  const double tol = std::max(1e-6 * diag, 2 * solid.tolerance());
+  std::vector<double> cap_height;
+  std::vector<bool> cap_up;
+  r.reason = check_faces_and_edges(solid, a, r.origin, tol, r.caps, cap_height, cap_up);
+  if (!r.reason.empty()) return r;
+  r.cap_up = cap_up;
+
+  // Levels: the vertices' heights, merged within the tolerance.
+  std::vector<double> h;
+  for (VertexId v : solid.vertices()) h.push_back(r.height(solid.vertex_point(v)));
+  std::sort(h.begin(), h.end());
+  for (double x : h)
+    if (r.levels.empty() || x - r.levels.back() > tol) r.levels.push_back(x);
+  auto level_of = [&](double x) {
+    for (std::size_t i = 0; i < r.levels.size(); ++i)
+      if (std::abs(r.levels[i] - x) <= tol) return int(i);
+    return -1;
+  };
+  for (std::size_t k = 0; k < r.caps.size(); ++k) {
+    const int l = level_of(cap_height[k]);
+    if (l < 0) {
+      r.reason = face_name(r.caps[k].value()) + " lies between the vertices' heights";
+      return r;
+    }
+    r.cap_level.push_back(l);
+  }
+  if (r.levels.size() < 2) {
+    r.reason = "all vertices lie at one height";
+    return r;
+  }
+
+  // Arrangement: every cap and every horizontal edge, moved down to height 0, fused.
+  TopTools_ListOfShape arguments;
+  std::vector<TopoDS_Shape> moved_caps;
+  std::vector<char> in_cap(solid.num_edges() + 1, 0);
+  for (std::size_t k = 0; k < r.caps.size(); ++k) {
+    const FaceId f = r.caps[k];
+    moved_caps.push_back(translated(solid.impl().faces(f.value()), -cap_height[k] * a));
+    arguments.Append(moved_caps.back());
+    for (const auto& wire : solid.face_wires(f))
+      for (const OrientedEdge& oe : wire) in_cap[oe.edge.value()] = 1;
+  }
+  for (EdgeId e : solid.edges()) {
+    if (in_cap[e.value()]) continue;
+    const EdgeCache& c = solid.impl().edge(e.value());
+    const double h0 = r.height(to_vec(c.p_first.XYZ())), h1 = r.height(to_vec(c.p_last.XYZ()));
+    if (std::abs(h0 - h1) > tol) continue;  // vertical: its projection is a vertex anyway
+    arguments.Append(translated(solid.impl().edges(e.value()), -h0 * a));
+  }
+  BRepAlgoAPI_BuilderAlgo fuse;
+  fuse.SetArguments(arguments);
+  fuse.SetRunParallel(false);
+  fuse.SetNonDestructive(true);
+  fuse.SetFuzzyValue(tol);
+  fuse.Build();
+  if (fuse.HasErrors() || !fuse.IsDone()) {
+    r.reason = "the caps' outlines could not be overlaid (OCCT's general fuse failed)";
+    return r;
+  }
+  TopTools_IndexedMapOfShape regions;
+  TopExp::MapShapes(fuse.Shape(), TopAbs_FACE, regions);
+  r.covering_caps.assign(regions.Extent() + 1, {});
+  for (std::size_t k = 0; k < moved_caps.size(); ++k) {
+    TopTools_ListOfShape images = fuse.Modified(moved_caps[k]);
+    if (images.IsEmpty() && !fuse.IsDeleted(moved_caps[k])) images.Append(moved_caps[k]);
+    for (const TopoDS_Shape& im : images) {
+      const int i = regions.FindIndex(im);
+      if (i > 0) r.covering_caps[i].push_back(int(k));
+    }
+  }
+  // Every region with normal +axis, in the map's order so that ids carry over.
+  BRep_Builder builder;
+  TopoDS_Compound oriented;
+  builder.MakeCompound(oriented);
+  for (int i = 1; i <= regions.Extent(); ++i) {
+    TopoDS_Face face = TopoDS::Face(regions(i));
+    BRepAdaptor_Surface s(face, false);
+    if (s.GetType() != GeomAbs_Plane) {
+      r.reason = "the overlay of the caps gave a face that is not planar";
+      return r;
+    }
+    // The normal as du x dv (a plane's axis may be left-handed), then the face's sense.
+    gp_Pnt q;
+    gp_Vec du, dv;
+    s.D1(0.5 * (s.FirstUParameter() + s.LastUParameter()),
+         0.5 * (s.FirstVParameter() + s.LastVParameter()), q, du, dv);
+    Vec3 n = to_vec(du.Crossed(dv).XYZ());
+    if (face.Orientation() == TopAbs_REVERSED) n = -n;
+    if (n.dot(a) < 0) face.Reverse();
+    builder.Add(oriented, face);
+  }
+  r.arrangement = std::make_unique<Solid>(make_solid_impl(oriented));
+  if (r.arrangement->num_faces() != regions.Extent()) {
+    r.reason = "the overlay of the caps has faces that repeat";
+    return r;
+  }
+
+  // Inside or outside per region and slab: the caps crossed from below, alternately
+  // entering (a cap facing down) and leaving (facing up); above the top, outside.
+  const std::size_t slabs = r.levels.size() - 1;
+  r.inside.assign(regions.Extent() + 1, std::vector<bool>(slabs, false));
+  for (int i = 1; i <= regions.Extent(); ++i) {
+    std::vector<int> at(r.levels.size(), -1);
+    for (int k : r.covering_caps[i]) {
+      if (at[r.cap_level[k]] >= 0) {
+        r.reason = face_name(r.caps[k].value()) + " and " +
+                   face_name(r.caps[at[r.cap_level[k]]].value()) + " overlap";
+        return r;
+      }
+      at[r.cap_level[k]] = k;
+    }
+    bool in = false;
+    for (std::size_t l = 0; l < r.levels.size(); ++l) {
+      if (at[l] >= 0) {
+        if (r.cap_up[at[l]] != in) {
+          r.reason = face_name(r.caps[at[l]].value()) +
+                     " faces the wrong way for the material around it (not a valid solid)";
+          return r;
+        }
+        in = !in;
+      }
+      if (l < slabs) r.inside[i][l] = in;
+    }
+    if (in) {
+      r.reason = "the material over a region of the caps is never closed";
+      return r;
+    }
+  }
+  r.ok = true;
+  return r;
+}
+
+}  // namespace
+
+PrismaticStructure prismatic_structure(const Solid& solid, const Vec3& axis) {
+  PrismaticStructure best;
+  best.reason = "no direction of its planes, cylinders or extrusions";
+  try {
+    std::vector<Vec3> axes =
+        axis.norm() > 0 ? std::vector<Vec3>{axis.normalized()} : candidate_axes(solid);
+    bool found = false;
+    std::string first_reason;
+    for (const Vec3& a : axes) {
+      PrismaticStructure s = structure_for(solid, a);
+      if (!s.ok) {
+        if (first_reason.empty()) first_reason = s.reason;
+        continue;
+      }
+      const auto rank = [](const PrismaticStructure& p) {
+        return std::make_pair(p.arrangement->num_faces(), p.levels.size());
+      };
+      if (!found || rank(s) < rank(best)) best = std::move(s);
+      found = true;
+    }
+    if (!found && !first_reason.empty()) best.reason = first_reason;
+  } catch (const Standard_Failure& e) {
+    best = PrismaticStructure();
+    best.reason = std::string("its geometry cannot be analysed (") + e.GetMessageString() + ")";
+  } catch (const std::exception& e) {
+    best = PrismaticStructure();
+    best.reason = std::string("its geometry cannot be analysed (") + e.what() + ")";
+  }
+  return best;
+}
+
+}  // namespace vorohex::occ

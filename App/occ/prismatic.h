@@ -1,0 +1,46 @@
+// The prismatic structure of a solid (a "2.5-D" part): every face is either a plane
+// perpendicular to one axis (a cap) or a surface parallel to it (a wall: planes, cylinders,
+// extrusions along the axis), and every edge is either a straight line along the axis or
+// lies at one height. Such a solid is, between two consecutive heights of its vertices (its
+// levels), a prism over a constant cross-section. Projected along the axis, the outlines of
+// all caps, the horizontal edges and the vertices cut the base plane into regions (the
+// arrangement, computed by OCCT's general fuse): each slab's cross-section is a union of
+// regions, so meshing the regions once with conforming quads and extruding them slab by
+// slab meshes the whole solid (a many-to-many sweep; Cubit's multisweep on such parts).
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/geometry.h"
+#include "occ/solid.h"
+
+namespace vorohex::occ {
+
+struct PrismaticStructure {
+  bool ok = false;
+  std::string reason;          // why not, naming the first face or edge that breaks the structure
+  Vec3 axis = Vec3::UnitZ();   // unit; caps are perpendicular to it
+  Vec3 origin = Vec3::Zero();  // a point of the base plane (height 0)
+  std::vector<double> levels;  // heights (along axis, from origin) of the vertices, sorted
+  std::vector<FaceId> caps;    // the solid's faces perpendicular to the axis
+  std::vector<int> cap_level;  // per cap: its level index
+  std::vector<bool> cap_up;    // per cap: its outward normal is +axis
+  // The regions as planar faces in the base plane, each oriented with normal +axis (wires
+  // counter-clockwise about the axis); their edges and vertices are the arrangement's.
+  std::unique_ptr<Solid> arrangement;
+  // Per arrangement face id (entry 0 unused): the caps (indices into `caps`) covering it.
+  std::vector<std::vector<int>> covering_caps;
+  // Per arrangement face and slab (slab i between levels i and i + 1): inside the solid.
+  // inside[face][slab]; derived from the caps crossed below (their parity), which is exact.
+  std::vector<std::vector<bool>> inside;
+  double height(const Vec3& p) const { return (p - origin).dot(axis); }
+};
+
+// Options: `axis` forces a direction (zero: try the directions of the solid's planar
+// faces, cylinders and extrusions, and keep the one whose arrangement has the fewest
+// regions, then levels). Never throws for geometry it cannot handle: ok false with reason.
+PrismaticStructure prismatic_structure(const Solid& solid, const Vec3& axis = Vec3::Zero());
+
+}  // namespace vorohex::occ

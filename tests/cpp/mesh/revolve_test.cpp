@@ -1,0 +1,113 @@
+#include "mesh/revolve.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "fixtures/machined.h"
+#include "occ/revolution.h"
+#include "pipeline/generate_mesh.h"
+#include "quality/check_mesh.h"
+
+namespace vorohex::mesh {
+namespace {
+
+using core::Vec3;
+
+struct Named {
+  std::string name;
+  occ::Solid solid;
+  int cores;
+};
+
+std::vector<Named> turned_parts() {
+  std::vector<Named> out;
+  out.push_back({"pulley with a V-groove and a bore", testing::make_pulley(), 0});
+  out.push_back({"stepped shaft", testing::make_stepped_shaft(), 1});
+  out.push_back({"chamfered shaft", testing::make_chamfered_shaft(), 1});
+  return out;
+}
+
+// Valid before smoothing, evaluate() == compute(), one core where the section lies on the
+// axis, nodes on their CAD entities (the revolved nodes on the cones exactly).
+TEST(Revolve, TurnedPartsAreValidBeforeSmoothing) {
+  for (const Named& part : turned_parts()) {
+    for (double divisions : {20.0, 25.0}) {
+      SCOPED_TRACE(part.name + " at diagonal / " + std::to_string(int(divisions)));
+      const RevolveApplicability a = revolve_applicable(part.solid);
+      ASSERT_TRUE(a.ok) << a.reason;
+      EXPECT_EQ(a.cores, part.cores);
+      EXPECT_NEAR(std::abs(a.axis.z()), 1, 1e-12);
+      RevolveOptions o;
+      o.size = part.solid.diagonal() / divisions;
+      const RevolveEstimate e = revolve_evaluate(part.solid, o);
+      const RevolveResult r = revolve(part.solid, o);
+      ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics[0]));
+      EXPECT_EQ(r.sectors % 4, 0);
+      EXPECT_EQ(e.sectors, r.sectors);
+      EXPECT_EQ(e.hexes, r.mesh.num_hexes());
+      EXPECT_EQ(e.nodes, r.mesh.num_nodes());
+      const quality::CheckReport c = quality::check_mesh(r.mesh, &part.solid, {});
+      EXPECT_TRUE(c.valid) << (c.diagnostics.empty() ? "" : core::format(c.diagnostics[0]));
+      EXPECT_EQ(c.non_positive, 0u);
+      EXPECT_EQ(c.open_boundary_edges, 0u);
+      EXPECT_LE(c.max_boundary_distance_rel, 1e-6);
+      EXPECT_GE(c.scaled_jacobian.min, 0.3);
+    }
+  }
+}
+
+// Through the pipeline with its default schemes: the pulley (cones) is no prism, so the
+// revolve meshes it; min scaled Jacobian >= 0.3 after smoothing.
+TEST(Revolve, PipelineRevolvesWhatNoPrismTakes) {
+  for (const Named& part : turned_parts()) {
+    SCOPED_TRACE(part.name);
+    pipeline::MeshOptions opt;
+    opt.fallback = false;
+    opt.decompose = false;
+    const pipeline::MeshResult r = pipeline::generate_mesh(part.solid, opt);
+    ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
+    // The stepped shaft is also prismatic (cylinders and shoulders): the multisweep comes
+    // first in the default order.
+    EXPECT_EQ(r.stats.scheme, part.name == "stepped shaft" ? "multisweep" : "revolve");
+    EXPECT_GE(r.check.scaled_jacobian.min, 0.3);
+  }
+}
+
+TEST(Revolve, WhatIsNotOfRevolutionIsRefusedWithTheReason) {
+  const RevolveApplicability box = revolve_applicable(occ::make_box(1, 2, 3));
+  EXPECT_FALSE(box.ok);
+  EXPECT_NE(box.reason.find("no cylinder"), std::string::npos) << box.reason;
+  // A cross hole: a cylinder about another axis.
+  const occ::Solid drilled = testing::cut(occ::make_cylinder(10, 40, Vec3::Zero(), Vec3::UnitZ()),
+                                          occ::make_cylinder(3, 30, {-15, 0, 20}, Vec3::UnitX()));
+  const RevolveApplicability d = revolve_applicable(drilled);
+  EXPECT_FALSE(d.ok);
+  EXPECT_NE(d.reason.find("another axis"), std::string::npos) << d.reason;
+  // A cone's apex on the axis: no core can end on it.
+  const RevolveApplicability tip =
+      revolve_applicable(occ::make_cone(5, 0, 10, Vec3::Zero(), Vec3::UnitZ()));
+  EXPECT_FALSE(tip.ok);
+  EXPECT_NE(tip.reason.find("at an angle"), std::string::npos) << tip.reason;
+  const RevolveResult r = revolve(occ::make_box(1, 2, 3), RevolveOptions{});
+  EXPECT_FALSE(r.ok);
+  ASSERT_FALSE(r.diagnostics.empty());
+  EXPECT_EQ(r.diagnostics[0].code, "not_applicable");
+}
+
+// The section and its core: the shaft's section minus a core of half the end radius.
+TEST(Revolve, SectionAndCoreOfAShaft) {
+  const occ::RevolutionStructure s = occ::revolution_structure(testing::make_stepped_shaft());
+  ASSERT_TRUE(s.ok) << s.reason;
+  ASSERT_EQ(s.cores.size(), 1u);
+  EXPECT_NEAR(s.cores[0].z1 - s.cores[0].z0, 75, 1e-6);
+  EXPECT_NEAR(s.core_radius, 4, 1e-9);  // half of the smaller end radius, 8
+  EXPECT_NEAR(s.max_radius, 15, 1e-6);
+  int sides = 0;
+  for (bool b : s.core_side) sides += b;
+  EXPECT_GE(sides, 1);
+}
+
+}  // namespace
+}  // namespace vorohex::mesh
