@@ -169,6 +169,15 @@ def stop_in_stage(mw, mesh, stage, after, ticker, size=None, smoothing=None):
 def main():
     import Part
 
+    # What is measured is whether VoroHex's work holds the GUI thread, not whether other
+    # processes of a busy machine (builds, other tests) take the processor from it: the GUI
+    # goes ahead of them when the test may (as root; ctest runs it alone, RUN_SERIAL). The
+    # meshing child runs 10 steps below the GUI either way.
+    try:
+        os.nice(-5)
+    except (PermissionError, OSError):
+        log("running at normal priority (not allowed to raise it)")
+
     mw = Gui.getMainWindow()
     mw.setGeometry(0, 0, 1280, 1024)
     mw.showMaximized()
@@ -307,6 +316,11 @@ def main():
     for o in (box, other, sketch, face, notch, sphere):
         o.ViewObject.Visibility = False
     ski_mesh = open_panel(mw, ski)
+    ticker.start()
+    pump(2.0)
+    ticker.stop()
+    log("baseline, nothing running: {} ticks in 2 s, largest gap {:.3f} s".format(
+        ticker.ticks, ticker.worst))
     latency, running = stop_in_stage(mw, ski_mesh, "", 10.2, ticker)
     check(running > 10.0, "the ski jump was still meshing after {:.1f} s".format(running))
     said = report_text(mw)[len(report_before):]
