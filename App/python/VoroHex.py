@@ -415,11 +415,12 @@ def mesh(shape, size=None, progress=None, cancel=None, **options):
 
 def from_femmesh(femmesh):
     """A _VoroHexCore.HexMesh from a Fem.FemMesh's 8-node hexahedra (VTK order)."""
-    ids = sorted(femmesh.Nodes)
+    by_id = femmesh.Nodes  # a new dict at every access: read it once
+    ids = sorted(by_id)
     index = {nid: i for i, nid in enumerate(ids)}
     nodes = array("d")
     for nid in ids:
-        p = femmesh.Nodes[nid]
+        p = by_id[nid]
         nodes.extend((p.x, p.y, p.z))
     hexes = array("i")
     for vid in femmesh.Volumes:

@@ -13,22 +13,29 @@ TYPE = "VoroHex::VoronoiGraph"
 
 # Every edge type the decomposition knows, in legend order, with its colour (RGB 0..1)
 # and what it means (docs/decomposition.md has the rules).
+# Colour-blind safe: Paul Tol's "muted" colours with Okabe & Ito's sky blue and pink, black
+# and two greys; VoroHexGui/colour_check.py measures every pair at least 13 CIEDE2000 units
+# apart for normal vision and for protanopia, deuteranopia and tritanopia (a test checks it).
 EDGE_TYPES = (
-    ("[0]", (0.10, 0.35, 0.85), "between two faces that share nothing (f_s: a sweep)"),
-    ("[1]", (0.10, 0.65, 0.20), "two faces sharing an edge (projected onto that edge)"),
-    ("[1s]", (0.00, 0.40, 0.10), "the same at a sharp angle (projected onto both faces)"),
-    ("[2]", (0.95, 0.55, 0.05), "two pairs of governors share edges"),
-    ("[3]", (0.85, 0.10, 0.10), "three pairs share edges"),
-    ("[1e]", (0.80, 0.10, 0.70), "two faces and an edge bounding one of them"),
-    ("[0e]", (0.50, 0.20, 0.70), "two faces and an edge or vertex bounding neither"),
-    ("[C]", (0.45, 0.45, 0.45), "the governors share a model vertex (no cut)"),
-    ("degenerate", (0.00, 0.00, 0.00), "more than three governors"),
-    ("none", (0.75, 0.75, 0.75), "of no interest (e.g. a face and its own edge)"),
+    ("[0]", (0x33 / 255, 0x22 / 255, 0x88 / 255),
+     "between two faces that share nothing (f_s: a sweep)"),
+    ("[1]", (0x11 / 255, 0x77 / 255, 0x33 / 255),
+     "two faces sharing an edge (projected onto that edge)"),
+    ("[1s]", (0xDD / 255, 0xCC / 255, 0x77 / 255),
+     "the same at a sharp angle (projected onto both faces)"),
+    ("[2]", (0xCC / 255, 0x79 / 255, 0xA7 / 255), "two pairs of governors share edges"),
+    ("[3]", (0xAA / 255, 0x44 / 255, 0x99 / 255), "three pairs share edges"),
+    ("[1e]", (0x56 / 255, 0xB4 / 255, 0xE9 / 255), "two faces and an edge bounding one of them"),
+    ("[0e]", (0x99 / 255, 0x99 / 255, 0x33 / 255),
+     "two faces and an edge or vertex bounding neither"),
+    ("[C]", (0x77 / 255, 0x77 / 255, 0x77 / 255), "the governors share a model vertex (no cut)"),
+    ("degenerate", (0.0, 0.0, 0.0), "more than three governors"),
+    ("none", (0xCC / 255, 0xCC / 255, 0xCC / 255),
+     "of no interest (e.g. a face and its own edge)"),
 )
 TYPE_NAMES = [t[0] for t in EDGE_TYPES]
 COLOURS = {t[0]: t[1] for t in EDGE_TYPES}
-FS_COLOUR = (0.55, 0.75, 1.0)  # f_s faces (translucent) and their outlines
-COLOURS["f_s"] = FS_COLOUR
+FS_COLOUR = (0.53, 0.80, 0.93)  # f_s faces (translucent)
 
 RESULTS = (
     ("Status", "App::PropertyString", "ok, or error when the last recompute failed"),
@@ -40,9 +47,14 @@ RESULTS = (
     ("EdgeTypeCounts", "App::PropertyMap", "Voronoi edges per type (the whole graph)"),
     ("ShownEdgeCounts", "App::PropertyMap", "Voronoi edges drawn per type"),
     ("SegmentTypes", "App::PropertyStringList",
-     "Type of every edge of the Shape (one per Voronoi edge drawn; f_s for the outline "
-     "edges of the f_s faces), in Shape.Edges order"),
-    ("FsFacesDrawn", "App::PropertyInteger", "f_s faces drawn (their outline closes)"),
+     "Type of every edge of the Shape (one per Voronoi edge drawn), in Shape.Edges order"),
+    ("FsFacesDrawn", "App::PropertyInteger", "f_s faces drawn"),
+    ("FsFacesNotDrawn", "App::PropertyStringList",
+     "f_s faces that could not be drawn: the face, its governors and why"),
+    ("FsFacePoints", "App::PropertyVectorList", "Corners of the triangles that draw the f_s "
+     "faces (the view draws them translucent; they are not part of the Shape)"),
+    ("FsFaceTriangles", "App::PropertyIntegerList",
+     "Three indices into FsFacePoints per triangle of the f_s faces"),
 )
 
 
@@ -93,28 +105,37 @@ class VoronoiGraph:
         return None
 
     def execute(self, obj):
-        """Recomputes the graph; on failure keeps the previous shape and raises."""
+        """Recomputes the graph (only when its options changed: showing or hiding a type
+        redraws the graph kept from last time); on failure keeps the previous shape and
+        raises."""
         error = VoroHexObjects.source_error(obj.Part)
-        graph = None
         if error is None:
-            graph = VoroHexObjects.compute_or_raise(obj, "Voronoi graph", lambda: (
-                VoroHex.voronoi_graph(obj.Part, sharp_angle=obj.SharpAngle,
-                                      progress=getattr(self, "progress", None),
-                                      **VoroHexObjects.graph_options_of(obj))))
-            if graph is None:  # cancelled (Status and Message say so)
-                return
-            if not graph.ok:
-                error = "; ".join(d.get("message", "") for d in graph.diagnostics) or \
-                    "the Voronoi graph could not be computed"
+            key = cache_key(obj)
+            data = getattr(self, "data", None)
+            if data is None or getattr(self, "key", None) != key:
+                data = VoroHexObjects.compute_or_raise(obj, "Voronoi graph", lambda: compute(
+                    obj.Part.Shape, obj.SharpAngle, VoroHexObjects.graph_options_of(obj),
+                    getattr(self, "progress", None)))
+                if data is None:  # cancelled (Status and Message say so)
+                    return
+            error = self.apply(obj, data)
         if error is not None:
             obj.Status, obj.Message = "error", error
             raise RuntimeError("VoroHex: " + error)
+
+    def apply(self, obj, data):
+        """Draws what compute() returned (the edges of the shown types as lines, vertices
+        as points; the f_s faces' triangles as properties the view draws); the error, or
+        None."""
+        graph = data["graph"]
+        if not graph.ok:
+            return "; ".join(d.get("message", "") for d in graph.diagnostics) or \
+                "the Voronoi graph could not be computed"
         unknown = [t for t in obj.ShownTypes if t not in TYPE_NAMES]
         if unknown:
-            obj.Status = "error"
-            obj.Message = "unknown edge type(s) {} in ShownTypes; known: {}".format(
+            return "unknown edge type(s) {} in ShownTypes; known: {}".format(
                 ", ".join(unknown), ", ".join(TYPE_NAMES))
-            raise RuntimeError("VoroHex: " + obj.Message)
+        self.data, self.key = data, cache_key(obj)
         shapes, segment_types, shown = [], [], {}
         for t in TYPE_NAMES:  # grouped by type, in legend order
             if t not in obj.ShownTypes:
@@ -128,20 +149,23 @@ class VoronoiGraph:
                 shapes.append(wire)
                 segment_types += [t] * len(wire.Edges)
                 shown[t] = shown.get(t, 0) + 1
-        fs_drawn = 0
-        if obj.ShowFsFaces:
-            by_id = {e["id"]: e for e in graph.elements}
-            for f in graph.fs_faces():
-                face = fs_face([by_id[i].get("polyline", []) for i in f.get("incident", [])
-                                if by_id.get(i, {}).get("kind") == "edge"])
-                if face is not None:
-                    shapes.append(face)
-                    segment_types += ["f_s"] * len(face.Edges)
-                    fs_drawn += 1
+        points, triangles, missing = [], [], []
+        for face, (pts, tris, why) in zip(graph.fs_faces(), data["fs"]):
+            if pts is None:
+                missing.append("Voronoi face {} ({}): {}".format(
+                    face["id"], ", ".join(face["governors"]), why))
+                continue
+            if obj.ShowFsFaces:
+                base = len(points)
+                points += [FreeCAD.Vector(*p) for p in pts]
+                triangles += [base + i for t in tris for i in t]
         if obj.ShowVertices:
             shapes += [Part.Vertex(FreeCAD.Vector(*v["point"])) for v in graph.of_kind("vertex")]
         obj.Shape = Part.makeCompound(shapes)
-        obj.FsFacesDrawn = fs_drawn
+        obj.FsFacesDrawn = len(graph.fs_faces()) - len(missing) if obj.ShowFsFaces else 0
+        obj.FsFacesNotDrawn = missing
+        obj.FsFacePoints = points
+        obj.FsFaceTriangles = triangles
         obj.SegmentTypes = segment_types
         obj.EdgeTypeCounts = {t: str(n) for t, n in graph.type_counts().items()}
         obj.ShownEdgeCounts = {t: str(n) for t, n in shown.items()}
@@ -153,40 +177,35 @@ class VoronoiGraph:
             obj.VertexCount, obj.EdgeCount,
             ", ".join("{} {}".format(n, t) for t, n in sorted(graph.type_counts().items())),
             obj.FaceCount, obj.FsFaceCount)
+        return None
 
 
-def fs_face(polylines, tol=1e-9):
-    """The face bounded by a Voronoi face's edges (their polylines chained into one loop):
-    planar when its points are, else a filling surface; None when they do not close."""
-    chains = [[FreeCAD.Vector(*p) for p in pl] for pl in polylines if len(pl) >= 2]
-    if len(chains) < 2:
-        return None
-    scale = max((p - q).Length for c in chains for p in c for q in (chains[0][0],)) or 1.0
-    close = 1e-6 * scale
-    loop = list(chains.pop(0))
-    while chains:
-        end = loop[-1]
-        for k, c in enumerate(chains):
-            if (c[0] - end).Length <= close:
-                loop += c[1:]
-                break
-            if (c[-1] - end).Length <= close:
-                loop += list(reversed(c))[1:]
-                break
-        else:
-            return None  # the edges do not chain: no face drawn
-        chains.pop(k)
-    if (loop[0] - loop[-1]).Length > close or len(loop) < 4:
-        return None
-    loop[-1] = loop[0]
-    try:
-        wire = Part.makePolygon(loop)
-        plane = wire.findPlane(close)
-        if plane is not None:
-            return Part.Face(wire)
-        return Part.makeFilledFace(wire.Edges)
-    except Exception:  # OCCT could not make a face of it: the outline is drawn as edges
-        return None
+def cache_key(obj):
+    """What the graph itself depends on (not what is shown of it)."""
+    return (obj.Part.Name if obj.Part else None, obj.SharpAngle,
+            tuple(sorted(VoroHexObjects.graph_options_of(obj).items())))
+
+
+def compute(shape, sharp_angle, options, progress=None):
+    """The graph of `shape` and the triangles of its f_s faces, as plain values (no
+    document access: it runs in a child process for the GUI); apply() draws them."""
+    graph = VoroHex.voronoi_graph(shape, sharp_angle=sharp_angle, progress=progress, **options)
+    fs = []
+    if graph.ok:
+        import VoroHexFaces
+
+        scale = shape.BoundBox.DiagonalLength
+        by_id = {e["id"]: e for e in graph.elements}
+        for f in graph.fs_faces():
+            fs.append(VoroHexFaces.triangulate_face(
+                [by_id[i].get("polyline", []) for i in f.get("incident", [])
+                 if by_id.get(i, {}).get("kind") == "edge"], scale, f.get("point")))
+    return {"graph": graph, "fs": fs}
+
+
+def compute_work(report, brep, sharp_angle, options):
+    """compute() of the shape `brep` (exportBrepToString()), in a VoroHexJobs child."""
+    return compute(VoroHexObjects.shape_from_brep(brep), sharp_angle, options, report)
 
 
 def polyline(points):
@@ -206,17 +225,21 @@ def polyline(points):
     return curve.toShape()
 
 
-def makeVoronoiGraph(doc, part, name="VoronoiGraph", progress=None, **options):
+def makeVoronoiGraph(doc, part, name=None, progress=None, data=None, **options):
     """Adds a Voronoi graph object for `part` to `doc` and computes it. Raises ValueError
     (and leaves the document as it was) when `part` holds no single solid. progress(stage,
     fraction) is called while it computes and may return False to cancel (the object is
     then taken out again and VoroHex.Cancelled raised). options: sharp_angle, eps, delta,
     max_depth (as for VoroHex.voronoi_graph), set as the object's properties before it
-    computes."""
+    computes. data: what compute() returned for these options (computed elsewhere, in a
+    child process): drawn without computing again. The object is named after the part."""
     error = VoroHexObjects.source_error(part)
     if error is not None:
         raise ValueError("VoroHex: " + error)
-    obj = doc.addObject("Part::FeaturePython", name)
+    obj = doc.addObject("Part::FeaturePython",
+                        name or VoroHexObjects.object_name(part, "VoronoiGraph"))
+    if name is None:
+        obj.Label = "{}_VoronoiGraph".format(part.Label)
     VoronoiGraph(obj)
     obj.Part = part
     try:
@@ -228,5 +251,7 @@ def makeVoronoiGraph(doc, part, name="VoronoiGraph", progress=None, **options):
         from VoroHexGui import graph_view
 
         graph_view.ViewProviderVoronoiGraph(obj.ViewObject)
+    if data is not None:
+        obj.Proxy.data, obj.Proxy.key = data, cache_key(obj)
     VoroHexObjects.compute_new(obj, progress)
     return obj

@@ -2,6 +2,8 @@
 # Fem::FemMeshObjectPython whose proxy re-meshes its linked Part on recompute.
 """VoroHex document objects (usable headless, in freecadcmd)."""
 
+from array import array
+
 import FreeCAD
 
 import VoroHex
@@ -32,6 +34,10 @@ RESULTS = (
     ("SubVolumeHexCounts", "App::PropertyIntegerList", "Per sub-volume: its hexahedra"),
     ("SubVolumeMinScaledJacobian", "App::PropertyFloatList",
      "Per sub-volume: the smallest scaled Jacobian of its hexahedra"),
+    ("SizeUsed", "App::PropertyFloat", "The target size the last mesh was made with (mm)"),
+    ("ScaledJacobians", "App::PropertyFloatList",
+     "Scaled Jacobian of every hexahedron, element 1, 2, ... (the Mesh quality view reads "
+     "it instead of computing it again)"),
     ("Diagnostics", "App::PropertyStringList",
      "Messages of the last recompute, one per line: severity [code] message"),
     ("DiagnosticEntities", "App::PropertyStringList",
@@ -127,6 +133,15 @@ def compute_new(obj, progress):
         raise VoroHex.Cancelled("VoroHex: " + why)
 
 
+def object_name(part, kind):
+    """An internal name for a new object made from `part` ("Box_HexMesh"): FreeCAD keeps
+    names to ASCII letters, digits and underscores and makes them unique itself."""
+    import re
+
+    base = re.sub(r"[^A-Za-z0-9_]", "_", part.Name)
+    return "{}_{}".format(base, kind)
+
+
 def graph_options_of(obj):
     """Keyword options eps, delta, max_depth for VoroHex.voronoi_graph / decompose."""
     return {o.name: getattr(obj, o.prop) for o in GRAPH_OPTIONS if hasattr(obj, o.prop)}
@@ -166,6 +181,10 @@ class HexMesh:
             if not hasattr(obj, name):
                 obj.addProperty(prop_type, name, "Result", doc)
                 obj.setEditorMode(name, 1)  # read-only in the property editor
+        if not hasattr(obj, "PreviewObjects"):  # names, not links: no dependency on them
+            obj.addProperty("App::PropertyStringList", "PreviewObjects", "Result",
+                            "The graph and decomposition the panel's last Preview made")
+            obj.setEditorMode("PreviewObjects", 2)
 
     def onDocumentRestored(self, obj):
         # Files older than an option lack its property; add it with the default. FreeCAD
@@ -183,48 +202,227 @@ class HexMesh:
 
     def execute(self, obj):
         """Re-meshes; on failure keeps the previous FemMesh, records why and raises so
-        FreeCAD marks the object invalid with that message."""
+        FreeCAD marks the object invalid with that message. (The task panel meshes in a
+        child process instead, VoroHexJobs, and hands the result to apply().)"""
         error = source_error(obj.Part, True)
-        result = None
+        payload = None
+        if error is None:
+            error = refusal(obj)
         if error is None:
             try:
-                result = VoroHex.mesh(obj.Part.Shape, progress=getattr(self, "progress", None),
-                                      **options_of(obj))
+                payload = mesh_payload(VoroHex.mesh(
+                    obj.Part.Shape, progress=getattr(self, "progress", None), **options_of(obj)))
             except (TypeError, ValueError) as e:
                 error = str(e).replace("VoroHex: ", "")
-        if result is not None and not result.ok:
-            error = result.message
-        record_diagnostics(obj, [] if result is None else list(result.diagnostics))
         if error is not None:
+            record_diagnostics(obj, [])
             obj.Status, obj.Message = "error", error
             raise RuntimeError("VoroHex: " + error)
-        femmesh = result.to_femmesh()
-        s = result.stats
-        obj.FemMesh = femmesh
-        obj.HexCount, obj.NodeCount, obj.SubVolumeCount = s.hexes, s.nodes, s.sub_volumes
-        obj.MinScaledJacobian, obj.MeanScaledJacobian = s.min_scaled_jacobian, \
-            s.mean_scaled_jacobian
-        obj.MinScaledJacobianBeforeSmoothing = s.min_scaled_jacobian_before_smoothing
-        obj.MeanScaledJacobianBeforeSmoothing = s.mean_scaled_jacobian_before_smoothing
-        obj.Scheme = s.scheme
-        obj.VolumeError = s.volume_rel_error
-        obj.ScaledJacobianHistogram = [int(c) for c in s.histogram]
-        table = result.sub_volume_table()
+        error = self.apply(obj, payload)
+        if error is not None:
+            raise RuntimeError("VoroHex: " + error)
+
+    def apply(self, obj, payload, femmesh=None):
+        """Stores a mesh_payload() on the object (femmesh: its FemMesh when already built).
+        Returns None, or the error (the previous mesh is kept, Status "error")."""
+        record_diagnostics(obj, payload["diagnostics"])
+        if not payload["ok"]:
+            obj.Status, obj.Message = "error", payload["message"]
+            return payload["message"]
+        s = payload["stats"]
+        obj.FemMesh = femmesh if femmesh is not None else femmesh_of(payload)
+        obj.HexCount, obj.NodeCount, obj.SubVolumeCount = s["hexes"], s["nodes"], \
+            s["sub_volumes"]
+        obj.MinScaledJacobian, obj.MeanScaledJacobian = s["min_scaled_jacobian"], \
+            s["mean_scaled_jacobian"]
+        obj.MinScaledJacobianBeforeSmoothing = s["min_scaled_jacobian_before_smoothing"]
+        obj.MeanScaledJacobianBeforeSmoothing = s["mean_scaled_jacobian_before_smoothing"]
+        obj.Scheme = s["scheme"]
+        obj.VolumeError = s["volume_rel_error"]
+        obj.ScaledJacobianHistogram = [int(c) for c in s["histogram"]]
+        obj.ScaledJacobians = array("d", payload.get("scaled_jacobian", b"")).tolist()
+        if hasattr(obj, "SizeUsed"):
+            obj.SizeUsed = s["size_used"]
+        table = payload["sub_volumes"]
         obj.SubVolumeSchemes = [r["scheme"] for r in table]
         obj.SubVolumeTypes = [r["type"] for r in table]
         obj.SubVolumeHexCounts = [r["hexes"] for r in table]
         obj.SubVolumeMinScaledJacobian = [float(r["min_scaled_jacobian"]) for r in table]
-        obj.Status, obj.Message = "ok", result.message
-        self.last_result = result  # for the task panel (not saved)
+        obj.Status, obj.Message = "ok", payload["message"]
+        self.arrays = (payload["nodes"], payload["hexes"])  # the Mesh quality view's (not saved)
+        return None
 
 
-def makeHexMesh(doc, part, name="HexMesh", size=None):
-    """Adds a VoroHex mesh object for `part` to `doc`. Raises ValueError, leaving the
-    document untouched, when `part` holds no single closed solid."""
+class Diagnostic:
+    """A message of a run as plain values (what a child process hands back)."""
+
+    def __init__(self, severity, code, message, entities):
+        self.severity, self.code, self.message = severity, code, message
+        self.entities = list(entities)
+
+
+def mesh_payload(result):
+    """A VoroHex.MeshResult as plain, picklable values: what apply() stores."""
+    stats = result.stats.as_dict()
+    mesh = result.core_mesh
+    return {
+        "ok": bool(result.ok),
+        "message": result.message,
+        "stats": stats,
+        "diagnostics": [Diagnostic(d.severity, d.code, d.message, d.entities)
+                        for d in result.diagnostics],
+        "sub_volumes": result.sub_volume_table() if result.ok else [],
+        "nodes": mesh.node_bytes() if result.ok else b"",
+        "hexes": mesh.hex_bytes() if result.ok else b"",
+        "scaled_jacobian": array("d", result.scaled_jacobian).tobytes() if result.ok else b"",
+    }
+
+
+class FemMeshBuilder:
+    """Builds the Fem.FemMesh of a payload a slice at a time (step() with a time budget),
+    so that a large mesh does not hold the GUI still while its elements are added."""
+
+    def __init__(self, payload):
+        import Fem
+        from array import array
+
+        self.femmesh = Fem.FemMesh()
+        self.nodes = array("d", payload["nodes"])
+        self.hexes = array("i", payload["hexes"])
+        self.n_nodes, self.n_hexes = len(self.nodes) // 3, len(self.hexes) // 8
+        self.node, self.hex = 0, 0
+
+    def step(self, seconds=None):
+        """Adds nodes, then hexahedra, for about `seconds` (None: all); True when done."""
+        import time
+
+        end = None if seconds is None else time.time() + seconds
+        fm, nodes, hexes, order = self.femmesh, self.nodes, self.hexes, VoroHex.SMESH_FROM_VTK
+        while self.node < self.n_nodes:
+            stop = min(self.n_nodes, self.node + 2000)
+            for i in range(self.node, stop):
+                fm.addNode(nodes[3 * i], nodes[3 * i + 1], nodes[3 * i + 2], i + 1)
+            self.node = stop
+            if end is not None and time.time() > end:
+                return False
+        while self.hex < self.n_hexes:
+            stop = min(self.n_hexes, self.hex + 1000)
+            for e in range(self.hex, stop):
+                h = hexes[8 * e:8 * e + 8]
+                fm.addVolume([h[k] + 1 for k in order], e + 1)
+            self.hex = stop
+            if end is not None and time.time() > end:
+                return False
+        return True
+
+    @property
+    def fraction(self):
+        total = self.n_nodes + self.n_hexes
+        return (self.node + self.hex) / total if total else 1.0
+
+
+def femmesh_of(payload):
+    builder = FemMeshBuilder(payload)
+    builder.step()
+    return builder.femmesh
+
+
+def shape_from_brep(brep):
+    """A Part.Shape from exportBrepToString()'s text (how shapes reach a child process)."""
+    import Part
+
+    shape = Part.Shape()
+    shape.importBrepFromString(brep, False)
+    return shape
+
+
+def mesh_work(report, brep, options):
+    """Meshes the shape `brep` with keyword `options`: what a VoroHexJobs.Job runs in its
+    child process for the task panel; returns mesh_payload()."""
+    return mesh_payload(VoroHex.mesh(shape_from_brep(brep), progress=report, **options))
+
+
+def is_structured(scheme):
+    """False for a scheme (or "map+grid") that has the tetrahedral fallback or the grid
+    mesher in it: not a structured mesh."""
+    return not any(s in ("tet-split", "grid") for s in (scheme or "").split("+"))
+
+
+def trials_work(report, brep, options, sizes):
+    """Meshes the shape at each size without the fallback and without smoothing (cheap),
+    each stopped after 10 s: [(size, scheme, hexes)] for the sizes that gave a structured
+    mesh. Run in a child process when a mesh was not structured."""
+    shape = shape_from_brep(brep)
+    trial = dict(options, fallback=False, smooth_iterations=0, smooth_passes=0,
+                 time_limit=10.0,
+                 decomposition_time_limit=min(10.0, options.get("decomposition_time_limit")
+                                              or 10.0))
+    found = []
+    for k, size in enumerate(sizes):
+        report("trying size {:.3g}".format(size), k / len(sizes))
+        r = VoroHex.mesh(shape, **dict(trial, size=size))
+        if r.ok and is_structured(r.stats.scheme):
+            found.append((size, r.stats.scheme, r.stats.hexes))
+    return found
+
+
+def preview_work(report, brep, sharp_angle, options):
+    """The Voronoi graph and the decomposition (merged) of the shape, as their compute()
+    values: the hex mesh panel's Preview, in one child process."""
+    import VoroHexGraph
+    import VoroHexParts
+
+    shape = shape_from_brep(brep)
+    return (VoroHexGraph.compute(shape, sharp_angle, options, report),
+            VoroHexParts.compute(shape, sharp_angle, True, options, report))
+
+
+def automatic_size(shape):
+    """The size VoroHex uses for TargetSize 0: the bounding-box diagonal / 20."""
+    return shape.BoundBox.DiagonalLength / 20.0
+
+
+def predicted_hexes(shape, size):
+    """(low, high): the hexahedra to expect at `size` (0 or None: automatic). low = volume /
+    size^3, what a structured mesh (map, sweep) has; high = 4 x that, about what the
+    tetrahedral fallback gives (2.5 to 3.4 x on HexMe's sphere and ski jump)."""
+    size = size or automatic_size(shape)
+    low = shape.Volume / size ** 3 if size > 0 else float("inf")
+    return low, 4.0 * low
+
+
+def refusal(obj, size=None):
+    """Why meshing `obj` at `size` (default its TargetSize) must not start, or None: even a
+    structured mesh would have more hexahedra than MaxHexes. Checked before any work."""
+    if obj.Part is None:
+        return None
+    if size is None:
+        size = obj.TargetSize.Value
+    low, _ = predicted_hexes(obj.Part.Shape, size)
+    if low <= obj.MaxHexes:
+        return None
+    return ("size {:g} mm would give about {} hexahedra (volume / size\u00b3), more than the "
+            "limit of {:,} (MaxHexes); nothing was meshed. Increase the size{}.").format(
+                size or automatic_size(obj.Part.Shape), format_count(low), obj.MaxHexes,
+                " to at least {:.3g} mm".format((obj.Part.Shape.Volume / obj.MaxHexes) ** (1 / 3))
+                if obj.Part.Shape.Volume > 0 else "")
+
+
+def format_count(n):
+    """12,300 or 3.0e+10: a hex count for a message."""
+    return "{:,}".format(int(round(n))) if n < 1e9 else "{:.1e}".format(n)
+
+
+def makeHexMesh(doc, part, name=None, size=None):
+    """Adds a VoroHex mesh object for `part` to `doc`, named after it ("Box_HexMesh").
+    Raises ValueError, leaving the document untouched, when `part` holds no single closed
+    solid."""
     error = source_error(part, True)
     if error is not None:
         raise ValueError("VoroHex: " + error)
-    obj = doc.addObject("Fem::FemMeshObjectPython", name)
+    obj = doc.addObject("Fem::FemMeshObjectPython", name or object_name(part, "HexMesh"))
+    if name is None:
+        obj.Label = "{}_HexMesh".format(part.Label)
     HexMesh(obj)
     obj.Part = part
     if size is not None:

@@ -1,6 +1,8 @@
 # The parametric decomposition document object: the sub-volumes VoroHex cuts a linked solid
-# into (vorohex decompose), as one compound whose faces the GUI colours by meshing scheme,
-# with decomposition faces and sweep source/target faces marked. Usable headless.
+# into (vorohex decompose), as one compound (its Shape) and as one child object per
+# sub-volume (shown, hidden and moved apart one by one: Explode), whose faces the GUI
+# colours by their role: the sub-volume's scheme, a sweep's source and target, and the
+# decomposition faces between sub-volumes. Usable headless.
 """VoroHex decomposition document object."""
 
 import FreeCAD
@@ -11,14 +13,18 @@ import VoroHexObjects
 
 TYPE = "VoroHex::Decomposition"
 
-# Face roles in legend order with their colours (RGB 0..1).
+# Face roles in legend order with their colours (RGB 0..1): Okabe & Ito's colour-blind safe
+# colours; VoroHexGui/colour_check.py measures every pair at least 12 CIEDE2000 units apart
+# for normal vision and each dichromacy (a test checks it).
 ROLES = (
-    ("sweep", (0.30, 0.55, 0.90), "side face of a sub-volume meshed by sweeping"),
-    ("map", (0.30, 0.75, 0.35), "face of a sub-volume meshed as a mapped block"),
-    ("midpoint", (0.65, 0.45, 0.85), "face of a sub-volume meshed by midpoint subdivision"),
-    ("none", (0.90, 0.25, 0.20), "face of a sub-volume no scheme accepts"),
-    ("source/target", (0.10, 0.25, 0.60), "source or target face of a sweep"),
-    ("decomposition", (0.98, 0.80, 0.15), "decomposition face (between two sub-volumes)"),
+    ("sweep", (0x56 / 255, 0xB4 / 255, 0xE9 / 255), "side face of a sub-volume meshed by sweeping"),
+    ("map", (0x00 / 255, 0x9E / 255, 0x73 / 255), "face of a sub-volume meshed as a mapped block"),
+    ("midpoint", (0xCC / 255, 0x79 / 255, 0xA7 / 255),
+     "face of a sub-volume meshed by midpoint subdivision"),
+    ("none", (0xD5 / 255, 0x5E / 255, 0x00 / 255), "face of a sub-volume no scheme accepts"),
+    ("source/target", (0x00 / 255, 0x72 / 255, 0xB2 / 255), "source or target face of a sweep"),
+    ("decomposition", (0xF0 / 255, 0xE4 / 255, 0x42 / 255),
+     "decomposition face (between two sub-volumes)"),
 )
 COLOURS = {r[0]: r[1] for r in ROLES}
 
@@ -32,7 +38,8 @@ RESULTS = (
     ("Schemes", "App::PropertyStringList", "Meshing scheme per sub-volume (sweep, map, none)"),
     ("Reasons", "App::PropertyStringList", "Why that scheme, per sub-volume"),
     ("FaceRoles", "App::PropertyStringList",
-     "Role of every face of the Shape, in Shape.Faces order (for colouring)"),
+     "Role of every face of the sub-volumes, one sub-volume after the other (each child "
+     "object has its own FaceRoles, in its Shape.Faces order)"),
 )
 
 
@@ -53,6 +60,15 @@ class Decomposition:
                             "Dihedral angle (degrees) below which a [1] edge is [1s]")
             obj.SharpAngle = (60.0, 1.0, 180.0, 5.0)
         VoroHexObjects.add_option_properties(obj, VoroHexObjects.GRAPH_OPTIONS)
+        if not hasattr(obj, "SubVolumeObjects"):
+            obj.addProperty("App::PropertyLinkList", "SubVolumeObjects", "Decomposition",
+                            "One object per sub-volume (its children in the tree)")
+            obj.setEditorMode("SubVolumeObjects", 1)
+        if not hasattr(obj, "Explode"):
+            obj.addProperty("App::PropertyFloat", "Explode", "Decomposition",
+                            "Moves the sub-volumes apart: 0 in place, 1 each by its distance "
+                            "from the centre")
+            obj.Explode = 0.0
         if not hasattr(obj, "Merge"):
             obj.addProperty("App::PropertyBool", "Merge", "Decomposition",
                             "Unite neighbouring sub-volumes whose union is a sweep")
@@ -72,26 +88,40 @@ class Decomposition:
     def __setstate__(self, state):
         return None
 
+    def onChanged(self, obj, prop):
+        if prop == "Explode":
+            explode(obj)
+
     def execute(self, obj):
         """Re-decomposes; on failure keeps the previous shape and raises."""
         error = VoroHexObjects.source_error(obj.Part)
-        d = None
         if error is None:
-            d = VoroHexObjects.compute_or_raise(obj, "decomposition", lambda: (
-                VoroHex.decompose(obj.Part, sharp_angle=obj.SharpAngle, merge=obj.Merge,
-                                  progress=getattr(self, "progress", None),
-                                  **VoroHexObjects.graph_options_of(obj))))
-            if d is None:  # cancelled (Status and Message say so)
-                return
-            if not d.ok or not d.shapes:
-                error = "; ".join(x.get("message", "") for x in d.diagnostics
-                                  if x.get("severity") == "error") or "the decomposition failed"
+            key = cache_key(obj)
+            data = getattr(self, "data", None)
+            if data is None or getattr(self, "key", None) != key:
+                data = VoroHexObjects.compute_or_raise(obj, "decomposition", lambda: compute(
+                    obj.Part.Shape, obj.SharpAngle, obj.Merge,
+                    VoroHexObjects.graph_options_of(obj), getattr(self, "progress", None)))
+                if data is None:  # cancelled (Status and Message say so)
+                    return
+            error = self.apply(obj, data)
         if error is not None:
             obj.Status, obj.Message = "error", error
             raise RuntimeError("VoroHex: " + error)
-        compound = Part.makeCompound(d.shapes)
-        obj.Shape = compound
-        obj.FaceRoles = face_roles(compound, d)
+
+    def apply(self, obj, data):
+        """Stores what compute() returned: the compound, one child object per sub-volume
+        with its face roles; the error, or None."""
+        d = data["decomposition"]
+        if not d.ok or not data["solids"]:
+            return "; ".join(x.get("message", "") for x in d.diagnostics
+                             if x.get("severity") == "error") or "the decomposition failed"
+        self.data, self.key = data, cache_key(obj)
+        solids = [Part.Shape() for _ in data["solids"]]
+        for shape, text in zip(solids, data["solids"]):
+            shape.importBrepFromString(text, False)
+        obj.Shape = Part.makeCompound(solids)
+        obj.FaceRoles = [r for roles in data["roles"] for r in roles]
         obj.SubVolumeCount = len(d.sub_volumes)
         obj.SubVolumesBeforeMerge = d.counts.get("sub_volumes_before_merge", 0)
         obj.DecompositionFaceCount = d.counts.get("decomposition_faces", 0)
@@ -105,13 +135,86 @@ class Decomposition:
         obj.Message = "{} sub-volumes ({}), {} before merging, {} decomposition faces".format(
             obj.SubVolumeCount, ", ".join("{} {}".format(n, s) for s, n in sorted(
                 schemes.items())), obj.SubVolumesBeforeMerge, obj.DecompositionFaceCount)
+        set_children(obj, solids, data["roles"])
+        return None
 
 
-def face_roles(compound, d):
-    """The role of every face of the compound (the sub-volumes' faces one after the other):
-    a decomposition face where it coincides with a face of another sub-volume (same area
-    and centre), a sweep's source or target, else its sub-volume's scheme."""
-    tol = 1e-7 * max(compound.BoundBox.DiagonalLength, 1e-300)
+def cache_key(obj):
+    return (obj.Part.Name if obj.Part else None, obj.SharpAngle, obj.Merge,
+            tuple(sorted(VoroHexObjects.graph_options_of(obj).items())))
+
+
+def compute(shape, sharp_angle, merge, options, progress=None):
+    """The decomposition of `shape` as plain values (no document access: it runs in a child
+    process for the GUI): the VoroHex.Decomposition without its shapes, each sub-volume as
+    a BREP string, and the role of each of its faces. apply() stores them."""
+    d = VoroHex.decompose(shape, sharp_angle=sharp_angle, merge=merge, progress=progress,
+                          **options)
+    roles = face_roles(d) if d.ok and d.shapes else []
+    solids = [s.exportBrepToString() for s in d.shapes]
+    d.shapes = []
+    return {"decomposition": d, "solids": solids, "roles": roles}
+
+
+def compute_work(report, brep, sharp_angle, merge, options):
+    """compute() of the shape `brep` (exportBrepToString()), in a VoroHexJobs child."""
+    return compute(VoroHexObjects.shape_from_brep(brep), sharp_angle, merge, options, report)
+
+
+def set_children(obj, solids, roles):
+    """One Part::Feature per sub-volume under the decomposition object (made, reused or
+    removed so that there are as many as sub-volumes)."""
+    doc = obj.Document
+    children = [c for c in obj.SubVolumeObjects if c is not None]
+    while len(children) > len(solids):
+        doc.removeObject(children.pop().Name)
+    for k, solid in enumerate(solids):
+        if k < len(children):
+            child = children[k]
+        else:
+            child = doc.addObject("Part::Feature", "{}_SubVolume".format(obj.Name))
+            for prop, kind, doc_text in (
+                    ("SubVolume", "App::PropertyInteger", "Index in the decomposition (0, 1, ...)"),
+                    ("Scheme", "App::PropertyString", "Meshing scheme of this sub-volume"),
+                    ("SubVolumeType", "App::PropertyString", "Vs or Ve"),
+                    ("FaceRoles", "App::PropertyStringList",
+                     "Role of each face, in Shape.Faces order")):
+                child.addProperty(kind, prop, "Sub-volume", doc_text)
+                child.setEditorMode(prop, 1)
+            children.append(child)
+        child.Shape = solid
+        child.SubVolume = k
+        child.Scheme = obj.Schemes[k] if k < len(obj.Schemes) else "none"
+        child.SubVolumeType = obj.Types[k] if k < len(obj.Types) else "?"
+        child.FaceRoles = roles[k] if k < len(roles) else []
+        child.Label = "{} sub-volume {} ({} {})".format(
+            obj.Part.Label if obj.Part else obj.Label, k, child.SubVolumeType, child.Scheme)
+        child.purgeTouched()
+    obj.SubVolumeObjects = children
+    explode(obj)
+
+
+def explode(obj):
+    """Moves each sub-volume from the whole's centre by Explode x its own offset."""
+    children = [c for c in getattr(obj, "SubVolumeObjects", []) if c is not None]
+    if not children:
+        return
+    centres = [c.Shape.BoundBox.Center for c in children]
+    whole = FreeCAD.Vector()
+    for c in centres:
+        whole += c
+    whole = whole * (1.0 / len(centres))
+    for child, centre in zip(children, centres):
+        child.Placement = FreeCAD.Placement((centre - whole) * obj.Explode, FreeCAD.Rotation())
+        child.purgeTouched()  # moved only: nothing to recompute
+
+
+def face_roles(d):
+    """The role of every face of every sub-volume (a list per sub-volume, in its Faces
+    order): a decomposition face where it coincides with a face of another sub-volume
+    (same area and centre), a sweep's source or target, else its sub-volume's scheme."""
+    diagonal = max((s.BoundBox.DiagonalLength for s in d.shapes), default=1.0)
+    tol = 1e-7 * max(diagonal, 1e-300)
     keys = [[(f.Area, f.CenterOfMass) for f in s.Faces] for s in d.shapes]
 
     def shared(i, area, centre):
@@ -123,19 +226,19 @@ def face_roles(compound, d):
         sv = d.sub_volumes[i] if i < len(d.sub_volumes) else {}
         scheme = sv.get("scheme", "none")
         ends = [sv.get("source"), sv.get("target")] if scheme == "sweep" else []
+        mine = []
         for k, (area, centre) in enumerate(keys[i]):
             if shared(i, area, centre):
-                roles.append("decomposition")
+                mine.append("decomposition")
             elif "Face{}".format(k + 1) in ends:
-                roles.append("source/target")
+                mine.append("source/target")
             else:
-                roles.append(scheme if scheme in COLOURS else "none")
-    if len(roles) != len(compound.Faces):  # sub-volumes sharing faces in the compound
-        return ["none"] * len(compound.Faces)
+                mine.append(scheme if scheme in COLOURS else "none")
+        roles.append(mine)
     return roles
 
 
-def makeDecomposition(doc, part, name="Decomposition", merge=True, progress=None, **options):
+def makeDecomposition(doc, part, name=None, merge=True, progress=None, data=None, **options):
     """Adds a decomposition object for `part` to `doc` and computes it. Raises ValueError
     (and leaves the document as it was) when `part` holds no single solid. progress as for
     VoroHexGraph.makeVoronoiGraph; options: sharp_angle, eps, delta, max_depth, set as the
@@ -143,7 +246,10 @@ def makeDecomposition(doc, part, name="Decomposition", merge=True, progress=None
     error = VoroHexObjects.source_error(part)
     if error is not None:
         raise ValueError("VoroHex: " + error)
-    obj = doc.addObject("Part::FeaturePython", name)
+    obj = doc.addObject("Part::FeaturePython",
+                        name or VoroHexObjects.object_name(part, "Decomposition"))
+    if name is None:
+        obj.Label = "{}_Decomposition".format(part.Label)
     Decomposition(obj)
     obj.Part = part
     try:
@@ -156,5 +262,17 @@ def makeDecomposition(doc, part, name="Decomposition", merge=True, progress=None
         from VoroHexGui import parts_view
 
         parts_view.ViewProviderDecomposition(obj.ViewObject)
+    if data is not None:
+        obj.Proxy.data, obj.Proxy.key = data, cache_key(obj)
     VoroHexObjects.compute_new(obj, progress)
     return obj
+
+
+def remove(obj):
+    """Removes a decomposition object with its sub-volume children."""
+    doc = obj.Document
+    names = [c.Name for c in getattr(obj, "SubVolumeObjects", []) if c is not None]
+    doc.removeObject(obj.Name)
+    for name in names:
+        if doc.getObject(name) is not None:
+            doc.removeObject(name)

@@ -10,12 +10,21 @@ import VoroHexGui
 import VoroHexObjects
 
 
+def is_solid(obj):
+    """True for a document object whose shape holds a solid (cheap: IsActive asks often)."""
+    if obj is None or not obj.isDerivedFrom("Part::Feature"):
+        return False
+    shape = obj.Shape
+    return not shape.isNull() and shape.ShapeType in ("Solid", "CompSolid", "Compound") and \
+        len(shape.Solids) > 0
+
+
 def selected_part():
-    """The single selected Part feature, or None."""
+    """The single selected object holding a solid, or None (a sketch, a mesh, a face...)."""
     if FreeCADGui.ActiveDocument is None:
         return None
     sel = FreeCADGui.Selection.getSelection()
-    if len(sel) == 1 and sel[0].isDerivedFrom("Part::Feature"):
+    if len(sel) == 1 and is_solid(sel[0]):
         return sel[0]
     return None
 
@@ -61,92 +70,171 @@ class HexMeshCommand:
             "FreeCADGui.getDocument('{}').setEdit(_hexmesh.Name)".format(doc.Name))
 
 
-class Busy:
-    """Progress for a long recompute: a busy dialog (shown after half a second) whose Cancel
-    stops it; the callback keeps the GUI responsive."""
-
-    current = None
+class Progress:
+    """A progress dialog for a job of the graph or decomposition commands (shown after half
+    a second; its Cancel stops the job at once). The GUI stays live: the job runs in a
+    child process and a timer polls it."""
 
     def __init__(self, text):
-        self.text, self.dialog, self.cancelled = text, None, False
-        self.start = time.time()
-        Busy.current = self
+        self.text, self.dialog, self.started = text, None, time.time()
 
-    def __call__(self, stage, fraction):
-        if self.dialog is None and time.time() - self.start > 0.5:
-            self.dialog = QtGui.QProgressDialog(self.text, "Cancel", 0, 0,
+    def update(self, job):
+        if self.dialog is None and time.time() - self.started > 0.5:
+            self.dialog = QtGui.QProgressDialog(self.text, "Cancel", 0, 100,
                                                 FreeCADGui.getMainWindow())
             self.dialog.setObjectName("vorohex_busy")
             self.dialog.setWindowTitle("VoroHex")
             self.dialog.setWindowModality(QtCore.Qt.WindowModal)
-            self.dialog.canceled.connect(self.cancel)
+            self.dialog.setAutoClose(False)
+            self.dialog.setAutoReset(False)
+            self.dialog.canceled.connect(job.cancel)
             self.dialog.show()
-        QtGui.QApplication.processEvents()
-        if self.dialog is not None and self.dialog.wasCanceled():
-            self.cancelled = True
-        return not self.cancelled
-
-    def cancel(self):
-        self.cancelled = True
+        if self.dialog is not None:
+            self.dialog.setLabelText("{}\n{} ({:.1f} s)".format(self.text, job.stage,
+                                                                job.elapsed))
+            self.dialog.setValue(int(100 * max(0.0, min(1.0, job.fraction))))
 
     def close(self):
         if self.dialog is not None:
-            # Closing a QProgressDialog emits `canceled`: a run that finished after its
-            # dialog had appeared was then taken as cancelled and its result thrown away.
-            self.dialog.canceled.disconnect(self.cancel)
+            # Closing a QProgressDialog emits `canceled`: disconnect first.
+            self.dialog.canceled.disconnect()
             self.dialog.close()
             self.dialog.deleteLater()
-        Busy.current = None
+            self.dialog = None
 
 
-def run_cancellable(doc, label, work):
-    """Runs work(busy) (which makes document objects, passing `busy` as their progress) in
-    one transaction with a Busy dialog; a cancelled run removes what it made, leaving the
-    document as it was. Returns the objects made, or None when cancelled."""
-    before = set(o.Name for o in doc.Objects)
+# The jobs running now (tests and scripts wait for them: VoroHexGui.commands.wait()).
+RUNNING = []
+
+
+def start(label, work, args, on_done):
+    """Runs work(report, *args) (a module-level function) in a child process with a
+    Progress dialog; on_done(value, error) follows on the GUI thread: error is None,
+    "cancelled", or why it failed."""
+    import VoroHexJobs
+    from VoroHexGui import widgets
+
+    progress = Progress("{}...".format(label))
+
+    def done(job):
+        progress.close()
+        if runner in RUNNING:
+            RUNNING.remove(runner)
+        try:
+            value = job.result()
+        except VoroHexJobs.Cancelled:
+            FreeCAD.Console.PrintMessage("VoroHex: {} cancelled\n".format(label))
+            on_done(None, "cancelled")
+            return
+        except RuntimeError as e:
+            why = str(e).strip().splitlines()[-1] if str(e).strip() else "failed"
+            FreeCAD.Console.PrintError("VoroHex: {}: {}\n".format(label, why))
+            on_done(None, why)
+            return
+        on_done(value, None)
+
+    runner = widgets.JobRunner(VoroHexJobs.Job(work, *args), progress.update, done,
+                               parent=FreeCADGui.getMainWindow())
+    RUNNING.append(runner)
+    return runner
+
+
+def wait(seconds=None):
+    """Processes events until no job of these commands runs (scripts, tests)."""
+    end = None if seconds is None else time.time() + seconds
+    while RUNNING and (end is None or time.time() < end):
+        QtGui.QApplication.processEvents()
+        time.sleep(0.01)
+    return not RUNNING
+
+
+def make_object(doc, label, make):
+    """make() in one transaction; an error leaves the document as it was."""
     doc.openTransaction(label)
-    busy = Busy("{}...".format(label))
     try:
-        work(busy)
-    except Exception:  # VoroHex.Cancelled from a make* function, also through doCommand
-        if not busy.cancelled:
-            doc.abortTransaction()
-            raise
-    finally:
-        busy.close()
-    made = [o for o in doc.Objects if o.Name not in before]
-    if busy.cancelled:
-        names = [o.Name for o in made]
+        obj = make()
+    except Exception as e:
         doc.abortTransaction()
-        for name in names:  # in case the transaction did not hold them
-            if doc.getObject(name) is not None:
-                doc.removeObject(name)
-        FreeCAD.Console.PrintMessage("VoroHex: {} cancelled\n".format(label))
+        FreeCAD.Console.PrintError("VoroHex: {}: {}\n".format(label, e))
         return None
     doc.commitTransaction()
-    return made
+    return obj
 
 
-def make_and_edit(part, label, module, factory):
-    """`module.factory(doc, part, progress=...)` as a recorded, cancellable command (the
-    busy dialog), then the new object's task panel; a message if `part` is no solid."""
+def make_and_edit(part, label, module, factory, work, args):
+    """Computes `work(report, brep, *args)` in a child process, then `module.factory(doc,
+    part, data=...)` and the new object's task panel; a message if `part` is no solid."""
     error = VoroHexObjects.source_error(part)
     if error is not None:
         FreeCAD.Console.PrintError("VoroHex: {}\n".format(error))
         QtGui.QMessageBox.warning(FreeCADGui.getMainWindow(), "VoroHex: " + label, error)
-        return
+        return None
     doc = part.Document
-    FreeCADGui.addModule(module)
-    FreeCADGui.addModule("VoroHexGui.commands")
-    made = run_cancellable(doc, label, lambda busy: FreeCADGui.doCommand(
-        "_made = {}.{}(FreeCAD.getDocument('{}'), FreeCAD.getDocument('{}').getObject('{}'), "
-        "progress=VoroHexGui.commands.Busy.current)".format(module, factory, doc.Name,
-                                                            doc.Name, part.Name)))
-    if not made:  # cancelled, or nothing was made
-        return
-    FreeCADGui.Selection.clearSelection()
-    FreeCADGui.doCommand("FreeCADGui.getDocument('{}').setEdit('{}')".format(doc.Name,
-                                                                             made[0].Name))
+    import importlib
+
+    factory = getattr(importlib.import_module(module), factory)
+
+    def done(data, why):
+        if data is None or doc.getObject(part.Name) is None:
+            return
+        obj = make_object(doc, label, lambda: factory(doc, part, data=data))
+        if obj is None:
+            return
+        FreeCADGui.Selection.clearSelection()
+        FreeCADGui.getDocument(doc.Name).setEdit(obj.Name)
+
+    return start(label, work, (part.Shape.exportBrepToString(),) + tuple(args), done)
+
+
+def make_preview(mesh_obj, part, options, on_done):
+    """The Voronoi graph and the decomposition of `part` with `options` (sharp_angle, eps,
+    delta, max_depth), computed in one child process, as document objects replacing the
+    previous preview of `mesh_obj`; on_done((graph, decomposition) or None, error)."""
+    import VoroHexGraph
+    import VoroHexParts
+
+    doc = part.Document
+    graph_options = dict(options)
+    angle = graph_options.pop("sharp_angle")
+
+    def done(data, why):
+        if data is None:
+            on_done(None, "Preview cancelled." if why == "cancelled" else why)
+            return
+
+        def make():
+            remove_preview(mesh_obj)
+            g = VoroHexGraph.makeVoronoiGraph(doc, part, data=data[0], **options)
+            p = VoroHexParts.makeDecomposition(doc, part, data=data[1], **options)
+            mesh_obj.PreviewObjects = [g.Name, p.Name]
+            return g, p
+
+        made = make_object(doc, "VoroHex preview", make)
+        if made is not None:
+            for o in made:
+                o.ViewObject.Visibility = True
+            if part.ViewObject is not None:
+                part.ViewObject.Transparency = 70
+        on_done(made, None if made else "the preview failed (see the Report view)")
+
+    return start("Preview", VoroHexObjects.preview_work,
+                 (part.Shape.exportBrepToString(), angle, graph_options), done)
+
+
+def remove_preview(mesh_obj):
+    """Removes the graph and decomposition a previous Preview of `mesh_obj` made."""
+    import VoroHexParts
+
+    doc = mesh_obj.Document
+    for name in list(getattr(mesh_obj, "PreviewObjects", [])):
+        obj = doc.getObject(name)
+        if obj is None:
+            continue
+        if hasattr(obj, "SubVolumeObjects"):
+            VoroHexParts.remove(obj)
+        else:
+            doc.removeObject(name)
+    mesh_obj.PreviewObjects = []
 
 
 class VoronoiGraphCommand:
@@ -162,7 +250,10 @@ class VoronoiGraphCommand:
         return selected_part() is not None
 
     def Activated(self):
-        make_and_edit(selected_part(), "Voronoi graph", "VoroHexGraph", "makeVoronoiGraph")
+        import VoroHexGraph
+
+        make_and_edit(selected_part(), "Voronoi graph", "VoroHexGraph", "makeVoronoiGraph",
+                      VoroHexGraph.compute_work, (60.0, {}))
 
 
 class DecompositionCommand:
@@ -178,16 +269,26 @@ class DecompositionCommand:
         return selected_part() is not None
 
     def Activated(self):
-        make_and_edit(selected_part(), "Decomposition", "VoroHexParts", "makeDecomposition")
+        import VoroHexParts
+
+        make_and_edit(selected_part(), "Decomposition", "VoroHexParts", "makeDecomposition",
+                      VoroHexParts.compute_work, (60.0, True, {}))
+
+
+def is_hex_mesh(obj):
+    """True for a FEM mesh object whose volumes are all hexahedra (not a tetrahedral mesh)."""
+    if obj is None or not obj.isDerivedFrom("Fem::FemMeshObject"):
+        return False
+    fm = obj.FemMesh
+    return fm.VolumeCount > 0 and fm.HexaCount == fm.VolumeCount
 
 
 def selected_fem_mesh():
-    """The single selected FEM mesh object holding hexahedra, or None."""
+    """The single selected FEM mesh object holding hexahedra only, or None."""
     if FreeCADGui.ActiveDocument is None:
         return None
     sel = FreeCADGui.Selection.getSelection()
-    if len(sel) == 1 and sel[0].isDerivedFrom("Fem::FemMeshObject") and \
-            sel[0].FemMesh.VolumeCount > 0:
+    if len(sel) == 1 and is_hex_mesh(sel[0]):
         return sel[0]
     return None
 

@@ -1,26 +1,69 @@
-# View provider and task panel of the Voronoi graph object: edges coloured by type, and a
-# legend (colour, type, meaning, count, shown or not) that toggles types.
+# View provider and task panel of the Voronoi graph object: edges coloured by type, the
+# f_s faces as translucent triangles (a Coin node of their own: no outline, no point
+# markers), and a legend (colour, type, count, meaning) that toggles types. While the
+# panel is open the solid fades, so the graph inside it is seen.
 import FreeCADGui
 from PySide import QtCore, QtGui
 
 import VoroHexGraph
 import VoroHexGui
-from VoroHexGui.view_provider import ViewProviderBase
+from VoroHexGui.view_provider import ViewProviderBase, fade_solid
 
 
 class ViewProviderVoronoiGraph(ViewProviderBase):
     ICON = "VoroHexGraph.svg"
 
+    def attach(self, vobj):
+        super().attach(vobj)
+        from pivy import coin
+
+        self.fs_switch = coin.SoSwitch()
+        sep = coin.SoSeparator()
+        hints = coin.SoShapeHints()
+        hints.vertexOrdering = coin.SoShapeHints.COUNTERCLOCKWISE
+        hints.shapeType = coin.SoShapeHints.UNKNOWN_SHAPE_TYPE  # lit from both sides
+        self.fs_material = coin.SoMaterial()
+        self.fs_material.diffuseColor.setValue(*VoroHexGraph.FS_COLOUR)
+        self.fs_material.transparency.setValue(0.55)
+        self.fs_coords = coin.SoCoordinate3()
+        self.fs_faces = coin.SoIndexedFaceSet()
+        for node in (hints, self.fs_material, self.fs_coords, self.fs_faces):
+            sep.addChild(node)
+        self.fs_switch.addChild(sep)
+        self.fs_switch.whichChild = 0
+        vobj.RootNode.addChild(self.fs_switch)
+        self.draw_fs_faces(vobj.Object)
+
+    def draw_fs_faces(self, obj):
+        """The f_s faces' triangles (FsFacePoints, FsFaceTriangles) into the Coin node."""
+        if not hasattr(self, "fs_coords") or not hasattr(obj, "FsFaceTriangles"):
+            return
+        points = [(p.x, p.y, p.z) for p in obj.FsFacePoints]
+        tris = list(obj.FsFaceTriangles)
+        index = []
+        for k in range(0, len(tris) - 2, 3):
+            index += [tris[k], tris[k + 1], tris[k + 2], -1]
+        self.fs_coords.point.setValues(0, len(points), points)
+        self.fs_coords.point.setNum(len(points))
+        self.fs_faces.coordIndex.setValues(0, len(index), index)
+        self.fs_faces.coordIndex.setNum(len(index))
+
     def updateData(self, obj, prop):
         if prop in ("SegmentTypes", "Shape"):
             colour_edges(obj)
+        if prop in ("FsFacePoints", "FsFaceTriangles"):
+            self.draw_fs_faces(obj)
+
+    def onChanged(self, vobj, prop):
+        if prop == "Visibility" and hasattr(self, "fs_switch"):
+            self.fs_switch.whichChild = 0 if vobj.Visibility else -1
 
     def make_panel(self, obj):
         return GraphTaskPanel(obj)
 
 
 def colour_edges(obj):
-    """One colour per line segment from its type; thick lines, visible vertices."""
+    """One colour per line segment from its type; thick lines, small vertices."""
     vobj = obj.ViewObject
     if vobj is None:
         return
@@ -28,13 +71,10 @@ def colour_edges(obj):
     if len(types) != len(obj.Shape.Edges):
         return  # mid-recompute: the shape and the list are set one after the other
     vobj.LineWidth = 3.0
-    vobj.PointSize = 6.0
-    vobj.PointColor = (0.1, 0.1, 0.1)
+    vobj.PointSize = 4.0
+    vobj.PointColor = (0.25, 0.25, 0.25)
     if types:
         vobj.LineColorArray = [VoroHexGraph.COLOURS.get(t, (0, 0, 0)) for t in types]
-    if obj.Shape.Faces:  # the f_s faces: translucent, so the graph stays visible through them
-        vobj.ShapeColor = VoroHexGraph.FS_COLOUR
-        vobj.Transparency = 65
 
 
 def swatch(rgb):
@@ -45,7 +85,7 @@ def swatch(rgb):
 
 class EdgeTypeTable(QtGui.QTableWidget):
     """The edge-type legend of a Voronoi graph object: per type its colour, name (a check
-    box that shows or hides the type), number of edges and meaning."""
+    box that shows or hides the type), number of edges and meaning (wrapped, never cut)."""
 
     def __init__(self, parent=None):
         super().__init__(len(VoroHexGraph.EDGE_TYPES), 3, parent)
@@ -54,6 +94,9 @@ class EdgeTypeTable(QtGui.QTableWidget):
         self.setHorizontalHeaderLabels(["Type", "Edges", "Meaning"])
         self.verticalHeader().setVisible(False)
         self.setEditTriggers(QtGui.QAbstractItemView.NoEditTriggers)
+        self.setSelectionMode(QtGui.QAbstractItemView.NoSelection)
+        self.setHorizontalScrollBarPolicy(QtCore.Qt.ScrollBarAlwaysOff)
+        self.setVerticalScrollBarPolicy(QtCore.Qt.ScrollBarAlwaysOff)
         for row, (name, rgb, meaning) in enumerate(VoroHexGraph.EDGE_TYPES):
             item = QtGui.QTableWidgetItem(swatch(rgb), name)
             item.setFlags(QtCore.Qt.ItemIsUserCheckable | QtCore.Qt.ItemIsEnabled)
@@ -63,11 +106,40 @@ class EdgeTypeTable(QtGui.QTableWidget):
             explained = QtGui.QTableWidgetItem(meaning)
             explained.setToolTip(meaning)
             self.setItem(row, 2, explained)
-        self.horizontalHeader().setStretchLastSection(True)
+        header = self.horizontalHeader()
+        header.setSectionResizeMode(0, QtGui.QHeaderView.ResizeToContents)
+        header.setSectionResizeMode(1, QtGui.QHeaderView.ResizeToContents)
+        header.setSectionResizeMode(2, QtGui.QHeaderView.Stretch)
         self.setWordWrap(True)
-        self.resizeColumnsToContents()
-        self.resizeRowsToContents()
+        self.setTextElideMode(QtCore.Qt.ElideNone)
         self.itemChanged.connect(self.toggled)
+
+    def fit_rows(self):
+        """Rows as tall as their wrapped text, the table as tall as its rows (no scrolling,
+        no cut text)."""
+        self.resizeRowsToContents()
+        height = self.horizontalHeader().height() + 2 * self.frameWidth()
+        height += sum(self.rowHeight(r) for r in range(self.rowCount()))
+        self.setMinimumHeight(height)
+        self.setMaximumHeight(height)
+
+    def resizeEvent(self, event):
+        super().resizeEvent(event)
+        QtCore.QTimer.singleShot(0, self.fit_rows)  # after the columns took their widths
+
+    def cut_cells(self):
+        """(row, column) of every cell whose text does not fit in it (tests: none)."""
+        cut = []
+        for r in range(self.rowCount()):
+            for c in range(self.columnCount()):
+                item = self.item(r, c)
+                fm = QtGui.QFontMetrics(item.font() if item.font() else self.font())
+                width = self.columnWidth(c) - 8 - (26 if c == 0 else 0)  # icon, check box
+                need = fm.boundingRect(QtCore.QRect(0, 0, max(width, 1), 10000),
+                                       int(QtCore.Qt.TextWordWrap), item.text())
+                if need.width() > width + 1 or need.height() > self.rowHeight(r):
+                    cut.append((r, c))
+        return cut
 
     def set_graph(self, obj):
         """Shows the counts and shown types of a graph object (None: empty)."""
@@ -94,12 +166,12 @@ class EdgeTypeTable(QtGui.QTableWidget):
             return
         self.obj.ShownTypes = [self.item(r, 0).text() for r in range(self.rowCount())
                                if self.item(r, 0).checkState() == QtCore.Qt.Checked]
-        self.obj.Document.recompute()
+        self.obj.recompute()  # redraws from the graph kept by the object: no new graph
         self.refresh()
 
 
 class GraphTaskPanel:
-    """The legend (EdgeTypeTable) and the graph's counts."""
+    """The legend (EdgeTypeTable) and the graph's counts; the solid fades meanwhile."""
 
     def __init__(self, obj):
         self.obj = obj
@@ -112,7 +184,6 @@ class GraphTaskPanel:
         self.summary.setWordWrap(True)
         layout.addWidget(self.summary)
         self.table = EdgeTypeTable(self.form)
-        self.table.setMinimumHeight(420)
         layout.addWidget(self.table)
         self.table.itemChanged.connect(lambda item: self.refresh())
         self.table.set_graph(obj)
@@ -122,13 +193,19 @@ class GraphTaskPanel:
         self.fs_faces.setToolTip("Voronoi faces between two model faces that share nothing: "
                                  "where the solid is swept between them (drawn translucent)")
         layout.addWidget(self.fs_faces)
+        self.not_drawn = QtGui.QLabel()
+        self.not_drawn.setObjectName("lbl_fs_not_drawn")
+        self.not_drawn.setWordWrap(True)
+        layout.addWidget(self.not_drawn)
+        layout.addStretch(1)
         self.fs_faces.toggled.connect(self.fs_toggled)
+        self.faded = fade_solid(obj.Part, transparency=80)
         self.refresh()
 
     def fs_toggled(self, on):
         if bool(self.obj.ShowFsFaces) != on:
             self.obj.ShowFsFaces = on
-            self.obj.Document.recompute()
+            self.obj.recompute()
         self.refresh()
 
     def counts(self):
@@ -142,11 +219,15 @@ class GraphTaskPanel:
         self.fs_faces.setText("f_s faces ({} of {} drawn)".format(self.obj.FsFacesDrawn,
                                                                   self.obj.FsFaceCount))
         self.fs_faces.blockSignals(False)
+        missing = list(getattr(self.obj, "FsFacesNotDrawn", []))
+        self.not_drawn.setText("Not drawn: " + "; ".join(missing) if missing else "")
+        self.not_drawn.setVisible(bool(missing))
 
     def getStandardButtons(self):
         return int(QtGui.QDialogButtonBox.Close)
 
     def reject(self):
+        self.faded.restore()
         FreeCADGui.ActiveDocument.resetEdit()
         return True
 

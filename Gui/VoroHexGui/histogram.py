@@ -1,25 +1,23 @@
-# A small painted bar chart of the scaled Jacobian histogram (20 bins over [-1, 1]).
+# A small painted bar chart of the scaled Jacobian histogram (20 bins over [-1, 1]), its
+# bars in the colours of the Mesh quality view (palette.BANDS).
 from PySide import QtCore, QtGui
+
+from VoroHexGui import palette
 
 BIN_WIDTH = 0.1
 LOW = -1.0
 
 
 def bin_colour(lower):
-    """Red for inverted (< 0), orange for poor (< 0.2), amber below 0.5, green otherwise."""
-    if lower < 0:
-        return QtGui.QColor(200, 40, 40)
-    if lower < 0.2:
-        return QtGui.QColor(235, 130, 30)
-    if lower < 0.5:
-        return QtGui.QColor(220, 190, 40)
-    return QtGui.QColor(60, 160, 80)
+    """The quality view's colour of the values in the bin [lower, lower + 0.1)."""
+    return QtGui.QColor.fromRgbF(*palette.band_colour(lower + 0.5 * BIN_WIDTH))
 
 
 class HistogramWidget(QtGui.QWidget):
     def __init__(self, parent=None):
         super().__init__(parent)
         self.counts = []
+        self.setObjectName("histogram")
         self.setMinimumHeight(130)
 
     def set_counts(self, counts):
@@ -29,10 +27,21 @@ class HistogramWidget(QtGui.QWidget):
     def sizeHint(self):
         return QtCore.QSize(320, 140)
 
+    def y_labels(self):
+        top = max(self.counts) if self.counts else 0
+        return [str(top), "0"]
+
+    def plot_rect(self):
+        """The bars' frame: left of it room for the widest y label, below for the x labels."""
+        fm = self.fontMetrics()
+        left = max(fm.horizontalAdvance(t) for t in self.y_labels() + ["0"]) + 8
+        return self.rect().adjusted(left, fm.height() // 2 + 2, -14, -(fm.height() + 4))
+
     def paintEvent(self, event):
         p = QtGui.QPainter(self)
         p.setRenderHint(QtGui.QPainter.Antialiasing, False)
-        rect = self.rect().adjusted(28, 6, -14, -20)
+        rect = self.plot_rect()
+        fm = self.fontMetrics()
         p.fillRect(self.rect(), self.palette().base())
         p.setPen(self.palette().text().color())
         p.drawRect(rect)
@@ -53,7 +62,9 @@ class HistogramWidget(QtGui.QWidget):
         p.setPen(self.palette().text().color())
         for k in range(0, len(shown) + 1, max(1, len(shown) // 5)):
             x = rect.left() + k * w
-            p.drawText(QtCore.QRectF(x - 20, rect.bottom() + 2, 40, 16), QtCore.Qt.AlignCenter,
-                       "{:.1f}".format(LOW + (first + k) * BIN_WIDTH))
-        p.drawText(QtCore.QRectF(0, rect.top(), 26, 16), QtCore.Qt.AlignRight, str(top))
-        p.drawText(QtCore.QRectF(0, rect.bottom() - 14, 26, 16), QtCore.Qt.AlignRight, "0")
+            p.drawText(QtCore.QRectF(x - 20, rect.bottom() + 2, 40, fm.height() + 2),
+                       QtCore.Qt.AlignCenter, "{:.1f}".format(LOW + (first + k) * BIN_WIDTH))
+        label_w = rect.left() - 4
+        for text, y in ((str(top), rect.top()), ("0", rect.bottom())):
+            p.drawText(QtCore.QRectF(0, y - fm.height() / 2, label_w, fm.height()),
+                       QtCore.Qt.AlignRight | QtCore.Qt.AlignVCenter, text)

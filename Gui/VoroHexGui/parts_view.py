@@ -1,44 +1,94 @@
-# View provider and task panel of the decomposition object: faces coloured by the scheme
-# of their sub-volume, decomposition faces and sweep ends marked; the panel is the legend
-# and a table of sub-volumes (selecting a row selects that sub-volume's faces).
+# View provider and task panel of the decomposition object. The sub-volumes are child
+# objects (shown, hidden, moved apart one by one), their faces coloured by role; the
+# decomposition object itself draws nothing of its own (display mode "Sub-volumes"), so
+# nothing is drawn twice. The panel is the legend, an Explode slider and the table of
+# sub-volumes: a row selects its sub-volume in the 3D view, a pick in 3D selects its row.
+# While it is open the solid shows as edges only (its faces would fight with the pieces').
 import FreeCADGui
 from PySide import QtCore, QtGui
 
 import VoroHexGui
-from VoroHexGui.view_provider import ViewProviderBase
 import VoroHexParts
 from VoroHexGui.graph_view import swatch
+from VoroHexGui.view_provider import ViewProviderBase, fade_solid
+
+MODE = "Sub-volumes"
 
 
 class ViewProviderDecomposition(ViewProviderBase):
     ICON = "VoroHexParts.svg"
 
+    def attach(self, vobj):
+        super().attach(vobj)
+        from pivy import coin
+
+        vobj.addDisplayMode(coin.SoGroup(), MODE)
+
+    def getDisplayModes(self, vobj):
+        return [MODE]
+
+    def getDefaultDisplayMode(self):
+        return MODE
+
+    def setDisplayMode(self, mode):
+        return mode
+
+    def claimChildren(self):
+        return [c for c in getattr(self.Object, "SubVolumeObjects", []) if c is not None]
+
     def updateData(self, obj, prop):
-        if prop in ("FaceRoles", "Shape"):
-            colour_faces(obj)
+        if prop in ("SubVolumeObjects", "FaceRoles"):
+            colour_children(obj)
+            if obj.ViewObject is not None and obj.ViewObject.DisplayMode != MODE:
+                obj.ViewObject.DisplayMode = MODE
+
+    def onChanged(self, vobj, prop):
+        if prop == "Visibility":  # the sub-volumes show and hide with it
+            for child in self.claimChildren():
+                if child.ViewObject is not None:
+                    child.ViewObject.Visibility = vobj.Visibility
+
+    def onDelete(self, vobj, subelements):
+        doc = vobj.Object.Document
+        for child in self.claimChildren():
+            if doc.getObject(child.Name) is not None:
+                doc.removeObject(child.Name)
+        return True
 
     def make_panel(self, obj):
         return PartsTaskPanel(obj)
 
 
-def colour_faces(obj):
-    vobj = obj.ViewObject
-    if vobj is None:
-        return
-    roles = list(obj.FaceRoles)
-    if not roles or len(roles) != len(obj.Shape.Faces):
-        return
-    vobj.LineWidth = 2.0
-    vobj.DiffuseColor = [VoroHexParts.COLOURS.get(r, (0.5, 0.5, 0.5)) + (0.0,) for r in roles]
+def colour_children(obj):
+    """Each sub-volume's faces in the colour of their role."""
+    for child in getattr(obj, "SubVolumeObjects", []):
+        if child is None or child.ViewObject is None:
+            continue
+        roles = list(child.FaceRoles)
+        if len(roles) != len(child.Shape.Faces):
+            continue
+        child.ViewObject.LineWidth = 1.0
+        child.ViewObject.DiffuseColor = [VoroHexParts.COLOURS.get(r, (0.5, 0.5, 0.5)) + (0.0,)
+                                         for r in roles]
 
 
-def sub_volume_faces(obj, index):
-    """Names ("Face3", ...) of the compound's faces that bound sub-volume `index`."""
-    solids = obj.Shape.Solids
-    if index >= len(solids):
-        return []
-    return ["Face{}".format(k + 1) for k, f in enumerate(obj.Shape.Faces)
-            if any(f.isSame(g) for g in solids[index].Faces)]
+class PickObserver:
+    """Selection in the 3D view or the tree -> the table's row."""
+
+    def __init__(self, panel):
+        self.panel = panel
+
+    def addSelection(self, doc, obj, sub, pnt):
+        self.panel.picked(obj)
+
+    def setSelection(self, doc):
+        return
+
+    def removeSelection(self, doc, obj, sub):
+        return
+
+    def clearSelection(self, doc):
+        return
 
 
 class PartsTaskPanel:
@@ -52,41 +102,116 @@ class PartsTaskPanel:
         summary.setObjectName("lbl_parts_summary")
         summary.setWordWrap(True)
         layout.addWidget(summary)
-        legend = QtGui.QListWidget()
-        legend.setObjectName("lst_roles")
-        for name, rgb, meaning in VoroHexParts.ROLES:
-            legend.addItem(QtGui.QListWidgetItem(swatch(rgb), "{}: {}".format(name, meaning)))
-        legend.setMaximumHeight(140)
+        legend = QtGui.QTableWidget(len(VoroHexParts.ROLES), 2)
+        legend.setObjectName("tbl_roles")
+        legend.setHorizontalHeaderLabels(["Face role", "Meaning"])
+        legend.verticalHeader().setVisible(False)
+        legend.setEditTriggers(QtGui.QAbstractItemView.NoEditTriggers)
+        legend.setSelectionMode(QtGui.QAbstractItemView.NoSelection)
+        legend.setWordWrap(True)
+        legend.setTextElideMode(QtCore.Qt.ElideNone)
+        legend.setHorizontalScrollBarPolicy(QtCore.Qt.ScrollBarAlwaysOff)
+        legend.setVerticalScrollBarPolicy(QtCore.Qt.ScrollBarAlwaysOff)
+        for row, (name, rgb, meaning) in enumerate(VoroHexParts.ROLES):
+            legend.setItem(row, 0, QtGui.QTableWidgetItem(swatch(rgb), name))
+            legend.setItem(row, 1, QtGui.QTableWidgetItem(meaning))
+        header = legend.horizontalHeader()
+        header.setSectionResizeMode(0, QtGui.QHeaderView.ResizeToContents)
+        header.setSectionResizeMode(1, QtGui.QHeaderView.Stretch)
+        self.legend = legend
         layout.addWidget(legend)
+        row = QtGui.QHBoxLayout()
+        row.addWidget(QtGui.QLabel("Explode:"))
+        self.explode = QtGui.QSlider(QtCore.Qt.Horizontal)
+        self.explode.setObjectName("sl_explode")
+        self.explode.setRange(0, 100)
+        self.explode.setValue(int(round(50 * obj.Explode)))
+        self.explode.setToolTip("Moves the sub-volumes apart (property Explode, 0 to 2)")
+        self.explode.valueChanged.connect(self.exploded)
+        row.addWidget(self.explode)
+        layout.addLayout(row)
         self.table = QtGui.QTableWidget(len(obj.Schemes), 4)
         self.table.setObjectName("tbl_sub_volumes")
         self.table.setHorizontalHeaderLabels(["Id", "Type", "Scheme", "Why"])
         self.table.verticalHeader().setVisible(False)
         self.table.setEditTriggers(QtGui.QAbstractItemView.NoEditTriggers)
         self.table.setSelectionBehavior(QtGui.QAbstractItemView.SelectRows)
-        for row, (t, s, why) in enumerate(zip(obj.Types, obj.Schemes, obj.Reasons)):
-            for col, text in enumerate((str(row), t, s, why)):
+        for r, (t, s, why) in enumerate(zip(obj.Types, obj.Schemes, obj.Reasons)):
+            for col, text in enumerate((str(r), t, s, why)):
                 item = QtGui.QTableWidgetItem(text)
                 item.setToolTip(text)
-                self.table.setItem(row, col, item)
+                self.table.setItem(r, col, item)
         self.table.horizontalHeader().setStretchLastSection(True)
         self.table.resizeColumnsToContents()
+        self.table.setMinimumHeight(160)
         layout.addWidget(self.table)
         self.table.itemSelectionChanged.connect(self.selected)
+        self.syncing = False
+        self.faded = fade_solid(obj.Part, wireframe=True)
+        FreeCADGui.Selection.clearSelection()
+        self.observer = PickObserver(self)
+        FreeCADGui.Selection.addObserver(self.observer)
+        QtCore.QTimer.singleShot(0, self.fit_legend)
+
+    def fit_legend(self):
+        self.legend.resizeRowsToContents()
+        height = self.legend.horizontalHeader().height() + 2 * self.legend.frameWidth() + sum(
+            self.legend.rowHeight(r) for r in range(self.legend.rowCount()))
+        self.legend.setFixedHeight(height)
+
+    def children(self):
+        return [c for c in self.obj.SubVolumeObjects if c is not None]
+
+    def exploded(self, value):
+        self.obj.Explode = value / 50.0
 
     def selected(self):
+        """Table rows -> the sub-volumes selected in the 3D view and the tree."""
+        if self.syncing:
+            return
         rows = sorted({i.row() for i in self.table.selectedItems()})
-        FreeCADGui.Selection.clearSelection()
-        for r in rows:
-            FreeCADGui.Selection.addSelection(self.obj, sub_volume_faces(self.obj, r))
+        children = self.children()
+        self.syncing = True
+        try:
+            FreeCADGui.Selection.clearSelection()
+            for r in rows:
+                if r < len(children):
+                    FreeCADGui.Selection.addSelection(children[r])
+        finally:
+            self.syncing = False
+
+    def picked(self, obj_name):
+        """A pick in 3D (or the tree) of a sub-volume -> its table row."""
+        if self.syncing:
+            return
+        names = [c.Name for c in self.children()]
+        if obj_name not in names:
+            return
+        self.syncing = True
+        try:
+            self.table.selectRow(names.index(obj_name))
+        finally:
+            self.syncing = False
 
     def getStandardButtons(self):
         return int(QtGui.QDialogButtonBox.Close)
 
     def reject(self):
+        FreeCADGui.Selection.removeObserver(self.observer)
         FreeCADGui.Selection.clearSelection()
+        self.faded.restore()
         FreeCADGui.ActiveDocument.resetEdit()
         return True
 
     def accept(self):
         return self.reject()
+
+
+def sub_volume_faces(obj, index):
+    """Names ("Face3", ...) of the compound's faces that bound sub-volume `index`."""
+    solids = obj.Shape.Solids
+    if index >= len(solids):
+        return []
+    return ["Face{}".format(k + 1) for k, f in enumerate(obj.Shape.Faces)
+            if any(f.isSame(g) for g in solids[index].Faces)]
+

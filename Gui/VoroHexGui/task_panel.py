@@ -1,5 +1,8 @@
-# Task panel of the VoroHex mesh object (the FemMeshGmsh task panel pattern): edit the
-# options, Run (with progress and Stop), and see the quality summary and histogram.
+# Task panel of the VoroHex mesh object, laid out like FreeCAD's own mesh panels: the
+# solid, the size (with the hex count to expect), the element order, Run/Stop, and the
+# result (scheme, counts, quality, histogram, a banner when the mesh is not structured).
+# Everything else sits in collapsed sections below. Meshing runs in a child process
+# (VoroHexJobs), so the GUI never waits for it and Stop ends it at once.
 import re
 
 import FreeCAD
@@ -8,6 +11,9 @@ from PySide import QtCore, QtGui
 
 import VoroHex
 import VoroHexGui
+import VoroHexJobs
+import VoroHexObjects
+from VoroHexGui import widgets
 from VoroHexGui.histogram import HistogramWidget
 
 # Widget per option name (VoroHex.OPTIONS is the one option table; options without a widget
@@ -22,10 +28,22 @@ WIDGETS = {
     "distance_rel_tol": "le_distance_rel_tol",
 }
 
+# Schemes that are not a structured (block, sweep, midpoint) mesh: the tetrahedral fallback
+# and the grid mesher (issue 23) that replaces it.
+UNSTRUCTURED = ("tet-split", "grid")
+
+# The hex count above which Run asks before it starts (a long run and much memory).
+CONFIRM_ABOVE = 2_000_000
+
 
 def _get_property(obj, option):
     value = getattr(obj, option.prop)
     return value.Value if hasattr(value, "Value") else value
+
+
+def unstructured_parts(scheme):
+    """The schemes of "sweep+tet-split" that are not structured (empty: all structured)."""
+    return [s for s in (scheme or "").split("+") if s in UNSTRUCTURED]
 
 
 def summary_text(obj):
@@ -33,17 +51,36 @@ def summary_text(obj):
     if obj.Status == "error":
         return "Error: " + obj.Message
     if obj.Status != "ok":
-        return "Not meshed yet: press Run or OK."
-    return ("{} hexahedra, {} nodes\n"
-            "Scheme: {}, {} sub-volume(s)\n"
+        return "Not meshed yet: press Run."
+    return ("Scheme: {}, {} sub-volume(s)\n"
+            "{:,} hexahedra, {:,} nodes\n"
             "Scaled Jacobian: min {:.3f}, mean {:.3f}\n"
             "Before smoothing: min {:.3f}, mean {:.3f}\n"
-            "Volume error: {:.2e}").format(obj.HexCount, obj.NodeCount, obj.Scheme or "?",
-                                           obj.SubVolumeCount, obj.MinScaledJacobian,
+            "Volume error: {:.2e}").format(obj.Scheme or "?", obj.SubVolumeCount, obj.HexCount,
+                                           obj.NodeCount, obj.MinScaledJacobian,
                                            obj.MeanScaledJacobian,
                                            obj.MinScaledJacobianBeforeSmoothing,
                                            obj.MeanScaledJacobianBeforeSmoothing,
                                            obj.VolumeError)
+
+
+def mesh_job(shape, options):
+    """A VoroHexJobs.Job meshing `shape` with keyword `options` in a child process; its
+    result is VoroHexObjects.mesh_payload()."""
+    return VoroHexJobs.Job(VoroHexObjects.mesh_work, shape.exportBrepToString(), options)
+
+
+def trial_sizes(size):
+    """Coarser sizes to try when the mesh was not structured (a sweep whose layers fold at
+    one size can work at another)."""
+    return [size * f for f in (1.5, 2.0, 3.0)]
+
+
+def suggestion_job(shape, options, sizes):
+    """VoroHexObjects.trials_work in a child process: the sizes that give a structured
+    mesh."""
+    return VoroHexJobs.Job(VoroHexObjects.trials_work, shape.exportBrepToString(), options,
+                           sizes)
 
 
 class TaskPanel:
@@ -57,12 +94,38 @@ class TaskPanel:
             v = QtGui.QDoubleValidator(0.0, 1.0, 15, self.form)
             v.setNotation(QtGui.QDoubleValidator.ScientificNotation)
             getattr(self.form, name).setValidator(v)
-        # The stages before meshing, in pipeline order after the Mesh group: the Voronoi
-        # graph, the decomposition (with a preview of both and the edge-type legend).
+        self.runner = None  # the meshing job's poller while it runs
+        self.builder = None  # the FemMesh being built from a finished job
+        self.trials = None  # the suggestion job
+        self.close_when_done = False
+        self.payload = None
+        self.suggested_size = None
+        self._build_advanced()
+        self._bind_element_order()
+        self.form.pb_run.clicked.connect(self.run)
+        self.form.pb_stop.clicked.connect(self.stop)
+        self.form.pb_suggestion.clicked.connect(self.use_suggestion)
+        self.form.sb_size.valueChanged.connect(self.update_estimate)
+        self.form.sb_max_hexes.valueChanged.connect(self.update_estimate)
+        # Cancel puts the options back as they were when the panel opened (a stopped run
+        # with a tiny size must not stay behind to be recomputed later).
+        self.initial = {o.prop: getattr(obj, o.prop) for o in VoroHex.OPTIONS}
+        self.initially_touched = "Touched" in obj.State
+        self.load()
+        self.show_result()
+        if self.obj.Status:
+            self.form.progress.setValue(100 if self.obj.Status == "ok" else 0)
+            self.form.progress.setFormat("last run: " + self.obj.Status)
+        else:
+            self.form.progress.setFormat("not run yet")
+
+    # Layout ---------------------------------------------------------------------------
+    def _build_advanced(self):
+        """Everything but the size and the order, in collapsed sections after the result."""
         layout = self.form.layout()
-        graph_box = QtGui.QGroupBox("Voronoi graph (what the decomposition cuts along)",
-                                    self.form)
-        graph_box.setObjectName("gb_graph")
+        # The stages before meshing: the Voronoi graph, the decomposition (with a preview
+        # of both and the edge-type legend).
+        graph_box = QtGui.QWidget()
         graph_form = QtGui.QFormLayout(graph_box)
         self.eps = QtGui.QLineEdit(graph_box)
         self.eps.setObjectName("le_eps")
@@ -78,8 +141,7 @@ class TaskPanel:
         self.max_depth.setObjectName("sb_max_depth")
         self.max_depth.setRange(1, 12)
         graph_form.addRow("Max. octree depth:", self.max_depth)
-        dec_box = QtGui.QGroupBox("Decomposition (where no single scheme applies)", self.form)
-        dec_box.setObjectName("gb_decomposition")
+        dec_box = QtGui.QWidget()
         dec_form = QtGui.QFormLayout(dec_box)
         self.decompose = QtGui.QCheckBox("Cut into sub-volumes before any fallback", dec_box)
         self.decompose.setObjectName("cb_decompose")
@@ -94,36 +156,38 @@ class TaskPanel:
         self.decomposition_time.setRange(1, 3600)
         self.decomposition_time.setSuffix(" s")
         dec_form.addRow("Time limit:", self.decomposition_time)
+        self.fallback = QtGui.QCheckBox("Fallback (tetrahedra split into hexahedra)")
+        self.fallback.setObjectName("cb_fallback")
+        self.form.gb_limits.layout().addRow(self.fallback)
+        self.time_limit = QtGui.QDoubleSpinBox()
+        self.time_limit.setObjectName("sb_time_limit")
+        self.time_limit.setRange(0, 1e6)
+        self.time_limit.setSuffix(" s")
+        self.time_limit.setSpecialValueText("none")
+        self.form.gb_limits.layout().addRow("Time limit:", self.time_limit)
         for w in (self.eps, self.delta, self.max_depth, self.decompose, self.sharp_angle,
-                  self.decomposition_time):
+                  self.decomposition_time, self.fallback, self.time_limit):
             option = next(o for o in VoroHex.OPTIONS if self._widget(o) is w)
             w.setToolTip(option.doc)
         self.preview = QtGui.QPushButton("Preview graph and decomposition", dec_box)
         self.preview.setObjectName("pb_preview")
         self.preview.setToolTip("Computes the Voronoi graph and the decomposition of the solid "
-                                "with these options, as document objects, to see where it "
-                                "will be cut (Cancel in the busy dialog stops it)")
+                                "with these options, as document objects (replacing the "
+                                "previous preview), to see where it will be cut")
         dec_form.addRow(self.preview)
         self.preview_status = QtGui.QLabel("", dec_box)
         self.preview_status.setObjectName("lbl_preview")
         self.preview_status.setWordWrap(True)
         dec_form.addRow(self.preview_status)
-        # The previewed graph's edge types: count per type, a check box shows or hides it.
         from VoroHexGui.graph_view import EdgeTypeTable
 
         self.edge_types = EdgeTypeTable(dec_box)
         self.edge_types.setObjectName("tbl_preview_edge_types")
-        self.edge_types.setMinimumHeight(160)
         self.edge_types.setVisible(False)
         dec_form.addRow(self.edge_types)
-        after_mesh = layout.indexOf(self.form.gb_params) + 1
-        layout.insertWidget(after_mesh, graph_box)
-        layout.insertWidget(after_mesh + 1, dec_box)
         self.preview.clicked.connect(self.run_preview)
         # Sub-volumes of the last run; selecting one highlights the nodes of its hexahedra.
-        sv_box = QtGui.QGroupBox("Sub-volumes (select one to highlight it)", self.form)
-        sv_box.setObjectName("gb_sub_volumes")
-        self.sub_volumes = QtGui.QTableWidget(0, 5, sv_box)
+        self.sub_volumes = QtGui.QTableWidget(0, 5)
         self.sub_volumes.setObjectName("tw_sub_volumes")
         self.sub_volumes.setHorizontalHeaderLabels(["id", "type", "scheme", "hexes", "min SJ"])
         self.sub_volumes.horizontalHeaderItem(1).setToolTip(
@@ -135,41 +199,55 @@ class TaskPanel:
         self.sub_volumes.setEditTriggers(QtGui.QAbstractItemView.NoEditTriggers)
         self.sub_volumes.horizontalHeader().setStretchLastSection(True)
         self.sub_volumes.setMinimumHeight(80)
-        self.sub_volumes.setMaximumHeight(140)
-        QtGui.QVBoxLayout(sv_box).addWidget(self.sub_volumes)
-        self.form.layout().addWidget(sv_box)
+        self.sub_volumes.setMaximumHeight(160)
         self.sub_volumes.itemSelectionChanged.connect(self.highlight_sub_volume)
         # Messages of the last run; selecting one selects the model entities it names.
-        box = QtGui.QGroupBox("Messages (select one to highlight what it names)", self.form)
-        box.setObjectName("gb_diagnostics")
-        self.diagnostics = QtGui.QListWidget(box)
+        self.diagnostics = QtGui.QListWidget()
         self.diagnostics.setObjectName("lw_diagnostics")
         self.diagnostics.setWordWrap(True)
         self.diagnostics.setMinimumHeight(90)
-        QtGui.QVBoxLayout(box).addWidget(self.diagnostics)
-        self.form.layout().addWidget(box)
         self.diagnostics.currentRowChanged.connect(self.highlight)
-        self.form.pb_run.clicked.connect(self.run)
-        self.form.pb_stop.clicked.connect(self.stop)
-        self.running = False
-        self.stop_requested = False
-        # Cancel puts the options back as they were when the panel opened (a stopped run
-        # with a tiny size must not stay behind to be recomputed later).
-        self.initial = {o.prop: getattr(obj, o.prop) for o in VoroHex.OPTIONS}
-        self.initially_touched = "Touched" in obj.State
-        self.load()
-        self.show_result()
-        if self.obj.Status:
-            self.form.progress.setValue(100 if self.obj.Status == "ok" else 0)
-            self.form.progress.setFormat("last run: " + self.obj.Status)
+        self.sections = {}
+        spacer = layout.indexOf(self.form.gb_quality) + 1
+        for key, title, content in (
+                ("sub_volumes", "Sub-volumes", self.sub_volumes),
+                ("messages", "Messages", self.diagnostics),
+                ("limits", "Advanced: limits and fallback", self.form.gb_limits),
+                ("graph", "Advanced: Voronoi graph", graph_box),
+                ("decomposition", "Advanced: decomposition and preview", dec_box),
+                ("smoothing", "Advanced: smoothing", self.form.gb_smoothing),
+                ("check", "Advanced: check tolerances", self.form.gb_check)):
+            layout.removeWidget(content)
+            if isinstance(content, QtGui.QGroupBox):
+                content.setTitle("")
+            section = widgets.Section(title, content, self.form, name="sec_" + key)
+            layout.insertWidget(spacer, section)
+            spacer += 1
+            self.sections[key] = section
+
+    def _bind_element_order(self):
+        """Element order: the ElementOrder property ("1st"/"2nd") when the object has it;
+        until second-order meshing exists (issue 21) the field shows 1st, disabled."""
+        combo = self.form.cb_element_order
+        if hasattr(self.obj, "ElementOrder"):
+            try:
+                values = list(self.obj.getEnumerationsOfProperty("ElementOrder"))
+            except Exception:  # not an enumeration: a string property
+                values = ["1st", "2nd"]
+            combo.clear()
+            combo.addItems(values)
+            combo.setToolTip("Linear (8-node) or quadratic hexahedra (property ElementOrder)")
+            combo.setEnabled(True)
         else:
-            self.form.progress.setFormat("not run yet")
+            combo.setCurrentIndex(0)
+            combo.setEnabled(False)
+            combo.setToolTip("second order: coming")
 
     # Widgets <-> properties ------------------------------------------------------------
     def _widget(self, option):
         own = {"decompose": "decompose", "decomposition_time_limit": "decomposition_time",
                "sharp_angle": "sharp_angle", "eps": "eps", "delta": "delta",
-               "max_depth": "max_depth"}
+               "max_depth": "max_depth", "fallback": "fallback", "time_limit": "time_limit"}
         if option.name in own:
             return getattr(self, own[option.name], None)
         name = WIDGETS.get(option.name)
@@ -185,6 +263,10 @@ class TaskPanel:
                 w.setChecked(bool(value))
             elif w is not None:
                 w.setValue(value)
+        if self.form.cb_element_order.isEnabled():
+            k = self.form.cb_element_order.findText(str(self.obj.ElementOrder))
+            self.form.cb_element_order.setCurrentIndex(max(k, 0))
+        self.update_estimate()
 
     def store(self):
         """Writes the widgets into the properties; True if anything changed."""
@@ -205,77 +287,258 @@ class TaskPanel:
             if value != _get_property(self.obj, option):
                 setattr(self.obj, option.prop, value)
                 changed = True
+        combo = self.form.cb_element_order
+        if combo.isEnabled() and combo.currentText() != str(self.obj.ElementOrder):
+            self.obj.ElementOrder = combo.currentText()
+            changed = True
         return changed
 
+    # The hex count to expect -----------------------------------------------------------
+    def estimate(self, size=None):
+        """(count, how): the hexahedra to expect at `size` (default: the size field)."""
+        part = self.obj.Part
+        if part is None:
+            return None, ""
+        size = self.form.sb_size.value() if size is None else size
+        shape = part.Shape
+        size = size or VoroHexObjects.automatic_size(shape)
+        last = self.obj.SizeUsed if self.obj.Status == "ok" else 0
+        if last > 0 and self.obj.HexCount > 0:  # scaled from the last run: knows its scheme
+            return self.obj.HexCount * (last / size) ** 3, "scaled from the last run"
+        low, high = VoroHexObjects.predicted_hexes(shape, size)
+        return low, "volume / size\u00b3; up to {} if the fallback meshes it".format(
+            VoroHexObjects.format_count(high))
+
+    def update_estimate(self, *args):
+        count, how = self.estimate()
+        label = self.form.lbl_estimate
+        if count is None:
+            label.setText("")
+            return
+        over = count > self.form.sb_max_hexes.value()
+        label.setText("\u2248 {} hexahedra{}".format(
+            VoroHexObjects.format_count(count), " (over the limit)" if over else ""))
+        label.setToolTip("Hexahedra to expect ({}); the limit is {:,} (Advanced: limits)"
+                         .format(how, self.form.sb_max_hexes.value()))
+        label.setStyleSheet("color: #b00000" if over else "")
+
     # Meshing ---------------------------------------------------------------------------
-    def on_progress(self, stage, fraction):
-        self.form.progress.setValue(int(round(100 * max(0.0, min(1.0, fraction)))))
-        self.form.progress.setFormat("{}: %p%".format(stage))
-        QtGui.QApplication.processEvents()  # meshing runs on this thread; keep Stop live
-        return not self.stop_requested
+    @property
+    def running(self):
+        return self.runner is not None or self.builder is not None
+
+    def _set_running(self, on):
+        self.form.pb_run.setEnabled(not on)
+        self.form.pb_stop.setEnabled(on)
+        self.preview.setEnabled(not on)
 
     def run(self):
         if self.running:
             return
+        self.stop_trials()
         self.store()
-        self.running, self.stop_requested = True, False
-        self.form.pb_run.setEnabled(False)
-        self.form.pb_stop.setEnabled(True)
-        self.form.progress.setValue(0)
-        self.form.progress.setFormat("meshing: %p%")
-        self.form.lbl_status.setText("Meshing...")
-        QtGui.QApplication.setOverrideCursor(QtCore.Qt.WaitCursor)
-        proxy = self.obj.Proxy
+        part = self.obj.Part
+        error = VoroHexObjects.source_error(part, True) or VoroHexObjects.refusal(self.obj)
+        if error is not None:  # refused before any work starts
+            self.refuse(error)
+            return
+        count, _ = self.estimate(self.obj.TargetSize.Value)
+        if count > CONFIRM_ABOVE and not self.confirm(count):
+            return
         try:
-            proxy.progress = self.on_progress
-            self.obj.touch()
-            self.obj.Document.recompute()
-        finally:
-            proxy.progress = None
-            QtGui.QApplication.restoreOverrideCursor()
-            self.running = False
-            self.form.pb_run.setEnabled(True)
-            self.form.pb_stop.setEnabled(False)
-        if self.obj.Status == "ok":
-            self.form.progress.setValue(100)
-            self.form.progress.setFormat("done")
-            if self.obj.Part and self.obj.Part.ViewObject:
-                self.obj.Part.ViewObject.Visibility = False  # so the mesh is seen
-        else:
-            self.form.progress.setFormat("failed")
+            options = VoroHexObjects.options_of(self.obj)
+            VoroHex.validate_options(**options)
+        except (TypeError, ValueError) as e:
+            self.refuse(str(e).replace("VoroHex: ", ""))
+            return
+        self._set_running(True)
+        self.form.progress.setValue(0)
+        self.form.progress.setFormat("starting")
+        self.form.lbl_status.setText("Meshing...")
+        self.form.lbl_banner.setVisible(False)
+        self.form.pb_suggestion.setVisible(False)
+        self.runner = widgets.JobRunner(mesh_job(part.Shape, options), self.on_progress,
+                                        self.on_done, parent=self.form)
+
+    def confirm(self, count):
+        answer = QtGui.QMessageBox.question(
+            FreeCADGui.getMainWindow(), "VoroHex: a large mesh",
+            "About {} hexahedra are expected: meshing may take long and use much memory. "
+            "Mesh anyway?".format(VoroHexObjects.format_count(count)),
+            QtGui.QMessageBox.Yes | QtGui.QMessageBox.No, QtGui.QMessageBox.No)
+        return answer == QtGui.QMessageBox.Yes
+
+    def refuse(self, error):
+        """A run that does not start: said in the panel and the Report view; the mesh and
+        the document stay as they were."""
+        FreeCAD.Console.PrintWarning("VoroHex: {}: not meshed: {}\n".format(self.obj.Label,
+                                                                            error))
+        self.show_banner("Not meshed: " + error, "#b00000")
+        self.form.progress.setValue(0)
+        self.form.progress.setFormat("refused")
+        widgets.scroll_to(self.form.gb_quality)
+
+    def on_progress(self, job):
+        self.form.progress.setValue(int(round(100 * max(0.0, min(1.0, job.fraction)))))
+        self.form.progress.setFormat("{}: %p%  ({:.1f} s)".format(job.stage, job.elapsed))
+
+    def on_done(self, job):
+        self.runner = None
+        try:
+            payload = job.result()
+        except VoroHexJobs.Cancelled:
+            self.finished("Stopped by the user after {:.1f} s; the previous mesh is kept."
+                          .format(job.elapsed), "stopped")
+            FreeCAD.Console.PrintMessage("VoroHex: meshing {} stopped by the user\n".format(
+                self.obj.Label))
+            return
+        except RuntimeError as e:
+            why = str(e).strip().splitlines()[-1] if str(e).strip() else "failed"
+            self.obj.Status, self.obj.Message = "error", why
+            self.obj.purgeTouched()
+            FreeCAD.Console.PrintError("VoroHex: {}: {}\n".format(self.obj.Label, why))
+            self.finished(None, "failed")
+            return
+        if not payload["ok"]:
+            self.obj.Proxy.apply(self.obj, payload)
+            self.obj.purgeTouched()
+            FreeCAD.Console.PrintWarning("VoroHex: {}: {}\n".format(self.obj.Label,
+                                                                    payload["message"]))
+            self.finished(None, "failed")
+            return
+        self.payload = payload
+        self.builder = VoroHexObjects.FemMeshBuilder(payload)
+        self.form.progress.setFormat("FemMesh: %p%")
+        QtCore.QTimer.singleShot(0, self._build_step)
+
+    def _build_step(self):
+        """Adds the FemMesh's elements a slice at a time (the GUI stays live)."""
+        if self.builder is None:  # stopped
+            return
+        if not self.builder.step(0.04):
+            self.form.progress.setValue(int(100 * self.builder.fraction))
+            QtCore.QTimer.singleShot(0, self._build_step)
+            return
+        femmesh, self.builder = self.builder.femmesh, None
+        self.obj.Proxy.apply(self.obj, self.payload, femmesh)
+        self.obj.purgeTouched()  # this mesh is the one of these options: no recompute
+        if self.obj.Part and self.obj.Part.ViewObject:
+            self.obj.Part.ViewObject.Visibility = False  # so the mesh is seen
+        if self.obj.ViewObject is not None:
+            self.obj.ViewObject.Visibility = True
+        self.finished(None, "done")
+        if unstructured_parts(self.obj.Scheme):
+            self.start_trials()
+
+    def finished(self, status_text, progress_text):
+        self._set_running(False)
+        self.form.progress.setValue(100 if progress_text == "done" else 0)
+        self.form.progress.setFormat(progress_text)
         self.show_result()
+        if status_text:
+            self.form.lbl_status.setText(status_text)
+        widgets.scroll_to(self.form.gb_quality)
+        if self.close_when_done:
+            self.close_when_done = False
+            if progress_text == "done":
+                self._close()
 
     def stop(self):
-        self.stop_requested = True
+        """Stop: the child process is killed at once, whatever stage it is in."""
+        if self.runner is not None:
+            self.runner.stop()
+        elif self.builder is not None:
+            self.builder = None
+            self.finished("Stopped by the user; the previous mesh is kept.", "stopped")
+        self.stop_trials()
 
+    # Not structured: a banner, and sizes that give a structured mesh -------------------
+    def show_banner(self, text, colour="#8a5a00"):
+        banner = self.form.lbl_banner
+        banner.setText(text)
+        banner.setStyleSheet("QLabel {{ background: {}; color: white; padding: 6px; "
+                             "border-radius: 3px; }}".format(colour))
+        banner.setVisible(True)
+
+    def structured_banner(self):
+        """The banner's text for the current result, or None when it is structured."""
+        parts = unstructured_parts(self.obj.Scheme)
+        if self.obj.Status != "ok" or not parts:
+            return None
+        what = {"tet-split": "the tetrahedral fallback (tetrahedra split into hexahedra)",
+                "grid": "the grid mesher"}
+        return ("Not a structured mesh: {} meshed {}, so expect poorer elements."
+                .format(" and ".join(what[p] for p in parts),
+                        "this solid" if self.obj.SubVolumeCount <= 1 else "some solids"))
+
+    def start_trials(self):
+        part = self.obj.Part
+        size = self.obj.SizeUsed
+        if part is None or size <= 0:
+            return
+        self.trials = widgets.JobRunner(
+            suggestion_job(part.Shape, VoroHexObjects.options_of(self.obj), trial_sizes(size)),
+            lambda job: None, self.on_trials, parent=self.form)
+        self.show_banner(self.structured_banner() + " Trying coarser sizes for a structured "
+                         "mesh...")
+
+    def stop_trials(self):
+        if self.trials is not None:
+            self.trials.stop()
+            self.trials = None
+
+    def on_trials(self, job):
+        self.trials = None
+        try:
+            found = job.result()
+        except (VoroHexJobs.Cancelled, RuntimeError):
+            found = None
+        text = self.structured_banner()
+        if text is None:
+            return
+        tried = ", ".join("{:.3g}".format(s) for s in trial_sizes(self.obj.SizeUsed))
+        if found:
+            size, scheme, hexes = found[0]
+            self.suggested_size = size
+            self.show_banner("{} Size {:.3g} gives a {} ({:,} hexahedra).".format(
+                text, size, scheme, hexes))
+            self.form.pb_suggestion.setText("Use size {:.3g}".format(size))
+            self.form.pb_suggestion.setVisible(True)
+        elif found is not None:
+            self.show_banner("{} No coarser size ({} mm) gives a structured mesh either: the "
+                             "solid's shape, not the size, is what no scheme accepts."
+                             .format(text, tried))
+        else:
+            self.show_banner(text)
+
+    def use_suggestion(self):
+        if self.suggested_size:
+            self.form.sb_size.setValue(self.suggested_size)
+            self.form.pb_suggestion.setVisible(False)
+            self.run()
+
+    # Preview ---------------------------------------------------------------------------
     def run_preview(self):
-        """Voronoi graph and decomposition of the solid as document objects (one undo step;
-        a cancelled preview leaves the document as it was)."""
+        """Voronoi graph and decomposition of the solid as document objects, replacing the
+        previous preview of this mesh."""
         part = self.obj.Part
         if part is None or self.running:
             return
-        import VoroHexGraph
-        import VoroHexObjects
-        import VoroHexParts
-        from VoroHexGui.commands import run_cancellable
-
-        made = {}
+        from VoroHexGui import commands
 
         self.store()  # the preview uses the panel's graph and decomposition options
         options = VoroHexObjects.graph_options_of(self.obj)
         options["sharp_angle"] = self.obj.SharpAngle
+        self.preview.setEnabled(False)
+        self.preview_status.setText("Computing the Voronoi graph and the decomposition...")
+        commands.make_preview(self.obj, part, options, self.preview_done)
 
-        def work(busy):
-            made["graph"] = VoroHexGraph.makeVoronoiGraph(self.obj.Document, part, progress=busy,
-                                                          **options)
-            if not busy.cancelled:
-                made["parts"] = VoroHexParts.makeDecomposition(self.obj.Document, part,
-                                                               progress=busy, **options)
-
-        if run_cancellable(self.obj.Document, "VoroHex preview", work) is None:
-            self.preview_status.setText("Preview cancelled.")
+    def preview_done(self, made, error):
+        self.preview.setEnabled(not self.running)
+        if made is None:
+            self.preview_status.setText(error or "Preview stopped.")
             return
-        graph, parts = made["graph"], made["parts"]
+        graph, parts = made
         text = "Graph: {}.".format(graph.Message)
         if parts.Status in ("ok", "partial"):
             n = parts.SubVolumeCount
@@ -286,12 +549,9 @@ class TaskPanel:
         self.preview_status.setText(text)
         self.edge_types.set_graph(graph)
         self.edge_types.setVisible(True)
-        for o in (graph, parts):
-            if o.ViewObject is not None:
-                o.ViewObject.Visibility = True
-        if part.ViewObject is not None:
-            part.ViewObject.Transparency = 70
+        self.edge_types.fit_rows()
 
+    # Highlights ------------------------------------------------------------------------
     def highlight_sub_volume(self):
         """Highlights the nodes of the selected sub-volume's hexahedra in the mesh view."""
         vobj = self.obj.ViewObject
@@ -329,6 +589,12 @@ class TaskPanel:
         if part.ViewObject is not None and entities[row]:
             part.ViewObject.Visibility = True  # the named entities are on the solid
 
+    def clear_highlights(self):
+        vobj = self.obj.ViewObject
+        if vobj is not None and hasattr(vobj, "HighlightedNodes") and vobj.HighlightedNodes:
+            vobj.HighlightedNodes = []
+        FreeCADGui.Selection.clearSelection()
+
     def show_result(self):
         self.sub_volumes.setRowCount(0)
         if self.obj.Status == "ok":
@@ -342,6 +608,8 @@ class TaskPanel:
                                           "{:.3f}".format(min_sj))):
                     self.sub_volumes.setItem(k, c, QtGui.QTableWidgetItem(text))
             self.sub_volumes.resizeColumnsToContents()
+        self.sections["sub_volumes"].setTitle("Sub-volumes ({})".format(
+            self.sub_volumes.rowCount()))
         self.diagnostics.clear()
         colours = {"error": "#b00000", "warning": "#a05a00"}
         entities = list(self.obj.DiagnosticEntities)
@@ -353,11 +621,19 @@ class TaskPanel:
             if severity in colours:
                 item.setForeground(QtGui.QBrush(QtGui.QColor(colours[severity])))
             self.diagnostics.addItem(item)
+        self.sections["messages"].setTitle("Messages ({})".format(self.diagnostics.count()))
         self.form.lbl_status.setText(summary_text(self.obj))
         colour = "#b00000" if self.obj.Status == "error" else "palette(text)"
         self.form.lbl_status.setStyleSheet("color: {}".format(colour))
         self.histogram.set_counts(self.obj.ScaledJacobianHistogram
                                   if self.obj.Status == "ok" else [])
+        banner = self.structured_banner()
+        if banner:
+            self.show_banner(banner)
+        else:
+            self.form.lbl_banner.setVisible(False)
+        self.form.pb_suggestion.setVisible(False)
+        self.update_estimate()
 
     # Task dialog protocol --------------------------------------------------------------
     def getStandardButtons(self):
@@ -367,23 +643,41 @@ class TaskPanel:
         if self.running:
             return False
         if self.store() or self.obj.Status != "ok":
+            self.close_when_done = True  # closes when the run is done
             self.run()
+            if self.running:
+                return False
+            self.close_when_done = False
+            if self.obj.Status != "ok":
+                return False  # refused: the panel says why
         self._close()
         return True
 
     def reject(self):
         if self.running:
-            self.stop_requested = True
-            return False
+            self.stop()
+        self.stop_trials()
+        never_run = not self.obj.Status
         for prop, value in self.initial.items():
             if getattr(self.obj, prop) != value:
                 setattr(self.obj, prop, value)
         if not self.initially_touched and self.obj.Status == "ok":
             self.obj.purgeTouched()  # its mesh is the one of these options
+        doc = self.obj.Document
         self._close()
+        if never_run:  # Cancel on a mesh that was never made: it goes again
+            name = self.obj.Name
+            if doc.getObject(name) is not None:
+                for parent in self.obj.InList:  # an analysis holding it
+                    if hasattr(parent, "removeObject"):
+                        parent.removeObject(self.obj)
+                doc.removeObject(name)
+                FreeCAD.Console.PrintMessage("VoroHex: {} removed (never meshed)\n".format(
+                    name))
         return True
 
     def _close(self):
+        self.clear_highlights()
         gui_doc = FreeCADGui.getDocument(self.obj.Document.Name)
         if gui_doc is not None:
             gui_doc.resetEdit()

@@ -55,3 +55,38 @@ class ViewProviderHexMesh(ViewProviderBase):
         from VoroHexGui import task_panel
 
         return task_panel.TaskPanel(obj)
+
+
+class Faded:
+    """A solid's look changed while a panel is open; restore() puts it back."""
+
+    def __init__(self, vobj, saved):
+        self.vobj, self.saved = vobj, saved
+
+    def restore(self):
+        if self.vobj is None:
+            return
+        try:
+            for prop, value in self.saved.items():
+                if getattr(self.vobj, prop) != value:
+                    setattr(self.vobj, prop, value)
+        except Exception:  # the solid was deleted meanwhile
+            pass
+        self.vobj = None
+
+
+def fade_solid(part, transparency=80, wireframe=False):
+    """Fades the solid `part` so what lies inside or on it is seen: translucent, or (with
+    `wireframe`, for pieces that coincide with its faces and would fight with them) its
+    edges only. Returns a Faded to restore it on close."""
+    vobj = getattr(part, "ViewObject", None)
+    if vobj is None:
+        return Faded(None, {})
+    saved = {"Visibility": vobj.Visibility, "Transparency": vobj.Transparency,
+             "DisplayMode": vobj.DisplayMode}
+    vobj.Visibility = True
+    if wireframe and "Wireframe" in vobj.listDisplayModes():
+        vobj.DisplayMode = "Wireframe"
+    else:
+        vobj.Transparency = transparency
+    return Faded(vobj, saved)

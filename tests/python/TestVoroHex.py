@@ -568,15 +568,18 @@ class TestVoroHexObject(unittest.TestCase):
         self.assertNotIn(hidden, g.SegmentTypes)
         self.assertNotIn(hidden, g.ShownEdgeCounts)
         self.assertEqual(len(g.SegmentTypes), len(g.Shape.Edges))
-        # The f_s faces are drawn as faces (translucent in the view), their outline edges
-        # typed f_s; ShowFsFaces off leaves the lines only.
+        # The f_s faces are drawn as triangles (FsFacePoints, FsFaceTriangles: the view draws
+        # them translucent), not as faces of the Shape (whose edges and vertices would be
+        # outlines and point markers); ShowFsFaces off leaves the lines only.
         self.assertGreater(g.FsFaceCount, 0)
-        self.assertEqual((g.FsFacesDrawn, len(g.Shape.Faces)), (g.FsFaceCount, g.FsFaceCount))
-        self.assertIn("f_s", g.SegmentTypes)
+        self.assertEqual((g.FsFacesDrawn, list(g.FsFacesNotDrawn), len(g.Shape.Faces)),
+                         (g.FsFaceCount, [], 0))
+        tris = list(g.FsFaceTriangles)
+        self.assertTrue(tris and len(tris) % 3 == 0 and max(tris) < len(g.FsFacePoints))
+        self.assertNotIn("f_s", g.SegmentTypes)
         g.ShowFsFaces = False
         self.doc.recompute()
-        self.assertEqual((g.FsFacesDrawn, len(g.Shape.Faces)), (0, 0))
-        self.assertNotIn("f_s", g.SegmentTypes)
+        self.assertEqual((g.FsFacesDrawn, len(g.FsFaceTriangles)), (0, 0))
         self.assertEqual(len(g.SegmentTypes), len(g.Shape.Edges))
         # The graph's own options, set at creation; a bad one is refused before anything is
         # added to the document.
@@ -853,6 +856,61 @@ class TestVoroHexObject(unittest.TestCase):
             self.assertEqual(len(vols), 48)
             self.assertTrue(all(v > 0 for v in vols), min(vols))
             self.assertTrue(math.isclose(sum(vols), 6000.0, rel_tol=1e-9))
+
+
+class TestVoroHexDrawing(unittest.TestCase):
+    """Issue 24: what the views draw, headless."""
+
+    def test_palettes_are_colour_blind_safe(self):
+        # Every pair of edge types, face roles and quality bands stays at least 10 CIEDE2000
+        # units apart for normal vision and simulated protanopia, deuteranopia and
+        # tritanopia (Machado et al. 2009). The former palette failed: [1] and [2] 2.1 apart
+        # for protanopia.
+        import sys
+
+        sys.path.append(os.path.join(os.path.dirname(VoroHex.__file__), "Gui"))
+        from VoroHexGui import colour_check, palette
+
+        palettes = {"edge types": dict(VoroHexGraph.COLOURS),
+                    "face roles": dict(VoroHexParts.COLOURS),
+                    "quality bands": {b[2]: b[1] for b in palette.BANDS}}
+        for name, colours in palettes.items():
+            for vision in colour_check.VISIONS:
+                d, a, b = colour_check.closest_pair(colours, vision)
+                self.assertGreaterEqual(d, 10.0, "{}, {}: {} and {} only {:.1f} apart".format(
+                    name, vision, a, b, d))
+        # The check itself: a known CIEDE2000 pair (Sharma, Wu & Dalal 2005, pair 1).
+        self.assertAlmostEqual(colour_check.delta_e_2000((50, 2.6772, -79.7751),
+                                                         (50, 0, -82.7485)), 2.0425, places=4)
+
+    def test_plate_f_s_faces_all_drawn(self):
+        # A plate with two holes: its mid-plane f_s face has three boundary loops (the outer
+        # one and one per hole); it was not drawn before. A tube's f_s face (a cylinder
+        # between two circles) is drawn as the band between them.
+        import VoroHexFaces
+
+        plate = Part.makeBox(60, 40, 4)
+        for x in (15, 45):
+            plate = plate.cut(Part.makeCylinder(5, 4, FreeCAD.Vector(x, 20, 0)))
+        tube = Part.makeCylinder(10, 30).cut(Part.makeCylinder(7, 30))
+        for shape in (plate, tube):
+            data = VoroHexGraph.compute(shape, 60.0, {})
+            fs = data["fs"]
+            self.assertTrue(fs)
+            for pts, tris, why in fs:
+                self.assertIsNone(why)
+                # The triangles cover the face: their area is the Voronoi face's (plate: the
+                # mid-plane, inset by the half-thickness 2 from the sides and the holes).
+                area = sum(((FreeCAD.Vector(*pts[b]) - FreeCAD.Vector(*pts[a])).cross(
+                    FreeCAD.Vector(*pts[c]) - FreeCAD.Vector(*pts[a]))).Length / 2
+                    for a, b, c in tris)
+                if shape is plate:
+                    self.assertAlmostEqual(area, 56 * 36 - 2 * math.pi * 7 ** 2, delta=20)
+                else:
+                    # between the walls (radius 8.5), 1.5 in from each end
+                    self.assertAlmostEqual(area, 2 * math.pi * 8.5 * 27, delta=20)
+        self.assertEqual(VoroHexFaces.triangulate_face([[(0, 0, 0), (1, 0, 0)]], 1.0)[2],
+                         "its 1 boundary edge(s) do not close into a loop")
 
 
 if __name__ == "__main__":

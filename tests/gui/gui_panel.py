@@ -1,0 +1,429 @@
+# GUI test, run by ctest under Xvfb (like gui_hexmesh.py):
+#   xvfb-run -a -s "-screen 0 1280x1024x24" freecad gui_panel.py -M <stage>/VoroHex
+# The Hex mesh panel driven through its buttons, as a user does (issue 24):
+#  - the panel: solid, size with the hex count to expect, element order, Run/Stop, the
+#    result (scrolled into view), everything else collapsed;
+#  - a size whose predicted count exceeds the limit (0.01 on a 90 mm part) is refused
+#    before any work starts, with the count in the message;
+#  - a part that takes more than 10 s to mesh: a QTimer ticking every 50 ms never sees a
+#    gap over 0.3 s, and Stop ends the run within 1 s with no traceback in the Report view;
+#    Stop also within 1 s in the decomposition (HexMe i09o), the tetrahedra and the
+#    smoothing stages;
+#  - a fallback mesh gets a banner with a size that gives a structured mesh, found by trying;
+#  - Run recomputes only the mesh being edited; Cancel on a never-run mesh removes it;
+#    meshes are named after their part; commands are greyed out for a sketch, a face and a
+#    tetrahedral mesh.
+# Screenshots: VOROHEX_SCREENSHOT (default ./gui_panel.png) and siblings. Exit 0 = pass.
+import os
+import sys
+import threading
+import time
+import traceback
+
+import FreeCAD
+import FreeCADGui as Gui
+from PySide import QtCore, QtGui
+
+TIMEOUT_S = 140
+SHOT = os.environ.get("VOROHEX_SCREENSHOT", os.path.abspath("gui_panel.png"))
+HEXME = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "data", "hexme")
+
+
+def log(msg):
+    sys.stdout.write("gui_panel: {}\n".format(msg))
+    sys.stdout.flush()
+
+
+def watchdog():
+    log("timed out after {} s".format(TIMEOUT_S))
+    os._exit(3)
+
+
+def pump(seconds=0.2):
+    end = time.time() + seconds
+    while time.time() < end:
+        QtGui.QApplication.processEvents()
+        time.sleep(0.01)
+
+
+def check(cond, what):
+    if not cond:
+        raise AssertionError(what)
+    log("ok: " + what)
+
+
+def screenshot(name):
+    path = os.path.splitext(SHOT)[0] + name + ".png"
+    pump(0.5)
+    check(QtGui.QGuiApplication.primaryScreen().grabWindow(0).save(path), "screenshot " + path)
+
+
+def report_text(mw):
+    """What FreeCAD's Report view shows."""
+    pump(0.5)  # it shows messages a moment later
+    for w in mw.findChildren(QtGui.QTextEdit):
+        if "report" in w.objectName().lower():
+            return w.toPlainText()
+    raise AssertionError("no Report view found")
+
+
+def button(mw, which):
+    for box in mw.findChildren(QtGui.QDialogButtonBox):
+        b = box.button(which)
+        if b is not None and b.isVisible():
+            return b
+    return None
+
+
+class Ticker:
+    """A QTimer every 50 ms; the largest gap between two ticks is how long the GUI froze."""
+
+    def __init__(self):
+        self.timer = QtCore.QTimer()
+        self.timer.setInterval(50)
+        self.timer.timeout.connect(self.tick)
+        self.last, self.worst, self.ticks = None, 0.0, 0
+
+    def start(self):
+        self.last, self.worst, self.ticks = time.time(), 0.0, 0
+        self.timer.start()
+
+    def tick(self):
+        now = time.time()
+        if now - self.last > self.worst:
+            self.worst, self.worst_at = now - self.last, now
+        self.last, self.ticks = now, self.ticks + 1
+
+    def stop(self):
+        self.timer.stop()
+
+
+def wait_until(cond, seconds):
+    end = time.time() + seconds
+    while not cond() and time.time() < end:
+        QtGui.QApplication.processEvents()
+        time.sleep(0.01)
+    return cond()
+
+
+def open_panel(mw, part):
+    from VoroHexGui import commands
+
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(part)
+    pump(0.2)
+    check(commands.HexMeshCommand().IsActive(), "Hex mesh active for " + part.Label)
+    Gui.runCommand("VoroHex_HexMesh")
+    pump(0.5)
+    check(bool(Gui.Control.activeDialog()), "panel open for " + part.Label)
+    from VoroHexGui import task_panel  # noqa: F401
+
+    return [o for o in part.Document.Objects if getattr(o, "Part", None) == part and
+            o.isDerivedFrom("Fem::FemMeshObjectPython")][-1]
+
+
+def widgets_of(mw):
+    find = mw.findChild
+    return {"size": find(QtGui.QDoubleSpinBox, "sb_size"),
+            "run": find(QtGui.QPushButton, "pb_run"),
+            "stop": find(QtGui.QPushButton, "pb_stop"),
+            "progress": find(QtGui.QProgressBar, "progress"),
+            "estimate": find(QtGui.QLabel, "lbl_estimate"),
+            "banner": find(QtGui.QLabel, "lbl_banner"),
+            "status": find(QtGui.QLabel, "lbl_status"),
+            "result": find(QtGui.QGroupBox, "gb_quality"),
+            "order": find(QtGui.QComboBox, "cb_element_order"),
+            "suggestion": find(QtGui.QPushButton, "pb_suggestion")}
+
+
+def stop_in_stage(mw, mesh, stage, after, ticker, size=None, smoothing=None):
+    """Run through the buttons, wait until the progress names `stage` (and `after` s more),
+    press Stop; returns (seconds from Stop to the end of the run, when Stop was pressed)."""
+    w = widgets_of(mw)
+    if size is not None:
+        w["size"].setValue(size)
+    before = (mesh.Status, mesh.HexCount)
+    ticker.start()
+    t0 = time.time()
+    w["run"].click()
+    check(w["stop"].isEnabled(), "Run started ({}); Stop enabled".format(mesh.Part.Label))
+    check(wait_until(lambda: stage in w["progress"].format(), 60),
+          "progress reached the {} stage: {}".format(stage, w["progress"].format()))
+    pump(after)
+    running = time.time() - t0
+    check(w["stop"].isEnabled(), "still running after {:.1f} s".format(running))
+    t_stop = time.time()
+    w["stop"].click()
+    ended = wait_until(lambda: w["run"].isEnabled(), 5)
+    latency = time.time() - t_stop
+    ticker.stop()
+    check(ended and latency < 1.0, "Stop in stage {} ended the run in {:.2f} s".format(
+        stage, latency))
+    check(ticker.worst <= 0.3, "50 ms timer: largest gap {:.3f} s ({:.2f} s after Run) over "
+          "{} ticks".format(ticker.worst, ticker.worst_at - t0, ticker.ticks))
+    check((mesh.Status, mesh.HexCount) == before, "the previous result is kept")
+    check("stopped" in w["progress"].format() and "Stopped by the user" in w["status"].text(),
+          "the panel says it was stopped: " + w["status"].text())
+    return latency, running
+
+
+def main():
+    import Part
+
+    # What is measured is whether VoroHex's work holds the GUI thread, not whether other
+    # processes of a busy machine (builds, other tests) take the processor from it: the GUI
+    # goes ahead of them when the test may (as root; ctest runs it alone, RUN_SERIAL). The
+    # meshing child runs 10 steps below the GUI either way.
+    try:
+        os.nice(-5)
+    except (PermissionError, OSError):
+        log("running at normal priority (not allowed to raise it)")
+
+    mw = Gui.getMainWindow()
+    mw.setGeometry(0, 0, 1280, 1024)
+    mw.showMaximized()
+    Gui.activateWorkbench("VoroHexWorkbench")
+    pump()
+    combo = [d for d in mw.findChildren(QtGui.QDockWidget) if d.isVisible()
+             and d.objectName() in ("Combo View", "ComboView")]
+    if combo:
+        mw.resizeDocks(combo, [430], QtCore.Qt.Horizontal)
+    pump(1.0)
+    doc = FreeCAD.newDocument("PanelDemo")
+    from VoroHexGui import commands, task_panel
+
+    # Commands greyed out for what they cannot take.
+    sketch = doc.addObject("Sketcher::SketchObject", "Sketch")
+    sketch.addGeometry(Part.LineSegment(FreeCAD.Vector(0, 0, 0), FreeCAD.Vector(10, 0, 0)))
+    face = doc.addObject("Part::Feature", "AFace")
+    face.Shape = Part.makePlane(10, 10)
+    import Fem
+
+    tets = Fem.FemMesh()
+    for i, p in enumerate(((0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)), 1):
+        tets.addNode(*p, i)
+    tets.addVolume([1, 2, 3, 4], 1)
+    tet_mesh = doc.addObject("Fem::FemMeshObject", "TetMesh")
+    tet_mesh.FemMesh = tets
+    doc.recompute()
+    for obj in (sketch, face, tet_mesh):
+        Gui.Selection.clearSelection()
+        Gui.Selection.addSelection(obj)
+        pump(0.1)
+        check(not any(c.IsActive() for c in (commands.HexMeshCommand(),
+                                               commands.VoronoiGraphCommand(),
+                                               commands.DecompositionCommand(),
+                                               commands.MeshQualityCommand())),
+              "all four commands greyed out for " + obj.TypeId)
+    Gui.Selection.clearSelection()
+
+    # The panel on a box: what shows first, the estimate, Run through the button.
+    box = doc.addObject("Part::Box", "Box")
+    box.Length, box.Width, box.Height = 40, 20, 10
+    other = doc.addObject("Part::Box", "OtherBox")
+    doc.recompute()
+    import VoroHexObjects
+
+    idle = VoroHexObjects.makeHexMesh(doc, other, size=5)  # touched, never computed
+    check(idle.Label == "OtherBox_HexMesh" and "Touched" in idle.State,
+          "a mesh named after its part, not computed: " + idle.Label)
+    mesh = open_panel(mw, box)
+    check(mesh.Label == "Box_HexMesh", "the new mesh is named after its part: " + mesh.Label)
+    w = widgets_of(mw)
+    from VoroHexGui.widgets import Section
+
+    sections = [s for s in mw.findChildren(Section) if s.isVisible()]
+    check(len(sections) >= 5 and not any(s.isExpanded() for s in sections),
+          "{} sections below the result, all collapsed".format(len(sections)))
+    order = w["order"]
+    if hasattr(mesh, "ElementOrder"):
+        check(order.isEnabled() and order.currentText() == str(mesh.ElementOrder),
+              "element order bound to ElementOrder")
+    else:
+        check(not order.isEnabled() and order.toolTip() == "second order: coming",
+              "element order shown, disabled until ElementOrder exists")
+    w["size"].setValue(2.5)
+    pump(0.1)
+    check("512" in w["estimate"].text(), "live estimate: " + w["estimate"].text())
+    w["run"].click()
+    check(wait_until(lambda: w["run"].isEnabled(), 30), "the box run ended")
+    check(mesh.Status == "ok" and mesh.HexCount == 512, "box meshed: " + mesh.Message)
+    check(mesh.Scheme == "map" and not w["banner"].isVisible(), "structured: no banner")
+    check("Touched" in idle.State and idle.Status == "" and idle.HexCount == 0,
+          "Run recomputed only the mesh being edited (the other is still untouched)")
+    check("Touched" not in mesh.State, "the edited mesh is up to date (no recompute pending)")
+    check(bool(Gui.Control.activeDialog()), "the panel is still open after Run")
+    w = widgets_of(mw)
+    from VoroHexGui import widgets
+
+    area = widgets.scroll_area_of(w["result"])
+    top = w["result"].mapTo(area.widget(), QtCore.QPoint(0, 0)).y()
+    bar = area.verticalScrollBar()
+    check(bar.value() <= top <= bar.value() + area.viewport().height(),
+          "the result is scrolled into view")
+    from VoroHexGui import palette
+    from VoroHexGui.histogram import HistogramWidget, bin_colour
+
+    hist = mw.findChild(HistogramWidget)
+    fm = hist.fontMetrics()
+    check(hist.plot_rect().left() > max(fm.horizontalAdvance(t) for t in hist.y_labels()),
+          "the histogram's y labels fit left of the plot ({})".format(hist.y_labels()))
+    check(all(bin_colour(-1 + 0.1 * k).getRgbF()[:3] == tuple(
+        QtGui.QColor.fromRgbF(*palette.band_colour(-0.95 + 0.1 * k)).getRgbF()[:3])
+        for k in range(20)), "histogram bars use the quality view's colour scale")
+    for o in (sketch, face, other, tet_mesh, idle):
+        o.ViewObject.Visibility = False
+    Gui.ActiveDocument.ActiveView.viewIsometric()
+    Gui.SendMsgToActiveView("ViewFit")
+    screenshot("")
+
+    # A size whose predicted count exceeds the limit: refused before any work starts.
+    big = doc.addObject("Part::Box", "Part90")
+    big.Length, big.Width, big.Height = 90, 60, 30
+    doc.recompute()
+    button(mw, QtGui.QDialogButtonBox.Cancel).click()
+    pump(0.3)
+    big_mesh = open_panel(mw, big)
+    w = widgets_of(mw)
+    w["size"].setValue(0.01)
+    pump(0.1)
+    check("over the limit" in w["estimate"].text(), "estimate flags it: " + w["estimate"].text())
+    t0 = time.time()
+    w["run"].click()
+    pump(0.2)
+    check(time.time() - t0 < 1.0 and w["run"].isEnabled() and not w["stop"].isEnabled(),
+          "nothing started")
+    text = w["banner"].text()
+    check(w["banner"].isVisible() and "1.6e+11 hexahedra" in text and "50,000,000" in text,
+          "size 0.01 on a 90 mm part refused with the count: " + text)
+    check(big_mesh.Status == "" and big_mesh.HexCount == 0, "the mesh object is untouched")
+    screenshot("_refused")
+    # Cancel on a mesh never run removes it.
+    name = big_mesh.Name
+    button(mw, QtGui.QDialogButtonBox.Cancel).click()
+    pump(0.3)
+    check(doc.getObject(name) is None, "Cancel on a never-run mesh removed it")
+
+    # A part that takes more than 10 s to mesh: the GUI never freezes; Stop within 1 s.
+    report_before = report_text(mw)
+    ticker = Ticker()
+    ski = doc.addObject("Part::Feature", "SkiJump")
+    ski.Shape = Part.read(os.path.join(HEXME, "n03o_skijump_box_cyl.step"))
+    notch = doc.addObject("Part::Feature", "M9")  # an industrial part: seconds of decomposition
+    notch.Shape = Part.read(os.path.join(HEXME, "i09o_m9.step"))
+    sphere = doc.addObject("Part::Feature", "Sphere")
+    sphere.Shape = Part.read(os.path.join(HEXME, "s17o_sphere.step"))
+    doc.recompute()
+    for o in (box, other, sketch, face, notch, sphere):
+        o.ViewObject.Visibility = False
+    ski_mesh = open_panel(mw, ski)
+    ticker.start()
+    pump(2.0)
+    ticker.stop()
+    log("baseline, nothing running: {} ticks in 2 s, largest gap {:.3f} s".format(
+        ticker.ticks, ticker.worst))
+    latency, running = stop_in_stage(mw, ski_mesh, "", 10.2, ticker)
+    check(running > 10.0, "the ski jump was still meshing after {:.1f} s".format(running))
+    said = report_text(mw)[len(report_before):]
+    check("Traceback" not in said and "Recompute failed" not in said and
+          "stopped by the user" in said, "Report view: a message, no traceback: " +
+          said.strip().replace("\n", " | "))
+    # Stop in each long stage: the tetrahedra (CGAL), the smoothing.
+    stop_in_stage(mw, ski_mesh, "tetrahedra", 0.5, ticker)
+    button(mw, QtGui.QDialogButtonBox.Cancel).click()
+    pump(0.3)
+    notch_mesh = open_panel(mw, notch)
+    stop_in_stage(mw, notch_mesh, "decompose", 0.5, ticker)
+    button(mw, QtGui.QDialogButtonBox.Cancel).click()
+    pump(0.3)
+    sphere_mesh = open_panel(mw, sphere)
+    stop_in_stage(mw, sphere_mesh, "smooth", 0.3, ticker)
+    said = report_text(mw)[len(report_before):]
+    check("Traceback" not in said and "Recompute failed" not in said,
+          "no traceback after four stops")
+    button(mw, QtGui.QDialogButtonBox.Cancel).click()
+    pump(0.3)
+
+    # A fallback mesh: the banner; coarser sizes are tried for a structured mesh (none
+    # for a sphere: its shape, not the size, is what no scheme accepts).
+    sphere_mesh = open_panel(mw, sphere)
+    w = widgets_of(mw)
+    sphere.ViewObject.Visibility = True
+    w["size"].setValue(1.6)
+    ticker.start()
+    w["run"].click()
+    check(wait_until(lambda: w["run"].isEnabled(), 60), "the sphere meshed by the fallback")
+    check(sphere_mesh.Status == "ok" and sphere_mesh.Scheme == "tet-split",
+          "scheme {}: {}".format(sphere_mesh.Scheme, sphere_mesh.Message))
+    check(w["banner"].isVisible() and "Not a structured mesh" in w["banner"].text(),
+          "banner: " + w["banner"].text())
+    check(wait_until(lambda: "Trying" not in w["banner"].text(), 40),
+          "the sizes tried: " + w["banner"].text())
+    ticker.stop()
+    check(ticker.worst <= 0.3, "no freeze while meshing and trying sizes: largest gap "
+          "{:.3f} s".format(ticker.worst))
+    check("No coarser size" in w["banner"].text() and not w["suggestion"].isVisible(),
+          "no size suggested for the sphere: " + w["banner"].text())
+    Gui.ActiveDocument.ActiveView.viewIsometric()
+    Gui.SendMsgToActiveView("ViewFit")
+    screenshot("_banner")
+    button(mw, QtGui.QDialogButtonBox.Ok).click()
+    pump(0.3)
+    check(not Gui.Control.activeDialog(), "OK closed the panel (mesh up to date)")
+    # The ski jump's sweep folds at HexMe's size (0.094) and the fallback meshes it (36 s);
+    # the sizes the banner tries find one that gives a sweep.
+    job = task_panel.suggestion_job(ski.Shape, {}, task_panel.trial_sizes(0.0944))
+    check(job.wait(30), "the sizes tried in {:.1f} s".format(job.elapsed))
+    found = job.result()
+    check(found and found[0][1] == "sweep", "a size that gives a sweep: {}".format(found))
+
+    # Mesh quality opens in under 1 s for 100,000 hexahedra.
+    for o in doc.Objects:
+        if o.ViewObject is not None:
+            o.ViewObject.Visibility = False
+    block = doc.addObject("Part::Box", "Block")
+    block.Length, block.Width, block.Height = 40, 20, 10
+    doc.recompute()
+    big = VoroHexObjects.makeHexMesh(doc, block, size=0.43)
+    big.SmoothIterations, big.SmoothPasses = 0, 0
+    doc.recompute()
+    check(big.Status == "ok" and big.HexCount > 100000, "{:,} hexahedra".format(big.HexCount))
+    pump(1.0)
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(big)
+    check(commands.MeshQualityCommand().IsActive(), "Mesh quality active for a hex mesh")
+    from VoroHexGui import quality_view
+
+    t0 = time.time()
+    Gui.runCommand("VoroHex_MeshQuality")
+    opened = time.time() - t0
+    QtGui.QApplication.processEvents()
+    painted = time.time() - t0
+    panel = quality_view.current
+    check(panel is not None and opened < 1.0, "Mesh quality opened in {:.2f} s for {:,} "
+          "hexahedra (first frame drawn at {:.2f} s)".format(opened, big.HexCount, painted))
+    check(sum(int(panel.legend.item(r, 1).text()) for r in range(panel.legend.rowCount()))
+          == big.HexCount, "its legend counts them all")
+    button(mw, QtGui.QDialogButtonBox.Close).click()
+    pump(0.3)
+    check(quality_view.current is None and not Gui.Control.activeDialog(), "closed")
+
+
+def run():
+    code = 1
+    try:
+        main()
+        code = 0
+        log("PASS")
+    except Exception:
+        traceback.print_exc()
+        log("FAIL")
+    sys.stdout.flush()
+    sys.stderr.flush()
+    os._exit(code)
+
+
+timer = threading.Timer(TIMEOUT_S, watchdog)
+timer.daemon = True
+timer.start()
+QtCore.QTimer.singleShot(0, run)
