@@ -38,7 +38,7 @@ struct Plan {
   std::vector<core::Diagnostic> diagnostics;
 };
 
-Plan plan(const occ::Solid& solid, const MultisweepOptions& options,
+Plan plan(const core::MeshDomain& solid, const MultisweepOptions& options,
           const core::Progress& progress) {
   options.validate();
   Plan p;
@@ -96,7 +96,7 @@ std::vector<std::vector<bool>> node_slabs(const Plan& p) {
 
 }  // namespace
 
-MultisweepApplicability multisweep_applicable(const occ::Solid& solid) {
+MultisweepApplicability multisweep_applicable(const core::MeshDomain& solid) {
   MultisweepApplicability a;
   const occ::PrismaticStructure s = occ::prismatic_structure(solid);
   a.ok = s.ok;
@@ -130,11 +130,12 @@ MultisweepEstimate estimate(const Plan& p) {
 }
 }  // namespace
 
-MultisweepEstimate multisweep_evaluate(const occ::Solid& solid, const MultisweepOptions& options) {
+MultisweepEstimate multisweep_evaluate(const core::MeshDomain& solid,
+                                       const MultisweepOptions& options) {
   return estimate(plan(solid, options, {}));
 }
 
-MultisweepResult multisweep(const occ::Solid& solid, const MultisweepOptions& options,
+MultisweepResult multisweep(const core::MeshDomain& solid, const MultisweepOptions& options,
                             const core::Progress& progress) {
   MultisweepResult r;
   const char* stage = "multisweep";

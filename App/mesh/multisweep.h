@@ -15,8 +15,8 @@
 
 #include "core/diagnostic.h"
 #include "core/hex_mesh.h"
+#include "core/mesh_domain.h"
 #include "core/progress.h"
-#include "occ/solid.h"
 
 namespace vorohex::mesh {
 
@@ -34,14 +34,15 @@ struct MultisweepApplicability {
   int levels = 0, regions = 0;
 };
 
-MultisweepApplicability multisweep_applicable(const occ::Solid& solid);
+MultisweepApplicability multisweep_applicable(const core::MeshDomain& solid);
 
 struct MultisweepEstimate {
   int layers = 0;                    // along the axis, over all slabs
   std::size_t nodes = 0, hexes = 0;  // exactly what multisweep() produces (0 when refused)
 };
 // Builds the structure and meshes the regions (cheap next to the volume) to count exactly.
-MultisweepEstimate multisweep_evaluate(const occ::Solid& solid, const MultisweepOptions& options);
+MultisweepEstimate multisweep_evaluate(const core::MeshDomain& solid,
+                                       const MultisweepOptions& options);
 
 struct MultisweepResult {
   core::HexMesh mesh;
@@ -54,7 +55,7 @@ struct MultisweepResult {
 
 // Errors: not_applicable (with the reason), intervals_infeasible, quad_face_failed,
 // too_many_intervals, inverted_elements, cancelled.
-MultisweepResult multisweep(const occ::Solid& solid, const MultisweepOptions& options,
+MultisweepResult multisweep(const core::MeshDomain& solid, const MultisweepOptions& options,
                             const core::Progress& progress = {});
 
 }  // namespace vorohex::mesh

@@ -2,18 +2,25 @@
 
 #include <BRepAdaptor_Surface.hxx>
 #include <BRepAlgoAPI_BuilderAlgo.hxx>
-#include <BRepBuilderAPI_Transform.hxx>
+#include <BRepBuilderAPI_MakeEdge.hxx>
+#include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepBuilderAPI_MakeVertex.hxx>
+#include <BRepBuilderAPI_MakeWire.hxx>
 #include <BRep_Builder.hxx>
+#include <ElCLib.hxx>
+#include <GeomAPI_Interpolate.hxx>
 #include <GeomAbs_SurfaceType.hxx>
-#include <GeomAdaptor_Curve.hxx>
-#include <GeomAdaptor_Surface.hxx>
+#include <ShapeFix_Face.hxx>
 #include <Standard_Failure.hxx>
+#include <TColgp_HArray1OfPnt.hxx>
 #include <TopExp.hxx>
 #include <TopTools_IndexedMapOfShape.hxx>
 #include <TopTools_ListOfShape.hxx>
 #include <TopoDS.hxx>
 #include <TopoDS_Compound.hxx>
-#include <gp_Trsf.hxx>
+#include <gp_Ax2.hxx>
+#include <gp_Circ.hxx>
+#include <gp_Pln.hxx>
 
 #include <algorithm>
 #include <cmath>
@@ -35,43 +42,32 @@ std::string edge_name(int e) {
 }
 
 // Directions of the solid's planes (normals), cylinders (axes) and extrusions, one per line.
-std::vector<Vec3> candidate_axes(const Solid& solid) {
+std::vector<Vec3> candidate_axes(const core::MeshDomain& solid) {
   std::vector<Vec3> out;
-  auto add = [&](Vec3 d) {
-    if (d.norm() < 1e-12) return;
-    d.normalize();
-    for (const Vec3& o : out)
-      if (std::abs(std::abs(o.dot(d)) - 1) < 1e-12) return;
-    out.push_back(d);
-  };
   for (FaceId f : solid.faces()) {
-    GeomAdaptor_Surface s(solid.impl().face(f.value()).surface);
-    switch (s.GetType()) {
-      case GeomAbs_Plane:
-        add(to_vec(s.Plane().Axis().Direction().XYZ()));
-        break;
-      case GeomAbs_Cylinder:
-        add(to_vec(s.Cylinder().Axis().Direction().XYZ()));
-        break;
-      case GeomAbs_SurfaceOfExtrusion:
-        add(to_vec(s.Direction().XYZ()));
-        break;
-      default:
-        break;
-    }
+    const core::SurfaceInfo info = solid.surface_info(f);
+    if (info.kind != core::SurfaceKind::plane && info.kind != core::SurfaceKind::cylinder &&
+        info.kind != core::SurfaceKind::extrusion)
+      continue;
+    Vec3 d = info.direction;
+    if (d.norm() < 1e-12) continue;
+    d.normalize();
+    bool known = false;
+    for (const Vec3& o : out) known = known || std::abs(std::abs(o.dot(d)) - 1) < 1e-12;
+    if (!known) out.push_back(d);
   }
   return out;
 }
 
-const char* surface_kind(GeomAbs_SurfaceType t) {
+const char* surface_kind(core::SurfaceKind t) {
   switch (t) {
-    case GeomAbs_Cone:
+    case core::SurfaceKind::cone:
       return "a cone";
-    case GeomAbs_Sphere:
+    case core::SurfaceKind::sphere:
       return "a sphere";
-    case GeomAbs_Torus:
+    case core::SurfaceKind::torus:
       return "a torus";
-    case GeomAbs_SurfaceOfRevolution:
+    case core::SurfaceKind::revolution:
       return "a surface of revolution";
     default:
       return "a surface";
@@ -80,16 +76,14 @@ const char* surface_kind(GeomAbs_SurfaceType t) {
 
 // Whether every face is a cap or a wall and every edge vertical or horizontal for `a`;
 // fills caps (with their heights) or returns the reason.
-std::string check_faces_and_edges(const Solid& solid, const Vec3& a, const Vec3& origin, double tol,
-                                  std::vector<FaceId>& caps, std::vector<double>& cap_height,
-                                  std::vector<bool>& cap_up) {
+std::string check_faces_and_edges(const core::MeshDomain& solid, const Vec3& a, const Vec3& origin,
+                                  double tol, std::vector<FaceId>& caps,
+                                  std::vector<double>& cap_height, std::vector<bool>& cap_up) {
   const double kParallel = 1e-9;  // |cos| of the angle between unit directions
   auto height = [&](const Vec3& p) { return (p - origin).dot(a); };
   for (FaceId f : solid.faces()) {
-    const FaceCache& c = solid.impl().face(f.value());
-    GeomAdaptor_Surface s(c.surface, c.umin, c.umax, c.vmin, c.vmax);
-    const GeomAbs_SurfaceType type = s.GetType();
-    if (type == GeomAbs_Plane || (type != GeomAbs_Cylinder && c.planar)) {
+    const core::SurfaceInfo info = solid.surface_info(f);
+    if (info.kind == core::SurfaceKind::plane) {
       const Vec3 q = solid.vertex_point(solid.edge_first_vertex(solid.face_wires(f)[0][0].edge));
       const Vec3 n = solid.face_normal(f, q);
       const double cosine = n.dot(a);
@@ -106,42 +100,31 @@ std::string check_faces_and_edges(const Solid& solid, const Vec3& a, const Vec3&
       }
       continue;
     }
-    if (type == GeomAbs_Cylinder) {
-      const Vec3 d = to_vec(s.Cylinder().Axis().Direction().XYZ());
-      if (std::abs(std::abs(d.dot(a)) - 1) > kParallel)
-        return face_name(f.value()) + " is a cylinder across the axis";
+    if (info.kind == core::SurfaceKind::cylinder || info.kind == core::SurfaceKind::extrusion) {
+      if (std::abs(std::abs(info.direction.normalized().dot(a)) - 1) > kParallel)
+        return face_name(f.value()) + " is " +
+               (info.kind == core::SurfaceKind::cylinder ? "a cylinder" : "an extrusion") +
+               " across the axis";
       continue;
     }
-    if (type == GeomAbs_SurfaceOfExtrusion) {
-      if (std::abs(std::abs(to_vec(s.Direction().XYZ()).dot(a)) - 1) > kParallel)
-        return face_name(f.value()) + " is an extrusion across the axis";
-      continue;
-    }
-    if (type == GeomAbs_Cone || type == GeomAbs_Sphere || type == GeomAbs_Torus ||
-        type == GeomAbs_SurfaceOfRevolution)
-      return face_name(f.value()) + " is " + surface_kind(type);
+    if (info.kind != core::SurfaceKind::other)
+      return face_name(f.value()) + " is " + surface_kind(info.kind);
     // Another surface (B-spline, offset...): a wall when its normal is across the axis at
-    // every sample of its parameter box.
-    for (int i = 0; i <= 4; ++i)
-      for (int j = 0; j <= 4; ++j) {
-        gp_Pnt p;
-        gp_Vec du, dv;
-        c.surface->D1(c.umin + (c.umax - c.umin) * i / 4, c.vmin + (c.vmax - c.vmin) * j / 4, p, du,
-                      dv);
-        gp_Vec n = du.Crossed(dv);
-        if (n.Magnitude() < 1e-300) continue;
-        n.Normalize();
-        if (std::abs(to_vec(n.XYZ()).dot(a)) > 1e-7)
-          return face_name(f.value()) + " is a curved surface not parallel to the axis";
+    // every sample of its boundary.
+    for (const auto& wire : solid.face_wires(f))
+      for (const OrientedEdge& oe : wire) {
+        if (solid.edge_is_degenerated(oe.edge)) continue;
+        for (const Vec3& q : solid.edge_points_by_length(oe.edge, 8))
+          if (std::abs(solid.face_normal(f, q).dot(a)) > 1e-7)
+            return face_name(f.value()) + " is a curved surface not parallel to the axis";
       }
   }
   for (EdgeId e : solid.edges()) {
     if (solid.edge_is_degenerated(e)) return edge_name(e.value()) + " is degenerated";
-    const EdgeCache& c = solid.impl().edge(e.value());
-    if (c.line) {
-      const Vec3 d = to_vec(c.p_last.XYZ()) - to_vec(c.p_first.XYZ());
-      if (d.norm() > 0 && std::abs(std::abs(d.normalized().dot(a)) - 1) < kParallel) continue;
-    }
+    const core::CurveInfo info = solid.curve_info(e);
+    if (info.kind == core::CurveKind::line &&
+        std::abs(std::abs(info.direction.normalized().dot(a)) - 1) < kParallel)
+      continue;
     // Other curves (a B-spline that is a straight line, as STEP files often carry): along
     // the axis when every sample lies on the axis line through the first, horizontal when
     // every sample lies at the first one's height.
@@ -159,14 +142,102 @@ std::string check_faces_and_edges(const Solid& solid, const Vec3& a, const Vec3&
   return "";
 }
 
-TopoDS_Shape translated(const TopoDS_Shape& s, const Vec3& by) {
-  gp_Trsf t;
-  t.SetTranslation(gp_Vec(by.x(), by.y(), by.z()));
-  return BRepBuilderAPI_Transform(s, t, true).Shape();
-}
+// The arrangement's building blocks: each model vertex and horizontal edge moved down
+// along the axis onto the base plane (height 0), built once and shared by every cap that
+// uses it, so that the caps' wires join.
+class Projector {
+ public:
+  Projector(const core::MeshDomain& solid, const Vec3& a, const Vec3& origin)
+      : solid_(solid),
+        a_(a),
+        origin_(origin),
+        vertices_(solid.num_vertices() + 1),
+        edges_(solid.num_edges() + 1) {}
+
+  Vec3 down(const Vec3& p) const { return p - (p - origin_).dot(a_) * a_; }
+
+  const TopoDS_Vertex& vertex(VertexId v) {
+    TopoDS_Vertex& out = vertices_[v.value()];
+    if (out.IsNull()) {
+      const Vec3 p = down(solid_.vertex_point(v));
+      out = BRepBuilderAPI_MakeVertex(gp_Pnt(p.x(), p.y(), p.z())).Vertex();
+    }
+    return out;
+  }
+
+  // The edge in its own direction (first to last vertex), on the base plane.
+  const TopoDS_Edge& edge(EdgeId e) {
+    TopoDS_Edge& out = edges_[e.value()];
+    if (!out.IsNull()) return out;
+    const TopoDS_Vertex &v0 = vertex(solid_.edge_first_vertex(e)),
+                        &v1 = vertex(solid_.edge_last_vertex(e));
+    const core::CurveInfo info = solid_.curve_info(e);
+    std::vector<Vec3> p = solid_.edge_points_by_length(e, 32);
+    for (Vec3& q : p) q = down(q);
+    auto pnt = [](const Vec3& q) { return gp_Pnt(q.x(), q.y(), q.z()); };
+    if (info.kind == core::CurveKind::line) {
+      out = BRepBuilderAPI_MakeEdge(v0, v1).Edge();
+    } else if (info.kind == core::CurveKind::circle) {
+      // The circle (its plane is across the axis) turned so that it runs as the edge does:
+      // from the first sample through the middle one (or, closed, on to the second).
+      gp_Dir n(a_.x(), a_.y(), a_.z());
+      gp_Circ circ(gp_Ax2(pnt(down(info.origin)), n), info.radius);
+      auto ahead = [&](const Vec3& from, const Vec3& to) {
+        double d = ElCLib::Parameter(circ, pnt(to)) - ElCLib::Parameter(circ, pnt(from));
+        while (d <= 0) d += 2 * M_PI;
+        while (d > 2 * M_PI) d -= 2 * M_PI;
+        return d;
+      };
+      const bool closed = (p.front() - p.back()).norm() <= 1e-9 * (1 + info.radius);
+      const bool backwards = closed
+                                 ? ahead(p[0], p[1]) > M_PI
+                                 : ahead(p.front(), p[p.size() / 2]) > ahead(p.front(), p.back());
+      if (backwards) circ.SetAxis(gp_Ax1(circ.Location(), n.Reversed()));
+      out = BRepBuilderAPI_MakeEdge(circ, v0, v1).Edge();
+    } else {
+      const bool closed = (p.front() - p.back()).norm() <= 1e-12 * (1 + p.front().norm());
+      Handle(TColgp_HArray1OfPnt) pts =
+          new TColgp_HArray1OfPnt(1, int(p.size()) - (closed ? 1 : 0));
+      for (int i = 1; i <= pts->Length(); ++i) pts->SetValue(i, pnt(p[i - 1]));
+      GeomAPI_Interpolate interpolate(pts, closed, 1e-9);
+      interpolate.Perform();
+      if (!interpolate.IsDone()) throw std::runtime_error("cannot project " + edge_name(e.value()));
+      out = BRepBuilderAPI_MakeEdge(interpolate.Curve(), v0, v1).Edge();
+    }
+    return out;
+  }
+
+  // A cap as a face on the base plane, its wires as the solid's (normal `n`).
+  TopoDS_Face face(FaceId f, const Vec3& n) {
+    const gp_Pln plane(gp_Pnt(origin_.x(), origin_.y(), origin_.z()), gp_Dir(n.x(), n.y(), n.z()));
+    std::vector<TopoDS_Wire> wires;
+    for (const auto& w : solid_.face_wires(f)) {
+      BRepBuilderAPI_MakeWire mw;
+      for (const OrientedEdge& oe : w) {
+        const TopoDS_Edge& e = edge(oe.edge);
+        mw.Add(oe.forward ? e : TopoDS::Edge(e.Reversed()));
+      }
+      if (!mw.IsDone())
+        throw std::runtime_error("cannot rebuild the wires of " + face_name(f.value()));
+      wires.push_back(mw.Wire());
+    }
+    BRepBuilderAPI_MakeFace mf(plane, wires.front(), true);
+    for (std::size_t i = 1; i < wires.size(); ++i) mf.Add(wires[i]);
+    if (!mf.IsDone()) throw std::runtime_error("cannot rebuild " + face_name(f.value()));
+    ShapeFix_Face fix(mf.Face());
+    fix.Perform();
+    return fix.Face();
+  }
+
+ private:
+  const core::MeshDomain& solid_;
+  Vec3 a_, origin_;
+  std::vector<TopoDS_Vertex> vertices_;
+  std::vector<TopoDS_Edge> edges_;
+};
 
 // The structure for one axis, or the reason why not.
-PrismaticStructure structure_for(const Solid& solid, const Vec3& a) {
+PrismaticStructure structure_for(const core::MeshDomain& solid, const Vec3& a) {
   PrismaticStructure r;
   r.axis = a;
   const BoundingBox box = solid.bounding_box();
@@ -207,19 +278,20 @@ PrismaticStructure structure_for(const Solid& solid, const Vec3& a) {
   TopTools_ListOfShape arguments;
   std::vector<TopoDS_Shape> moved_caps;
   std::vector<char> in_cap(solid.num_edges() + 1, 0);
+  Projector projector(solid, a, r.origin);
   for (std::size_t k = 0; k < r.caps.size(); ++k) {
     const FaceId f = r.caps[k];
-    moved_caps.push_back(translated(solid.impl().faces(f.value()), -cap_height[k] * a));
+    moved_caps.push_back(projector.face(f, cap_up[k] ? a : Vec3(-a)));
     arguments.Append(moved_caps.back());
     for (const auto& wire : solid.face_wires(f))
       for (const OrientedEdge& oe : wire) in_cap[oe.edge.value()] = 1;
   }
   for (EdgeId e : solid.edges()) {
     if (in_cap[e.value()]) continue;
-    const EdgeCache& c = solid.impl().edge(e.value());
-    const double h0 = r.height(to_vec(c.p_first.XYZ())), h1 = r.height(to_vec(c.p_last.XYZ()));
+    const double h0 = r.height(solid.vertex_point(solid.edge_first_vertex(e)));
+    const double h1 = r.height(solid.vertex_point(solid.edge_last_vertex(e)));
     if (std::abs(h0 - h1) > tol) continue;  // vertical: its projection is a vertex anyway
-    arguments.Append(translated(solid.impl().edges(e.value()), -h0 * a));
+    arguments.Append(projector.edge(e));
   }
   BRepAlgoAPI_BuilderAlgo fuse;
   fuse.SetArguments(arguments);
@@ -306,7 +378,7 @@ PrismaticStructure structure_for(const Solid& solid, const Vec3& a) {
 
 }  // namespace
 
-PrismaticStructure prismatic_structure(const Solid& solid, const Vec3& axis) {
+PrismaticStructure prismatic_structure(const core::MeshDomain& solid, const Vec3& axis) {
   PrismaticStructure best;
   best.reason = "no direction of its planes, cylinders or extrusions";
   try {

@@ -41,6 +41,9 @@ struct PrismaticStructure {
 // Options: `axis` forces a direction (zero: try the directions of the solid's planar
 // faces, cylinders and extrusions, and keep the one whose arrangement has the fewest
 // regions, then levels). Never throws for geometry it cannot handle: ok false with reason.
-PrismaticStructure prismatic_structure(const Solid& solid, const Vec3& axis = Vec3::Zero());
+// Works on any MeshDomain (the solid's own topology and geometry queries): the arrangement
+// is built from the caps' edges as curves (lines, circles, or curves through samples).
+PrismaticStructure prismatic_structure(const core::MeshDomain& solid,
+                                       const Vec3& axis = Vec3::Zero());
 
 }  // namespace vorohex::occ
