@@ -41,6 +41,16 @@ std::string edge_name(int e) {
   return "Edge" + std::to_string(e);
 }
 
+// A direction with the sign that makes its largest component positive: the same axis
+// whichever way the faces that give it happen to face (a part built from a reversed wire).
+Vec3 canonical(Vec3 d) {
+  d.normalize();
+  int big = 0;
+  for (int k = 1; k < 3; ++k)
+    if (std::abs(d[k]) > std::abs(d[big]) + 1e-12) big = k;
+  return d[big] < 0 ? Vec3(-d) : d;
+}
+
 // Directions of the solid's planes (normals), cylinders (axes) and extrusions, one per line.
 std::vector<Vec3> candidate_axes(const core::MeshDomain& solid) {
   std::vector<Vec3> out;
@@ -51,7 +61,7 @@ std::vector<Vec3> candidate_axes(const core::MeshDomain& solid) {
       continue;
     Vec3 d = info.direction;
     if (d.norm() < 1e-12) continue;
-    d.normalize();
+    d = canonical(d);
     bool known = false;
     for (const Vec3& o : out) known = known || std::abs(std::abs(o.dot(d)) - 1) < 1e-12;
     if (!known) out.push_back(d);
@@ -383,7 +393,7 @@ PrismaticStructure prismatic_structure(const core::MeshDomain& solid, const Vec3
   best.reason = "no direction of its planes, cylinders or extrusions";
   try {
     std::vector<Vec3> axes =
-        axis.norm() > 0 ? std::vector<Vec3>{axis.normalized()} : candidate_axes(solid);
+        axis.norm() > 0 ? std::vector<Vec3>{canonical(axis)} : candidate_axes(solid);
     bool found = false;
     std::string first_reason;
     for (const Vec3& a : axes) {

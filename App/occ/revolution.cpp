@@ -84,7 +84,15 @@ std::vector<Line> candidate_axes(const Solid& solid, double tol) {
     if (!face_axis(s, ax)) continue;
     bool known = false;
     for (const Line& l : out) known = known || same_line(l, ax, tol);
-    if (!known) out.push_back({to_vec(ax.Location().XYZ()), to_vec(ax.Direction().XYZ())});
+    if (known) continue;
+    // The sign that makes the largest component positive: the same axis however the face
+    // that gives it is oriented.
+    Vec3 d = to_vec(ax.Direction().XYZ()).normalized();
+    int big = 0;
+    for (int k = 1; k < 3; ++k)
+      if (std::abs(d[k]) > std::abs(d[big]) + 1e-12) big = k;
+    if (d[big] < 0) d = -d;
+    out.push_back({to_vec(ax.Location().XYZ()), d});
   }
   return out;
 }

@@ -311,78 +311,76 @@ bool mesh_solid(const occ::Solid& solid, const MeshOptions& options, double size
   result.stats.size_used = size;
 
   progress.report("scheme", 0.0);
-  // Scheme choice: the first of options.schemes (map, sweep, multisweep, midpoint by
-  // default) that applies; each says why not otherwise.
-  std::vector<std::unique_ptr<detail::Scheme>> schemes = detail::make_schemes(options.schemes);
-  detail::Scheme* chosen = nullptr;
+  // Schemes in the order of options.schemes (map, sweep, multisweep, revolve, midpoint by
+  // default): the first that applies and succeeds meshes the solid. One that does not apply
+  // says why; one that applies but fails (a sweep whose layers fold, a region whose quads
+  // fold) hands over to the next with its reason.
   std::string why_not_structured;
-  for (const auto& scheme : schemes) {
+  auto add_reason = [&](const std::string& why) {
+    why_not_structured += (why_not_structured.empty() ? "" : ". ") + why;
+  };
+  for (const auto& scheme : detail::make_schemes(options.schemes)) {
     const detail::SchemeCheck check = scheme->applicable(solid);
-    if (check.ok) {
-      chosen = scheme.get();
-      break;
+    if (!check.ok) {
+      add_reason(check.reason);
+      continue;
     }
-    why_not_structured += (why_not_structured.empty() ? "" : ". ") + check.reason;
+    const detail::SchemeEstimate estimate = scheme->evaluate(solid, size);
+    if (estimate.hexes > options.max_hexes) {
+      std::ostringstream s;
+      s << "The mesh would have " << estimate.hexes
+        << " hexahedra, more than max_hexes = " << options.max_hexes
+        << "; increase the size or the limit.";
+      result.diagnostics.push_back(core::make_error("too_many_hexes", s.str()));
+      return false;
+    }
+    detail::SchemeMesh meshed = scheme->compute(solid, size, progress);
+    result.stats.seconds_meshing = seconds_since(t0);
+    if (meshed.ok) {
+      append(result.diagnostics, meshed.diagnostics);
+      result.stats.intervals = meshed.intervals;
+      result.stats.scheme = scheme->name();
+      result.mesh = std::move(meshed.mesh);
+      if (!meshed.summary.code.empty()) result.diagnostics.push_back(meshed.summary);
+      return true;
+    }
+    if (progress.cancelled()) {
+      append(result.diagnostics, meshed.diagnostics);
+      return false;
+    }
+    // Its errors become the reason; its warnings and notes stay.
+    std::string why = "The " + std::string(scheme->name()) + " scheme applied but failed (";
+    for (const core::Diagnostic& d : meshed.diagnostics) {
+      if (d.severity != core::Severity::error) {
+        result.diagnostics.push_back(d);
+        continue;
+      }
+      std::string m = d.message;
+      if (!m.empty() && m.back() == '.') m.pop_back();
+      why += (why.back() == '(' ? "" : "; ") + m;
+    }
+    add_reason(why + ")");
+    result.diagnostics.push_back(
+        core::make_info("scheme_failed", why + "); the next scheme is tried.", {scheme->name()}));
   }
-  if (schemes.empty()) why_not_structured = "No single-solid scheme is enabled";
+  if (options.schemes.empty()) why_not_structured = "No single-solid scheme is enabled";
   why_not_structured += ".";
-  const bool structured = chosen != nullptr;
   std::string not_decomposed = "decomposition is off";
-  if (!structured && options.decompose) {
+  if (options.decompose) {
     if (mesh_decomposed(solid, options, size, progress, result, not_decomposed)) return true;
     if (progress.cancelled() || core::has_error(result.diagnostics)) return false;
   }
-  if (!structured && !options.fallback) {
+  if (!options.fallback) {
     result.diagnostics.push_back(core::make_error(
         "not_supported_yet", "This solid is not supported yet: no single scheme meshes it, and " +
                                  not_decomposed + ". " + why_not_structured));
     return false;
   }
-  if (!structured)
-    return fallback(
-        solid, options, size,
-        "No structured scheme applies (" + why_not_structured + ") and " + not_decomposed + ".",
-        progress, t0, result);
-
-  const detail::SchemeEstimate estimate = chosen->evaluate(solid, size);
-  result.stats.intervals = estimate.intervals;
-  if (estimate.hexes > options.max_hexes) {
-    std::ostringstream s;
-    s << "The mesh would have " << estimate.hexes
-      << " hexahedra, more than max_hexes = " << options.max_hexes
-      << "; increase the size or the limit.";
-    result.diagnostics.push_back(core::make_error("too_many_hexes", s.str()));
-    return false;
-  }
-
-  const std::size_t scheme_diagnostics = result.diagnostics.size();
-  detail::SchemeMesh meshed = chosen->compute(solid, size, progress);
-  append(result.diagnostics, meshed.diagnostics);
-  result.stats.intervals = meshed.intervals;
-  result.stats.scheme = chosen->name();
-  if (meshed.ok) {
-    result.mesh = std::move(meshed.mesh);
-    if (!meshed.summary.code.empty()) result.diagnostics.push_back(meshed.summary);
-  }
-  result.stats.seconds_meshing = seconds_since(t0);
-  if (meshed.ok || !options.fallback || progress.cancelled()) return meshed.ok;
-  // The scheme applied but failed (a sweep whose layers fold, say): its errors go into the
-  // fallback's warning and the fallback meshes the solid, as for a solid no scheme accepts.
-  std::string why = "The " + result.stats.scheme + " scheme applied but failed (";
-  std::vector<core::Diagnostic> kept(result.diagnostics.begin(),
-                                     result.diagnostics.begin() + scheme_diagnostics);
-  for (std::size_t i = scheme_diagnostics; i < result.diagnostics.size(); ++i) {
-    const core::Diagnostic& d = result.diagnostics[i];
-    if (d.severity == core::Severity::error) {
-      std::string m = d.message;
-      if (!m.empty() && m.back() == '.') m.pop_back();
-      why += (why.back() == '(' ? "" : "; ") + m;
-    } else
-      kept.push_back(d);
-  }
-  result.diagnostics = std::move(kept);
   result.stats.intervals = {0, 0, 0};
-  return fallback(solid, options, size, why + ").", progress, t0, result);
+  return fallback(
+      solid, options, size,
+      "No structured scheme applies (" + why_not_structured + ") and " + not_decomposed + ".",
+      progress, t0, result);
 }
 
 // Several solids glued at common faces: each meshed with the same size, joined into one
@@ -476,6 +474,23 @@ MeshResult generate(const occ::Solid& solid, const MeshOptions& options,
                     const core::Progress& progress) {
   // Automatic size: 20 elements along the diagonal (of all solids together).
   const double size = options.size > 0 ? options.size : solid.diagonal() / 20.0;
+  // Every scheme makes at least about one hexahedron per size^3 of volume: a size far too
+  // small for the limit is refused before any work (the decomposition, the tetrahedra).
+  {
+    const double at_least = std::abs(solid.volume()) / (size * size * size);
+    if (at_least > double(options.max_hexes)) {
+      MeshResult refused;
+      std::ostringstream s;
+      s << "The size " << size << " would give at least about " << std::setprecision(3) << at_least
+        << " hexahedra (the volume " << std::abs(solid.volume()) << " over size^3), more "
+        << "than max_hexes = " << options.max_hexes << "; a size of at least "
+        << std::cbrt(std::abs(solid.volume()) / double(options.max_hexes))
+        << " or a larger limit is needed.";
+      refused.diagnostics.push_back(core::make_error("too_many_hexes", s.str()));
+      refused.stats.size_used = size;
+      return refused;
+    }
+  }
   const std::vector<core::Diagnostic> small = small_features(solid, size);
   if (solid.num_solids() > 1) {
     MeshResult parts = generate_parts(solid, options, size, progress);

@@ -48,7 +48,7 @@ class _Option:
 
     kind decides the check: "length" > 0, "count" whole >= 1, "iterations" whole >= 0,
     "fraction" in (0, 1], "angle" in (0, 180] degrees, "tolerance" >= 0, "flag" True or
-    False. limits = (min, max, step) of a constraint
+    False, "schemes" scheme names (a list, or one comma-separated string). limits = (min, max, step) of a constraint
     property (App::PropertyIntegerConstraint / PropertyFloatConstraint), else None."""
 
     def __init__(self, name, prop, prop_type, group, doc, kind, auto_zero=False, limits=None):
@@ -58,7 +58,8 @@ class _Option:
 
     @property
     def default(self):
-        return getattr(_core.MeshOptions(), self.name)
+        value = getattr(_core.MeshOptions(), self.name)
+        return ",".join(value) if self.kind == "schemes" else value
 
     @property
     def integer(self):
@@ -75,10 +76,13 @@ OPTIONS = (
             "Refuse to mesh when more hexahedra than this are predicted", "count"),
     _Option("time_limit", "TimeLimit", "App::PropertyFloat", "Mesh",
             "Seconds after which meshing stops like a cancel (0 = no limit)", "tolerance"),
+    _Option("schemes", "Schemes", "App::PropertyString", "Mesh",
+            "Single-solid schemes tried in this order, comma-separated: map, sweep, "
+            "multisweep, revolve, midpoint (one left out is never used)", "schemes"),
     _Option("fallback", "Fallback", "App::PropertyBool", "Mesh",
-            "Where no structured scheme (map, sweep, midpoint) applies, mesh tetrahedra split "
-            "into hexahedra (poorer elements, reported as a warning); false refuses instead",
-            "flag"),
+            "Where no structured scheme (map, sweep, multisweep, revolve, midpoint) applies, "
+            "mesh tetrahedra split into hexahedra (poorer elements, reported as a warning); "
+            "false refuses instead", "flag"),
     _Option("eps", "Eps", "App::PropertyFloat", "Voronoi graph",
             "Merge tolerance and finest octree cell of the Voronoi graph, relative to the "
             "bounding-box diagonal, in (0, 0.25]", "fraction"),
@@ -159,6 +163,14 @@ def _make_options(kwargs):
         if value is None:
             continue  # None = keep the default (for size: automatic)
         option = _OPTION_BY_NAME[name]
+        if option.kind == "schemes":
+            if isinstance(value, str):
+                value = [v.strip() for v in value.split(",")] if value.strip() else []
+            if not isinstance(value, (list, tuple)) or not all(isinstance(v, str) for v in value):
+                raise TypeError("VoroHex: option 'schemes' must be a list of scheme names or "
+                                "one comma-separated string, got {!r}".format(value))
+            setattr(opts, name, list(value))
+            continue
         if option.kind == "flag":
             if not isinstance(value, bool):
                 raise TypeError("VoroHex: option '{}' must be True or False, got {!r}".format(

@@ -163,6 +163,9 @@ void bind_types(py::module_& m) {
       .def_readwrite("max_hexes", &O::max_hexes, "refuse up front above this predicted count")
       .def_readwrite("time_limit", &O::time_limit,
                      "seconds after which meshing stops like a cancel (0: none)")
+      .def_readwrite("schemes", &O::schemes,
+                     "single-solid schemes tried in this order (map, sweep, multisweep, "
+                     "revolve, midpoint); one left out is never used")
       .def_readwrite("fallback", &O::fallback,
                      "where no structured scheme applies: tetrahedra split into hexahedra "
                      "(reported as a warning); False refuses such solids")

@@ -281,8 +281,9 @@ class TestVoroHexApi(unittest.TestCase):
                 VoroHex.validate_options(**bad)
         with self.assertRaisesRegex(TypeError, "max_depth"):
             VoroHex.mesh(self.box, max_depth="9")
+        # Without the multisweep, which meshes the post on its plate as one prismatic solid.
         r = VoroHex.mesh(post_on_plate(), size=0.5, eps=0.02, delta=0.002, max_depth=8,
-                         sharp_angle=45)
+                         sharp_angle=45, schemes="map,sweep,midpoint")
         self.assertTrue(r.ok, r.message)
         self.assertGreater(r.stats.sub_volumes, 1)
         table = r.sub_volume_table()
@@ -414,6 +415,80 @@ class TestVoroHexApi(unittest.TestCase):
         self.assertTrue(all(v > 0 for v in r.core_mesh.hex_volumes()))
         self.assertTrue(math.isclose(sum(vols), solid.Volume, rel_tol=1e-6))
         self.assertTrue(all(v > 0 for v in femmesh_hex_volumes(r.to_femmesh())))
+
+    def test_machined_parts_use_multisweep_and_revolve(self):
+        V = FreeCAD.Vector
+        # A flanged pipe with bolt holes: prismatic along its axis (multisweep).
+        pipe = Part.makeCylinder(40, 8).fuse(Part.makeCylinder(22, 60))
+        pipe = pipe.cut(Part.makeCylinder(16, 80, V(0, 0, -10)))
+        for k in range(6):
+            a = 2 * math.pi * k / 6
+            pipe = pipe.cut(Part.makeCylinder(3.5, 30, V(31 * math.cos(a), 31 * math.sin(a), -5)))
+        pipe = pipe.removeSplitter()
+        # A pulley with a V-groove (cones) and a bore: of revolution (revolve).
+        rz = [(8, 0), (20, 0), (20, 6), (32, 6), (32, 0), (40, 0), (40, 4), (32, 10), (40, 16),
+              (40, 20), (32, 20), (32, 14), (20, 14), (20, 20), (8, 20)]
+        profile = Part.Face(Part.makePolygon([V(r, 0, z) for r, z in rz + rz[:1]]))
+        pulley = Part.Solid(profile.revolve(V(0, 0, 0), V(0, 0, 1), 360))
+        for solid, scheme in ((pipe, "multisweep"), (pulley, "revolve")):
+            r = VoroHex.mesh(solid, fallback=False, decompose=False)
+            self.assertTrue(r.ok, r.message)
+            self.assertEqual(r.stats.scheme, scheme)
+            self.assertGreaterEqual(r.stats.min_scaled_jacobian, 0.3)
+            self.assertTrue(VoroHex.check(r, solid).valid)
+        # The schemes option: without the revolve the pulley is refused (no fallback).
+        r = VoroHex.mesh(pulley, schemes="map,sweep,multisweep", fallback=False, decompose=False)
+        self.assertFalse(r.ok)
+        self.assertIn("Not prismatic", r.message)
+        r = VoroHex.mesh(pulley, schemes=["revolve"], fallback=False, decompose=False)
+        self.assertEqual(r.stats.scheme, "revolve")
+        with self.assertRaises(ValueError):
+            VoroHex.mesh(pulley, schemes="map,loft")
+        with self.assertRaises(TypeError):
+            VoroHex.mesh(pulley, schemes=5)
+
+    def test_the_same_part_built_four_ways_gets_the_same_scheme(self):
+        # A plate with a boss and two holes: Part API booleans, Part workbench objects (Cut
+        # of a MultiFuse, with Refine), a STEP round trip, and the plate from a reversed wire.
+        V = FreeCAD.Vector
+        doc = FreeCAD.newDocument("VoroHexFourWays")
+        try:
+            plate = Part.makeBox(60, 40, 8)
+            boss = Part.makeCylinder(8, 12, V(30, 20, 8))
+            holes = [Part.makeCylinder(3, 40, V(10, 10, -5)), Part.makeCylinder(3, 40, V(50, 30, -5))]
+            api = plate.fuse(boss).cut(holes[0]).cut(holes[1]).removeSplitter()
+            objs = []
+            for name, shape in (("Plate", plate), ("Boss", boss), ("H1", holes[0]), ("H2", holes[1])):
+                o = doc.addObject("Part::Feature", name)
+                o.Shape = shape
+                objs.append(o)
+            fused = doc.addObject("Part::MultiFuse", "Fusion")
+            fused.Shapes = objs[:2]
+            fused.Refine = True
+            tools = doc.addObject("Part::MultiFuse", "Holes")
+            tools.Shapes = objs[2:]
+            cut = doc.addObject("Part::Cut", "Cut")
+            cut.Base, cut.Tool = fused, tools
+            cut.Refine = True
+            doc.recompute()
+            workbench = cut.Shape
+            path = os.path.join(tempfile.mkdtemp(), "plate.step")
+            api.exportStep(path)
+            step = Part.read(path)
+            pts = [V(0, 0, 0), V(0, 40, 0), V(60, 40, 0), V(60, 0, 0), V(0, 0, 0)]  # clockwise
+            reversed_plate = Part.Face(Part.makePolygon(pts)).extrude(V(0, 0, 8))
+            reversed_part = reversed_plate.fuse(boss).cut(holes[0]).cut(holes[1]).removeSplitter()
+            results = []
+            for name, solid in (("API", api), ("workbench", workbench), ("STEP", step),
+                                ("reversed wire", reversed_part)):
+                self.assertAlmostEqual(solid.Volume, api.Volume, delta=1e-6 * api.Volume)
+                r = VoroHex.mesh(solid, size=4, fallback=False, decompose=False)
+                self.assertTrue(r.ok, name + ": " + r.message)
+                results.append((name, r.stats.scheme, r.stats.hexes))
+            self.assertEqual({s for _, s, _ in results}, {"multisweep"}, results)
+            self.assertEqual(len({h for _, _, h in results}), 1, results)
+        finally:
+            FreeCAD.closeDocument(doc.Name)
 
     def test_voronoi_graph_box(self):
         box = Part.makeBox(3, 2, 1)

@@ -186,6 +186,49 @@ TEST(GenerateMesh, MultisweepTakesPrismaticSolidsWhole) {
   }
 }
 
+// A scheme that applies but fails hands over to the next one with its reason: HexMe n03's
+// sweep folds at the default size; the multisweep after it meshes the ski jump.
+TEST(GenerateMesh, AFailingSchemeHandsOverToTheNext) {
+  const occ::ReadResult n03 =
+      occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/n03o_skijump_box_cyl.step");
+  ASSERT_TRUE(n03.ok());
+  MeshOptions opt;
+  opt.fallback = false;
+  opt.decompose = false;
+  const MeshResult r = generate_mesh(*n03.solid, opt);
+  ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
+  EXPECT_EQ(r.stats.scheme, "multisweep");
+  const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "scheme_failed");
+  ASSERT_NE(d, nullptr);
+  EXPECT_NE(d->message.find("The sweep scheme applied but failed"), std::string::npos)
+      << d->message;
+  EXPECT_NE(d->message.find("fold"), std::string::npos) << d->message;
+  // Without the multisweep, nothing structured is left: the sweep's failure is the reason.
+  opt.schemes = {"map", "sweep"};
+  const MeshResult refused = generate_mesh(*n03.solid, opt);
+  EXPECT_FALSE(refused.ok);
+  const core::Diagnostic* e = testing::find_diagnostic(refused.diagnostics, "not_supported_yet");
+  ASSERT_NE(e, nullptr);
+  EXPECT_NE(e->message.find("The sweep scheme applied but failed"), std::string::npos)
+      << e->message;
+}
+
+// A size far too small for the limit is refused before any work, with the count and the
+// size that would do: 0.01 on a 90 x 60 x 30 box is about 1.6e11 hexahedra.
+TEST(GenerateMesh, ASizeFarTooSmallIsRefusedUpFront) {
+  const occ::Solid box = occ::make_box(90, 60, 30);
+  MeshOptions opt;
+  opt.size = 0.01;
+  const MeshResult r = generate_mesh(box, opt);
+  EXPECT_FALSE(r.ok);
+  const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "too_many_hexes");
+  ASSERT_NE(d, nullptr);
+  EXPECT_NE(d->message.find("1.62e+11"), std::string::npos) << d->message;
+  EXPECT_NE(d->message.find("at least 0.148"), std::string::npos) << d->message;
+  EXPECT_EQ(r.mesh.num_hexes(), 0u);
+  EXPECT_TRUE(r.stats.scheme.empty());  // no scheme was run
+}
+
 // Unknown or repeated scheme names are refused before any work.
 TEST(GenerateMesh, UnknownSchemesAreRefused) {
   const occ::Solid box = occ::make_box(1, 1, 1);
