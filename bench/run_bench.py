@@ -134,7 +134,7 @@ def models():
         ("pulley (revolve)", f["pulley"], 3.0, True),
         ("chamfered shaft (revolve, O-grid core)", f["chamfered_shaft"], 2.0, True),
         ("plate with boss and holes 1M hexes (multisweep)", f["plate_boss_holes"], 0.27, False),
-        ("pulley 1M hexes (revolve)", f["pulley"], 0.4, False),
+        ("pulley 1M hexes (revolve)", f["pulley"], 0.48, False),
     ]
     if hexme_available("the HexMe s01 cube row is"):
         out.insert(3, ("HexMe s01 cube", os.path.join(HEXME, "s01o_cube.step"), None, True))

@@ -6,11 +6,12 @@ diagonal / 20), Gmsh's subdivision all-hex at the same size (both judged by `vor
 against the CAD), and `vorohex decompose` (sub-volumes before/after merging and schemes).
 Writes bench/results/hexme.md.
 
-usage: run_hexme.py [--build BUILD] [--no-gmsh] [--only PREFIX[,PREFIX...]]
+usage: run_hexme.py [--build BUILD] [--no-gmsh] [--keep-decomposition] [--only PREFIX[,PREFIX...]]
        run_hexme.py --from-logs LOG [LOG...]
 
 --no-gmsh keeps the Gmsh columns of the existing table (Gmsh's result does not change
-with VoroHex; it takes most of the run's time). Every measured row is also printed (one
+with VoroHex; it takes most of the run's time). --keep-decomposition keeps the
+`vorohex decompose` columns likewise (for a change that does not touch the decomposition). Every measured row is also printed (one
 Python dict per line), so runs split over several processes (--only i, --only n, ...) can
 be joined into one table with --from-logs (the last row of a model wins).
 """
@@ -44,15 +45,16 @@ def failed_decomposition(report):
     return "failed: " + errors(report.get("diagnostics", []))
 
 
-def previous_gmsh(path):
-    """Gmsh columns per model from an existing table (for --no-gmsh)."""
+def previous_columns(path, first, last):
+    """Columns [first, last) per model from an existing table (for --no-gmsh: the Gmsh
+    columns, for --keep-decomposition: the decomposition columns)."""
     out = {}
     try:
         with open(path) as fh:
             for line in fh:
                 cells = [c.strip() for c in line.strip().strip("|").split("|")]
                 if len(cells) == 14 and cells[0] not in ("model", "---"):
-                    out[cells[0]] = cells[6:12]
+                    out[cells[0]] = cells[first:last]
     except OSError:
         pass
     return out
@@ -62,6 +64,7 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--build", default=os.path.join(REPO, "build"))
     ap.add_argument("--no-gmsh", action="store_true")
+    ap.add_argument("--keep-decomposition", action="store_true")
     ap.add_argument("--only", default="")
     ap.add_argument("--from-logs", nargs="+", default=None)
     ap.add_argument("--commit", default=None, help="the commit the measured binary was built from")
@@ -103,7 +106,9 @@ def main():
         sys.exit(2)
     models = sorted(f for f in os.listdir(HEXME) if f.endswith(".step") and f.startswith(prefixes))
     rows = []
-    kept = previous_gmsh(os.path.join(HERE, "results", "hexme.md")) if args.no_gmsh else {}
+    table = os.path.join(HERE, "results", "hexme.md")
+    kept = previous_columns(table, 6, 12) if args.no_gmsh else {}
+    kept_d = previous_columns(table, 12, 14) if args.keep_decomposition else {}
     for model in models:
         step = os.path.join(HEXME, model)
         name = model[:-5]
@@ -128,34 +133,39 @@ def main():
         else:
             size = row["size"] = r["size"]
             row["v"] = errors(r["diagnostics"])
-        drep = os.path.join(work, name + ".decomposition.json")
-        if os.path.exists(drep):
-            os.remove(drep)
-        code, dsec, _, derr = measure([vorohex, "decompose", step, "-o",
-                                       os.path.join(work, name + ".parts.brep"), "--report", drep],
-                                      timeout=30, memory_gb=3)
-        d = load(drep) if code == 0 else None
-        if d is not None:
-            subs = d.get("sub_volumes", [])
-            schemes = {}
-            for sv in subs:
-                schemes[sv.get("scheme", "?")] = schemes.get(sv.get("scheme", "?"), 0) + 1
-            counts = d.get("counts", d.get("stats", {}))
-            row["d"] = "%s -> %s (%s)" % (counts.get("sub_volumes_before_merge", "?"),
-                                          counts.get("sub_volumes", len(subs)),
-                                          ", ".join("%d %s" % (n, s) for s, n in sorted(schemes.items())))
-        elif failed_decomposition(load(drep)):
-            row["d"] = failed_decomposition(load(drep))
+        if name in kept_d:
+            row["d"], d_sec = kept_d[name]
+            row["d_sec"] = float(d_sec) if d_sec else None
+            row["d_kept"] = True
         else:
-            last = [l for l in derr.strip().split("\n") if l][-1:] or ["exit %d" % code]
-            if code == -9:  # killed at the time limit (a run ending at 29.6 s is not)
-                last = ["killed after %.0f s (30 s limit)" % dsec]
-            elif "bad_alloc" in derr:
-                last = ["out of memory (3 GB limit)"]
-            elif code < 0:
-                last = ["crash (signal %d)" % -code]
-            row["d"] = "failed: " + last[0].replace("vorohex: ", "")[:90].replace("|", "/")
-        row["d_sec"] = dsec
+            drep = os.path.join(work, name + ".decomposition.json")
+            if os.path.exists(drep):
+                os.remove(drep)
+            code, dsec, _, derr = measure([vorohex, "decompose", step, "-o",
+                                           os.path.join(work, name + ".parts.brep"), "--report", drep],
+                                          timeout=30, memory_gb=3)
+            d = load(drep) if code == 0 else None
+            if d is not None:
+                subs = d.get("sub_volumes", [])
+                schemes = {}
+                for sv in subs:
+                    schemes[sv.get("scheme", "?")] = schemes.get(sv.get("scheme", "?"), 0) + 1
+                counts = d.get("counts", d.get("stats", {}))
+                row["d"] = "%s -> %s (%s)" % (counts.get("sub_volumes_before_merge", "?"),
+                                              counts.get("sub_volumes", len(subs)),
+                                              ", ".join("%d %s" % (n, s) for s, n in sorted(schemes.items())))
+            elif failed_decomposition(load(drep)):
+                row["d"] = failed_decomposition(load(drep))
+            else:
+                last = [l for l in derr.strip().split("\n") if l][-1:] or ["exit %d" % code]
+                if code == -9:  # killed at the time limit (a run ending at 29.6 s is not)
+                    last = ["killed after %.0f s (30 s limit)" % dsec]
+                elif "bad_alloc" in derr:
+                    last = ["out of memory (3 GB limit)"]
+                elif code < 0:
+                    last = ["crash (signal %d)" % -code]
+                row["d"] = "failed: " + last[0].replace("vorohex: ", "")[:90].replace("|", "/")
+            row["d_sec"] = dsec
         if name in kept:
             row["g_kept"] = kept[name]
         if not args.no_gmsh and size is not None:
@@ -200,6 +210,9 @@ def write_table(rows):
         return fmt % v if isinstance(v, (int, float)) else (v if v is not None else "")
 
     valid = sum(1 for r in rows if r.get("v", "").startswith("valid"))
+    structured = [r["model"].split("_")[0] for r in rows
+                  if r.get("v", "").startswith("valid") and "tet-split" not in r["v"]
+                  and r["model"].startswith("i") and r.get("v_min", -1) >= 0.2]
     decomposed = [r for r in rows if r.get("d", "") and not r["d"].startswith("failed")]
     schemed = [r for r in decomposed if " none" not in r["d"]]
     lines = [
@@ -213,7 +226,8 @@ def write_table(rows):
         "`Mesh.SubdivisionAlgorithm=2`, `Mesh.RecombineAll=1`. Decomposition: sub-volumes",
         "before -> after merging (schemes), or why it failed.",
         "",
-        "VoroHex schemes: `map` (topological hexahedron), `sweep` (one-to-one), `midpoint`",
+        "VoroHex schemes: `map` (topological hexahedron), `sweep` (one-to-one), `multisweep`",
+        "(prismatic parts: many-to-one, submapped walls), `revolve` (turned parts), `midpoint`",
         "(convex polyhedron), several sub-volumes of a decomposition meshed into one mesh",
         "(`map+sweep`, ...; tried before the fallback, in a child process stopped after 60 s)",
         "and `tet-split`, the fallback for solids neither accepts (tetrahedra split into",
@@ -222,7 +236,11 @@ def write_table(rows):
         "",
         "VoroHex meshes %d of %d models today (VoroHex columns measured at commit %s%s)." % (
             valid, len(rows), BUILT_FROM,
-            "; Gmsh columns kept from the previous table" if any("g_kept" in r for r in rows) else ""),
+            ("; Gmsh columns kept from the previous table" if any("g_kept" in r for r in rows) else "")
+            + ("; decomposition columns kept from the previous table"
+               if any("d_kept" in r for r in rows) else "")),
+        "Industrial models (i01-i25) valid by a structured scheme (not the fallback) with min SJ"
+        " >= 0.2: %d%s." % (len(structured), (" (" + ", ".join(structured) + ")") if structured else ""),
         "Its decomposition completes on %d of them, and gives sub-volumes that all have a scheme"
         " on %d (the others fail: errors named, or stopped at the limit)." % (len(decomposed),
                                                                               len(schemed)),
