@@ -170,7 +170,7 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
   std::vector<Part> parts;
   parts.reserve(n);
   for (int k = 0; k < n; ++k) {
-    Part p{pieces.part(k), {}, {}, {}};
+    Part p{pieces.part(k), {}, {}, {}, {}};
     p.whole_edge = pieces.part_ids(p.solid, 1);
     p.block = map_block_edge_groups(p.solid);
     if (!p.is_block()) {

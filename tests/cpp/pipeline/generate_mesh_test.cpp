@@ -96,7 +96,9 @@ TEST(GenerateMesh, SolidsNeedingSeveralSubVolumesAreCutAndMeshedAsOne) {
     // faces of the solid (a cut face as source or target makes it Ve).
     ASSERT_EQ(r.stats.sub_volume_types.size(), std::size_t(r.stats.sub_volumes));
     for (int k = 0; k < r.stats.sub_volumes; ++k) {
-      if (r.stats.sub_volume_schemes[k] == "map") EXPECT_EQ(r.stats.sub_volume_types[k], "Ve");
+      if (r.stats.sub_volume_schemes[k] == "map") {
+        EXPECT_EQ(r.stats.sub_volume_types[k], "Ve");
+      }
       EXPECT_TRUE(r.stats.sub_volume_types[k] == "Vs" || r.stats.sub_volume_types[k] == "Ve");
     }
     EXPECT_NE(r.stats.scheme, "tet-split");
@@ -112,8 +114,12 @@ TEST(GenerateMesh, SolidsNeedingSeveralSubVolumesAreCutAndMeshedAsOne) {
     // Nodes are classified on the solid's own entities, none on a cut.
     for (std::size_t i = 0; i < r.mesh.num_nodes(); ++i) {
       const core::NodeClass c = r.mesh.node_class(core::NodeId(std::int32_t(i)));
-      if (c.dim == 2) EXPECT_LE(c.id, s.solid.num_faces());
-      if (c.dim == 1) EXPECT_LE(c.id, s.solid.num_edges());
+      if (c.dim == 2) {
+        EXPECT_LE(c.id, s.solid.num_faces());
+      }
+      if (c.dim == 1) {
+        EXPECT_LE(c.id, s.solid.num_edges());
+      }
     }
   }
 }
