@@ -41,6 +41,19 @@ def _get_property(obj, option):
     return value.Value if hasattr(value, "Value") else value
 
 
+# The single-solid schemes, in the order the pipeline tries them by default.
+KNOWN_SCHEMES = tuple(VoroHex._core.MeshOptions().schemes)
+
+
+def scheme_list(text):
+    """ "map, sweep" -> ["map", "sweep"] (empty names dropped)."""
+    return [t.strip() for t in (text or "").split(",") if t.strip()]
+
+
+def unknown_schemes(names):
+    return [n for n in names if n not in KNOWN_SCHEMES]
+
+
 def unstructured_parts(scheme):
     """The schemes of "sweep+tet-split" that are not structured (empty: all structured)."""
     return [s for s in (scheme or "").split("+") if s in UNSTRUCTURED]
@@ -159,6 +172,11 @@ class TaskPanel:
         self.fallback = QtGui.QCheckBox("Fallback (tetrahedra split into hexahedra)")
         self.fallback.setObjectName("cb_fallback")
         self.form.gb_limits.layout().addRow(self.fallback)
+        self.schemes = QtGui.QLineEdit()
+        self.schemes.setObjectName("le_schemes")
+        self.schemes.setPlaceholderText(", ".join(KNOWN_SCHEMES))
+        self.schemes.textChanged.connect(self._check_schemes)
+        self.form.gb_limits.layout().addRow("Schemes:", self.schemes)
         self.time_limit = QtGui.QDoubleSpinBox()
         self.time_limit.setObjectName("sb_time_limit")
         self.time_limit.setRange(0, 1e6)
@@ -166,7 +184,7 @@ class TaskPanel:
         self.time_limit.setSpecialValueText("none")
         self.form.gb_limits.layout().addRow("Time limit:", self.time_limit)
         for w in (self.eps, self.delta, self.max_depth, self.decompose, self.sharp_angle,
-                  self.decomposition_time, self.fallback, self.time_limit):
+                  self.decomposition_time, self.fallback, self.time_limit, self.schemes):
             option = next(o for o in VoroHex.OPTIONS if self._widget(o) is w)
             w.setToolTip(option.doc)
         self.preview = QtGui.QPushButton("Preview graph and decomposition", dec_box)
@@ -247,7 +265,8 @@ class TaskPanel:
     def _widget(self, option):
         own = {"decompose": "decompose", "decomposition_time_limit": "decomposition_time",
                "sharp_angle": "sharp_angle", "eps": "eps", "delta": "delta",
-               "max_depth": "max_depth", "fallback": "fallback", "time_limit": "time_limit"}
+               "max_depth": "max_depth", "fallback": "fallback", "time_limit": "time_limit",
+               "schemes": "schemes"}
         if option.name in own:
             return getattr(self, own[option.name], None)
         name = WIDGETS.get(option.name)
@@ -257,7 +276,9 @@ class TaskPanel:
         self.form.lbl_part.setText(self.obj.Part.Label if self.obj.Part else "(none)")
         for option in VoroHex.OPTIONS:
             w, value = self._widget(option), _get_property(self.obj, option)
-            if isinstance(w, QtGui.QLineEdit):
+            if option.kind == "schemes":
+                w.setText(", ".join(scheme_list(value)))
+            elif isinstance(w, QtGui.QLineEdit):
                 w.setText("{:g}".format(value))
             elif isinstance(w, QtGui.QCheckBox):
                 w.setChecked(bool(value))
@@ -275,7 +296,14 @@ class TaskPanel:
             w = self._widget(option)
             if w is None:
                 continue
-            if isinstance(w, QtGui.QLineEdit):
+            if option.kind == "schemes":
+                names = scheme_list(w.text()) or list(KNOWN_SCHEMES)  # empty: all
+                if unknown_schemes(names):
+                    continue  # keep the property; _check_schemes flags the text
+                value = ",".join(names)
+                if names == scheme_list(_get_property(self.obj, option)):
+                    continue
+            elif isinstance(w, QtGui.QLineEdit):
                 try:
                     value = float(w.text())
                 except ValueError:
@@ -292,6 +320,16 @@ class TaskPanel:
             self.obj.ElementOrder = combo.currentText()
             changed = True
         return changed
+
+    def _check_schemes(self, text):
+        """Flags scheme names that do not exist (the property keeps its value)."""
+        unknown = unknown_schemes(scheme_list(text))
+        self.schemes.setStyleSheet("background-color: #f4cccc;" if unknown else "")
+        self.schemes.setToolTip(
+            "Unknown scheme{}: {}; the schemes are {}".format(
+                "s" if len(unknown) > 1 else "", ", ".join(unknown), ", ".join(KNOWN_SCHEMES))
+            if unknown else next(o.doc for o in VoroHex.OPTIONS if o.name == "schemes")
+            + " (empty: all, in the order " + ", ".join(KNOWN_SCHEMES) + ")")
 
     # The hex count to expect -----------------------------------------------------------
     def estimate(self, size=None):

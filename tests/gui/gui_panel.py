@@ -245,10 +245,21 @@ def main():
     w["size"].setValue(2.5)
     pump(0.1)
     check("512" in w["estimate"].text(), "live estimate: " + w["estimate"].text())
+    # Schemes (Advanced: limits): an unknown name is flagged and never stored; a valid
+    # list is stored in the Schemes property by Run.
+    schemes = mw.findChild(QtGui.QLineEdit, "le_schemes")
+    schemes.setText("map, bogus")
+    pump(0.1)
+    check("bogus" in schemes.toolTip() and schemes.styleSheet() != "",
+          "an unknown scheme is flagged: " + schemes.toolTip())
+    schemes.setText("map, sweep, midpoint")
+    pump(0.1)
+    check(schemes.styleSheet() == "", "a valid list is not flagged")
     w["run"].click()
     check(wait_until(lambda: w["run"].isEnabled(), 30), "the box run ended")
     check(mesh.Status == "ok" and mesh.HexCount == 512, "box meshed: " + mesh.Message)
     check(mesh.Scheme == "map" and not w["banner"].isVisible(), "structured: no banner")
+    check(mesh.Schemes == "map,sweep,midpoint", "the schemes stored: " + mesh.Schemes)
     check("Touched" in idle.State and idle.Status == "" and idle.HexCount == 0,
           "Run recomputed only the mesh being edited (the other is still untouched)")
     check("Touched" not in mesh.State, "the edited mesh is up to date (no recompute pending)")
