@@ -447,9 +447,11 @@ class TestVoroHexApi(unittest.TestCase):
         with self.assertRaises(TypeError):
             VoroHex.mesh(pulley, schemes=5)
 
-    def test_the_same_part_built_four_ways_gets_the_same_scheme(self):
+    def test_the_same_part_built_five_ways_gets_the_same_scheme(self):
         # A plate with a boss and two holes: Part API booleans, Part workbench objects (Cut
-        # of a MultiFuse, with Refine), a STEP round trip, and the plate from a reversed wire.
+        # of a MultiFuse, with Refine), a STEP round trip, the plate from a reversed wire,
+        # and PartDesign (a Pad of a sketch with two circles, a Pad of a circle sketched on
+        # its top face).
         V = FreeCAD.Vector
         doc = FreeCAD.newDocument("VoroHexFourWays")
         try:
@@ -478,9 +480,10 @@ class TestVoroHexApi(unittest.TestCase):
             pts = [V(0, 0, 0), V(0, 40, 0), V(60, 40, 0), V(60, 0, 0), V(0, 0, 0)]  # clockwise
             reversed_plate = Part.Face(Part.makePolygon(pts)).extrude(V(0, 0, 8))
             reversed_part = reversed_plate.fuse(boss).cut(holes[0]).cut(holes[1]).removeSplitter()
+            part_design = self._part_design_plate_with_boss(doc)
             results = []
             for name, solid in (("API", api), ("workbench", workbench), ("STEP", step),
-                                ("reversed wire", reversed_part)):
+                                ("reversed wire", reversed_part), ("PartDesign", part_design)):
                 self.assertAlmostEqual(solid.Volume, api.Volume, delta=1e-6 * api.Volume)
                 r = VoroHex.mesh(solid, size=4, fallback=False, decompose=False)
                 self.assertTrue(r.ok, name + ": " + r.message)
@@ -489,6 +492,35 @@ class TestVoroHexApi(unittest.TestCase):
             self.assertEqual(len({h for _, _, h in results}), 1, results)
         finally:
             FreeCAD.closeDocument(doc.Name)
+
+    @staticmethod
+    def _part_design_plate_with_boss(doc):
+        import Sketcher
+        V = FreeCAD.Vector
+        body = doc.addObject("PartDesign::Body", "Body")
+        base = body.newObject("Sketcher::SketchObject", "PlateSketch")
+        base.Support = (doc.getObject("XY_Plane"), [""])
+        base.MapMode = "FlatFace"
+        corners = [V(0, 0, 0), V(60, 0, 0), V(60, 40, 0), V(0, 40, 0)]
+        for i in range(4):
+            base.addGeometry(Part.LineSegment(corners[i], corners[(i + 1) % 4]))
+        for i in range(4):
+            base.addConstraint(Sketcher.Constraint("Coincident", i, 2, (i + 1) % 4, 1))
+        base.addGeometry(Part.Circle(V(10, 10, 0), V(0, 0, 1), 3))
+        base.addGeometry(Part.Circle(V(50, 30, 0), V(0, 0, 1), 3))
+        pad = body.newObject("PartDesign::Pad", "Pad")
+        pad.Profile, pad.Length = base, 8
+        doc.recompute()
+        top = next(i + 1 for i, f in enumerate(pad.Shape.Faces)
+                   if abs(f.CenterOfMass.z - 8) < 1e-9 and f.normalAt(0, 0).z > 0.5)
+        sketch = body.newObject("Sketcher::SketchObject", "BossSketch")
+        sketch.Support = (pad, ["Face{}".format(top)])
+        sketch.MapMode = "FlatFace"
+        sketch.addGeometry(Part.Circle(V(30, 20, 0), V(0, 0, 1), 8))
+        boss = body.newObject("PartDesign::Pad", "BossPad")
+        boss.Profile, boss.Length = sketch, 12
+        doc.recompute()
+        return body.Shape
 
     def test_voronoi_graph_box(self):
         box = Part.makeBox(3, 2, 1)
