@@ -17,6 +17,7 @@ using detail::Vec2;
 void QuadFaceOptions::validate() const {
   core::require_positive("QuadFaceOptions.size", size);
   core::require_at_least("QuadFaceOptions.smoothing_passes", smoothing_passes, 0);
+  core::require_at_least("QuadFaceOptions.ring_layers", ring_layers, 0);
 }
 
 namespace {
@@ -110,7 +111,7 @@ QuadFaceMesh planar_quad_face(const core::MeshDomain& solid, core::FaceId face,
     l = std::move(canonical);
     start += m;
   }
-  const detail::QuadMesh2d m = detail::quad_mesh_2d(loops2, options.size, options.smoothing_passes);
+  const detail::QuadMesh2d m = detail::quad_mesh_2d(loops2, options.size, options.smoothing_passes, options.ring_layers);
   if (!m.error.empty()) {
     out.diagnostics.push_back(core::make_error(
         "quad_face_failed", "Quad meshing of " + name + " failed: " + m.error + ".", {name}));
@@ -166,7 +167,7 @@ QuadFaceMesh quad_face(const core::MeshDomain& solid, core::FaceId face,
       for (auto& l : loops2)
         for (Vec2& p : l) p.x() = -p.x();
     const detail::QuadMesh2d m =
-        detail::quad_mesh_2d(loops2, options.size, options.smoothing_passes);
+        detail::quad_mesh_2d(loops2, options.size, options.smoothing_passes, options.ring_layers);
     if (!m.error.empty()) return fail(m.error);
 
     for (const auto& loop : loops) out.points.insert(out.points.end(), loop.begin(), loop.end());

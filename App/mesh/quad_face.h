@@ -18,6 +18,9 @@ namespace vorohex::mesh {
 struct QuadFaceOptions {
   double size = 1.0;          // target quad edge length, model units (> 0)
   int smoothing_passes = 30;  // passes of each smoothing kind (>= 0)
+  // Rings of quads laid along each loop without sharp corners (round holes) before the rest
+  // is meshed, at most this many (>= 0; 0: none, the lattice reaches the loops).
+  int ring_layers = 3;
   void validate() const;      // throws std::invalid_argument naming the bad field
 };
 

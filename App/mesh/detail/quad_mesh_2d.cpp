@@ -215,7 +215,9 @@ double quad_quality(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) 
   return std::min({corner(a, b, d), corner(b, c, a), corner(c, d, b), corner(d, a, c)});
 }
 
-QuadMesh2d quad_mesh_2d(const std::vector<std::vector<Vec2>>& loops, double size,
+namespace {
+
+QuadMesh2d lattice_mesh(const std::vector<std::vector<Vec2>>& loops, double size,
                         int smoothing_passes) {
   QuadMesh2d out;
   if (loops.empty() || !(size > 0)) {
@@ -383,6 +385,148 @@ QuadMesh2d quad_mesh_2d(const std::vector<std::vector<Vec2>>& loops, double size
       out.error = "a quad is inverted after smoothing";
       break;
     }
+  return out;
+}
+
+bool segments_cross(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
+  const double d1 = cross(b - a, c - a), d2 = cross(b - a, d - a);
+  const double d3 = cross(d - c, a - c), d4 = cross(d - c, b - c);
+  return ((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0)) && d1 != 0 && d2 != 0 && d3 != 0 &&
+         d4 != 0;
+}
+
+double mean_segment(const std::vector<Vec2>& p, const std::vector<int>& loop) {
+  double sum = 0;
+  for (std::size_t i = 0; i < loop.size(); ++i)
+    sum += (p[loop[(i + 1) % loop.size()]] - p[loop[i]]).norm();
+  return sum / double(loop.size());
+}
+
+// The loop's nodes moved into the domain (on the left of the loop's direction) by t, along
+// the bisector of the two segments' normals (mitred, at most 2 t).
+std::vector<Vec2> offset_loop(const std::vector<Vec2>& p, const std::vector<int>& loop, double t) {
+  const int n = int(loop.size());
+  std::vector<Vec2> out(n);
+  for (int i = 0; i < n; ++i) {
+    const Vec2 a = p[loop[(i + n - 1) % n]], b = p[loop[i]], c = p[loop[(i + 1) % n]];
+    const Vec2 e0 = (b - a).normalized(), e1 = (c - b).normalized();
+    const Vec2 n0(-e0.y(), e0.x()), n1(-e1.y(), e1.x());
+    Vec2 bis = n0 + n1;
+    const double len = bis.norm();
+    bis = len > 1e-12 ? Vec2(bis / len) : n0;
+    out[i] = b + t * bis / std::max(0.5, bis.dot(n0));
+  }
+  return out;
+}
+
+// Whether a loop's turns are all gentle (a circle, an ellipse, a rounded slot): only such
+// loops get rings (around a hole with corners, or along an outline with corners, the lattice
+// aligned with the sides gives rectangles where rings would give mitred corners).
+bool smooth_loop(const std::vector<Vec2>& l) {
+  const int n = int(l.size());
+  for (int i = 0; i < n; ++i) {
+    const Vec2 a = l[i] - l[(i + n - 1) % n], b = l[(i + 1) % n] - l[i];
+    if (std::abs(std::atan2(cross(a, b), a.dot(b))) > 0.6) return false;  // ~35 degrees
+  }
+  return true;
+}
+
+}  // namespace
+
+QuadMesh2d quad_mesh_2d(const std::vector<std::vector<Vec2>>& loops, double size,
+                        int smoothing_passes, int ring_layers) {
+  if (ring_layers <= 0 || loops.empty() || !(size > 0))
+    return lattice_mesh(loops, size, smoothing_passes);
+  const std::size_t L = loops.size();
+  std::vector<Vec2> pts;
+  std::vector<std::vector<int>> front(L);
+  for (std::size_t l = 0; l < L; ++l) {
+    if (loops[l].size() < 6 || loops[l].size() % 2) return lattice_mesh(loops, size, smoothing_passes);
+    for (const Vec2& q : loops[l]) {
+      front[l].push_back(int(pts.size()));
+      pts.push_back(q);
+    }
+  }
+  std::vector<char> growing(L);
+  for (std::size_t l = 0; l < L; ++l) growing[l] = smooth_loop(loops[l]);
+  std::vector<std::array<int, 4>> ring_quads;
+  int first_free = -1;  // the nodes after the first rings: smoothed with the rest
+  for (int layer = 0; layer < ring_layers; ++layer) {
+    if (layer == 1) first_free = int(pts.size());
+    for (std::size_t l = 0; l < L; ++l) {
+      if (!growing[l]) continue;
+      const std::vector<int>& f = front[l];
+      const int n = int(f.size());
+      const double t = std::min(mean_segment(pts, f), size);
+      const std::vector<Vec2> ring = offset_loop(pts, f, t);
+      bool ok = true;
+      double seg = 0;
+      for (int i = 0; i < n && ok; ++i) {
+        const int j = (i + 1) % n;
+        seg += (ring[j] - ring[i]).norm();
+        ok = quad_quality(pts[f[i]], pts[f[j]], ring[j], ring[i]) >= 0.5;
+      }
+      // Growing (around a hole) up to 2 x size; shrinking (inside an outline) down to 0.7 x size.
+      const double before = mean_segment(pts, f);
+      ok = ok && seg / n <= 2 * size && (seg / n >= before || seg / n >= 0.7 * size);
+      // Not crossing itself, and at least a ring's width clear of every other loop's front.
+      for (int i = 0; i < n && ok; ++i)
+        for (int k = i + 2; k < n && ok; ++k)
+          if ((k + 1) % n != i) ok = !segments_cross(ring[i], ring[(i + 1) % n], ring[k], ring[(k + 1) % n]);
+      for (std::size_t o = 0; o < L && ok; ++o) {
+        if (o == l) continue;
+        const std::vector<int>& g = front[o];
+        for (std::size_t k = 0; k < g.size() && ok; ++k) {
+          const Vec2& a = pts[g[k]];
+          const Vec2& b = pts[g[(k + 1) % g.size()]];
+          for (int i = 0; i < n && ok; ++i)
+            ok = segment_distance(a, b, ring[i]) > t &&
+                 !segments_cross(a, b, ring[i], ring[(i + 1) % n]) &&
+                 segment_distance(ring[i], ring[(i + 1) % n], a) > t;
+        }
+      }
+      if (!ok) {
+        growing[l] = 0;
+        continue;
+      }
+      std::vector<int> next(n);
+      for (int i = 0; i < n; ++i) {
+        next[i] = int(pts.size());
+        pts.push_back(ring[i]);
+      }
+      for (int i = 0; i < n; ++i) {
+        const int j = (i + 1) % n;
+        ring_quads.push_back({f[i], f[j], next[j], next[i]});
+      }
+      front[l] = std::move(next);
+    }
+  }
+  if (ring_quads.empty()) return lattice_mesh(loops, size, smoothing_passes);
+
+  // The rest of the domain inside the last rings.
+  std::vector<std::vector<Vec2>> inner(L);
+  std::vector<int> index;  // the lattice mesh's boundary node k -> pts index
+  for (std::size_t l = 0; l < L; ++l)
+    for (int v : front[l]) {
+      inner[l].push_back(pts[v]);
+      index.push_back(v);
+    }
+  QuadMesh2d core = lattice_mesh(inner, size, smoothing_passes);
+  if (!core.error.empty()) return lattice_mesh(loops, size, smoothing_passes);
+  QuadMesh2d out;
+  out.points = std::move(pts);
+  if (first_free < 0) first_free = int(out.points.size());
+  for (std::size_t k = index.size(); k < core.points.size(); ++k) {
+    index.push_back(int(out.points.size()));
+    out.points.push_back(core.points[k]);
+  }
+  out.quads = std::move(ring_quads);
+  for (const auto& q : core.quads) out.quads.push_back({index[q[0]], index[q[1]], index[q[2]], index[q[3]]});
+  // The first rings stay where they follow the loops; the outer rings relax into the rest.
+  Smoother(out.points, out.quads, first_free).run(smoothing_passes);
+  for (const auto& q : out.quads)
+    if (quad_quality(out.points[q[0]], out.points[q[1]], out.points[q[2]], out.points[q[3]]) <= 0)
+      return lattice_mesh(loops, size, smoothing_passes);
   return out;
 }
 

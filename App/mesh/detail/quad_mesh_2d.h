@@ -4,7 +4,12 @@
 // aligned with the boundary's dominant direction; pairs of triangles that make good quads
 // are merged; every triangle is split into 3 quads and every quad into 4 (edge midpoints
 // and centre), so the skipped boundary nodes come back as the boundary edges' midpoints;
-// then quality-guarded smoothing of the inner nodes.
+// then quality-guarded smoothing of the inner nodes. Before that, up to `ring_layers` rings
+// of quads are laid along each loop without sharp corners (a round hole, a circular outline):
+// each ring offsets the loop's nodes into the domain by about one segment, so the quads next
+// to a hole follow it (an O-grid) instead of a lattice cut by it. A ring is kept only while
+// it is well shaped, a ring's width clear of the other loops, and its segments between
+// 0.7 and 2 x size.
 #pragma once
 
 #include <Eigen/Core>
@@ -26,7 +31,7 @@ struct QuadMesh2d {
 // (outer counter-clockwise, holes clockwise). Each loop needs an even number of nodes, at
 // least 6, except a domain of one loop with 4 nodes (one quad). size: target edge length.
 QuadMesh2d quad_mesh_2d(const std::vector<std::vector<Vec2>>& loops, double size,
-                        int smoothing_passes);
+                        int smoothing_passes, int ring_layers = 0);
 
 // 2-D quad scaled Jacobian: the minimum over the corners of the cross product of the two
 // corner edges divided by their lengths (1 for a square, <= 0 when inverted or collapsed).

@@ -5,6 +5,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <map>
+#include <set>
 
 #include "mesh/detail/quad_mesh_2d.h"
 #include "occ/primitives.h"
@@ -121,6 +122,60 @@ TEST(QuadMesh2d, PlateWithRoundHole) {
               m.quads.size(), mean);
 }
 
+// Rings (an O-grid) around a round hole: the nodes next to the hole lie on one circle
+// (the first ring is an exact offset of the hole), a second ring follows it, and the quads
+// stay good; with no rings the lattice reaches the hole and those nodes are scattered.
+TEST(QuadMesh2d, RingsFollowARoundHole) {
+  const Vec2 centre(5, 5);
+  const int n = 32;
+  const std::vector<std::vector<Vec2>> loops = {
+      polygon_nodes({{0, 0}, {10, 0}, {10, 10}, {0, 10}}, 0.5),
+      circle_nodes(centre, 1.5, n, false)};
+  const int hole0 = int(loops[0].size()), hole1 = hole0 + n;
+  auto neighbours = [](const detail::QuadMesh2d& m, const std::set<int>& of) {
+    std::set<int> out;
+    for (const auto& q : m.quads)
+      for (int c = 0; c < 4; ++c)
+        for (int d : {q[(c + 1) % 4], q[(c + 3) % 4]})
+          if (of.count(q[c]) && !of.count(d)) out.insert(d);
+    return out;
+  };
+  auto radii = [&](const detail::QuadMesh2d& m, const std::set<int>& nodes) {
+    double lo = 1e300, hi = 0;
+    for (int v : nodes) {
+      const double r = (m.points[v] - centre).norm();
+      lo = std::min(lo, r), hi = std::max(hi, r);
+    }
+    return std::make_pair(lo, hi);
+  };
+  std::set<int> hole;
+  for (int v = hole0; v < hole1; ++v) hole.insert(v);
+
+  const auto rings = detail::quad_mesh_2d(loops, 0.5, 30, 3);
+  double mean = 0;
+  check_2d(loops, rings, 0.5, &mean);
+  std::set<int> first = neighbours(rings, hole);
+  for (int v = 0; v < hole0; ++v) first.erase(v);
+  ASSERT_EQ(first.size(), std::size_t(n));
+  const auto [lo1, hi1] = radii(rings, first);
+  EXPECT_GT(lo1, 1.6);
+  EXPECT_LT(hi1 - lo1, 1e-9 * hi1);
+  std::set<int> inner = hole;
+  inner.insert(first.begin(), first.end());
+  const std::set<int> second = neighbours(rings, inner);
+  EXPECT_EQ(second.size(), std::size_t(n));  // one node outwards per node: a second ring
+  const auto [lo2, hi2] = radii(rings, second);
+  EXPECT_GT(lo2, hi1);
+  EXPECT_LT(hi2 - lo2, 0.1 * hi2);  // smoothed into the rest, still round
+  std::printf("[quad_mesh_2d] round hole with rings: %zu quads, mean quality %.3f, rings at "
+              "r = %.3f and %.3f-%.3f\n", rings.quads.size(), mean, lo1, lo2, hi2);
+
+  const auto lattice = detail::quad_mesh_2d(loops, 0.5, 30, 0);
+  check_2d(loops, lattice, 0.3);
+  const auto [lo0, hi0] = radii(lattice, neighbours(lattice, hole));
+  EXPECT_GT(hi0 - lo0, 1e-3 * hi0);
+}
+
 TEST(QuadMesh2d, SmallFacesAndRefusals) {
   // Four nodes: one quad; six nodes: a coarse triangle split into three quads.
   const auto q = detail::quad_mesh_2d({{{0, 0}, {1, 0}, {1, 1}, {0, 1}}}, 1, 10);
@@ -214,6 +269,14 @@ TEST(QuadFace, OptionsValidate) {
   o.size = 1;
   o.smoothing_passes = -1;
   EXPECT_THROW(o.validate(), std::invalid_argument);
+  o.smoothing_passes = 0;
+  o.ring_layers = -1;
+  try {
+    o.validate();
+    ADD_FAILURE() << "ring_layers -1 accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("ring_layers"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
