@@ -105,7 +105,7 @@ struct Plan {
   std::vector<core::Diagnostic> diagnostics;
 };
 
-Plan plan(const occ::Solid& solid, const RevolveOptions& options, const core::Progress& progress) {
+Plan plan(const core::MeshDomain& solid, const RevolveOptions& options, const core::Progress& progress) {
   options.validate();
   Plan p;
   p.structure = occ::revolution_structure(solid);
@@ -185,7 +185,7 @@ RevolveEstimate estimate(const Plan& p) {
 
 }  // namespace
 
-RevolveApplicability revolve_applicable(const occ::Solid& solid) {
+RevolveApplicability revolve_applicable(const core::MeshDomain& solid) {
   RevolveApplicability a;
   const occ::RevolutionStructure s = occ::revolution_structure(solid);
   a.ok = s.ok;
@@ -196,11 +196,11 @@ RevolveApplicability revolve_applicable(const occ::Solid& solid) {
   return a;
 }
 
-RevolveEstimate revolve_evaluate(const occ::Solid& solid, const RevolveOptions& options) {
+RevolveEstimate revolve_evaluate(const core::MeshDomain& solid, const RevolveOptions& options) {
   return estimate(plan(solid, options, {}));
 }
 
-RevolveResult revolve(const occ::Solid& solid, const RevolveOptions& options,
+RevolveResult revolve(const core::MeshDomain& solid, const RevolveOptions& options,
                       const core::Progress& progress) {
   RevolveResult r;
   const char* stage = "revolve";

@@ -30,13 +30,13 @@ struct RevolveApplicability {
   int cores = 0;  // coaxial cores (where the section lies on the axis)
 };
 
-RevolveApplicability revolve_applicable(const occ::Solid& solid);
+RevolveApplicability revolve_applicable(const core::MeshDomain& solid);
 
 struct RevolveEstimate {
   int sectors = 0;
   std::size_t nodes = 0, hexes = 0;  // exactly what revolve() produces (0 when refused)
 };
-RevolveEstimate revolve_evaluate(const occ::Solid& solid, const RevolveOptions& options);
+RevolveEstimate revolve_evaluate(const core::MeshDomain& solid, const RevolveOptions& options);
 
 struct RevolveResult {
   core::HexMesh mesh;
@@ -50,7 +50,7 @@ struct RevolveResult {
 
 // Errors: not_applicable (with the reason), intervals_infeasible, quad_face_failed,
 // too_many_intervals, inverted_elements, cancelled.
-RevolveResult revolve(const occ::Solid& solid, const RevolveOptions& options,
+RevolveResult revolve(const core::MeshDomain& solid, const RevolveOptions& options,
                       const core::Progress& progress = {});
 
 }  // namespace vorohex::mesh

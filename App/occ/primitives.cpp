@@ -10,6 +10,7 @@
 #include <BRepLib.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
 #include <BRepPrimAPI_MakeCone.hxx>
+#include <BRepPrimAPI_MakeTorus.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRepPrimAPI_MakePrism.hxx>
 #include <BRepPrimAPI_MakeRevol.hxx>
@@ -169,6 +170,15 @@ Solid make_cone(double r1, double r2, double height, const Vec3& base, const Vec
   return guarded("make_cone", [&] {
     const gp_Ax2 frame(pnt(base), gp_Dir(axis.x(), axis.y(), axis.z()));
     return BRepPrimAPI_MakeCone(frame, r1, r2, height).Solid();
+  });
+}
+
+Solid make_torus(double major, double minor, const Vec3& centre, const Vec3& axis) {
+  if (!(minor > 0 && major > minor) || !(axis.norm() > 0))
+    throw std::invalid_argument("make_torus needs 0 < minor < major and an axis");
+  return guarded("make_torus", [&] {
+    const gp_Ax2 frame(pnt(centre), gp_Dir(axis.x(), axis.y(), axis.z()));
+    return BRepPrimAPI_MakeTorus(frame, major, minor).Solid();
   });
 }
 

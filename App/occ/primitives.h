@@ -33,6 +33,8 @@ Solid make_box(double dx, double dy, double dz, const Vec3& corner);
 // axis through `base` along `axis` (any length, not 0).
 Solid make_cylinder(double radius, double height, const Vec3& base, const Vec3& axis);
 Solid make_cone(double r1, double r2, double height, const Vec3& base, const Vec3& axis);
+// Torus of major radius R and minor radius r (0 < r < R) about the axis through `centre`.
+Solid make_torus(double major, double minor, const Vec3& centre, const Vec3& axis);
 
 // The solid of revolution about the z axis of a simple polygon in the (r, z) half-plane
 // (r >= 0; edges on r = 0 lie on the axis), turned by a full turn: a turned part.

@@ -2,8 +2,9 @@
 // revolution about one axis (planes perpendicular to it, coaxial cylinders, cones, tori,
 // spheres centred on it, surfaces of revolution) and every edge a circle about the axis or
 // a meridian curve (a seam). Such a solid is its meridian section turned by a full turn: the
-// section (OCCT's common of the solid and a half-plane through the axis) is meshed with quads
-// and revolved. Where the section lies along the axis, a coaxial core of radius
+// section is built from the faces' traces in a half-plane through the axis (read through
+// core::MeshDomain: surface and curve kinds, parallels, projections; no boolean with the
+// solid), checked against the volume (Pappus), meshed with quads and revolved. Where the section lies along the axis, a coaxial core of radius
 // core_radius is cut out of it (to be swept along the axis from an O-grid disc, so that no
 // hexahedron degenerates on the axis); the section's remaining faces are given here.
 #pragma once
@@ -45,6 +46,6 @@ struct RevolutionStructure {
 
 // Tries the axes of the solid's cylinders, cones, tori and surfaces of revolution. Never
 // throws for geometry it cannot handle: ok false with the reason.
-RevolutionStructure revolution_structure(const Solid& solid);
+RevolutionStructure revolution_structure(const core::MeshDomain& solid);
 
 }  // namespace vorohex::occ

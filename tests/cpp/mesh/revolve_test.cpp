@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "fixtures/machined.h"
@@ -107,6 +108,40 @@ TEST(Revolve, SectionAndCoreOfAShaft) {
   int sides = 0;
   for (bool b : s.core_side) sides += b;
   EXPECT_GE(sides, 1);
+}
+
+// The section comes from the faces' traces, not from a boolean: a whole torus (one face,
+// its wire along a parallel seam) is a disc; a torus with a toroidal cavity an annulus; a
+// ring with a torus-shaped groove has an arc in its outline. Each turns into its volume
+// (Pappus, checked by the structure) and meshes valid.
+TEST(Revolve, SectionsFromTheFacesTraces) {
+  const occ::Solid torus = occ::make_torus(10, 3, Vec3::Zero(), Vec3::UnitZ());
+  const occ::Solid hollow =
+      testing::cut(occ::make_torus(10, 3, Vec3::Zero(), Vec3::UnitZ()),
+                   occ::make_torus(10, 1.5, Vec3::Zero(), Vec3::UnitZ()));
+  const occ::Solid grooved =
+      testing::cut(testing::cut(occ::make_cylinder(20, 10, Vec3::Zero(), Vec3::UnitZ()),
+                                occ::make_cylinder(8, 10, Vec3::Zero(), Vec3::UnitZ())),
+                   occ::make_torus(20, 3, {0, 0, 5}, Vec3::UnitZ()));
+  for (const auto& [name, solid, loops] :
+       {std::tuple{"torus", &torus, 1}, {"hollow torus", &hollow, 2}, {"grooved ring", &grooved, 1}}) {
+    SCOPED_TRACE(name);
+    const core::MeshDomain& domain = *solid;
+    const occ::RevolutionStructure s = occ::revolution_structure(domain);
+    ASSERT_TRUE(s.ok) << s.reason;
+    EXPECT_TRUE(s.cores.empty());
+    ASSERT_EQ(s.section->num_faces(), 1);
+    EXPECT_EQ(int(s.section->face_wires(core::FaceId(1)).size()), loops);
+    RevolveOptions o;
+    o.size = 0.75;  // a quarter of the tube radius: polygonal volume within 2 %
+    const RevolveResult r = revolve(domain, o);
+    ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
+    const quality::CheckReport c = quality::check_mesh(r.mesh, solid, {});
+    EXPECT_TRUE(c.valid) << (c.diagnostics.empty() ? "" : core::format(c.diagnostics[0]));
+    EXPECT_LE(c.max_boundary_distance_rel, 1e-6);
+    EXPECT_GT(c.scaled_jacobian.min, 0);
+    EXPECT_NEAR(c.mesh_volume, solid->volume(), 0.02 * solid->volume());
+  }
 }
 
 }  // namespace
