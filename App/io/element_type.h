@@ -1,0 +1,55 @@
+// Which Abaqus/CalculiX solid element an INP deck declares, and where a choice is known to
+// give wrong answers (issue 21, measured with CalculiX 2.20: docs/fea.md).
+//   C3D8   8 nodes, full integration: locks in bending (-12 % tip deflection with two
+//          elements through a cantilever's thickness)
+//   C3D8I  8 nodes, incompatible modes: the first-order default; too soft on distorted hexes
+//   C3D8R  8 nodes, reduced integration: hourglasses with one element through a thickness
+//   C3D20  20 nodes, full integration
+//   C3D20R 20 nodes, reduced integration: the second-order default; hourglasses like C3D8R
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/diagnostic.h"
+#include "core/hex_mesh.h"
+
+namespace vorohex::io {
+
+enum class ElementType { C3D8, C3D8I, C3D8R, C3D20, C3D20R };
+
+const char* element_type_name(ElementType type);
+// The element named (upper or lower case), or nullopt for an unknown name.
+std::optional<ElementType> parse_element_type(const std::string& name);
+int element_order(ElementType type);  // 1 (8 nodes) or 2 (20 nodes)
+bool reduced_integration(ElementType type);
+
+struct ElementChoiceOptions {
+  // The element asked for; empty = the default for the mesh's order (C3D8I / C3D20R),
+  // replaced by a safe one where the default is known to fail.
+  std::string requested;
+  // Scaled Jacobian below which C3D8I is not trusted (docs/fea.md: measured on a sheared
+  // cantilever, C3D8I's tip deflection leaves 1 % of the converged value below it).
+  double incompatible_modes_min_sj = 0.5;
+  void validate() const;  // throws std::invalid_argument naming the bad field
+};
+
+struct ElementChoice {
+  bool ok = false;                            // false: refused (diagnostics say why)
+  ElementType type = ElementType::C3D8I;      // the element to write when ok
+  std::vector<core::Diagnostic> diagnostics;  // warnings and the reasons for a refusal
+  std::size_t one_through_thickness = 0;      // hexes with two opposite boundary faces
+  std::size_t below_sj_threshold = 0;         // hexes below incompatible_modes_min_sj
+};
+
+// scaled_jacobian: per hex (empty = computed). An unknown name, or an order that does not
+// match the mesh's, is refused; reduced integration on a mesh with a hexahedron that is one
+// element through a thickness (two opposite faces on the boundary) is refused when asked
+// for, avoided (C3D20) by default; C3D8I on hexes below the threshold is a warning when
+// asked for, avoided (C3D8, with a warning) by default.
+ElementChoice choose_element_type(const core::HexMesh& mesh,
+                                  const std::vector<double>& scaled_jacobian,
+                                  const ElementChoiceOptions& options);
+
+}  // namespace vorohex::io
