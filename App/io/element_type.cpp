@@ -66,8 +66,8 @@ void ElementChoiceOptions::validate() const {
   if (!requested.empty() && !parse_element_type(requested))
     throw std::invalid_argument("unknown element type '" + requested +
                                 "' (use C3D8, C3D8I, C3D8R, C3D20 or C3D20R)");
-  if (!(incompatible_modes_min_sj >= -1 && incompatible_modes_min_sj <= 1))
-    throw std::invalid_argument("incompatible_modes_min_sj must be in [-1, 1]");
+  if (!(incompatible_modes_min_mean_sj >= -1 && incompatible_modes_min_mean_sj <= 1))
+    throw std::invalid_argument("incompatible_modes_min_mean_sj must be in [-1, 1]");
 }
 
 ElementChoice choose_element_type(const core::HexMesh& mesh,
@@ -99,13 +99,15 @@ ElementChoice choose_element_type(const core::HexMesh& mesh,
       scaled_jacobian.size() == mesh.num_hexes() ? std::vector<double>{}
                                                  : quality::scaled_jacobians(mesh);
   const std::vector<double>& sj = computed.empty() ? scaled_jacobian : computed;
-  for (double v : sj)
-    if (v < options.incompatible_modes_min_sj) ++choice.below_sj_threshold;
+  double sum = 0;
+  for (double v : sj) sum += v;
+  if (!sj.empty()) choice.mean_scaled_jacobian = sum / static_cast<double>(sj.size());
+  const bool distorted_mesh = choice.mean_scaled_jacobian < options.incompatible_modes_min_mean_sj;
   const std::string thin = std::to_string(choice.one_through_thickness) +
                            " hexahedra are one element through a thickness";
-  const std::string distorted = std::to_string(choice.below_sj_threshold) +
-                                " hexahedra have a scaled Jacobian below " +
-                                format_sj(options.incompatible_modes_min_sj);
+  const std::string distorted = "the mean scaled Jacobian is " +
+                                format_sj(choice.mean_scaled_jacobian) + ", below " +
+                                format_sj(options.incompatible_modes_min_mean_sj);
 
   if (asked) {
     choice.type = *asked;
@@ -118,7 +120,7 @@ ElementChoice choose_element_type(const core::HexMesh& mesh,
               (order == 1 ? "C3D8I" : "C3D20") + " or a smaller size"));
       return choice;
     }
-    if (*asked == ElementType::C3D8I && choice.below_sj_threshold > 0)
+    if (*asked == ElementType::C3D8I && distorted_mesh)
       choice.diagnostics.push_back(core::make_warning(
           "incompatible_modes_distorted",
           "C3D8I on distorted hexahedra is too soft: " + distorted +
@@ -141,7 +143,7 @@ ElementChoice choose_element_type(const core::HexMesh& mesh,
     }
   } else {
     choice.type = ElementType::C3D8I;
-    if (choice.below_sj_threshold > 0) {
+    if (distorted_mesh) {
       choice.type = ElementType::C3D8;
       choice.diagnostics.push_back(core::make_warning(
           "element_type_chosen",

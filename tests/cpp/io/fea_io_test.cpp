@@ -94,16 +94,21 @@ TEST(ElementType, DefaultsAvoidWhatIsKnownToFail) {
   EXPECT_EQ(c.type, ElementType::C3D20R);
 }
 
-TEST(ElementType, DistortedHexesGetC3D8ByDefaultAndAWarningWhenAsked) {
+TEST(ElementType, DistortedMeshesGetC3D8ByDefaultAndAWarningWhenAsked) {
   const occ::Solid beam = occ::make_box(100, 10, 10);
   const auto r = mesh_box(beam, 5);
   ASSERT_TRUE(r.ok);
   std::vector<double> sj(r.mesh.num_hexes(), 1.0);
-  sj[3] = 0.3;  // one hex below the threshold
+  sj[3] = 0.1;  // one poor hex among good ones: C3D8I stays (measured: fine)
   ElementChoice c = choose_element_type(r.mesh, sj, {});
   ASSERT_TRUE(c.ok);
+  EXPECT_EQ(c.type, ElementType::C3D8I);
+  EXPECT_TRUE(c.diagnostics.empty());
+  std::fill(sj.begin(), sj.end(), 0.45);  // a fallback-like mesh (mean 0.45 < 0.6)
+  c = choose_element_type(r.mesh, sj, {});
+  ASSERT_TRUE(c.ok);
   EXPECT_EQ(c.type, ElementType::C3D8);
-  EXPECT_EQ(c.below_sj_threshold, 1u);
+  EXPECT_NEAR(c.mean_scaled_jacobian, 0.45, 1e-12);
   EXPECT_TRUE(has(c.diagnostics, "element_type_chosen"));
   ElementChoiceOptions asked;
   asked.requested = "C3D8I";
