@@ -116,6 +116,82 @@ class TestVoroHexApi(unittest.TestCase):
         report = VoroHex.check(fm, self.box)
         self.assertTrue(report.valid, [str(d) for d in report.diagnostics])
 
+    def test_second_order_femmesh_has_20_node_hexes_freecad_writes_as_c3d20(self):
+        r = VoroHex.mesh(self.box, size=10, order=2)
+        self.assertTrue(r.ok, r.message)
+        self.assertEqual(r.order, 2)
+        # 1 x 2 x 3 hexes: 24 corners + 2*3*4 + 1*3*4 + 1*2*4 + 1*2*3*... mesh edges
+        edges = 1 * 3 * 4 + 2 * 2 * 4 + 3 * 2 * 3
+        self.assertEqual(r.node_count, 2 * 3 * 4 + edges)
+        fm = r.to_femmesh()
+        self.assertEqual(fm.VolumeCount, 6)
+        self.assertTrue(all(len(fm.getElementNodes(v)) == 20 for v in fm.Volumes))
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "q.inp")
+            fm.write(path)
+            with open(path) as f:
+                text = f.read()
+        self.assertRegex(text, r"(?i)\*element,\s*type=C3D20")
+        nodes, cells = {}, []
+        body = text.split("type=C3D20", 1)[1] if "type=C3D20" in text else \
+            re.split(r"(?i)type=C3D20", text, 1)[1]
+        for line in text.split("\n"):
+            v = [t.strip() for t in line.split(",")]
+            if len(v) == 4 and v[0].isdigit():
+                nodes[int(v[0])] = tuple(float(t) for t in v[1:])
+        ids = [int(t) for t in re.split(r"[,\s]+", body.split("\n", 1)[1].split("*")[0])
+               if t.strip().isdigit()]
+        cells = [ids[k + 1:k + 21] for k in range(0, len(ids), 21)]
+        self.assertEqual(len(cells), 6)
+        c3d20_edges = ((0, 1), (1, 2), (2, 3), (3, 0), (4, 5), (5, 6), (6, 7), (7, 4),
+                       (0, 4), (1, 5), (2, 6), (3, 7))
+        for c in cells:
+            p = [nodes[n] for n in c]
+            self.assertGreater(hex_volume(p[:8]), 0)  # a positive C3D20
+            for k, (a, b) in enumerate(c3d20_edges):  # node 9 + k mid-way on edge a-b
+                for i in range(3):
+                    self.assertAlmostEqual(p[8 + k][i], (p[a][i] + p[b][i]) / 2, places=9)
+
+    def test_named_groups_reach_the_femmesh(self):
+        r = VoroHex.mesh(self.box, size=5)
+        groups = r.groups
+        self.assertEqual(len(groups), 26)
+        self.assertEqual(sorted(n for n in groups if n.startswith("Face")),
+                         sorted("Face{}".format(i) for i in range(1, 7)))
+        nodes = r.nodes
+        # Face5 of Part.makeBox is z = 0: all its nodes there, 3 x 5 of them.
+        self.assertEqual(len(groups["Face5"]["nodes"]), 3 * 5)
+        self.assertTrue(all(abs(nodes[n][2]) < 1e-12 for n in groups["Face5"]["nodes"]))
+        self.assertEqual(len(groups["Face5"]["faces"]), 2 * 4)
+        fm = r.to_femmesh()
+        names = {fm.getGroupName(g): g for g in fm.Groups}
+        self.assertIn("Face5", names)
+        self.assertIn("Edge1", names)
+        self.assertIn("Vertex1", names)
+        self.assertEqual(fm.getGroupElementType(names["Face5"]), "Node")
+        self.assertEqual(sorted(fm.getGroupElements(names["Face5"])),
+                         sorted(n + 1 for n in groups["Face5"]["nodes"]))
+        self.assertEqual(len(r.to_femmesh(groups=False).Groups), 0)
+
+    def test_order_and_element_errors(self):
+        with self.assertRaises(ValueError):
+            VoroHex.mesh(self.box, size=10, order=3)
+        r = VoroHex.mesh(self.box, size=10)  # one element through x
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "m.inp")
+            with self.assertRaisesRegex(ValueError, "unknown element type"):
+                r.write(path, element="C3D99")
+            with self.assertRaisesRegex(ValueError, "hourglasses"):
+                r.write(path, element="C3D8R")
+            with self.assertRaisesRegex(ValueError, "second-order"):
+                r.write(path, element="C3D20")
+            self.assertFalse(os.path.exists(path))
+            self.assertEqual(r.write(path), [])
+            with open(path) as f:
+                text = f.read()
+            self.assertIn("TYPE=C3D8I", text)
+            self.assertIn("*NSET, NSET=Face1", text)
+
     def test_cylinder_is_swept(self):
         cyl = Part.makeCylinder(5, 10)
         r = VoroHex.mesh(cyl, size=1.5)
@@ -931,6 +1007,45 @@ class TestVoroHexObject(unittest.TestCase):
             self.assertEqual(len(vols), 48)
             self.assertTrue(all(v > 0 for v in vols), min(vols))
             self.assertTrue(math.isclose(sum(vols), 6000.0, rel_tol=1e-9))
+
+
+    def test_element_order_property_gives_20_node_hexes_to_calculix(self):
+        import ObjectsFem
+        from femtools import ccxtools
+
+        mesh = self.make_mesh(size=10)
+        self.assertEqual(mesh.ElementOrder, "1st")
+        self.assertEqual(list(mesh.getEnumerationsOfProperty("ElementOrder")), ["1st", "2nd"])
+        self.assertEqual(mesh.FemMesh.VolumeCount, 6)
+        self.assertTrue(any(mesh.FemMesh.getGroupName(g) == "Face6"
+                            for g in mesh.FemMesh.Groups))
+        mesh.ElementOrder = "2nd"
+        self.doc.recompute()
+        self.assertTrue(mesh.isValid(), mesh.Message)
+        fm = mesh.FemMesh
+        self.assertTrue(all(len(fm.getElementNodes(v)) == 20 for v in fm.Volumes))
+        self.assertEqual(mesh.NodeCount, fm.NodeCount)
+        analysis = ObjectsFem.makeAnalysis(self.doc, "Analysis")
+        solver = ObjectsFem.makeSolverCalculixCcxTools(self.doc, "CalculiXccxTools")
+        analysis.addObject(solver)
+        material = ObjectsFem.makeMaterialSolid(self.doc, "Steel")
+        mat = material.Material
+        mat.update({"Name": "Steel", "YoungsModulus": "210000 MPa", "PoissonRatio": "0.30"})
+        material.Material = mat
+        analysis.addObject(material)
+        fixed = ObjectsFem.makeConstraintFixed(self.doc, "Fixed")
+        fixed.References = [(self.box, "Face5")]
+        analysis.addObject(fixed)
+        analysis.addObject(mesh)
+        self.doc.recompute()
+        with tempfile.TemporaryDirectory() as d:
+            fea = ccxtools.FemToolsCcx(analysis, solver, test_mode=True)
+            fea.update_objects()
+            fea.setup_working_dir(d)
+            self.assertFalse(fea.check_prerequisites())
+            self.assertFalse(fea.write_inp_file())
+            with open(fea.inp_file_name) as f:
+                self.assertRegex(f.read(), r"(?i)\*element,\s*type=C3D20")
 
 
 class TestVoroHexDrawing(unittest.TestCase):
