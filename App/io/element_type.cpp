@@ -125,6 +125,12 @@ ElementChoice choose_element_type(const core::HexMesh& mesh,
           "incompatible_modes_distorted",
           "C3D8I on distorted hexahedra is too soft: " + distorted +
               " (consider C3D8 with a finer size, or order 2)"));
+    if (*asked == ElementType::C3D8R)
+      choice.diagnostics.push_back(core::make_warning(
+          "reduced_integration_bending",
+          "C3D8R hourglasses in bending even with several elements through a thickness (a "
+          "cantilever deflects 32 % too much at two, 6 % at four: bench/results/fea.md); "
+          "C3D8I or order 2 do not"));
     if (*asked == ElementType::C3D8)
       choice.diagnostics.push_back(core::make_info(
           "full_integration_locking",

@@ -74,7 +74,8 @@ TEST(ElementType, DefaultsAvoidWhatIsKnownToFail) {
   EXPECT_EQ(c.one_through_thickness, one.mesh.num_hexes());
   reduced.requested = "C3D8R";
   c = choose_element_type(two.mesh, two.scaled_jacobian, reduced);
-  EXPECT_TRUE(c.ok);  // two layers: allowed
+  EXPECT_TRUE(c.ok);  // two layers: allowed, with a warning (+32 % measured)
+  EXPECT_TRUE(has(c.diagnostics, "reduced_integration_bending"));
 
   ElementChoiceOptions wrong_order;
   wrong_order.requested = "C3D20";
