@@ -59,7 +59,8 @@ const char* const kMeshUsage =
 const char* const kCheckUsage =
     "usage: vorohex check MESH [--cad IN] [--report REPORT.json]\n"
     "                     [--volume-tol R] [--distance-tol R]\n"
-    "  MESH  a hex mesh: .vtu or .msh (Gmsh 2.2 / 4.1); cells other than hexahedra are ignored\n"
+    "  MESH  a hex mesh: .vtu or .msh (Gmsh 2.2 / 4.1), 8- or 20-node hexahedra (the latter\n"
+    "        also judged at their 27 Gauss points); other cells are ignored\n"
     "  --cad IN          the solid it should fill: adds volume and distance-to-CAD checks\n"
     "  --volume-tol R    relative volume tolerance (default 1e-9, plus the chord allowance)\n"
     "  --distance-tol R  boundary node distance tolerance, x bounding-box diagonal (1e-6)\n"
