@@ -192,7 +192,11 @@ def _make_options(kwargs):
 
 def validate_options(**options):
     """Raises TypeError (unknown option, wrong type) or ValueError (bad value) naming the
-    option, for keyword options of VoroHex.OPTIONS; returns None when they are fine."""
+    option, for keyword options of VoroHex.OPTIONS and order; returns None when they are
+    fine."""
+    if "order" in options:
+        options = dict(options)
+        _order(options.pop("order"))
     _make_options(options)
 
 
