@@ -454,13 +454,25 @@ TEST(GenerateMesh, CurvedSolidsAreValidOnTheCadAndAbove03) {
   }
 }
 
-// HexMe n03 is a sweep whose layers fold: the sweep's failure goes into the fallback's
-// warning and the fallback meshes it valid; without the fallback the sweep's error stands.
-TEST(GenerateMesh, AStructuredSchemeThatFailsHandsOverToTheFallback) {
+// HexMe n03 is a sweep whose layers fold. Since schemes that apply but fail hand over to
+// the next (81049d6), the multisweep meshes it, with the sweep's failure noted; with the
+// sweep alone, its failure goes into the fallback's warning and the fallback meshes it
+// valid; without the fallback the solid is refused and the sweep's failure stands.
+TEST(GenerateMesh, AStructuredSchemeThatFailsHandsOverToTheNextAndToTheFallback) {
   const occ::ReadResult in =
       occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/n03o_skijump_box_cyl.step");
   ASSERT_TRUE(in.ok()) << "HexMe model n03 not found in " << VOROHEX_HEXME_DIR;
   MeshOptions opt;
+  const MeshResult next = generate_mesh(*in.solid, opt);
+  ASSERT_TRUE(next.ok) << (next.diagnostics.empty() ? "" : core::format(next.diagnostics.back()));
+  EXPECT_EQ(next.stats.scheme, "multisweep");
+  const core::Diagnostic* failed = testing::find_diagnostic(next.diagnostics, "scheme_failed");
+  ASSERT_NE(failed, nullptr);
+  EXPECT_EQ(failed->message.rfind("The sweep scheme applied but failed (", 0), 0u)
+      << failed->message;
+  EXPECT_NE(failed->message.find("fold"), std::string::npos) << failed->message;
+
+  opt.schemes = {"sweep"};
   const MeshResult r = generate_mesh(*in.solid, opt);
   ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
   EXPECT_EQ(r.stats.scheme, "tet-split");
@@ -468,16 +480,18 @@ TEST(GenerateMesh, AStructuredSchemeThatFailsHandsOverToTheFallback) {
   const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "fallback");
   ASSERT_NE(d, nullptr);
   EXPECT_EQ(d->severity, core::Severity::warning);
-  EXPECT_EQ(d->message.rfind("The sweep scheme applied but failed (", 0), 0u) << d->message;
+  EXPECT_NE(d->message.find("The sweep scheme applied but failed ("), std::string::npos)
+      << d->message;
   EXPECT_NE(d->message.find("fold"), std::string::npos) << d->message;
 
   opt.fallback = false;
   const MeshResult refused = generate_mesh(*in.solid, opt);
   EXPECT_FALSE(refused.ok);
-  EXPECT_EQ(refused.stats.scheme, "sweep");
-  const core::Diagnostic* e = testing::find_diagnostic(refused.diagnostics, "inverted_elements");
+  EXPECT_EQ(refused.mesh.num_hexes(), 0u);
+  const core::Diagnostic* e = testing::find_diagnostic(refused.diagnostics, "scheme_failed");
   ASSERT_NE(e, nullptr);
-  EXPECT_EQ(e->severity, core::Severity::error);
+  EXPECT_NE(e->message.find("fold"), std::string::npos) << e->message;
+  EXPECT_TRUE(core::has_error(refused.diagnostics));
 }
 
 // The Voronoi graph's and the decomposition's options are mesh options: refused with the
