@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "io/detail/boundary_faces.h"
+#include "quality/linear_gauss_jacobian.h"
 #include "quality/scaled_jacobian.h"
 
 namespace vorohex::io {
@@ -76,6 +77,25 @@ ElementChoice choose_element_type(const core::HexMesh& mesh,
   ElementChoice choice;
   const int order = mesh.order();
   std::optional<ElementType> asked;
+  // Hexes a solver refuses: det J <= 0 at a Gauss point of the 2 x 2 x 2 rule (corners
+  // only: for a second-order mesh the 27-point check of check_mesh covers the rest).
+  std::vector<std::string> folded;
+  for (std::size_t h = 0; h < (order == 1 ? mesh.num_hexes() : 0); ++h)
+    if (!(quality::linear_hex_gauss_min_det(
+              mesh.corners(core::HexId(static_cast<std::int32_t>(h)))) > 0)) {
+      ++choice.non_positive_gauss;
+      if (folded.size() < 10) folded.push_back(std::to_string(h + 1));
+    }
+  if (choice.non_positive_gauss > 0) {
+    std::string list;
+    for (const auto& f : folded) list += (list.empty() ? "" : ", ") + f;
+    choice.diagnostics.push_back(core::make_warning(
+        "gauss_point_jacobian",
+        std::to_string(choice.non_positive_gauss) +
+            " hexahedra have det J <= 0 at a Gauss point of the 2 x 2 x 2 rule, which the "
+            "scaled Jacobian (corners and centre) does not see; CalculiX refuses them (\"nonpositive jacobian\"): elements " + list +
+            (choice.non_positive_gauss > folded.size() ? ", ..." : "")));
+  }
   if (!options.requested.empty()) {
     asked = parse_element_type(options.requested);
     if (!asked) {

@@ -46,6 +46,8 @@ struct ElementChoice {
   std::vector<core::Diagnostic> diagnostics;  // warnings and the reasons for a refusal
   std::size_t one_through_thickness = 0;      // hexes with two opposite boundary faces
   double mean_scaled_jacobian = 1;            // of the mesh's hexahedra
+  std::size_t non_positive_gauss = 0;         // hexes with det J <= 0 at a 2x2x2 Gauss point
+                                              // (a warning: solvers refuse them)
 };
 
 // scaled_jacobian: per hex (empty = computed). An unknown name, or an order that does not

@@ -14,7 +14,9 @@
 #include "occ/primitives.h"
 #include "pipeline/generate_mesh.h"
 #include "quality/check_mesh.h"
+#include "quality/linear_gauss_jacobian.h"
 #include "quality/quadratic_jacobian.h"
+#include "quality/scaled_jacobian.h"
 
 namespace vorohex::io {
 namespace {
@@ -317,6 +319,45 @@ TEST(SecondOrder, CheckFindsAFoldedQuadraticElement) {
   EXPECT_FALSE(check.valid);
   EXPECT_EQ(check.non_positive_gauss, 1u);
   EXPECT_TRUE(has(check.diagnostics, "inverted_quadratic_elements"));
+}
+
+}  // namespace
+}  // namespace vorohex::io
+
+namespace vorohex::io {
+namespace {
+
+// A hexahedron of a tetrahedral-fallback mesh (the 100 x 10 x 10 beam with its long edges
+// filleted, radius 2, meshed at size 5 with --schemes midpoint --no-decompose: element
+// 6576 of 31,736): positive at its corners and centre (scaled Jacobian 0.049) but det J < 0
+// at a Gauss point; CalculiX 2.20 refused the deck ("nonpositive jacobian").
+const std::array<core::Vec3, 8> kFoldedInside = {{
+    {52.329454305390364, 9.796276977080689, 1.1205746071383524},
+    {51.814975814104784, 9.979114627411626, 1.711720115919717},
+    {51.68749224595287, 9.935068075251486, 1.494518502670466},
+    {51.60548811836246, 9.881712956936735, 1.3223892358467082},
+    {51.74997097859694, 9.547392819416304, 0.7328869575216024},
+    {51.848015132883255, 9.801113292523024, 1.1305226239304005},
+    {51.67131000804618, 9.594972461392548, 1.34282944727487},
+    {51.696863684700304, 9.640446689165765, 0.8559131763694334},
+}};
+
+TEST(LinearGaussJacobian, CubeIsPositiveAndAHexFoldedInsideIsNot) {
+  std::array<core::Vec3, 8> cube;
+  for (int i = 0; i < 8; ++i)
+    cube[i] = core::Vec3(2.0 * ((i == 1 || i == 2 || i == 5 || i == 6) ? 1 : 0),
+                         2.0 * ((i == 2 || i == 3 || i == 6 || i == 7) ? 1 : 0), 2.0 * (i >= 4));
+  EXPECT_NEAR(quality::linear_hex_gauss_min_det(cube), 1.0, 1e-12);
+  EXPECT_GT(quality::scaled_jacobian(kFoldedInside), 0.0);
+  EXPECT_LT(quality::linear_hex_gauss_min_det(kFoldedInside), 0.0);
+
+  // The element choice warns about it.
+  core::HexMesh m;
+  for (const auto& p : kFoldedInside) m.add_node(p);
+  m.add_hex({0, 1, 2, 3, 4, 5, 6, 7});
+  const ElementChoice c = choose_element_type(m, {}, {});
+  EXPECT_EQ(c.non_positive_gauss, 1u);
+  EXPECT_TRUE(has(c.diagnostics, "gauss_point_jacobian"));
 }
 
 }  // namespace
