@@ -1048,6 +1048,64 @@ class TestVoroHexObject(unittest.TestCase):
                 self.assertRegex(f.read(), r"(?i)\*element,\s*type=C3D20")
 
 
+    def test_cantilever_through_freecad_and_calculix(self):
+        """The issue's user path: analysis, CalculiX solver, material, fixed and force
+        constraints and a VoroHex mesh, solved through FreeCAD's ccx tools. FreeCAD writes
+        8-node hexes as C3D8 (it locks: -12 %); ElementOrder 2nd gives C3D20, within 1 % of
+        Euler-Bernoulli (1.905 mm) at two elements through the thickness."""
+        import shutil
+
+        import ObjectsFem
+        from femtools import ccxtools
+
+        if shutil.which("ccx") is None:
+            self.skipTest("CalculiX (ccx, Debian package calculix-ccx) is not installed")
+        beam = self.doc.addObject("Part::Box", "Beam")
+        beam.Length, beam.Width, beam.Height = 100, 10, 10
+        self.doc.recompute()
+        analysis = ObjectsFem.makeAnalysis(self.doc, "Analysis")
+        solver = ObjectsFem.makeSolverCalculixCcxTools(self.doc, "CalculiXccxTools")
+        solver.AnalysisType = "static"
+        analysis.addObject(solver)
+        material = ObjectsFem.makeMaterialSolid(self.doc, "Steel")
+        mat = material.Material
+        mat.update({"Name": "Steel", "YoungsModulus": "210000 MPa", "PoissonRatio": "0.30"})
+        material.Material = mat
+        analysis.addObject(material)
+        fixed = ObjectsFem.makeConstraintFixed(self.doc, "Fixed")
+        fixed.References = [(beam, "Face1")]  # x = 0
+        analysis.addObject(fixed)
+        force = ObjectsFem.makeConstraintForce(self.doc, "Force")
+        force.References = [(beam, "Face2")]  # x = 100
+        force.Force = 1000.0
+        force.Direction = (beam, ["Edge1"])  # along z
+        analysis.addObject(force)
+        mesh = VoroHexObjects.makeHexMesh(self.doc, beam, size=5)
+        mesh.ElementOrder = "2nd"
+        analysis.addObject(mesh)
+        self.doc.recompute()
+        self.assertTrue(mesh.isValid(), mesh.Message)
+        with tempfile.TemporaryDirectory() as d:
+            fea = ccxtools.FemToolsCcx(analysis, solver)
+            fea.update_objects()
+            fea.setup_working_dir(d)
+            fea.setup_ccx()
+            self.assertFalse(fea.check_prerequisites())
+            fea.write_inp_file()
+            with open(fea.inp_file_name) as f:
+                self.assertRegex(f.read(), r"(?i)\*element,\s*type=C3D20")
+            fea.ccx_run()
+            fea.load_results()
+        results = [o for o in analysis.Group if o.isDerivedFrom("Fem::FemResultObject")]
+        self.assertTrue(results)
+        r, nodes = results[-1], mesh.FemMesh.Nodes
+        tip = [i for i, nid in enumerate(r.NodeNumbers) if abs(nodes[nid].x - 100) < 1e-6]
+        self.assertEqual(len(tip), 21)  # 3 x 3 corners + 12 mid-edge nodes on the tip face
+        uz = abs(sum(r.DisplacementVectors[i].z for i in tip) / len(tip))
+        euler_bernoulli = 1000.0 * 100.0 ** 3 / (3 * 210000.0 * 10.0 ** 4 / 12.0)
+        self.assertLess(abs(uz / euler_bernoulli - 1), 0.01, uz)
+
+
 class TestVoroHexDrawing(unittest.TestCase):
     """Issue 24: what the views draw, headless."""
 
