@@ -93,8 +93,10 @@ bool write_inp(const core::HexMesh& mesh, const std::string& path, const WriteOp
     detail::append_int(&t, static_cast<std::int64_t>(hexes.size()));
     t += ", 1\n";
   }
-  // Named groups: the nodes of every entity; for faces also the elements with a face on it
-  // (ELSET) and those faces (SURFACE, element-face based, for *DSLOAD and contact).
+  // Named groups: the nodes of every entity (NSET Face7); for faces also those element faces
+  // (SURFACE Face7, for *DSLOAD and contact) and the elements having one (ELSET
+  // Face7_Elements: CalculiX 2.20 reads "*DSLOAD Face7, P" as the element set when one of
+  // that name exists, and then silently applies nothing).
   for (const NamedGroup& g : options.groups) {
     if (!g.nodes.empty()) {
       t += "*NSET, NSET=" + g.name + "\n";
@@ -105,7 +107,7 @@ bool write_inp(const core::HexMesh& mesh, const std::string& path, const WriteOp
     for (const GroupFace& f : g.faces) elements.push_back(f.hex);
     std::sort(elements.begin(), elements.end());
     elements.erase(std::unique(elements.begin(), elements.end()), elements.end());
-    t += "*ELSET, ELSET=" + g.name + "\n";
+    t += "*ELSET, ELSET=" + g.name + "_Elements\n";
     append_id_lines(&t, elements);
     t += "*SURFACE, NAME=" + g.name + ", TYPE=ELEMENT\n";
     for (const GroupFace& f : g.faces) {

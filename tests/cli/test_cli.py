@@ -454,7 +454,7 @@ class FeaDecks(unittest.TestCase):
         self.assertEqual({nodes[n][0] for n in node_set(text, "Face1")}, {0.0})
         self.assertEqual({nodes[n][0] for n in node_set(text, "Face2")}, {100.0})
         self.assertIn("*SURFACE, NAME=Face2, TYPE=ELEMENT", text)
-        self.assertIn("*ELSET, ELSET=Face2", text)
+        self.assertIn("*ELSET, ELSET=Face2_Elements", text)
         # The MSH file has the same groups as physical groups.
         code, stdout, stderr, msh, _ = self.mesh("--size", "5", out="beam.msh")
         self.assertEqual(code, 0, stderr)
@@ -543,6 +543,51 @@ class FeaDecks(unittest.TestCase):
             print("ccx cantilever order {} {}: tip {:.4f} mm, {:+.2f} % vs Euler-Bernoulli".format(
                 order, element, deflection, 100 * error))
             self.assertLess(abs(error), 0.01)
+
+
+    def test_calculix_pressure_on_a_named_surface_gives_the_exact_elongation(self):
+        """*DSLOAD on the element-face SURFACE Face2 (tension 100 MPa), Face1 held in x and
+        three of its vertices just enough against rigid motion: uniaxial stress, which 8-
+        and 20-node hexes represent exactly, so every tip node moves s L / E = 0.047619 mm
+        (a wrong face label would load other faces)."""
+        ccx = shutil.which("ccx")
+        if ccx is None:
+            self.skipTest("CalculiX (ccx, Debian package calculix-ccx) is not installed")
+        for order in (1, 2):
+            code, stdout, stderr, path, _ = self.mesh("--size", "5", "--order", str(order))
+            self.assertEqual(code, 0, stdout + stderr)
+            with open(path) as f:
+                text = f.read()
+            nodes = inp_nodes(text)
+
+            def vertex_at(p):
+                for name in ("Vertex{}".format(i) for i in range(1, 9)):
+                    n = node_set(text, name)[0]
+                    if all(abs(nodes[n][k] - p[k]) < 1e-9 for k in range(3)):
+                        return name
+
+            deck = text + (
+                "*MATERIAL, NAME=STEEL\n*ELASTIC\n210000, 0.3\n"
+                "*SOLID SECTION, ELSET=EALL, MATERIAL=STEEL\n*STEP\n*STATIC\n*BOUNDARY\n"
+                "Face1, 1, 1, 0\n{}, 2, 3, 0\n{}, 3, 3, 0\n{}, 2, 2, 0\n"
+                "*DSLOAD\nFace2, P, -100\n*NODE PRINT, NSET=Face2\nU\n*END STEP\n").format(
+                    vertex_at((0, 0, 0)), vertex_at((0, 10, 0)), vertex_at((0, 0, 10)))
+            job = os.path.join(self.dir, "tension{}".format(order))
+            with open(job + ".inp", "w") as f:
+                f.write(deck)
+            p = subprocess.run([ccx, os.path.basename(job)], cwd=self.dir, capture_output=True,
+                               text=True, timeout=300)
+            self.assertEqual(p.returncode, 0, p.stdout[-2000:])
+            self.assertNotIn("*ERROR", p.stdout)
+            ux = []
+            with open(job + ".dat") as f:
+                for line in f:
+                    v = line.split()
+                    if len(v) == 4 and v[0].isdigit():
+                        ux.append(float(v[1]))
+            self.assertEqual(len(ux), len(node_set(text, "Face2")))
+            for u in ux:
+                self.assertAlmostEqual(u, 100.0 * 100.0 / 210000.0, delta=1e-6)
 
 
 class InspectCommands(unittest.TestCase):
