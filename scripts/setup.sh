@@ -27,6 +27,8 @@ packages=(
   freecad-python3 xvfb xauth
   # the baseline the benchmarks compare against (never used for meshing)
   gmsh python3-gmsh
+  # CalculiX: the tests solve a VoroHex INP with it (skipped where it is missing)
+  calculix-ccx
 )
 
 missing=()

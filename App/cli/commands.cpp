@@ -23,9 +23,16 @@ const char* const kMeshUsage =
     "                    [--no-decompose] [--decomposition-time-limit S] [--sharp-angle A]\n"
     "                    [--eps E] [--delta D] [--max-depth N] [--no-fallback]\n"
     "                    [--schemes LIST] [--time-limit S] [--keep-invalid] [--quiet]\n"
+    "                    [--order 1|2] [--element TYPE]\n"
     "  IN    a solid as STEP (.step/.stp), BREP (.brep/.brp) or IGES (.iges/.igs)\n"
-    "  OUT   the hex mesh: .vtu (ParaView), .msh (Gmsh 4.1) or .inp (Abaqus/CalculiX)\n"
+    "  OUT   the hex mesh: .vtu (ParaView), .msh (Gmsh 4.1) or .inp (Abaqus/CalculiX), with\n"
+    "        named groups per CAD face, edge and vertex (Face7, Edge3, Vertex1) in .inp/.msh\n"
     "  --size H        target edge length in model units (default: diagonal / 20)\n"
+    "  --order N       1: 8-node hexahedra (default); 2: 20-node, mid-edge nodes on the CAD\n"
+    "  --element TYPE  .inp element: C3D8, C3D8I, C3D8R (order 1), C3D20, C3D20R (order 2);\n"
+    "                  default C3D8I / C3D20R, replaced where known to fail (C3D8 on distorted\n"
+    "                  hexes, C3D20 one element through a thickness); a reduced-integration\n"
+    "                  type asked for on a mesh one element thick is refused (exit 2)\n"
     "  --report FILE   write the quality and validity report as JSON\n"
     "  --max-hexes N   refuse up front when the predicted mesh is larger (default 50000000)\n"
     "  --time-limit S  stop after S seconds like a cancel (error time_limit, nothing written)\n"
@@ -52,7 +59,8 @@ const char* const kMeshUsage =
 const char* const kCheckUsage =
     "usage: vorohex check MESH [--cad IN] [--report REPORT.json]\n"
     "                     [--volume-tol R] [--distance-tol R]\n"
-    "  MESH  a hex mesh: .vtu or .msh (Gmsh 2.2 / 4.1); cells other than hexahedra are ignored\n"
+    "  MESH  a hex mesh: .vtu or .msh (Gmsh 2.2 / 4.1), 8- or 20-node hexahedra (the latter\n"
+    "        also judged at their 27 Gauss points); other cells are ignored\n"
     "  --cad IN          the solid it should fill: adds volume and distance-to-CAD checks\n"
     "  --volume-tol R    relative volume tolerance (default 1e-9, plus the chord allowance)\n"
     "  --distance-tol R  boundary node distance tolerance, x bounding-box diagonal (1e-6)\n"
@@ -172,9 +180,14 @@ bool write_atomically(const core::HexMesh& mesh, const std::string& path,
   return true;
 }
 
-bool known_mesh_extension(const std::string& path) {
+std::string lower_extension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   for (auto& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
+
+bool known_mesh_extension(const std::string& path) {
+  const std::string ext = lower_extension(path);
   return ext == ".vtu" || ext == ".msh" || ext == ".inp";
 }
 
@@ -183,7 +196,7 @@ int mesh_command(const std::vector<std::string>& argv) {
       parse(argv,
             {"-o", "--output", "--size", "--report", "--max-hexes", "--smooth-iterations",
              "--smooth-passes", "--time-limit", "--decomposition-time-limit", "--sharp-angle",
-             "--eps", "--delta", "--max-depth", "--schemes"},
+             "--eps", "--delta", "--max-depth", "--schemes", "--order", "--element"},
             {"--no-smooth", "--no-fallback", "--no-decompose", "--keep-invalid", "--quiet"});
   if (args.positional.size() != 1)
     throw UsageError("expected exactly one input file, got " +
@@ -235,6 +248,28 @@ int mesh_command(const std::vector<std::string>& argv) {
       start = comma + 1;
     }
   }
+  if (args.values.count("--order")) {
+    const std::string& text = args.values.at("--order");
+    if (text != "1" && text != "2")
+      throw UsageError("--order must be 1 (8-node hexahedra) or 2 (20-node), got '" + text + "'");
+    options.order = text == "1" ? 1 : 2;
+  }
+  io::ElementChoiceOptions element_options;
+  if (args.values.count("--element")) {
+    element_options.requested = args.values.at("--element");
+    const auto type = io::parse_element_type(element_options.requested);
+    if (!type)
+      throw UsageError("unknown element type '" + element_options.requested +
+                       "' (use C3D8, C3D8I, C3D8R, C3D20 or C3D20R)");
+    if (io::element_order(*type) != options.order)
+      throw UsageError(std::string(io::element_type_name(*type)) + " is a " +
+                       (io::element_order(*type) == 1 ? "first" : "second") +
+                       "-order element; it needs --order " +
+                       std::to_string(io::element_order(*type)));
+    if (lower_extension(out_path) != ".inp")
+      throw UsageError("--element sets the element type of an .inp file, not of '" + out_path +
+                       "'");
+  }
   options.validate();  // before reading the file: a bad combination is a usage error
   const bool quiet = args.flags.count("--quiet") > 0;
 
@@ -267,13 +302,29 @@ int mesh_command(const std::vector<std::string>& argv) {
     print_diagnostics(all);
   }
 
+  if (meshed) print_groups(std::cout, result.groups);
   bool written = false;
   double seconds_writing = 0;
+  std::string element_name;
   if (meshed && (result.ok || args.flags.count("--keep-invalid"))) {
     const auto tw = std::chrono::steady_clock::now();
     if (!quiet) progress.report("write", 0.0);
     io::WriteOptions write_options;
     write_options.scaled_jacobian = result.scaled_jacobian;
+    write_options.groups = result.groups;
+    if (lower_extension(out_path) == ".inp") {
+      const io::ElementChoice choice =
+          io::choose_element_type(result.mesh, result.scaled_jacobian, element_options);
+      print_diagnostics(choice.diagnostics);
+      all.insert(all.end(), choice.diagnostics.begin(), choice.diagnostics.end());
+      if (!choice.ok) {
+        std::cerr << "vorohex: nothing written\n";
+        return kExitBadInput;
+      }
+      write_options.element = choice.type;
+      element_name = io::element_type_name(choice.type);
+      std::cout << "element " << element_name << "\n";
+    }
     std::string error;
     if (!write_atomically(result.mesh, out_path, write_options, &error)) {
       std::cerr << "vorohex: " << error << "\n";
@@ -297,6 +348,9 @@ int mesh_command(const std::vector<std::string>& argv) {
     j["size"] = result.stats.size_used;
     j["intervals"] = result.stats.intervals;
     j["sub_volumes"] = result.stats.sub_volumes;
+    j["order"] = options.order;
+    j["element"] = element_name;
+    j["groups"] = groups_json(result.groups);
     j["sub_volume_schemes"] = result.stats.sub_volume_schemes;
     j["sub_volume_types"] = result.stats.sub_volume_types;
     j["decomposition"] = {{"decompose", options.decompose},

@@ -34,6 +34,9 @@ void print_check_report(std::ostream& out, const quality::CheckReport& r) {
         << r.max_boundary_distance << " (" << r.max_boundary_distance_rel << " x diagonal)"
         << std::defaultfloat << "\n";
   }
+  if (r.order == 2)
+    out << "second order         20-node, " << r.non_positive_gauss
+        << " with det J <= 0 at a Gauss point\n";
   out << "valid                " << (r.valid ? "yes" : "NO") << "\n";
   for (const auto& d : r.diagnostics) out << "  " << core::format(d) << "\n";
 }
@@ -75,6 +78,35 @@ nlohmann::json check_report_json(const quality::CheckReport& r) {
   }
   j["diagnostics"] = diagnostics_json(r.diagnostics);
   return j;
+}
+
+void print_groups(std::ostream& out, const std::vector<io::NamedGroup>& groups) {
+  int count[3] = {0, 0, 0};
+  for (const auto& g : groups) ++count[g.dim];
+  out << "groups               " << count[2] << " faces, " << count[1] << " edges, " << count[0]
+      << " vertices:";
+  std::size_t shown = 0;
+  for (const auto& g : groups) {
+    if (shown++ == 40) {
+      out << " ... (all in the --report JSON)";
+      break;
+    }
+    out << " " << g.name;
+  }
+  out << "\n";
+}
+
+nlohmann::json groups_json(const std::vector<io::NamedGroup>& groups) {
+  static const char* const kKind[] = {"vertex", "edge", "face"};
+  nlohmann::json list = nlohmann::json::array();
+  for (const auto& g : groups)
+    list.push_back({{"name", g.name},
+                    {"kind", kKind[g.dim]},
+                    {"id", g.id},
+                    {"nodes", g.nodes.size()},
+                    {"element_faces", g.faces.size()},
+                    {"mesh_edges", g.edges.size()}});
+  return list;
 }
 
 bool write_json(const nlohmann::json& j, const std::string& path, std::string* error) {

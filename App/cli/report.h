@@ -18,6 +18,11 @@ void print_check_report(std::ostream& out, const quality::CheckReport& report);
 nlohmann::json check_report_json(const quality::CheckReport& report);
 nlohmann::json diagnostics_json(const std::vector<core::Diagnostic>& diagnostics);
 
+// Named groups: one line with the counts and names (people), a list (JSON: name, entity
+// kind, nodes, element faces, mesh edges).
+void print_groups(std::ostream& out, const std::vector<io::NamedGroup>& groups);
+nlohmann::json groups_json(const std::vector<io::NamedGroup>& groups);
+
 // Writes JSON to a file; false and *error on failure.
 bool write_json(const nlohmann::json& j, const std::string& path, std::string* error);
 

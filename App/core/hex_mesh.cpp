@@ -14,6 +14,10 @@ const std::array<std::array<int, 4>, 6> kHexFaces = {{
     {1, 2, 6, 5},  // x = 1
 }};
 
+const std::array<std::array<int, 2>, 12> kHexEdges = {{
+    {0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6}, {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7},
+}};
+
 void HexMesh::reserve(std::size_t nodes, std::size_t hexes) {
   points_.reserve(nodes);
   classes_.reserve(nodes);
@@ -50,6 +54,13 @@ std::size_t HexMesh::append(const HexMesh& other) {
     hexes_.push_back(h);
   }
   sub_volumes_.insert(sub_volumes_.end(), other.sub_volumes_.begin(), other.sub_volumes_.end());
+  if (other.order() == 2) {
+    mid_edges_.reserve(hexes_.size());
+    for (MidEdgeNodes m : other.mid_edges_) {
+      for (auto& n : m) n += static_cast<std::int32_t>(offset);
+      mid_edges_.push_back(m);
+    }
+  }
   return offset;
 }
 

@@ -9,6 +9,7 @@
 
 #include <array>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "core/geometry.h"
@@ -29,6 +30,9 @@ struct NodeClass {
 };
 
 using HexNodes = std::array<std::int32_t, 8>;  // node indices, VTK order
+// The 12 mid-edge nodes of a second-order (20-node) hexahedron, VTK_QUADRATIC_HEXAHEDRON
+// order: on corner edges 0-1 1-2 2-3 3-0, 4-5 5-6 6-7 7-4, 0-4 1-5 2-6 3-7 (kHexEdges).
+using MidEdgeNodes = std::array<std::int32_t, 12>;
 
 class HexMesh {
  public:
@@ -56,7 +60,15 @@ class HexMesh {
   const std::vector<HexNodes>& hexes() const { return hexes_; }
   const std::vector<std::int32_t>& sub_volumes() const { return sub_volumes_; }
 
-  // Appends another mesh (nodes are not merged); returns the node offset used.
+  // Second order: every hexahedron has 12 mid-edge nodes (nodes of the same node arrays,
+  // classified like the others), set once all hexahedra exist. A first-order mesh has none.
+  int order() const { return mid_edges_.empty() || hexes_.empty() ? 1 : 2; }
+  const std::vector<MidEdgeNodes>& mid_edge_nodes() const { return mid_edges_; }
+  // One entry per hexahedron (an empty vector makes the mesh first order again).
+  void set_mid_edge_nodes(std::vector<MidEdgeNodes> mid) { mid_edges_ = std::move(mid); }
+
+  // Appends another mesh (nodes are not merged); returns the node offset used. Both must
+  // have the same order.
   std::size_t append(const HexMesh& other);
 
   BoundingBox bounding_box() const;
@@ -66,10 +78,13 @@ class HexMesh {
   std::vector<NodeClass> classes_;
   std::vector<HexNodes> hexes_;
   std::vector<std::int32_t> sub_volumes_;
+  std::vector<MidEdgeNodes> mid_edges_;  // empty, or one per hexahedron
 };
 
 // The six quadrilateral faces of a VTK hexahedron, as local node indices, each ordered
 // so that its normal points out of the hexahedron.
 extern const std::array<std::array<int, 4>, 6> kHexFaces;
+// The twelve edges of a VTK hexahedron as corner pairs, in the order of MidEdgeNodes.
+extern const std::array<std::array<int, 2>, 12> kHexEdges;
 
 }  // namespace vorohex::core

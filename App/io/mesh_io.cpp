@@ -8,8 +8,8 @@ bool write_mesh(const core::HexMesh& mesh, const std::string& path, const WriteO
                 std::string* error) {
   const std::string ext = detail::lower_extension(path);
   if (ext == "vtu") return write_vtu(mesh, path, options, error);
-  if (ext == "msh") return write_msh(mesh, path, error);
-  if (ext == "inp") return write_inp(mesh, path, error);
+  if (ext == "msh") return write_msh(mesh, path, options, error);
+  if (ext == "inp") return write_inp(mesh, path, options, error);
   detail::set_error(error, "Unknown mesh file extension '" + ext + "' in '" + path +
                                "' (use .vtu, .msh or .inp)");
   return false;

@@ -17,7 +17,25 @@
 
 namespace vorohex::io {
 
-bool write_msh(const core::HexMesh& mesh, const std::string& path, std::string* error) {
+namespace {
+
+// Gmsh's 20-node hexahedron (type 17) lists mid-edge nodes on edges 0-1 0-3 0-4 1-2 1-5
+// 2-3 2-6 3-7 4-5 4-7 5-6 6-7 (Gmsh manual, "Node ordering"); entry k is the VTK mid-edge
+// index (core::kHexEdges) of Gmsh's node 8 + k.
+constexpr int kGmshMidToVtk[12] = {0, 3, 8, 1, 9, 2, 10, 11, 4, 7, 5, 6};
+
+void append_box(std::string* t, const core::BoundingBox& box) {
+  for (const core::Vec3* p : {&box.min, &box.max})
+    for (int k = 0; k < 3; ++k) {
+      *t += ' ';
+      detail::append_double(t, (*p)[k]);
+    }
+}
+
+}  // namespace
+
+bool write_msh(const core::HexMesh& mesh, const std::string& path, const WriteOptions& options,
+               std::string* error) {
   if (!detail::check_hex_indices(mesh, error)) return false;
   const auto& sub = mesh.sub_volumes();
   for (std::int32_t s : sub)
@@ -26,6 +44,8 @@ bool write_msh(const core::HexMesh& mesh, const std::string& path, std::string* 
                         "MSH output needs sub-volume ids >= 0 (found " + std::to_string(s) + ")");
       return false;
     }
+  const bool quadratic = mesh.order() == 2;
+  const auto& mid = mesh.mid_edge_nodes();
   // Members and bounding box of each sub-volume; a mesh without hexahedra keeps one
   // volume entity so that its nodes have an entity to belong to.
   struct Volume {
@@ -46,27 +66,66 @@ bool write_msh(const core::HexMesh& mesh, const std::string& path, std::string* 
   }
   if (volumes.empty()) volumes[0].box = mesh.bounding_box();
 
+  // Named groups become Gmsh entities of their own dimension and tag (Face7 = surface 7,
+  // physical group 7 "Face7") holding their elements: points, lines, quads (3-node lines
+  // and 8-node quads for a second-order mesh).
+  struct Entity {
+    const NamedGroup* group;
+    core::BoundingBox box;
+    std::size_t elements;
+  };
+  std::vector<Entity> entities[3];
+  for (const NamedGroup& g : options.groups) {
+    const std::size_t n = g.dim == 2 ? g.faces.size() : g.dim == 1 ? g.edges.size() : 1;
+    if (g.nodes.empty() || n == 0 || g.dim < 0 || g.dim > 2) continue;
+    if (g.dim == 0 && mesh.node_class(core::NodeId(g.nodes[0])).dim != 0) continue;
+    Entity e{&g, {}, n};
+    e.box.min = e.box.max = points[g.nodes[0]];
+    for (std::int32_t v : g.nodes) {
+      e.box.min = e.box.min.cwiseMin(points[v]);
+      e.box.max = e.box.max.cwiseMax(points[v]);
+    }
+    entities[g.dim].push_back(e);
+  }
+
   detail::OutputFile out;
   if (!out.open(path, error)) return false;
   std::string& t = out.text();
   t += "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$PhysicalNames\n";
-  detail::append_int(&t, static_cast<std::int64_t>(volumes.size()));
+  detail::append_int(&t, static_cast<std::int64_t>(volumes.size() + entities[0].size() +
+                                                    entities[1].size() + entities[2].size()));
   t += '\n';
+  for (int dim = 0; dim < 3; ++dim)
+    for (const Entity& e : entities[dim])
+      t += std::to_string(dim) + " " + std::to_string(e.group->id) + " \"" + e.group->name +
+           "\"\n";
   for (const auto& [s, v] : volumes) {
     t += "3 ";
     detail::append_int(&t, s + 1);
     t += " \"SV" + std::to_string(s) + "\"\n";
   }
-  t += "$EndPhysicalNames\n$Entities\n0 0 0 ";
+  t += "$EndPhysicalNames\n$Entities\n";
+  t += std::to_string(entities[0].size()) + " " + std::to_string(entities[1].size()) + " " +
+       std::to_string(entities[2].size()) + " ";
   detail::append_int(&t, static_cast<std::int64_t>(volumes.size()));
   t += '\n';
+  for (const Entity& e : entities[0]) {
+    detail::append_int(&t, e.group->id);
+    for (int k = 0; k < 3; ++k) {
+      t += ' ';
+      detail::append_double(&t, points[e.group->nodes[0]][k]);
+    }
+    t += " 1 " + std::to_string(e.group->id) + "\n";
+  }
+  for (int dim = 1; dim < 3; ++dim)
+    for (const Entity& e : entities[dim]) {
+      detail::append_int(&t, e.group->id);
+      append_box(&t, e.box);
+      t += " 1 " + std::to_string(e.group->id) + " 0\n";
+    }
   for (const auto& [s, v] : volumes) {
     detail::append_int(&t, s + 1);
-    for (const core::Vec3* p : {&v.box.min, &v.box.max})
-      for (int k = 0; k < 3; ++k) {
-        t += ' ';
-        detail::append_double(&t, (*p)[k]);
-      }
+    append_box(&t, v.box);
     t += " 1 ";
     detail::append_int(&t, s + 1);
     t += " 0\n";
@@ -96,23 +155,66 @@ bool write_msh(const core::HexMesh& mesh, const std::string& path, std::string* 
   }
   t += "$EndNodes\n$Elements\n";
   const auto nh = static_cast<std::int64_t>(hexes.size());
-  if (nh == 0) {
+  std::size_t blocks = volumes.size(), total = hexes.size();
+  for (int dim = 0; dim < 3; ++dim)
+    for (const Entity& e : entities[dim]) ++blocks, total += e.elements;
+  if (total == 0) {
     t += "0 0 0 0\n";
   } else {
-    t += std::to_string(volumes.size()) + " " + std::to_string(nh) + " 1 " + std::to_string(nh) +
+    // Hexahedra keep tags 1..nh (their index + 1); group elements follow.
+    t += std::to_string(blocks) + " " + std::to_string(total) + " 1 " + std::to_string(total) +
          "\n";
+    auto node = [&](std::int32_t n) {
+      t += ' ';
+      detail::append_int(&t, static_cast<std::int64_t>(n) + 1);
+    };
     for (const auto& [s, v] : volumes) {
-      t += "3 " + std::to_string(s + 1) + " 5 " + std::to_string(v.hexes.size()) + "\n";
+      t += "3 " + std::to_string(s + 1) + (quadratic ? " 17 " : " 5 ") +
+           std::to_string(v.hexes.size()) + "\n";
       for (std::size_t h : v.hexes) {
         detail::append_int(&t, static_cast<std::int64_t>(h) + 1);
-        for (std::int32_t n : hexes[h]) {
-          t += ' ';
-          detail::append_int(&t, static_cast<std::int64_t>(n) + 1);
-        }
+        for (std::int32_t n : hexes[h]) node(n);
+        if (quadratic)
+          for (int k : kGmshMidToVtk) node(mid[h][k]);
         t += '\n';
         out.flush_if_full();
       }
     }
+    std::int64_t tag = nh;
+    const char* types[3] = {" 15 ", quadratic ? " 8 " : " 1 ", quadratic ? " 16 " : " 3 "};
+    for (int dim = 0; dim < 3; ++dim)
+      for (const Entity& e : entities[dim]) {
+        const NamedGroup& g = *e.group;
+        t += std::to_string(dim) + " " + std::to_string(g.id) + types[dim] +
+             std::to_string(e.elements) + "\n";
+        if (dim == 0) {
+          detail::append_int(&t, ++tag);
+          node(g.nodes[0]);
+          t += '\n';
+        }
+        for (const GroupEdge& ge : g.edges) {
+          detail::append_int(&t, ++tag);
+          node(hexes[ge.hex][core::kHexEdges[ge.edge][0]]);
+          node(hexes[ge.hex][core::kHexEdges[ge.edge][1]]);
+          if (quadratic) node(mid[ge.hex][ge.edge]);
+          t += '\n';
+        }
+        for (const GroupFace& gf : g.faces) {
+          detail::append_int(&t, ++tag);
+          const auto& quad = core::kHexFaces[gf.face];
+          for (int i = 0; i < 4; ++i) node(hexes[gf.hex][quad[i]]);
+          if (quadratic)
+            for (int i = 0; i < 4; ++i) {
+              const int a = quad[i], b = quad[(i + 1) % 4];
+              for (int k = 0; k < 12; ++k) {
+                const auto& ed = core::kHexEdges[k];
+                if ((ed[0] == a && ed[1] == b) || (ed[0] == b && ed[1] == a)) node(mid[gf.hex][k]);
+              }
+            }
+          t += '\n';
+          out.flush_if_full();
+        }
+      }
   }
   t += "$EndElements\n";
   return out.close(error);
@@ -146,6 +248,7 @@ ElementKind element_kind(int type) {
 }
 
 constexpr int kGmshHexahedron = 5;
+constexpr int kGmshHexahedron20 = 17;
 
 // Bounds-checked reading of text tokens, lines and little-endian binary values.
 class Cursor {
@@ -249,7 +352,11 @@ class MshReader {
                     " (truncated or inconsistent counts)");
     }
     if (!have_nodes_) return fail("no $Nodes section");
-    if (hexes_.empty()) return fail("the file contains no hexahedron (type 5)");
+    if (hexes_.empty()) return fail("the file contains no hexahedron (type 5 or 17)");
+    const auto quadratic = std::count_if(hexes_.begin(), hexes_.end(),
+                                         [](const Hex& h) { return h.quadratic; });
+    if (quadratic > 0 && quadratic < static_cast<std::ptrdiff_t>(hexes_.size()))
+      return fail("the file mixes 8-node and 20-node hexahedra");
     store_hexes();
     report_skipped();
     return true;
@@ -300,17 +407,20 @@ class MshReader {
 
   bool add_element(std::uint64_t tag, int type, std::int64_t entity,
                    const std::vector<std::uint64_t>& nodes) {
-    if (type != kGmshHexahedron) {
+    if (type != kGmshHexahedron && type != kGmshHexahedron20) {
       ++skipped_[element_kind(type).dim < 3 ? 0 : 1];
       return true;
     }
     if (entity <= std::numeric_limits<std::int32_t>::min() ||
         entity > std::numeric_limits<std::int32_t>::max())
       return fail("entity tag out of range");
-    core::HexNodes h;
+    Hex hex{tag, {}, static_cast<std::int32_t>(entity - 1), {}, type == kGmshHexahedron20};
     for (int k = 0; k < 8; ++k)
-      if (!node_of(nodes[k], &h[k])) return false;
-    hexes_.push_back({tag, h, static_cast<std::int32_t>(entity - 1)});
+      if (!node_of(nodes[k], &hex.nodes[k])) return false;
+    if (hex.quadratic)
+      for (int k = 0; k < 12; ++k)
+        if (!node_of(nodes[8 + k], &hex.mid[kGmshMidToVtk[k]])) return false;
+    hexes_.push_back(hex);
     return true;
   }
 
@@ -320,7 +430,12 @@ class MshReader {
     std::stable_sort(hexes_.begin(), hexes_.end(),
                      [](const Hex& a, const Hex& b) { return a.tag < b.tag; });
     result_->mesh.reserve(0, hexes_.size());
-    for (const Hex& h : hexes_) result_->mesh.add_hex(h.nodes, h.sub_volume);
+    std::vector<core::MidEdgeNodes> mid;
+    for (const Hex& h : hexes_) {
+      result_->mesh.add_hex(h.nodes, h.sub_volume);
+      if (h.quadratic) mid.push_back(h.mid);
+    }
+    if (mid.size() == hexes_.size()) result_->mesh.set_mid_edge_nodes(std::move(mid));
   }
 
   void report_skipped() {
@@ -331,7 +446,7 @@ class MshReader {
     if (skipped_[1] > 0)
       result_->diagnostics.push_back(core::make_warning(
           "non_hex_elements_skipped", "Skipped " + std::to_string(skipped_[1]) +
-                                          " volume elements that are not 8-node hexahedra"));
+                                          " volume elements that are not hexahedra (8 or 20 nodes)"));
   }
 
   bool nodes41() {
@@ -477,11 +592,12 @@ class MshReader {
         // Tag 0 is the physical group, tag 1 the elementary entity.
         if (k == 1 || ntags == 1) entity = v;
       }
-      if (type != kGmshHexahedron) {
+      if (type != kGmshHexahedron && type != kGmshHexahedron20) {
         in_.skip_line();
         ++skipped_[element_kind(type).dim < 3 ? 0 : 1];
         continue;
       }
+      nodes.resize(type == kGmshHexahedron ? 8 : 20);
       for (auto& v : nodes)
         if (!in_.number(&v)) return fail("truncated or invalid hexahedron line");
       if (!add_element(tag, type, entity, nodes)) return false;
@@ -501,6 +617,8 @@ class MshReader {
     std::uint64_t tag;
     core::HexNodes nodes;
     std::int32_t sub_volume;
+    core::MidEdgeNodes mid;
+    bool quadratic;
   };
   std::vector<Hex> hexes_;
 };

@@ -22,6 +22,7 @@ namespace {
 using detail::OutputFile;
 
 constexpr std::uint8_t kVtkHexahedron = 12;
+constexpr std::uint8_t kVtkQuadraticHexahedron = 25;  // 8 corners, 12 mid-edge nodes
 
 // Encodes everything appended to it as one base64 stream, in large chunks.
 class Base64Stream {
@@ -139,12 +140,17 @@ bool write_vtu(const core::HexMesh& mesh, const std::string& path, const WriteOp
                       [&](std::size_t i) { return points[i / 3][static_cast<int>(i % 3)]; });
   out.write("      </Points>\n      <Cells>\n");
   const auto& hexes = mesh.hexes();
-  write_array<std::int64_t>(&out, "Int64", "connectivity", 1, 8 * nh,
-                            [&](std::size_t i) { return hexes[i / 8][i % 8]; });
-  write_array<std::int64_t>(&out, "Int64", "offsets", 1, nh,
-                            [&](std::size_t i) { return static_cast<std::int64_t>(8 * (i + 1)); });
-  write_array<std::uint8_t>(&out, "UInt8", "types", 1, nh,
-                            [](std::size_t) { return kVtkHexahedron; });
+  const auto& mid = mesh.mid_edge_nodes();
+  const std::size_t per = mesh.order() == 2 ? 20 : 8;
+  write_array<std::int64_t>(&out, "Int64", "connectivity", 1, per * nh, [&](std::size_t i) {
+    const std::size_t h = i / per, k = i % per;
+    return static_cast<std::int64_t>(k < 8 ? hexes[h][k] : mid[h][k - 8]);
+  });
+  write_array<std::int64_t>(&out, "Int64", "offsets", 1, nh, [&](std::size_t i) {
+    return static_cast<std::int64_t>(per * (i + 1));
+  });
+  const std::uint8_t type = per == 20 ? kVtkQuadraticHexahedron : kVtkHexahedron;
+  write_array<std::uint8_t>(&out, "UInt8", "types", 1, nh, [&](std::size_t) { return type; });
   out.write("      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n");
   return out.close(error);
 }
@@ -326,20 +332,30 @@ class VtuReader {
     for (std::size_t c = 0; c < nc; ++c) {
       const std::int64_t begin = c == 0 ? 0 : offsets[c - 1];
       const std::int64_t end = offsets[c];
-      if (types[c] != kVtkHexahedron) {
+      if (types[c] != kVtkHexahedron && types[c] != kVtkQuadraticHexahedron) {
         ++skipped_;
         continue;
       }
-      if (end - begin != 8)
+      const int per = types[c] == kVtkHexahedron ? 8 : 20;
+      if (end - begin != per)
         return fail("hexahedron " + std::to_string(c) + " has " + std::to_string(end - begin) +
-                    " nodes");
-      core::HexNodes h;
-      for (int k = 0; k < 8; ++k) {
+                    " nodes, not " + std::to_string(per));
+      std::array<std::int32_t, 20> nodes{};
+      for (int k = 0; k < per; ++k) {
         const std::int64_t v = connectivity[static_cast<std::size_t>(begin + k)];
         if (v < 0 || v >= static_cast<std::int64_t>(np))
           return fail("cell " + std::to_string(c) + " refers to point " + std::to_string(v) +
                       " of " + std::to_string(np));
-        h[k] = static_cast<std::int32_t>(v) + offset;
+        nodes[k] = static_cast<std::int32_t>(v) + offset;
+      }
+      core::HexNodes h;
+      std::copy(nodes.begin(), nodes.begin() + 8, h.begin());
+      if (per == 20) {
+        core::MidEdgeNodes m;
+        std::copy(nodes.begin() + 8, nodes.end(), m.begin());
+        mid_.push_back(m);
+      } else {
+        ++linear_;
       }
       std::int32_t sv = 0;
       if (!sub_volume.empty()) {
@@ -359,6 +375,10 @@ class VtuReader {
   XmlDocument doc_;
   VtuLayout layout_;
   std::size_t skipped_ = 0;
+
+ public:
+  std::vector<core::MidEdgeNodes> mid_;  // of the 20-node hexahedra read
+  std::size_t linear_ = 0;               // 8-node hexahedra read
 };
 
 }  // namespace
@@ -367,7 +387,19 @@ ReadMeshResult read_vtu(const std::string& path) {
   ReadMeshResult result;
   std::string data;
   if (!detail::load_file(path, &data, &result.diagnostics)) return result;
-  result.ok = VtuReader(data, &result).read();
+  VtuReader reader(data, &result);
+  result.ok = reader.read();
+  if (result.ok && !reader.mid_.empty()) {
+    if (reader.linear_ > 0) {
+      result.ok = false;
+      result.diagnostics.push_back(core::make_error(
+          "mixed_element_orders", "the file mixes " + std::to_string(reader.linear_) +
+                                      " 8-node and " + std::to_string(reader.mid_.size()) +
+                                      " 20-node hexahedra"));
+    } else {
+      result.mesh.set_mid_edge_nodes(std::move(reader.mid_));
+    }
+  }
   if (!result.ok) result.mesh = core::HexMesh();
   return result;
 }

@@ -8,6 +8,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "io/named_groups.h"
+#include "io/second_order.h"
 #include "mesh/assemble.h"
 #include "mesh/mesh_sub_volumes.h"
 #include "mesh/tet_split.h"
@@ -113,6 +115,20 @@ void finish(MeshResult& result, const occ::Solid& solid, const MeshOptions& opti
   }
   result.stats.seconds_smoothing = seconds_since(ts);
 
+  // Named groups per CAD entity; second order adds the mid-edge nodes (on the CAD where the
+  // edge is), after smoothing, which moves corners only.
+  result.groups = io::named_groups(result.mesh, solid);
+  if (options.order == 2 && result.mesh.num_hexes() > 0) {
+    const io::SecondOrderStats second = io::make_second_order(result.mesh, solid, result.groups);
+    if (second.straightened)
+      result.diagnostics.push_back(core::make_warning(
+          "mid_nodes_straightened",
+          std::to_string(second.straightened) +
+              " mid-edge nodes were put back on their straight edge because on the CAD they "
+              "folded an element; they lie off the curved surface by the chord height"));
+    result.groups = io::named_groups(result.mesh, solid);
+  }
+
   // Never hand over an unchecked mesh: the validity check runs on every result.
   progress.report("check", 0.0);
   const auto t1 = std::chrono::steady_clock::now();
@@ -173,6 +189,9 @@ void MeshOptions::validate() const {
     s << "sharp_angle must be in (0, 180] degrees, got " << sharp_angle;
     throw std::invalid_argument(s.str());
   }
+  if (order != 1 && order != 2)
+    throw std::invalid_argument("order must be 1 (8-node hexahedra) or 2 (20-node), got " +
+                                std::to_string(order));
   smoothing.validate();
   check.validate();
   for (std::size_t i = 0; i < schemes.size(); ++i) {

@@ -10,6 +10,7 @@
 #include "core/diagnostic.h"
 #include "core/hex_mesh.h"
 #include "core/progress.h"
+#include "io/named_groups.h"
 #include "occ/solid.h"
 #include "quality/check_mesh.h"
 #include "smooth/smooth_mesh.h"
@@ -42,6 +43,9 @@ struct MeshOptions {
   // Checked between and inside stages; the tetrahedral fallback's CGAL step is not
   // interrupted.
   double time_limit = 0;
+  // Element order: 1 (8-node hexahedra) or 2 (20 nodes: mid-edge nodes on the CAD edge or
+  // face they belong to, straight inside; checked at 27 Gauss points).
+  int order = 1;
   void validate() const;  // throws std::invalid_argument naming the bad option
 };
 
@@ -70,6 +74,7 @@ struct MeshResult {
   bool ok = false;                      // a valid mesh was produced
   quality::CheckReport check;           // validity and quality of `mesh`
   std::vector<double> scaled_jacobian;  // per hex, for writers and the GUI
+  std::vector<io::NamedGroup> groups;   // per CAD face, edge and vertex (nodes, element faces)
   MeshStats stats;
   std::vector<core::Diagnostic> diagnostics;
 };

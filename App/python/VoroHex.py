@@ -27,7 +27,7 @@ except ImportError:  # pragma: no cover - numpy is installed with FreeCAD on Deb
     _np = None
 
 __all__ = ["mesh", "check", "voronoi_graph", "MeshResult", "MeshStats", "VoronoiGraph",
-           "CancelToken", "OPTIONS", "ShapeError", "from_femmesh", "SMESH_FROM_VTK",
+           "CancelToken", "OPTIONS", "ShapeError", "from_femmesh", "SMESH_FROM_VTK", "SMESH_FROM_VTK20",
            "decompose", "Decomposition", "element_quality", "validate_options"]
 
 MOD_DIR = os.path.dirname(os.path.abspath(__file__))
@@ -37,6 +37,12 @@ CheckReport = _core.CheckReport
 
 # VTK hex order -> SMESH (FreeCAD FemMesh) order; the permutation is its own inverse.
 SMESH_FROM_VTK = (0, 3, 2, 1, 4, 7, 6, 5)
+# The same for 20-node hexahedra (VTK_QUADRATIC_HEXAHEDRON -> SMESH's quadratic hexa): the
+# corners as above, then SMESH's mid-edge nodes of its edges 1-2 2-3 3-4 4-1, 5-6 6-7 7-8
+# 8-5, 1-5 2-6 3-7 4-8, which are VTK's edges 3-0 2-3 1-2 0-1, 7-4 6-7 5-6 4-5, 0-4 3-7 2-6
+# 1-5. FreeCAD's CalculiX writer turns it into a positive C3D20 (tests/python checks it).
+SMESH_FROM_VTK20 = SMESH_FROM_VTK + (11, 10, 9, 8, 15, 14, 13, 12, 16, 19, 18, 17)
+ELEMENT_ORDERS = ("1st", "2nd")  # the ElementOrder property's values, as FemMeshGmsh names them
 
 
 class ShapeError(ValueError):
@@ -186,7 +192,11 @@ def _make_options(kwargs):
 
 def validate_options(**options):
     """Raises TypeError (unknown option, wrong type) or ValueError (bad value) naming the
-    option, for keyword options of VoroHex.OPTIONS; returns None when they are fine."""
+    option, for keyword options of VoroHex.OPTIONS and order; returns None when they are
+    fine."""
+    if "order" in options:
+        options = dict(options)
+        _order(options.pop("order"))
     _make_options(options)
 
 
@@ -304,17 +314,40 @@ def _hexes_of(core_mesh):
     return [tuple(flat[i:i + 8]) for i in range(0, len(flat), 8)]
 
 
-def _femmesh_of(core_mesh):
+def vtk_cells(hexes, mid):
+    """Per hexahedron its 8 (or, with mid-edge nodes, 20) 0-based node indices, VTK order;
+    hexes and mid are flat int32 sequences (8 and 12 per hex; mid empty for first order)."""
+    n = len(hexes) // 8
+    if not mid:
+        return [hexes[8 * e:8 * e + 8] for e in range(n)]
+    return [list(hexes[8 * e:8 * e + 8]) + list(mid[12 * e:12 * e + 12]) for e in range(n)]
+
+
+def smesh_nodes(cell):
+    """1-based FemMesh node ids of a VTK-order cell (8 or 20 nodes), in SMESH order."""
+    order = SMESH_FROM_VTK20 if len(cell) == 20 else SMESH_FROM_VTK
+    return [cell[k] + 1 for k in order]
+
+
+def add_groups(fm, groups):
+    """Adds one node group per CAD entity (name "Face7", ...) to a Fem.FemMesh; groups:
+    [(name, 0-based node indices)]."""
+    for name, nodes in groups:
+        gid = fm.addGroup(name, "Node")
+        fm.addGroupElements(gid, [int(n) + 1 for n in nodes])
+
+
+def _femmesh_of(core_mesh, groups=()):
     import Fem
 
     fm = Fem.FemMesh()
     nodes = array("d", core_mesh.node_bytes())
     for i in range(len(nodes) // 3):
         fm.addNode(nodes[3 * i], nodes[3 * i + 1], nodes[3 * i + 2], i + 1)
-    hexes = array("i", core_mesh.hex_bytes())
-    for e in range(len(hexes) // 8):
-        h = hexes[8 * e:8 * e + 8]
-        fm.addVolume([h[k] + 1 for k in SMESH_FROM_VTK], e + 1)
+    cells = vtk_cells(array("i", core_mesh.hex_bytes()), array("i", core_mesh.mid_edge_bytes()))
+    for e, cell in enumerate(cells):
+        fm.addVolume(smesh_nodes(cell), e + 1)
+    add_groups(fm, groups)
     return fm
 
 
@@ -388,13 +421,40 @@ class MeshResult:
             table.append(r)
         return table
 
-    def to_femmesh(self):
-        """A Fem.FemMesh with the hexahedra in SMESH node order (1-based ids)."""
-        return _femmesh_of(self._mesh)
+    @property
+    def order(self):
+        """1 (8-node hexahedra) or 2 (20-node)."""
+        return self._mesh.order
 
-    def write(self, path):
-        """Writes .vtu, .msh or .inp (format from the extension)."""
-        _core.write_mesh(self._mesh, os.fspath(path), list(self._core.scaled_jacobian))
+    @property
+    def groups(self):
+        """Named groups per CAD entity, faces first: {name: {"dim", "id", "nodes" (0-based
+        node indices), "faces" ([(hex, local face)], faces only)}}; names as in FreeCAD
+        ("Face7", "Edge3", "Vertex1")."""
+        out = {}
+        for g in self._core.groups:
+            faces = array("i", g["faces"])
+            out[g["name"]] = {"dim": g["dim"], "id": g["id"],
+                              "nodes": array("i", g["nodes"]).tolist(),
+                              "faces": [(faces[i], faces[i + 1]) for i in range(0, len(faces), 2)]}
+        return out
+
+    def to_femmesh(self, groups=True):
+        """A Fem.FemMesh with the hexahedra in SMESH node order (1-based ids; 20-node
+        hexahedra for order 2), with a node group per CAD face, edge and vertex ("Face7",
+        ...) unless groups is False."""
+        named = [(name, g["nodes"]) for name, g in self.groups.items()] if groups else ()
+        return _femmesh_of(self._mesh, named)
+
+    def write(self, path, element=None):
+        """Writes .vtu, .msh or .inp (format from the extension), with the named groups.
+        element: the .inp element type (C3D8, C3D8I, C3D8R for order 1; C3D20, C3D20R for
+        order 2); None = C3D8I / C3D20R, replaced where known to fail. Returns the element
+        choice's diagnostics; raises ValueError for an unknown or refused element."""
+        if element is not None and not isinstance(element, str):
+            raise TypeError("VoroHex: element must be a name such as 'C3D8I', got {!r}".format(
+                element))
+        return _core.write_result(self._core, os.fspath(path), element or "")
 
     def __repr__(self):
         return "<VoroHex.MeshResult ok={} {}>".format(self.ok, self.message)
@@ -405,10 +465,22 @@ def _describe(d):
     return "{}{}".format(d.message, ents)
 
 
-def mesh(shape, size=None, progress=None, cancel=None, **options):
+def _order(order):
+    """1 or 2 from 1, 2, "1st" or "2nd" (the ElementOrder property's values)."""
+    if order in ELEMENT_ORDERS:
+        return ELEMENT_ORDERS.index(order) + 1
+    if isinstance(order, bool) or order not in (1, 2):
+        raise ValueError("VoroHex: order must be 1 (8-node hexahedra) or 2 (20-node), got "
+                         "{!r}".format(order))
+    return int(order)
+
+
+def mesh(shape, size=None, progress=None, cancel=None, order=1, **options):
     """Hex-meshes the one solid in `shape` (a Part.Shape or a Part feature).
 
     size: target edge length (a number or a Quantity, mm); None = automatic.
+    order: 1 (8-node hexahedra) or 2 (20-node: mid-edge nodes on the CAD edge or face they
+    belong to, straight inside); "1st"/"2nd" also work.
     progress: optional callable(stage, fraction); returning False cancels.
     cancel: optional VoroHex.CancelToken, .cancel() from another thread stops meshing.
     Other keyword options: see VoroHex.OPTIONS. Unknown keywords raise TypeError; bad
@@ -420,13 +492,15 @@ def mesh(shape, size=None, progress=None, cancel=None, **options):
     if cancel is not None and not isinstance(cancel, CancelToken):
         raise TypeError("VoroHex: cancel must be a VoroHex.CancelToken")
     opts = _make_options(dict(options, size=size))
+    opts.order = _order(order)
     solid = _read_solid(check_shape(shape, True), True)
     core_result = _core.generate_mesh(solid, opts, progress, cancel)
     return MeshResult(core_result, solid)
 
 
 def from_femmesh(femmesh):
-    """A _VoroHexCore.HexMesh from a Fem.FemMesh's 8-node hexahedra (VTK order)."""
+    """A _VoroHexCore.HexMesh from a Fem.FemMesh's hexahedra (VTK order): 8-node ones, and
+    the corners of 20-node ones (their mid-edge nodes are not read)."""
     by_id = femmesh.Nodes  # a new dict at every access: read it once
     ids = sorted(by_id)
     index = {nid: i for i, nid in enumerate(ids)}
@@ -437,9 +511,9 @@ def from_femmesh(femmesh):
     hexes = array("i")
     for vid in femmesh.Volumes:
         en = femmesh.getElementNodes(vid)
-        if len(en) != 8:
-            raise ValueError("VoroHex: element {} has {} nodes; only 8-node hexahedra can be "
-                             "checked".format(vid, len(en)))
+        if len(en) not in (8, 20):
+            raise ValueError("VoroHex: element {} has {} nodes; only 8- and 20-node hexahedra "
+                             "can be checked".format(vid, len(en)))
         hexes.extend(index[en[k]] for k in SMESH_FROM_VTK)
     return _core.HexMesh.from_bytes(nodes.tobytes(), hexes.tobytes())
 

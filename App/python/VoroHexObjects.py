@@ -148,13 +148,16 @@ def graph_options_of(obj):
 
 
 def options_of(obj):
-    """Keyword options for VoroHex.mesh from the object's properties (via VoroHex.OPTIONS)."""
+    """Keyword options for VoroHex.mesh from the object's properties (via VoroHex.OPTIONS,
+    and order from ElementOrder)."""
     opts = {}
     for o in VoroHex.OPTIONS:
         value = getattr(obj, o.prop)
         if o.prop_type == "App::PropertyLength":
             value = value.Value
         opts[o.name] = None if (o.auto_zero and value == 0) else value
+    if hasattr(obj, "ElementOrder"):
+        opts["order"] = str(obj.ElementOrder)
     return opts
 
 
@@ -181,6 +184,11 @@ class HexMesh:
             if not hasattr(obj, name):
                 obj.addProperty(prop_type, name, "Result", doc)
                 obj.setEditorMode(name, 1)  # read-only in the property editor
+        if not hasattr(obj, "ElementOrder"):  # as FreeCAD's FemMeshGmsh names it
+            obj.addProperty("App::PropertyEnumeration", "ElementOrder", "FEM Mesh",
+                            "1st: 8-node hexahedra; 2nd: 20-node, mid-edge nodes on the CAD")
+            obj.ElementOrder = list(VoroHex.ELEMENT_ORDERS)
+            obj.ElementOrder = "1st"
         if not hasattr(obj, "PreviewObjects"):  # names, not links: no dependency on them
             obj.addProperty("App::PropertyStringList", "PreviewObjects", "Result",
                             "The graph and decomposition the panel's last Preview made")
@@ -274,6 +282,8 @@ def mesh_payload(result):
         "sub_volumes": result.sub_volume_table() if result.ok else [],
         "nodes": mesh.node_bytes() if result.ok else b"",
         "hexes": mesh.hex_bytes() if result.ok else b"",
+        "mid_edges": mesh.mid_edge_bytes() if result.ok else b"",
+        "groups": [(name, g["nodes"]) for name, g in result.groups.items()] if result.ok else [],
         "scaled_jacobian": array("d", result.scaled_jacobian).tobytes() if result.ok else b"",
     }
 
@@ -289,6 +299,8 @@ class FemMeshBuilder:
         self.femmesh = Fem.FemMesh()
         self.nodes = array("d", payload["nodes"])
         self.hexes = array("i", payload["hexes"])
+        self.mid = array("i", payload.get("mid_edges", b""))
+        self.groups = payload.get("groups", [])
         self.n_nodes, self.n_hexes = len(self.nodes) // 3, len(self.hexes) // 8
         self.node, self.hex = 0, 0
 
@@ -297,7 +309,7 @@ class FemMeshBuilder:
         import time
 
         end = None if seconds is None else time.time() + seconds
-        fm, nodes, hexes, order = self.femmesh, self.nodes, self.hexes, VoroHex.SMESH_FROM_VTK
+        fm, nodes, hexes, mid = self.femmesh, self.nodes, self.hexes, self.mid
         while self.node < self.n_nodes:
             stop = min(self.n_nodes, self.node + 2000)
             for i in range(self.node, stop):
@@ -308,11 +320,16 @@ class FemMeshBuilder:
         while self.hex < self.n_hexes:
             stop = min(self.n_hexes, self.hex + 1000)
             for e in range(self.hex, stop):
-                h = hexes[8 * e:8 * e + 8]
-                fm.addVolume([h[k] + 1 for k in order], e + 1)
+                cell = list(hexes[8 * e:8 * e + 8])
+                if mid:
+                    cell += mid[12 * e:12 * e + 12]
+                fm.addVolume(VoroHex.smesh_nodes(cell), e + 1)
             self.hex = stop
             if end is not None and time.time() > end:
                 return False
+        if self.groups:
+            VoroHex.add_groups(fm, self.groups)
+            self.groups = []
         return True
 
     @property

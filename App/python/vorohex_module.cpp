@@ -7,6 +7,7 @@
 #include <pybind11/stl.h>
 
 #include <atomic>
+#include <cctype>
 #include <cstring>
 #include <memory>
 #include <stdexcept>
@@ -214,6 +215,8 @@ void bind_types(py::module_& m) {
           "distance_rel_tol", [](const O& o) { return o.check.distance_rel_tol; },
           [](O& o, double v) { o.check.distance_rel_tol = v; },
           "check: allowed boundary node distance, relative to the diagonal")
+      .def_readwrite("order", &O::order,
+                     "element order: 1 (8-node hexahedra) or 2 (20-node, mid-edge nodes on the CAD)")
       .def("validate", &O::validate, "raises ValueError naming the bad option");
 
   using V = voronoi::VoronoiOptions;
@@ -251,6 +254,17 @@ void bind_mesh(py::module_& m) {
       .def_property_readonly("num_hexes", &core::HexMesh::num_hexes)
       .def("node_bytes", &node_bytes, "float64 x y z per node")
       .def("hex_bytes", &hex_bytes, "int32 8 node indices per hex, VTK order")
+      .def_property_readonly("order", &core::HexMesh::order, "1 (8-node) or 2 (20-node hexahedra)")
+      .def(
+          "mid_edge_bytes",
+          [](const core::HexMesh& h) {
+            std::vector<std::int32_t> flat;
+            flat.reserve(12 * h.mid_edge_nodes().size());
+            for (const auto& m : h.mid_edge_nodes()) flat.insert(flat.end(), m.begin(), m.end());
+            return to_bytes(flat);
+          },
+          "int32 12 mid-edge node indices per hex (VTK_QUADRATIC_HEXAHEDRON order); empty for "
+          "a first-order mesh")
       .def("sub_volume_bytes", [](const core::HexMesh& h) { return to_bytes(h.sub_volumes()); })
       .def(
           "node_class_bytes",
@@ -289,9 +303,30 @@ void bind_mesh(py::module_& m) {
       .def_readonly("check", &pipeline::MeshResult::check)
       .def_readonly("scaled_jacobian", &pipeline::MeshResult::scaled_jacobian)
       .def_readonly("stats", &pipeline::MeshResult::stats)
-      .def_property_readonly("diagnostics", [](const pipeline::MeshResult& r) {
-        return diagnostics_list(r.diagnostics);
-      });
+      .def_property_readonly("diagnostics",
+                             [](const pipeline::MeshResult& r) {
+                               return diagnostics_list(r.diagnostics);
+                             })
+      .def_property_readonly(
+          "groups",
+          [](const pipeline::MeshResult& r) {
+            py::list out;
+            for (const io::NamedGroup& g : r.groups) {
+              py::dict d;
+              d["name"] = g.name;
+              d["dim"] = g.dim;
+              d["id"] = g.id;
+              d["nodes"] = to_bytes(g.nodes);  // int32, 0-based
+              std::vector<std::int32_t> faces;
+              for (const io::GroupFace& f : g.faces) faces.insert(faces.end(), {f.hex, f.face});
+              d["faces"] = to_bytes(faces);  // int32 (hex, kHexFaces index) pairs
+              d["mesh_edges"] = g.edges.size();
+              out.append(d);
+            }
+            return out;
+          },
+          "named groups per CAD face, edge, vertex: dicts with name, dim, id, nodes (int32 "
+          "bytes, 0-based), faces (int32 bytes: hex, local face pairs), mesh_edges");
 }
 
 // Reads a BREP string into one solid (or several glued); returns (solid or None, diagnostics).
@@ -509,5 +544,44 @@ PYBIND11_MODULE(_VoroHexCore, m) {
         if (!ok) throw std::runtime_error("cannot write " + path + ": " + error);
       },
       py::arg("mesh"), py::arg("path"), py::arg("scaled_jacobian") = std::vector<double>{});
+  m.def(
+      "write_result",
+      [](const pipeline::MeshResult& r, const std::string& path, const std::string& element) {
+        io::WriteOptions o;
+        o.scaled_jacobian = r.scaled_jacobian;
+        o.groups = r.groups;
+        std::vector<core::Diagnostic> notes;
+        std::string ext = path.size() >= 4 ? path.substr(path.size() - 4) : "";
+        for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        io::ElementChoiceOptions eo;
+        eo.requested = element;
+        if (!element.empty() && !io::parse_element_type(element))
+          throw std::invalid_argument("unknown element type '" + element +
+                                      "' (use C3D8, C3D8I, C3D8R, C3D20 or C3D20R)");
+        if (!element.empty() && ext != ".inp")
+          throw std::invalid_argument("the element type applies to .inp files only");
+        if (ext == ".inp") {
+          const io::ElementChoice choice = io::choose_element_type(r.mesh, r.scaled_jacobian, eo);
+          notes = choice.diagnostics;
+          if (!choice.ok) {
+            std::string why;
+            for (const auto& d : choice.diagnostics)
+              if (d.severity == core::Severity::error) why += (why.empty() ? "" : "; ") + d.message;
+            throw std::invalid_argument(why);
+          }
+          o.element = choice.type;
+        }
+        std::string error;
+        bool ok;
+        {
+          py::gil_scoped_release nogil;
+          ok = io::write_mesh(r.mesh, path, o, &error);
+        }
+        if (!ok) throw std::runtime_error("cannot write " + path + ": " + error);
+        return diagnostics_list(notes);
+      },
+      py::arg("result"), py::arg("path"), py::arg("element") = std::string(),
+      "writes a result with its named groups (and for .inp the element type: '' = the safe "
+      "default); returns the element choice's diagnostics; ValueError when refused");
   m.attr("HISTOGRAM_BINS") = quality::QualityStats::kBins;
 }

@@ -244,8 +244,8 @@ class TaskPanel:
             self.sections[key] = section
 
     def _bind_element_order(self):
-        """Element order: the ElementOrder property ("1st"/"2nd") when the object has it;
-        until second-order meshing exists (issue 21) the field shows 1st, disabled."""
+        """Element order: the ElementOrder property ("1st"/"2nd", issue 21); an object
+        without it (made by an older version, not yet restored) shows 1st, disabled."""
         combo = self.form.cb_element_order
         if hasattr(self.obj, "ElementOrder"):
             try:

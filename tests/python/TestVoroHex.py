@@ -58,7 +58,7 @@ def inp_c3d8_volumes(path):
                 if key.startswith("*NODE") and not key.startswith("*NODEPRINT") and \
                         not key.startswith("*NODEFILE"):
                     section = "node"
-                elif re.match(r"\*ELEMENT,(.*,)?TYPE=C3D8R?(,|$)", key):
+                elif re.match(r"\*ELEMENT,(.*,)?TYPE=C3D8[RI]?(,|$)", key):
                     section = "hex"
                 else:
                     section = None

@@ -97,6 +97,20 @@ bool check_hex_indices(const core::HexMesh& mesh, std::string* error) {
                              " nodes");
         return false;
       }
+  const auto& mid = mesh.mid_edge_nodes();
+  if (!mid.empty() && mid.size() != hexes.size()) {
+    set_error(error, "The mesh has " + std::to_string(mid.size()) + " mid-edge node lists for " +
+                         std::to_string(hexes.size()) + " hexahedra");
+    return false;
+  }
+  for (std::size_t h = 0; h < mid.size(); ++h)
+    for (std::int32_t v : mid[h])
+      if (v < 0 || v >= n) {
+        set_error(error, "Hexahedron " + std::to_string(h) + " refers to mid-edge node " +
+                             std::to_string(v) + " but the mesh has " + std::to_string(n) +
+                             " nodes");
+        return false;
+      }
   return true;
 }
 

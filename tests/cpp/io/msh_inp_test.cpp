@@ -37,7 +37,7 @@ TEST(MshIo, WriterNeedsNonNegativeSubVolumes) {
   for (int i = 0; i < 8; ++i) m.add_node(core::Vec3(i & 1, (i >> 1) & 1, i >> 2));
   m.add_hex({0, 1, 3, 2, 4, 5, 7, 6}, -1);
   std::string error;
-  EXPECT_FALSE(write_msh(m, temp_path("neg.msh"), &error));
+  EXPECT_FALSE(write_msh(m, temp_path("neg.msh"), {}, &error));
   EXPECT_NE(error.find("-1"), std::string::npos);
 }
 

@@ -460,14 +460,25 @@ TEST(GenerateMesh, CurvedSolidsAreValidOnTheCadAndAbove03) {
   }
 }
 
-// HexMe n03 is a sweep whose layers fold. With no other scheme that takes it (the
-// multisweep left out), the sweep's failure goes into the fallback's warning and the
-// fallback meshes it valid; without the fallback the sweep's error stands.
-TEST(GenerateMesh, AStructuredSchemeThatFailsHandsOverToTheFallback) {
+// HexMe n03 is a sweep whose layers fold. Since schemes that apply but fail hand over to
+// the next (81049d6), the multisweep meshes it, with the sweep's failure noted; with the
+// multisweep left out, the sweep's failure goes into the fallback's warning and the
+// fallback meshes it valid; without the fallback the solid is refused and the sweep's
+// failure stands.
+TEST(GenerateMesh, AStructuredSchemeThatFailsHandsOverToTheNextAndToTheFallback) {
   const occ::ReadResult in =
       occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/n03o_skijump_box_cyl.step");
   ASSERT_TRUE(in.ok()) << "HexMe model n03 not found in " << VOROHEX_HEXME_DIR;
   MeshOptions opt;
+  const MeshResult next = generate_mesh(*in.solid, opt);
+  ASSERT_TRUE(next.ok) << (next.diagnostics.empty() ? "" : core::format(next.diagnostics.back()));
+  EXPECT_EQ(next.stats.scheme, "multisweep");
+  const core::Diagnostic* failed = testing::find_diagnostic(next.diagnostics, "scheme_failed");
+  ASSERT_NE(failed, nullptr);
+  EXPECT_EQ(failed->message.rfind("The sweep scheme applied but failed (", 0), 0u)
+      << failed->message;
+  EXPECT_NE(failed->message.find("fold"), std::string::npos) << failed->message;
+
   opt.schemes = {"map", "sweep", "revolve", "midpoint"};
   const MeshResult r = generate_mesh(*in.solid, opt);
   ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
@@ -491,6 +502,7 @@ TEST(GenerateMesh, AStructuredSchemeThatFailsHandsOverToTheFallback) {
   EXPECT_EQ(e->severity, core::Severity::error);
   EXPECT_NE(e->message.find("The sweep scheme applied but failed ("), std::string::npos)
       << e->message;
+  EXPECT_EQ(refused.mesh.num_hexes(), 0u);
 }
 
 // The Voronoi graph's and the decomposition's options are mesh options: refused with the
