@@ -1,0 +1,174 @@
+// The grid mesher: invariants on every result (all scaled Jacobians > 0, conforming, closed
+// boundary, volume and boundary nodes on the CAD, via quality::check_mesh) and its parts.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+#include <string>
+
+#include "fixtures/machined.h"
+#include "fixtures/solids.h"
+#include "grid/detail/core_cells.h"
+#include "grid/detail/grid_frame.h"
+#include "grid/detail/pillow.h"
+#include "grid/grid_mesh.h"
+#include "occ/primitives.h"
+#include "occ/shape_io.h"
+#include "occ/tessellate.h"
+#include "quality/check_mesh.h"
+
+namespace vorohex {
+namespace {
+
+using core::Vec3;
+
+struct Named {
+  std::string name;
+  occ::Solid solid;
+  double size;
+};
+
+std::vector<core::Vec3> boundary_points(const occ::Solid& s) {
+  occ::TessellationOptions o;
+  o.linear_deflection = 0.01 * s.diagonal();
+  const occ::Tessellation t = occ::tessellate(s, o);
+  std::vector<Vec3> p;
+  for (const auto& f : t.faces) p.insert(p.end(), f.nodes.begin(), f.nodes.end());
+  return p;
+}
+
+// Every result must pass the project's validity check: positive scaled Jacobians,
+// conforming, closed, volume and boundary nodes on the CAD.
+void expect_valid(const occ::Solid& solid, const grid::GridResult& r) {
+  ASSERT_TRUE(r.ok);
+  const quality::CheckReport c = quality::check_mesh(r.mesh, &solid);
+  for (const core::Diagnostic& d : c.diagnostics) ADD_FAILURE() << core::format(d);
+  EXPECT_TRUE(c.valid);
+  EXPECT_EQ(c.non_positive, 0u);
+  EXPECT_EQ(c.non_manifold_quads, 0u);
+  EXPECT_EQ(c.folded_quads, 0u);
+  EXPECT_EQ(c.open_boundary_edges, 0u);
+  EXPECT_GT(c.scaled_jacobian.min, 0.0);
+  // The optimisation never lowers the minimum.
+  EXPECT_GE(r.stats.min_sj, r.stats.min_sj_before_optimisation);
+}
+
+TEST(GridFrame, AxesFollowTheLargestPlanarFaces) {
+  // A box turned by 30 degrees about z: the grid's axes are its face normals, and its faces
+  // are grid planes (so the box is a tensor grid of exact cells).
+  const double c = std::cos(M_PI / 6), s = std::sin(M_PI / 6);
+  const Vec3 x(c, s, 0), y(-s, c, 0), z(0, 0, 1);
+  std::vector<Vec3> p;
+  for (int k = 0; k < 8; ++k)
+    p.push_back(x * (k & 1 ? 4 : 0) + y * (k & 2 ? 3 : 0) + z * (k & 4 ? 2 : 0));
+  const occ::Solid box = occ::make_polyhedron(
+      {p[0], p[1], p[3], p[2], p[4], p[5], p[7], p[6]},
+      {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {2, 3, 7, 6}, {1, 2, 6, 5}, {0, 4, 7, 3}});
+  const grid::detail::GridFrame f = grid::detail::grid_frame(box, boundary_points(box), 0.5);
+  std::set<int> matched;
+  for (const Vec3& a : f.axes)
+    for (int i = 0; i < 3; ++i)
+      if (std::abs(a.dot(std::array<Vec3, 3>{x, y, z}[i])) > 1 - 1e-9) matched.insert(i);
+  EXPECT_EQ(matched.size(), 3u);
+  EXPECT_NEAR(f.axes[0].cross(f.axes[1]).dot(f.axes[2]), 1.0, 1e-12);
+  EXPECT_EQ(f.cells(0) * f.cells(1) * f.cells(2), 8 * 6 * 4);
+}
+
+TEST(CoreCells, CoreIsInsideAndManifold) {
+  const occ::Solid cut_cube = testing::make_cut_cube();
+  const double size = 0.25;
+  const grid::detail::GridFrame f =
+      grid::detail::grid_frame(cut_cube, boundary_points(cut_cube), size);
+  occ::TessellationOptions o;
+  o.linear_deflection = 0.01;
+  const occ::Tessellation t = occ::tessellate(cut_cube, o);
+  const grid::detail::CoreCells core = grid::detail::core_cells(f, cut_cube, t, size, 0.5, 0.01);
+  // 8 x 8 x 8 cells of 0.25; the core is 6 x 6 x 6 one layer off the outer faces, less the
+  // 4 x 4 x 4 cells that reach into the cut corner or its layer.
+  EXPECT_EQ(core.cells, (std::array<int, 3>{8, 8, 8}));
+  EXPECT_EQ(core.core, std::size_t(6 * 6 * 6 - 4 * 4 * 4));
+  EXPECT_EQ(core.removed_components, 0u);
+}
+
+TEST(Pillow, OneLayerClosesTheCore) {
+  const occ::Solid box = occ::make_box(2, 1, 1);
+  const double size = 0.25;
+  const grid::detail::GridFrame f = grid::detail::grid_frame(box, boundary_points(box), size);
+  occ::TessellationOptions o;
+  o.linear_deflection = 0.01;
+  const occ::Tessellation t = occ::tessellate(box, o);
+  const grid::detail::CoreCells core = grid::detail::core_cells(f, box, t, size, 0.5, 0.01);
+  const grid::detail::PillowMesh p = grid::detail::pillow_mesh(f, core, box);
+  EXPECT_EQ(p.core_hexes, std::size_t(6 * 2 * 2));
+  // One pillow hex per core boundary quad: 2 (6x2 + 6x2 + 2x2).
+  EXPECT_EQ(p.pillow_hexes, std::size_t(2 * (12 + 12 + 4)));
+  const quality::CheckReport c = quality::check_mesh(p.mesh, nullptr);
+  EXPECT_EQ(c.non_manifold_quads, 0u);
+  EXPECT_EQ(c.open_boundary_edges, 0u);
+  // A box aligned with the grid: core corners go to the model vertices, core edges to the
+  // model edges, so the layer is valid before any feature capture.
+  EXPECT_EQ(c.non_positive, 0u);
+}
+
+TEST(GridMesh, ValidOnMachinedAndCurvedSolids) {
+  std::vector<Named> solids;
+  solids.push_back({"box", occ::make_box(3, 2, 1), 0.25});
+  solids.push_back({"thick L", testing::make_l(3), 0.25});
+  solids.push_back({"cut cube", testing::make_cut_cube(), 0.25});
+  solids.push_back({"cylinder", occ::make_cylinder(1, 2), 0.2});
+  solids.push_back({"plate with holes", testing::make_stepped_plate_with_holes(), 4});
+  for (const char* name : {"s17o_sphere.step", "s07o_notch.step"}) {
+    occ::ReadResult read = occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/" + name);
+    ASSERT_TRUE(read.ok()) << name;
+    solids.push_back({name, read.solid->clone(), read.solid->diagonal() / 20});
+  }
+  for (const Named& s : solids) {
+    SCOPED_TRACE(s.name);
+    grid::GridOptions o;
+    o.size = s.size;
+    const grid::GridResult r = grid::grid_mesh(s.solid, o);
+    for (const core::Diagnostic& d : r.diagnostics)
+      if (d.severity == core::Severity::error) ADD_FAILURE() << core::format(d);
+    expect_valid(s.solid, r);
+    EXPECT_EQ(r.stats.vertices_captured, r.stats.vertices);
+    EXPECT_EQ(r.stats.edges_captured, r.stats.edges);
+    EXPECT_EQ(r.stats.faces_captured, r.stats.faces);
+  }
+}
+
+TEST(GridMesh, AlignedBoxIsOneCorePillowed) {
+  const occ::Solid box = occ::make_box(3, 2, 1);
+  grid::GridOptions o;
+  o.size = 0.25;
+  const grid::GridResult r = grid::grid_mesh(box, o);
+  expect_valid(box, r);
+  // A core of 10 x 6 x 2 cells and one pillow hex per core boundary quad.
+  EXPECT_EQ(r.mesh.num_hexes(), std::size_t(10 * 6 * 2 + 2 * (60 + 20 + 12)));
+  EXPECT_GT(r.stats.min_sj, 0.5);
+}
+
+TEST(GridMesh, OptionsAreValidated) {
+  grid::GridOptions o;
+  o.size = 0;
+  EXPECT_THROW(o.validate(), std::invalid_argument);
+  o.size = 1;
+  o.core_margin = -1;
+  EXPECT_THROW(o.validate(), std::invalid_argument);
+  o.core_margin = 0.5;
+  o.quality_target = 2;
+  EXPECT_THROW(o.validate(), std::invalid_argument);
+}
+
+TEST(GridMesh, TooManyHexesIsRefusedBeforeMeshing) {
+  const occ::Solid box = occ::make_box(3, 2, 1);
+  grid::GridOptions o;
+  o.size = 0.01;
+  o.max_hexes = 1000;
+  const grid::GridResult r = grid::grid_mesh(box, o);
+  EXPECT_FALSE(r.ok);
+  ASSERT_FALSE(r.diagnostics.empty());
+  EXPECT_EQ(r.diagnostics.back().code, "too_many_hexes");
+}
+
+}  // namespace
+}  // namespace vorohex
