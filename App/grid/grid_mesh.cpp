@@ -42,6 +42,8 @@ void GridOptions::validate() const {
   if (!(quality_target > 0 && quality_target <= 1))
     bad("quality_target must be in (0, 1]", quality_target);
   if (max_refinements < 0) bad("max_refinements must be >= 0", max_refinements);
+  if (!(min_core_share >= 0 && min_core_share <= 1))
+    bad("min_core_share must be in [0, 1]", min_core_share);
   if (max_hexes == 0) bad("max_hexes must be at least 1", 0);
 }
 
@@ -82,10 +84,24 @@ GridResult grid_mesh(const occ::Solid& solid, const GridOptions& options,
       r.diagnostics.push_back(core::make_error("cancelled", "Meshing was cancelled."));
       return r;
     }
-    if (core.core > 0 || attempt >= options.max_refinements) break;
+    // The core's share of the volume: a thin core (walls thinner than about three cells)
+    // leaves most of the solid to the pillow layer, whose hexes then span whole walls.
+    double core_volume = 0;
+    if (core.core > 0)
+      for (int k = 0; k < core.cells[2]; ++k)
+        for (int j = 0; j < core.cells[1]; ++j)
+          for (int i = 0; i < core.cells[0]; ++i)
+            if (core.at(i, j, k))
+              core_volume += (frame.lines[0][i + 1] - frame.lines[0][i]) *
+                             (frame.lines[1][j + 1] - frame.lines[1][j]) *
+                             (frame.lines[2][k + 1] - frame.lines[2][k]);
+    const double share = core_volume / std::max(std::abs(solid.volume()), 1e-300);
+    if (share >= options.min_core_share || attempt >= options.max_refinements) break;
+    if (8.0 * cells > 4.0 * double(options.max_hexes)) break;
     std::ostringstream s;
-    s << "No grid cell of size " << size << " lies well inside the solid (walls thinner than "
-      << "about two cells); the grid was refined to size " << size / 2 << ".";
+    s << "The grid's core at size " << size << " holds " << std::lround(100 * share)
+      << "% of the volume (walls thinner than about three cells); the grid was refined to size "
+      << size / 2 << ".";
     r.diagnostics.push_back(core::make_warning("size_reduced", s.str()));
     size /= 2;
   }

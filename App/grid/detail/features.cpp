@@ -187,6 +187,13 @@ FeatureCapture capture_features(core::HexMesh& mesh,
 
   // 2. Edges: chains through the nodes nearest to points along the curve.
   std::unordered_set<std::int64_t> feature_edges;
+  std::unordered_map<std::int64_t, std::vector<std::size_t>> quads_of_edge;
+  for (std::size_t q = 0; q < outer_quads.size(); ++q)
+    for (int c = 0; c < 4; ++c)
+      quads_of_edge[edge_key(outer_quads[q][c], outer_quads[q][(c + 1) % 4])].push_back(q);
+  // Quads a chain cuts diagonally (see below): in no face region, their edges barriers.
+  std::vector<char> diagonal(outer_quads.size(), 0);
+  std::unordered_set<std::int32_t> reserved;  // turn nodes taken out of a chain
   for (core::EdgeId e : solid.edges()) {
     if (solid.edge_is_degenerated(e)) continue;
     const std::vector<core::FaceId> faces = solid.edge_faces(e);
@@ -236,6 +243,7 @@ FeatureCapture capture_features(core::HexMesh& mesh,
     targets.push_back(b);
     std::vector<std::int32_t> chain{a};
     std::unordered_set<std::int32_t> blocked = on_feature;
+    blocked.insert(reserved.begin(), reserved.end());
     for (std::int32_t t : targets) blocked.insert(t);
     bool ok = length > 0;
     for (std::int32_t target : targets) {
@@ -255,6 +263,35 @@ FeatureCapture capture_features(core::HexMesh& mesh,
       r.missed.push_back(core::entity_name(e));
       continue;
     }
+    // A chain that turns at a node has that node and its two chain neighbours in one quad,
+    // which would end flat on the curve (an angle of 180 degrees: a hex of scaled Jacobian
+    // about 0). The turn node leaves the chain instead, which then cuts that quad along its
+    // diagonal: a staircase becomes a diagonal line of quads across the curve.
+    {
+      auto quad_with = [&](std::int32_t x, std::int32_t y, std::int32_t z) -> long {
+        for (std::size_t q : quads_of_edge[edge_key(x, y)]) {
+          const auto& n = outer_quads[q];
+          if (std::find(n.begin(), n.end(), z) != n.end()) return long(q);
+        }
+        return -1;
+      };
+      std::vector<std::int32_t> kept{chain[0]};
+      bool last_diagonal = false;  // kept.back() joins its predecessor across a quad
+      for (std::size_t k = 1; k + 1 < chain.size(); ++k) {
+        const long q = last_diagonal ? -1 : quad_with(kept.back(), chain[k], chain[k + 1]);
+        if (q >= 0 && !diagonal[q]) {
+          diagonal[q] = 1;
+          reserved.insert(chain[k]);
+          ++r.quads_across_edges;
+          last_diagonal = true;
+          continue;
+        }
+        kept.push_back(chain[k]);
+        last_diagonal = false;
+      }
+      kept.push_back(chain.back());
+      chain = std::move(kept);
+    }
     const int m = int(chain.size()) - 1;
     const std::vector<Vec3> points = solid.edge_points_by_length(e, m);
     for (int k = 1; k < m; ++k) {
@@ -268,15 +305,15 @@ FeatureCapture capture_features(core::HexMesh& mesh,
 
   // 3. Faces: regions of quads between the chains, each on the face most of its free
   // nodes projected to.
-  std::unordered_map<std::int64_t, std::vector<std::size_t>> quads_of_edge;
-  for (std::size_t q = 0; q < outer_quads.size(); ++q)
-    for (int c = 0; c < 4; ++c)
-      quads_of_edge[edge_key(outer_quads[q][c], outer_quads[q][(c + 1) % 4])].push_back(q);
   std::vector<int> region(outer_quads.size(), -1);
   int regions = 0;
   std::vector<char> face_used(solid.num_faces() + 1, 0);
+  for (std::size_t q = 0; q < outer_quads.size(); ++q)
+    if (diagonal[q])
+      for (int c = 0; c < 4; ++c)
+        feature_edges.insert(edge_key(outer_quads[q][c], outer_quads[q][(c + 1) % 4]));
   for (std::size_t seed = 0; seed < outer_quads.size(); ++seed) {
-    if (region[seed] >= 0) continue;
+    if (region[seed] >= 0 || diagonal[seed]) continue;
     std::vector<std::size_t> members{seed}, stack{seed};
     region[seed] = regions;
     while (!stack.empty()) {
@@ -286,7 +323,8 @@ FeatureCapture capture_features(core::HexMesh& mesh,
         const std::int64_t k = edge_key(outer_quads[q][c], outer_quads[q][(c + 1) % 4]);
         if (feature_edges.count(k)) continue;
         for (std::size_t o : quads_of_edge[k])
-          if (region[o] < 0) region[o] = regions, stack.push_back(o), members.push_back(o);
+          if (region[o] < 0 && !diagonal[o])
+            region[o] = regions, stack.push_back(o), members.push_back(o);
       }
     }
     ++regions;

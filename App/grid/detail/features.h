@@ -20,6 +20,7 @@ struct FeatureCapture {
   int edges = 0, edges_captured = 0;  // seams and degenerated edges are not features
   int faces = 0, faces_captured = 0;  // a face is captured when some region lies on it
   std::size_t quads_moved = 0;        // quads of a region whose nodes first projected elsewhere
+  std::size_t quads_across_edges = 0;  // quads a chain cuts along their diagonal (two faces)
   std::vector<std::string> missed;    // FreeCAD names of the entities not captured
 };
 
