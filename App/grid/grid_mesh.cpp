@@ -139,6 +139,10 @@ GridResult grid_mesh(const occ::Solid& solid, const GridOptions& options,
     return r;
   }
   progress.report("grid", 0.5);
+  if (progress.cancelled()) {
+    r.diagnostics.push_back(core::make_error("cancelled", "Meshing was cancelled."));
+    return r;
+  }
 
   t0 = std::chrono::steady_clock::now();
   if (options.capture_features) {
@@ -159,6 +163,10 @@ GridResult grid_mesh(const occ::Solid& solid, const GridOptions& options,
   }
   r.stats.seconds_features = seconds_since(t0);
   progress.report("grid", 0.7);
+  if (progress.cancelled()) {
+    r.diagnostics.push_back(core::make_error("cancelled", "Meshing was cancelled."));
+    return r;
+  }
 
   t0 = std::chrono::steady_clock::now();
   double mean = 0;

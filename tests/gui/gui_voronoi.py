@@ -309,7 +309,7 @@ def main():
     doc.recompute()
     mesh = VoroHexObjects.makeHexMesh(doc, sphere, size=2.5)
     doc.recompute()
-    check(mesh.Status == "ok" and mesh.Scheme == "tet-split", "sphere meshed: " + mesh.Message)
+    check(mesh.Status == "ok" and mesh.Scheme == "grid", "sphere meshed: " + mesh.Message)
     sphere.ViewObject.Visibility = False
     Gui.Selection.clearSelection()
     Gui.Selection.addSelection(mesh)
