@@ -34,7 +34,7 @@ struct GridOptions {
   double quality_target = 0.5;  // scaled Jacobian the optimisation aims for, in (0, 1]
   // Times the size is halved while the core holds less than min_core_share of the volume
   // (walls thinner than about three cells), in [0, 1].
-  int max_refinements = 2;
+  int max_refinements = 1;
   double min_core_share = 0.25;
   std::size_t max_hexes = 50'000'000;  // more is refused before the core is built (> 0)
   void validate() const;               // throws std::invalid_argument naming the bad field
