@@ -152,6 +152,16 @@ GridResult grid_mesh(const occ::Solid& solid, const GridOptions& options,
     r.stats.vertices = fc.vertices, r.stats.vertices_captured = fc.vertices_captured;
     r.stats.edges = fc.edges, r.stats.edges_captured = fc.edges_captured;
     r.stats.faces = fc.faces, r.stats.faces_captured = fc.faces_captured;
+    if (!fc.absorbed.empty()) {
+      std::ostringstream s;
+      s << fc.absorbed.size() << " model entities smaller than a quarter of the size were "
+        << "absorbed, not resolved (";
+      for (std::size_t i = 0; i < fc.absorbed.size() && i < 8; ++i)
+        s << (i ? ", " : "") << fc.absorbed[i];
+      s << (fc.absorbed.size() > 8 ? ", ..." : "") << "): no mesh edge follows them; the "
+        << "boundary nodes near them stay on the faces they project to.";
+      r.diagnostics.push_back(core::make_warning("features_absorbed", s.str(), fc.absorbed));
+    }
     if (!fc.missed.empty()) {
       std::ostringstream s;
       s << "The grid mesh could not capture " << fc.missed.size() << " model entities (";

@@ -6,6 +6,7 @@
 #include <limits>
 #include <map>
 #include <queue>
+#include <set>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -150,6 +151,41 @@ FeatureCapture capture_features(core::HexMesh& mesh,
 
   std::unordered_set<std::int32_t> on_feature;
 
+  // Features smaller than a quarter of the size (the pipeline's tiny_edges and
+  // sliver_faces: engravings, small chamfers) are absorbed, not resolved: their edges get no
+  // chain, their vertices no node, and the nodes near them stay on the face they project to.
+  const double small = 0.25 * size;
+  std::vector<char> small_face(solid.num_faces() + 1, 0), absorbed_edge(solid.num_edges() + 1, 0);
+  {
+    std::vector<double> length(solid.num_edges() + 1, 0.0);
+    for (core::EdgeId e : solid.edges())
+      if (!solid.edge_is_degenerated(e)) length[e.value()] = solid.edge_length(e);
+    for (core::FaceId f : solid.faces()) {
+      double perimeter = 0;
+      for (const auto& wire : solid.face_wires(f))
+        for (const core::OrientedEdge& oe : wire) perimeter += length[oe.edge.value()];
+      small_face[f.value()] = perimeter > 0 && 2 * std::abs(solid.area(f)) / perimeter < small;
+    }
+    for (core::EdgeId e : solid.edges()) {
+      if (solid.edge_is_degenerated(e)) continue;
+      bool a = length[e.value()] < small;
+      for (core::FaceId f : solid.edge_faces(e)) a = a || small_face[f.value()];
+      absorbed_edge[e.value()] = a;
+    }
+  }
+  // Per vertex: its feature edges (not seams, not degenerated) and those not absorbed. A
+  // vertex with none (a sphere's poles, the end of a cylinder's seam) is no feature.
+  std::vector<int> live_edges(solid.num_vertices() + 1, 0), all_edges(solid.num_vertices() + 1, 0);
+  for (core::EdgeId e : solid.edges()) {
+    if (solid.edge_is_degenerated(e)) continue;
+    const std::vector<core::FaceId> ef = solid.edge_faces(e);
+    if (ef.size() < 2 || ef[0] == ef[1]) continue;
+    for (core::VertexId v : {solid.edge_first_vertex(e), solid.edge_last_vertex(e)}) {
+      ++all_edges[v.value()];
+      if (!absorbed_edge[e.value()]) ++live_edges[v.value()];
+    }
+  }
+
   // 1. Vertices.
   std::vector<std::vector<core::FaceId>> faces_of_vertex(solid.num_vertices() + 1);
   for (core::EdgeId e : solid.edges())
@@ -159,8 +195,13 @@ FeatureCapture capture_features(core::HexMesh& mesh,
             faces_of_vertex[v.value()].end())
           faces_of_vertex[v.value()].push_back(f);
   std::vector<std::int32_t> vertex_node(solid.num_vertices() + 1, -1);
-  r.vertices = solid.num_vertices();
   for (core::VertexId v : solid.vertices()) {
+    if (all_edges[v.value()] == 0) continue;
+    ++r.vertices;
+    if (live_edges[v.value()] == 0) {
+      r.absorbed.push_back(core::entity_name(v));
+      continue;
+    }
     const Vec3 p = solid.vertex_point(v);
     Vec3 m = Vec3::Zero();
     for (core::FaceId f : faces_of_vertex[v.value()]) m += solid.face_normal(f, p);
@@ -194,11 +235,16 @@ FeatureCapture capture_features(core::HexMesh& mesh,
   // Quads a chain cuts diagonally (see below): in no face region, their edges barriers.
   std::vector<char> diagonal(outer_quads.size(), 0);
   std::unordered_set<std::int32_t> reserved;  // turn nodes taken out of a chain
+  std::set<std::pair<int, int>> captured_between;  // face pairs with a captured edge
   for (core::EdgeId e : solid.edges()) {
     if (solid.edge_is_degenerated(e)) continue;
     const std::vector<core::FaceId> faces = solid.edge_faces(e);
     if (faces.size() < 2 || faces[0] == faces[1]) continue;  // a seam: no feature
     ++r.edges;
+    if (absorbed_edge[e.value()]) {
+      r.absorbed.push_back(core::entity_name(e));
+      continue;
+    }
     const std::int32_t a = vertex_node[solid.edge_first_vertex(e).value()];
     const std::int32_t b = vertex_node[solid.edge_last_vertex(e).value()];
     if (a < 0 || b < 0) {
@@ -300,6 +346,8 @@ FeatureCapture capture_features(core::HexMesh& mesh,
       on_feature.insert(chain[k]);
     }
     for (int k = 0; k < m; ++k) feature_edges.insert(edge_key(chain[k], chain[k + 1]));
+    captured_between.insert({std::min(faces[0].value(), faces[1].value()),
+                             std::max(faces[0].value(), faces[1].value())});
     ++r.edges_captured;
   }
 
@@ -348,8 +396,15 @@ FeatureCapture capture_features(core::HexMesh& mesh,
       }
       r.quads_moved += moved;
     }
+    // A node that projected across a captured edge goes to the region's face; one on
+    // another face (across an absorbed or uncaptured feature) stays where it is.
     for (std::int32_t n : free_nodes) {
-      if (mesh.node_class(NodeId(n)).id == face) continue;
+      const int own = mesh.node_class(NodeId(n)).id;
+      if (own == face) continue;
+      if (!captured_between.count({std::min(own, face), std::max(own, face)})) {
+        face_used[own] = 1;
+        continue;
+      }
       const core::FaceId f(face);
       mesh.set_point(NodeId(n), solid.project_to_face(f, mesh.point(NodeId(n))));
       mesh.set_node_class(NodeId(n), NodeClass::on(f));
@@ -363,6 +418,8 @@ FeatureCapture capture_features(core::HexMesh& mesh,
   for (core::FaceId f : solid.faces()) {
     if (face_used[f.value()])
       ++r.faces_captured;
+    else if (small_face[f.value()])
+      r.absorbed.push_back(core::entity_name(f));
     else
       r.missed.push_back(core::entity_name(f));
   }

@@ -2,6 +2,8 @@
 // boundary, volume and boundary nodes on the CAD, via quality::check_mesh) and its parts.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <set>
 #include <string>
@@ -182,6 +184,48 @@ TEST(GridMesh, AnInvalidResultIsNeverASuccess) {
     if (p.ok) EXPECT_TRUE(p.check.valid);
     if (!p.check.valid) EXPECT_FALSE(p.ok);
   }
+}
+
+// A 10 x 5 x 2 box with the letters VHX engraved 0.05 deep (into its bottom face), at
+// size 0.5: the engraving's walls and short edges are absorbed, not resolved, and said so;
+// the mesh is valid (nodes on the real faces, volume within the chord allowance).
+TEST(GridMesh, EngravingIsAbsorbedAndTheMeshValid) {
+  using Outline = std::vector<std::array<double, 2>>;
+  const std::vector<Outline> letters = {
+      {{1, 3.8}, {1.3, 3.8}, {2, 1.6}, {2.7, 3.8}, {3, 3.8}, {2.15, 1.2}, {1.85, 1.2}},
+      {{4, 1.2}, {4.3, 1.2}, {4.3, 2.35}, {5.2, 2.35}, {5.2, 1.2}, {5.5, 1.2}, {5.5, 3.8},
+       {5.2, 3.8}, {5.2, 2.65}, {4.3, 2.65}, {4.3, 3.8}, {4, 3.8}},
+      {{6.5, 1.2}, {6.85, 1.2}, {7.35, 2.2}, {7.85, 1.2}, {8.2, 1.2}, {7.55, 2.5}, {8.2, 3.8},
+       {7.85, 3.8}, {7.35, 2.8}, {6.85, 3.8}, {6.5, 3.8}, {7.15, 2.5}}};
+  occ::Solid part = occ::make_box(10, 5, 2);
+  for (Outline o : letters) {
+    double area2 = 0;  // counter-clockwise for make_prism
+    for (std::size_t i = 0; i < o.size(); ++i)
+      area2 += o[i][0] * o[(i + 1) % o.size()][1] - o[(i + 1) % o.size()][0] * o[i][1];
+    if (area2 < 0) std::reverse(o.begin(), o.end());
+    part = testing::cut(part, occ::make_prism(o, 0.05));
+  }
+  ASSERT_GT(part.num_faces(), 30);
+  const auto t0 = std::chrono::steady_clock::now();
+  pipeline::MeshOptions po;
+  po.size = 0.5;
+  po.schemes = {"grid"};
+  po.decompose = false;
+  const pipeline::MeshResult r = pipeline::generate_mesh(part, po);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  for (const core::Diagnostic& d : r.diagnostics)
+    if (d.severity == core::Severity::error) ADD_FAILURE() << core::format(d);
+  EXPECT_TRUE(r.ok);
+  EXPECT_TRUE(r.check.valid);
+  EXPECT_GT(r.check.scaled_jacobian.min, 0.2);
+  EXPECT_LT(seconds, 10.0);
+  const core::Diagnostic* absorbed = nullptr;
+  for (const core::Diagnostic& d : r.diagnostics)
+    if (d.code == "features_absorbed") absorbed = &d;
+  ASSERT_NE(absorbed, nullptr);
+  EXPECT_EQ(absorbed->severity, core::Severity::warning);
+  EXPECT_GT(absorbed->entities.size(), 20u);
 }
 
 TEST(GridMesh, FallbackSchemeIsAnOption) {
