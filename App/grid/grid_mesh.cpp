@@ -42,6 +42,7 @@ void GridOptions::validate() const {
   if (!(quality_target > 0 && quality_target <= 1))
     bad("quality_target must be in (0, 1]", quality_target);
   if (max_refinements < 0) bad("max_refinements must be >= 0", max_refinements);
+  if (max_refined_cells == 0) bad("max_refined_cells must be at least 1", 0);
   if (!(min_core_share >= 0 && min_core_share <= 1))
     bad("min_core_share must be in [0, 1]", min_core_share);
   if (max_hexes == 0) bad("max_hexes must be at least 1", 0);
@@ -96,8 +97,10 @@ GridResult grid_mesh(const occ::Solid& solid, const GridOptions& options,
                              (frame.lines[1][j + 1] - frame.lines[1][j]) *
                              (frame.lines[2][k + 1] - frame.lines[2][k]);
     const double share = core_volume / std::max(std::abs(solid.volume()), 1e-300);
-    if (share >= options.min_core_share || attempt >= options.max_refinements) break;
-    if (8.0 * cells > 4.0 * double(options.max_hexes)) break;
+    const bool split = core.removed_components > core.core / 4;  // pieces joined by thin walls
+    if ((share >= options.min_core_share && !split) || attempt >= options.max_refinements) break;
+    if (8.0 * cells > std::min(4.0 * double(options.max_hexes), double(options.max_refined_cells)))
+      break;
     std::ostringstream s;
     s << "The grid's core at size " << size << " holds " << std::lround(100 * share)
       << "% of the volume (walls thinner than about three cells); the grid was refined to size "

@@ -33,9 +33,13 @@ struct GridOptions {
   int optimisation_passes = 10;
   double quality_target = 0.5;  // scaled Jacobian the optimisation aims for, in (0, 1]
   // Times the size is halved while the core holds less than min_core_share of the volume
-  // (walls thinner than about three cells), in [0, 1].
-  int max_refinements = 1;
+  // (walls thinner than about three cells; min_core_share in [0, 1]) or falls apart into
+  // pieces (a quarter of it or more left out), as long as the refined grid has at most
+  // max_refined_cells cells (a larger grid is not worth the time on parts that need local
+  // refinement, which is not done).
+  int max_refinements = 2;
   double min_core_share = 0.25;
+  std::size_t max_refined_cells = 250'000;
   std::size_t max_hexes = 50'000'000;  // more is refused before the core is built (> 0)
   void validate() const;               // throws std::invalid_argument naming the bad field
 };

@@ -52,7 +52,9 @@ std::vector<std::int32_t> shortest_path(const core::HexMesh& mesh, const Surface
     if (it == s.adjacent.end()) continue;
     for (std::int32_t v : it->second) {
       if (v != to && blocked.count(v)) continue;
-      const double w = (mesh.point(NodeId(u)) - mesh.point(NodeId(v))).norm() + 2 * off_curve(v);
+      const double off = off_curve(v);
+      if (!std::isfinite(off)) continue;
+      const double w = (mesh.point(NodeId(u)) - mesh.point(NodeId(v))).norm() + 2 * off;
       auto [dv, fresh] = dist.try_emplace(v, std::numeric_limits<double>::infinity());
       if (d + w < dv->second) {
         dv->second = d + w;
@@ -263,7 +265,11 @@ FeatureCapture capture_features(core::HexMesh& mesh,
         const Vec3 q = solid.project_to_edge(e, p);
         Vec3 m = Vec3::Zero();
         for (core::FaceId f : faces) m += solid.face_normal(f, q);
-        it->second = (q - p).norm() + mismatch(n, m.normalized());
+        // Nodes farther than one and a half cells from the curve are not entered: a path
+        // that needs them is no chain along the edge (and the search stays local).
+        const double d = (q - p).norm();
+        it->second = d > 1.5 * size ? std::numeric_limits<double>::infinity()
+                                    : d + mismatch(n, m.normalized());
       }
       return it->second;
     };
