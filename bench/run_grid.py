@@ -108,13 +108,22 @@ def main():
              "global smoothing on), judged by the pipeline's validity check. Times are wall "
              "clock on the shared 2-core machine, whole command (read, mesh, smooth, check, "
              "write).", "",
-             "Valid: %d of %d; min scaled Jacobian >= 0.2 on %d." % (
-                 len(valid), len(rows), sum(1 for r in valid if (r.get("min_sj") or 0) >= 0.2)),
+             "Valid: %d of %d; min scaled Jacobian >= 0.2 on %d of the valid ones; time per "
+             "model: median %.1f s, max %.1f s (%s); the command stops at %g s." % (
+                 len(valid), len(rows), sum(1 for r in valid if (r.get("min_sj") or 0) >= 0.2),
+                 sorted(r["seconds"] for r in rows)[len(rows) // 2],
+                 max(r["seconds"] for r in rows),
+                 max(rows, key=lambda r: r["seconds"])["model"], a.timeout),
+             "",
+             "By series: " + ", ".join(
+                 "%s %d/%d valid" % (p, sum(1 for r in valid if r["model"].startswith(p)),
+                                     sum(1 for r in rows if r["model"].startswith(p)))
+                 for p in ("s", "n", "i")) + ".",
              "", "| model | status | hexes | min SJ | mean SJ | < 0.2 | volume err | s | notes |",
              "|---|---|---|---|---|---|---|---|---|"]
     for r in rows + [erow]:
         lines.append("| %s | %s | %s | %s | %s | %s | %s | %.1f | %s |" % (
-            r["model"], r["status"], r.get("hexes", "-"), fmt(r.get("min_sj")),
+            r["model"], r["status"], r.get("hexes", "-"), fmt(r.get("min_sj"), "%.3g"),
             fmt(r.get("mean_sj")), fmt(r.get("below_0_2"), "%.3f"),
             fmt(r.get("volume_rel_error"), "%.1e"), r["seconds"], r.get("notes", "")))
     with open(a.out, "w") as f:

@@ -60,12 +60,15 @@ GridResult grid_mesh(const occ::Solid& solid, const GridOptions& options,
   to.linear_deflection = std::min(0.05 * size, 0.01 * solid.diagonal());
   const occ::Tessellation tess = occ::tessellate(solid, to);
   if (!tess.ok()) {
-    r.diagnostics.push_back(core::make_error("grid_failed", "The grid mesher could not "
-                                             "tessellate the solid: " + tess.error));
+    r.diagnostics.push_back(core::make_error("grid_failed",
+                                             "The grid mesher could not "
+                                             "tessellate the solid: " +
+                                                 tess.error));
     return r;
   }
   std::vector<core::Vec3> boundary;
-  for (const occ::FaceTriangulation& f : tess.faces) boundary.insert(boundary.end(), f.nodes.begin(), f.nodes.end());
+  for (const occ::FaceTriangulation& f : tess.faces)
+    boundary.insert(boundary.end(), f.nodes.begin(), f.nodes.end());
 
   detail::GridFrame frame;
   detail::CoreCells core;
@@ -79,8 +82,7 @@ GridResult grid_mesh(const occ::Solid& solid, const GridOptions& options,
       r.diagnostics.push_back(core::make_error("too_many_hexes", s.str()));
       return r;
     }
-    core = detail::core_cells(frame, solid, tess, size, options.core_margin,
-                              to.linear_deflection);
+    core = detail::core_cells(frame, solid, tess, size, options.core_margin, to.linear_deflection);
     if (progress.cancelled()) {
       r.diagnostics.push_back(core::make_error("cancelled", "Meshing was cancelled."));
       return r;
@@ -136,8 +138,9 @@ GridResult grid_mesh(const occ::Solid& solid, const GridOptions& options,
   r.stats.seconds_pillow = seconds_since(t0);
   if (pillow.mesh.num_hexes() > options.max_hexes) {
     std::ostringstream s;
-    s << "The grid mesh has " << pillow.mesh.num_hexes() << " hexahedra, more than max_hexes = "
-      << options.max_hexes << "; increase the size or the limit.";
+    s << "The grid mesh has " << pillow.mesh.num_hexes()
+      << " hexahedra, more than max_hexes = " << options.max_hexes
+      << "; increase the size or the limit.";
     r.diagnostics.push_back(core::make_error("too_many_hexes", s.str()));
     return r;
   }
@@ -149,9 +152,8 @@ GridResult grid_mesh(const occ::Solid& solid, const GridOptions& options,
 
   t0 = std::chrono::steady_clock::now();
   if (options.capture_features) {
-    const detail::FeatureCapture fc =
-        detail::capture_features(pillow.mesh, pillow.outer_quads, pillow.outer_nodes,
-                                 pillow.outer_normals, solid, size);
+    const detail::FeatureCapture fc = detail::capture_features(
+        pillow.mesh, pillow.outer_quads, pillow.outer_nodes, pillow.outer_normals, solid, size);
     r.stats.vertices = fc.vertices, r.stats.vertices_captured = fc.vertices_captured;
     r.stats.edges = fc.edges, r.stats.edges_captured = fc.edges_captured;
     r.stats.faces = fc.faces, r.stats.faces_captured = fc.faces_captured;
@@ -168,7 +170,8 @@ GridResult grid_mesh(const occ::Solid& solid, const GridOptions& options,
     if (!fc.missed.empty()) {
       std::ostringstream s;
       s << "The grid mesh could not capture " << fc.missed.size() << " model entities (";
-      for (std::size_t i = 0; i < fc.missed.size() && i < 8; ++i) s << (i ? ", " : "") << fc.missed[i];
+      for (std::size_t i = 0; i < fc.missed.size() && i < 8; ++i)
+        s << (i ? ", " : "") << fc.missed[i];
       s << (fc.missed.size() > 8 ? ", ..." : "") << "): no chain of mesh edges or region of "
         << "quads follows them; the mesh cuts across them.";
       r.diagnostics.push_back(core::make_warning("features_not_captured", s.str(), fc.missed));
@@ -205,8 +208,8 @@ GridResult grid_mesh(const occ::Solid& solid, const GridOptions& options,
     << " cells of size " << size << " along the part's " << frame.how << ": " << r.stats.core_hexes
     << " core hexahedra and " << r.stats.pillow_hexes << " in the pillow layer; captured "
     << r.stats.vertices_captured << "/" << r.stats.vertices << " vertices, "
-    << r.stats.edges_captured << "/" << r.stats.edges << " edges, " << r.stats.faces_captured
-    << "/" << r.stats.faces << " faces; min scaled Jacobian " << r.stats.min_sj_before_optimisation
+    << r.stats.edges_captured << "/" << r.stats.edges << " edges, " << r.stats.faces_captured << "/"
+    << r.stats.faces << " faces; min scaled Jacobian " << r.stats.min_sj_before_optimisation
     << " -> " << r.stats.min_sj << " after optimisation.";
   r.diagnostics.push_back(core::make_info("grid", s.str()));
   r.mesh = std::move(pillow.mesh);

@@ -12,6 +12,7 @@
 // caller's validity check judges it.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -45,12 +46,12 @@ struct GridOptions {
 };
 
 struct GridStats {
-  double size_used = 0;                   // after refinements
-  std::array<int, 3> grid_cells{};        // per axis
-  std::string axes_from;                  // "planar faces", "axis of revolution", "world axes"
+  double size_used = 0;             // after refinements
+  std::array<int, 3> grid_cells{};  // per axis
+  std::string axes_from;            // "planar faces", "axis of revolution", "world axes"
   std::size_t core_hexes = 0, pillow_hexes = 0;
-  std::size_t classifier_calls = 0;       // OCCT point classifications
-  std::size_t removed_for_manifold = 0;   // core cells dropped so its boundary is a manifold
+  std::size_t classifier_calls = 0;      // OCCT point classifications
+  std::size_t removed_for_manifold = 0;  // core cells dropped so its boundary is a manifold
   int vertices = 0, vertices_captured = 0, edges = 0, edges_captured = 0, faces = 0,
       faces_captured = 0;
   double min_sj_before_optimisation = 0, min_sj = 0, mean_sj = 0;

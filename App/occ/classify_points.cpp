@@ -17,7 +17,7 @@ std::vector<PointState> classify_points(const Solid& solid, const std::vector<Ve
       try {
         classifier.Perform(gp_Pnt(points[i].x(), points[i].y(), points[i].z()), tolerance);
         const TopAbs_State s = classifier.State();
-        out[i] = s == TopAbs_IN ? PointState::inside
+        out[i] = s == TopAbs_IN    ? PointState::inside
                  : s == TopAbs_OUT ? PointState::outside
                                    : PointState::on;
       } catch (const Standard_Failure&) {

@@ -56,7 +56,8 @@ std::pair<int, int> line_range(const std::vector<double>& lines, double lo, doub
 // It is when the core cells and the other cells among the eight are each face-connected.
 bool manifold_at(const CoreCells& c, int i, int j, int k, std::array<int, 8>* component = nullptr) {
   std::array<char, 8> in{};
-  for (int b = 0; b < 8; ++b) in[b] = c.at(i - 1 + (b & 1), j - 1 + ((b >> 1) & 1), k - 1 + (b >> 2));
+  for (int b = 0; b < 8; ++b)
+    in[b] = c.at(i - 1 + (b & 1), j - 1 + ((b >> 1) & 1), k - 1 + (b >> 2));
   std::array<int, 8> comp;
   comp.fill(-1);
   int components[2] = {0, 0};
@@ -184,7 +185,8 @@ CoreCells core_cells(const GridFrame& frame, const occ::Solid& solid, const occ:
           // Keep the in-cells of component 1 (the first core component) if the outside is
           // connected; otherwise drop all core cells here.
           bool out_connected = true;
-          for (int b = 0; b < 8; ++b) out_connected = out_connected && (comp[b] & 1 || comp[b] == 0);
+          for (int b = 0; b < 8; ++b)
+            out_connected = out_connected && (comp[b] & 1 || comp[b] == 0);
           for (int b = 0; b < 8; ++b) {
             const int ci = i - 1 + (b & 1), cj = j - 1 + ((b >> 1) & 1), ck = k - 1 + (b >> 2);
             if (!c.at(ci, cj, ck)) continue;
@@ -221,8 +223,8 @@ CoreCells core_cells(const GridFrame& frame, const occ::Solid& solid, const occ:
       }
     }
   }
-  const int keep = sizes.empty() ? -1
-                                 : int(std::max_element(sizes.begin(), sizes.end()) - sizes.begin());
+  const int keep =
+      sizes.empty() ? -1 : int(std::max_element(sizes.begin(), sizes.end()) - sizes.begin());
   for (std::size_t s = 0; s < nc; ++s)
     if (c.in_core[s] && label[s] != keep) c.in_core[s] = 0, ++c.removed_components;
   c.core = keep < 0 ? 0 : sizes[keep];

@@ -18,7 +18,7 @@ using core::NodeId;
 using core::Vec3;
 
 struct Surface {
-  std::vector<std::int32_t> nodes;                           // outer nodes
+  std::vector<std::int32_t> nodes;                                       // outer nodes
   std::unordered_map<std::int32_t, std::vector<std::int32_t>> adjacent;  // along quad edges
 };
 
@@ -148,7 +148,8 @@ FeatureCapture capture_features(core::HexMesh& mesh,
           crowded.insert(n);
           for (std::int32_t k : s.adjacent.at(n)) crowded.insert(k);
         }
-    relax(mesh, s, solid, 10, [&](std::int32_t n) { return crowded.count(n) > 0; }, true);
+    relax(
+        mesh, s, solid, 10, [&](std::int32_t n) { return crowded.count(n) > 0; }, true);
   }
 
   std::unordered_set<std::int32_t> on_feature;
@@ -236,7 +237,7 @@ FeatureCapture capture_features(core::HexMesh& mesh,
       quads_of_edge[edge_key(outer_quads[q][c], outer_quads[q][(c + 1) % 4])].push_back(q);
   // Quads a chain cuts diagonally (see below): in no face region, their edges barriers.
   std::vector<char> diagonal(outer_quads.size(), 0);
-  std::unordered_set<std::int32_t> reserved;  // turn nodes taken out of a chain
+  std::unordered_set<std::int32_t> reserved;       // turn nodes taken out of a chain
   std::set<std::pair<int, int>> captured_between;  // face pairs with a captured edge
   for (core::EdgeId e : solid.edges()) {
     if (solid.edge_is_degenerated(e)) continue;
@@ -390,9 +391,9 @@ FeatureCapture capture_features(core::HexMesh& mesh,
         if (c.dim == 2 && free_nodes.insert(n).second) ++votes[c.id];
       }
     if (votes.empty()) continue;
-    const int face =
-        std::max_element(votes.begin(), votes.end(), [](auto& x, auto& y) { return x.second < y.second; })
-            ->first;
+    const int face = std::max_element(votes.begin(), votes.end(), [](auto& x, auto& y) {
+                       return x.second < y.second;
+                     })->first;
     face_used[face] = 1;
     for (std::size_t q : members) {
       bool moved = false;
@@ -418,7 +419,8 @@ FeatureCapture capture_features(core::HexMesh& mesh,
   }
   // 4. The surface evened out with every node on its entity (vertices stay, edge nodes
   // slide along their curve, face nodes on their face).
-  relax(mesh, s, solid, 5, [](std::int32_t) { return true; }, false);
+  relax(
+      mesh, s, solid, 5, [](std::int32_t) { return true; }, false);
 
   r.faces = solid.num_faces();
   for (core::FaceId f : solid.faces()) {

@@ -17,11 +17,11 @@ namespace vorohex::grid::detail {
 
 struct FeatureCapture {
   int vertices = 0, vertices_captured = 0;  // vertices of feature edges only
-  int edges = 0, edges_captured = 0;  // seams and degenerated edges are not features
-  int faces = 0, faces_captured = 0;  // a face is captured when some region lies on it
-  std::size_t quads_moved = 0;        // quads of a region whose nodes first projected elsewhere
+  int edges = 0, edges_captured = 0;        // seams and degenerated edges are not features
+  int faces = 0, faces_captured = 0;        // a face is captured when some region lies on it
+  std::size_t quads_moved = 0;         // quads of a region whose nodes first projected elsewhere
   std::size_t quads_across_edges = 0;  // quads a chain cuts along their diagonal (two faces)
-  std::vector<std::string> missed;    // FreeCAD names of the entities not captured
+  std::vector<std::string> missed;     // FreeCAD names of the entities not captured
   // Entities smaller than a quarter of the size (short edges, faces narrower than that, the
   // edges and vertices of such faces): absorbed, not captured, on purpose.
   std::vector<std::string> absorbed;

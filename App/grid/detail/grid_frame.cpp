@@ -124,7 +124,8 @@ GridFrame grid_frame(const core::MeshDomain& solid, const std::vector<Vec3>& bou
     for (std::size_t i = 1; i < accepted.size(); ++i) {
       const double len = accepted[i] - accepted[i - 1];
       const int n = std::max(1, int(std::lround(len / size)));
-      for (int k = 1; k <= n; ++k) lines.push_back(k == n ? accepted[i] : accepted[i - 1] + len * k / n);
+      for (int k = 1; k <= n; ++k)
+        lines.push_back(k == n ? accepted[i] : accepted[i - 1] + len * k / n);
     }
   }
   return frame;

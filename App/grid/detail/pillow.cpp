@@ -31,7 +31,8 @@ PillowMesh pillow_mesh(const GridFrame& frame, const CoreCells& core,
       for (int i = 0; i < core.cells[0]; ++i) {
         if (!core.at(i, j, k)) continue;
         core::HexNodes h;
-        for (int b = 0; b < 8; ++b) h[b] = mesh_node(i + kCorner[b][0], j + kCorner[b][1], k + kCorner[b][2]);
+        for (int b = 0; b < 8; ++b)
+          h[b] = mesh_node(i + kCorner[b][0], j + kCorner[b][1], k + kCorner[b][2]);
         out.mesh.add_hex(h, 1);
         ++out.core_hexes;
         for (const auto& f : core::kHexFaces) {

@@ -17,9 +17,9 @@ namespace vorohex::grid::detail {
 
 struct PillowMesh {
   core::HexMesh mesh;
-  std::vector<std::int32_t> outer_nodes;               // nodes on the CAD boundary
+  std::vector<std::int32_t> outer_nodes;                 // nodes on the CAD boundary
   std::vector<std::array<std::int32_t, 4>> outer_quads;  // outward, one per pillow hex
-  std::vector<std::int32_t> inner_of_outer;            // per outer node: its core node
+  std::vector<std::int32_t> inner_of_outer;              // per outer node: its core node
   std::vector<core::Vec3> outer_normals;  // per outer node: mean normal of its core quads
   std::size_t core_hexes = 0, pillow_hexes = 0;
 };
