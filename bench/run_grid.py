@@ -66,7 +66,8 @@ def run(vorohex, model, work, timeout, size=None):
     errors = sorted({d["code"] for d in j.get("diagnostics", []) if d["severity"] == "error"})
     notes = sorted({d["code"] for d in j.get("diagnostics", [])
                     if d["severity"] == "warning" and d["code"] in
-                    ("features_not_captured", "grid_core_split", "size_reduced")})
+                    ("features_not_captured", "features_absorbed", "grid_core_split",
+                     "size_reduced")})
     row["status"] = "valid" if j.get("ok") else "invalid: " + ", ".join(errors)
     row["notes"] = ", ".join(notes)
     row["grid"] = next((d["message"] for d in j.get("diagnostics", []) if d["code"] == "grid"), "")
