@@ -22,7 +22,8 @@ const char* const kMeshUsage =
     "                    [--smooth-iterations N] [--smooth-passes N] [--no-smooth]\n"
     "                    [--no-decompose] [--decomposition-time-limit S] [--sharp-angle A]\n"
     "                    [--eps E] [--delta D] [--max-depth N] [--no-fallback]\n"
-    "                    [--schemes LIST] [--time-limit S] [--keep-invalid] [--quiet]\n"
+    "                    [--fallback-scheme grid|tet-split] [--schemes LIST]\n"
+    "                    [--time-limit S] [--keep-invalid] [--quiet]\n"
     "                    [--order 1|2] [--element TYPE]\n"
     "  IN    a solid as STEP (.step/.stp), BREP (.brep/.brp) or IGES (.iges/.igs)\n"
     "  OUT   the hex mesh: .vtu (ParaView), .msh (Gmsh 4.1) or .inp (Abaqus/CalculiX), with\n"
@@ -50,8 +51,9 @@ const char* const kMeshUsage =
     "  --schemes LIST  the single-solid schemes to try, in order, comma-separated (default\n"
     "                  map,sweep,multisweep,revolve,midpoint); one left out is never used\n"
     "  --no-fallback   refuse a solid that neither one scheme nor its\n"
-    "                  decomposition meshes, instead of meshing it as tetrahedra split into\n"
-    "                  hexahedra\n"
+    "                  decomposition meshes, instead of meshing it with the grid mesher\n"
+    "  --fallback-scheme S  the fallback: grid (default: core grid, pillow layer, features\n"
+    "                  captured) or tet-split (tetrahedra split into hexahedra, for comparison)\n"
     "  --keep-invalid  write the mesh even when it fails the validity check\n"
     "  --quiet         no progress lines\n"
     "exit: 0 valid mesh written, 1 meshing failed or mesh invalid, 2 bad input\n";
@@ -196,7 +198,8 @@ int mesh_command(const std::vector<std::string>& argv) {
       parse(argv,
             {"-o", "--output", "--size", "--report", "--max-hexes", "--smooth-iterations",
              "--smooth-passes", "--time-limit", "--decomposition-time-limit", "--sharp-angle",
-             "--eps", "--delta", "--max-depth", "--schemes", "--order", "--element"},
+             "--eps", "--delta", "--max-depth", "--schemes", "--fallback-scheme", "--order",
+             "--element"},
             {"--no-smooth", "--no-fallback", "--no-decompose", "--keep-invalid", "--quiet"});
   if (args.positional.size() != 1)
     throw UsageError("expected exactly one input file, got " +
@@ -223,6 +226,12 @@ int mesh_command(const std::vector<std::string>& argv) {
     options.smoothing.laplacian_iterations = options.smoothing.optimisation_passes = 0;
   options.fallback = args.flags.count("--no-fallback") == 0;
   options.decompose = args.flags.count("--no-decompose") == 0;
+  if (args.values.count("--fallback-scheme")) {
+    options.fallback_scheme = args.values.at("--fallback-scheme");
+    if (options.fallback_scheme != "grid" && options.fallback_scheme != "tet-split")
+      throw UsageError("--fallback-scheme must be grid or tet-split, got '" +
+                       options.fallback_scheme + "'");
+  }
   if (args.values.count("--decomposition-time-limit"))
     options.decomposition_time_limit =
         parse_positive("--decomposition-time-limit", args.values.at("--decomposition-time-limit"));

@@ -8,6 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "grid/grid_mesh.h"
 #include "io/named_groups.h"
 #include "io/second_order.h"
 #include "mesh/assemble.h"
@@ -76,7 +77,7 @@ std::vector<core::Diagnostic> small_features(const occ::Solid& solid, double siz
 }
 
 // The sub-volume type of a solid meshed by one scheme: a sweep runs between two of its
-// faces (Vs), a block or a midpoint cell is Ve, the tetrahedral fallback is neither.
+// faces (Vs), a block or a midpoint cell is Ve, the fallbacks (grid, tet-split) are neither.
 std::string type_of_scheme(const std::string& scheme) {
   if (scheme == "sweep" || scheme == "multisweep") return "Vs";
   return scheme == "map" || scheme == "midpoint" ? "Ve" : "-";
@@ -143,10 +144,30 @@ void finish(MeshResult& result, const occ::Solid& solid, const MeshOptions& opti
   result.ok = result.check.valid && !core::has_error(result.diagnostics);
 }
 
-// No structured scheme: tetrahedra split into hexahedra, said so in a warning.
+// No structured scheme: the grid mesher (or, on request, tetrahedra split into
+// hexahedra), said so in a warning.
 bool fallback(const occ::Solid& solid, const MeshOptions& options, double size,
               const std::string& why, const core::Progress& progress,
               std::chrono::steady_clock::time_point t0, MeshResult& result) {
+  if (options.fallback_scheme == "grid") {
+    result.stats.scheme = "grid";
+    grid::GridOptions o;
+    o.size = size;
+    o.max_hexes = options.max_hexes;
+    // The optimisation is the global smoothing every result goes through (finish()).
+    o.laplacian_iterations = 0;
+    o.optimisation_passes = 0;
+    grid::GridResult g = grid::grid_mesh(solid, o, progress);
+    append(result.diagnostics, g.diagnostics);
+    result.stats.seconds_meshing = seconds_since(t0);
+    if (!g.ok) return false;
+    result.mesh = std::move(g.mesh);
+    result.diagnostics.push_back(core::make_warning(
+        "fallback", why + " Meshed by the grid mesher instead (core grid, one pillow layer to "
+                          "the CAD, features captured); expect poorer elements at the boundary "
+                          "than a structured mesh."));
+    return true;
+  }
   result.stats.scheme = "tet-split";
   mesh::TetSplitOptions tet_options;
   tet_options.size = size;
@@ -157,7 +178,8 @@ bool fallback(const occ::Solid& solid, const MeshOptions& options, double size,
   if (!split.ok) return false;
   result.mesh = std::move(split.mesh);
   result.diagnostics.push_back(core::make_warning(
-      "fallback", why + " Meshed by the fallback instead: " + std::to_string(split.tetrahedra) +
+      "fallback", why + " Meshed by the tetrahedral fallback instead: " +
+                      std::to_string(split.tetrahedra) +
                       " tetrahedra, each split into four hexahedra; expect poorer elements than a "
                       "structured mesh."));
   return true;
@@ -189,6 +211,9 @@ void MeshOptions::validate() const {
     s << "sharp_angle must be in (0, 180] degrees, got " << sharp_angle;
     throw std::invalid_argument(s.str());
   }
+  if (fallback_scheme != "grid" && fallback_scheme != "tet-split")
+    throw std::invalid_argument("fallback_scheme must be \"grid\" or \"tet-split\", got \"" +
+                                fallback_scheme + "\"");
   if (order != 1 && order != 2)
     throw std::invalid_argument("order must be 1 (8-node hexahedra) or 2 (20-node), got " +
                                 std::to_string(order));

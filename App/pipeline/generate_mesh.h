@@ -23,13 +23,17 @@ struct MeshOptions {
   std::size_t max_hexes = 50'000'000;  // refused up front when the prediction exceeds it
   smooth::SmoothOptions smoothing;     // global smoothing; 0 iterations and 0 passes = off
   quality::CheckOptions check;         // tolerances of the final validity check
-  // Where no structured scheme applies: a tetrahedral mesh split into hexahedra (poorer
-  // elements, reported as a warning); false refuses such solids instead.
+  // Where no structured scheme applies: the grid mesher (grid/grid_mesh.h; a warning says
+  // so); false refuses such solids instead.
   bool fallback = true;
+  // The fallback: "grid" (core grid, pillow layer, feature capture) or "tet-split" (CGAL
+  // tetrahedra each split into four hexahedra; kept only for comparison).
+  std::string fallback_scheme = "grid";
   // The single-solid schemes tried in this order, the first that applies meshes the solid:
   // "map" (topological hexahedron), "sweep" (one-to-one), "multisweep" (prismatic, many
-  // levels), "revolve" (solid of revolution), "midpoint" (convex polyhedron). Leaving one
-  // out forbids it (the decomposition and the fallback come after them all).
+  // levels), "revolve" (solid of revolution), "midpoint" (convex polyhedron); "grid" (the
+  // fallback's grid mesher, for any solid) only when named. Leaving one out forbids it
+  // (the decomposition and the fallback come after them all).
   std::vector<std::string> schemes = {"map", "sweep", "multisweep", "revolve", "midpoint"};
   // Where no single scheme applies, first cut the solid into sub-volumes along its Voronoi
   // graph (paper §4) and mesh those into one conforming mesh (§5); the fallback (if on)
@@ -59,7 +63,8 @@ struct MeshStats {
   double min_sj_before_smoothing = 0, mean_sj_before_smoothing = 0;
   int sub_volumes = 0;
   // "map" (mapped block), "sweep" (one-to-one sweep), "multisweep" (prismatic), "revolve"
-  // (solid of revolution), "midpoint" (convex polyhedron) or "tet-split" (the fallback); sub-volumes of a decomposition or several solids: their
+  // (solid of revolution), "midpoint" (convex polyhedron), "grid" (the fallback) or "tet-split"
+  // (the old fallback, on request); sub-volumes of a decomposition or several solids: their
   // schemes joined by "+" ("map+sweep")
   std::string scheme;
   // Per sub-volume (SubVolume cell data 1, 2, ...): its scheme.

@@ -54,7 +54,8 @@ class _Option:
 
     kind decides the check: "length" > 0, "count" whole >= 1, "iterations" whole >= 0,
     "fraction" in (0, 1], "angle" in (0, 180] degrees, "tolerance" >= 0, "flag" True or
-    False, "schemes" scheme names (a list, or one comma-separated string). limits = (min, max, step) of a constraint
+    False, "schemes" scheme names (a list, or one comma-separated string), "choice" a string
+    the C++ options' validate() checks. limits = (min, max, step) of a constraint
     property (App::PropertyIntegerConstraint / PropertyFloatConstraint), else None."""
 
     def __init__(self, name, prop, prop_type, group, doc, kind, auto_zero=False, limits=None):
@@ -84,11 +85,15 @@ OPTIONS = (
             "Seconds after which meshing stops like a cancel (0 = no limit)", "tolerance"),
     _Option("schemes", "Schemes", "App::PropertyString", "Mesh",
             "Single-solid schemes tried in this order, comma-separated: map, sweep, "
-            "multisweep, revolve, midpoint (one left out is never used)", "schemes"),
+            "multisweep, revolve, midpoint, grid (one left out is never used; grid only when "
+            "named)", "schemes"),
     _Option("fallback", "Fallback", "App::PropertyBool", "Mesh",
             "Where no structured scheme (map, sweep, multisweep, revolve, midpoint) applies, "
-            "mesh tetrahedra split into hexahedra (poorer elements, reported as a warning); "
-            "false refuses instead", "flag"),
+            "mesh the solid with the grid mesher (poorer elements at the boundary, reported as "
+            "a warning); false refuses instead", "flag"),
+    _Option("fallback_scheme", "FallbackScheme", "App::PropertyString", "Mesh",
+            "The fallback: grid (core grid, pillow layer to the CAD, features captured) or "
+            "tet-split (tetrahedra split into hexahedra, kept for comparison)", "choice"),
     _Option("eps", "Eps", "App::PropertyFloat", "Voronoi graph",
             "Merge tolerance and finest octree cell of the Voronoi graph, relative to the "
             "bounding-box diagonal, in (0, 0.25]", "fraction"),
@@ -176,6 +181,12 @@ def _make_options(kwargs):
                 raise TypeError("VoroHex: option 'schemes' must be a list of scheme names or "
                                 "one comma-separated string, got {!r}".format(value))
             setattr(opts, name, list(value))
+            continue
+        if option.kind == "choice":
+            if not isinstance(value, str):
+                raise TypeError("VoroHex: option '{}' must be a string, got {!r}".format(
+                    name, value))
+            setattr(opts, name, value)
             continue
         if option.kind == "flag":
             if not isinstance(value, bool):
@@ -396,7 +407,7 @@ class MeshResult:
     def sub_volume_table(self):
         """Per sub-volume (SubVolume cell data 1, 2, ...; 0 for a solid meshed whole): a dict
         with id, type ("Vs": swept between two faces of the solid, "Ve": a block or a sweep
-        from or to a cut face, "-": the tetrahedral fallback), scheme, hexes and the min and
+        from or to a cut face, "-": the fallback, the grid mesher), scheme, hexes and the min and
         mean scaled Jacobian of its hexes."""
         ids = array("i", self._mesh.sub_volume_bytes())
         sj = self._core.scaled_jacobian

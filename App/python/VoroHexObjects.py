@@ -23,14 +23,16 @@ RESULTS = (
      "Smallest scaled Jacobian before global smoothing"),
     ("MeanScaledJacobianBeforeSmoothing", "App::PropertyFloat",
      "Mean scaled Jacobian before global smoothing"),
-    ("Scheme", "App::PropertyString", "How the solid was meshed: map (block) or sweep"),
+    ("Scheme", "App::PropertyString",
+     "How the solid was meshed: map (block), sweep, multisweep, revolve, midpoint, or grid "
+     "(the fallback); sub-volumes joined by +"),
     ("VolumeError", "App::PropertyFloat", "Relative volume error of the mesh vs the solid"),
     ("ScaledJacobianHistogram", "App::PropertyIntegerList",
      "Hexes per scaled Jacobian bin of 0.1 from -1 to 1"),
     ("SubVolumeSchemes", "App::PropertyStringList", "Per sub-volume (1, 2, ...): its scheme"),
     ("SubVolumeTypes", "App::PropertyStringList",
      "Per sub-volume: Vs (swept between two faces of the solid), Ve (a block, or a sweep "
-     "from or to a cut face), - (the tetrahedral fallback)"),
+     "from or to a cut face), - (the fallback: the grid mesher)"),
     ("SubVolumeHexCounts", "App::PropertyIntegerList", "Per sub-volume: its hexahedra"),
     ("SubVolumeMinScaledJacobian", "App::PropertyFloatList",
      "Per sub-volume: the smallest scaled Jacobian of its hexahedra"),
@@ -401,8 +403,9 @@ def automatic_size(shape):
 
 def predicted_hexes(shape, size):
     """(low, high): the hexahedra to expect at `size` (0 or None: automatic). low = volume /
-    size^3, what a structured mesh (map, sweep) has; high = 4 x that, about what the
-    tetrahedral fallback gives (2.5 to 3.4 x on HexMe's sphere and ski jump)."""
+    size^3, what a structured mesh (map, sweep) has; high = 4 x that, a bound for the
+    fallback (the grid mesher's core plus its pillow layer, refined up to twice where walls
+    are thin, stays below it on HexMe's curved models)."""
     size = size or automatic_size(shape)
     low = shape.Volume / size ** 3 if size > 0 else float("inf")
     return low, 4.0 * low

@@ -166,10 +166,13 @@ void bind_types(py::module_& m) {
                      "seconds after which meshing stops like a cancel (0: none)")
       .def_readwrite("schemes", &O::schemes,
                      "single-solid schemes tried in this order (map, sweep, multisweep, "
-                     "revolve, midpoint); one left out is never used")
+                     "revolve, midpoint; grid only when named); one left out is never used")
       .def_readwrite("fallback", &O::fallback,
-                     "where no structured scheme applies: tetrahedra split into hexahedra "
-                     "(reported as a warning); False refuses such solids")
+                     "where no structured scheme applies: the grid mesher (reported as a "
+                     "warning); False refuses such solids")
+      .def_readwrite("fallback_scheme", &O::fallback_scheme,
+                     "the fallback: \"grid\" (core grid, pillow layer, features captured) or "
+                     "\"tet-split\" (tetrahedra split into hexahedra, for comparison)")
       .def_readwrite("decompose", &O::decompose,
                      "where no single scheme applies: cut along the Voronoi graph and mesh the "
                      "sub-volumes into one conforming mesh (before any fallback)")

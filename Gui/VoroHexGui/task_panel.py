@@ -28,8 +28,8 @@ WIDGETS = {
     "distance_rel_tol": "le_distance_rel_tol",
 }
 
-# Schemes that are not a structured (block, sweep, midpoint) mesh: the tetrahedral fallback
-# and the grid mesher (issue 23) that replaces it.
+# Schemes that are not a structured (block, sweep, midpoint) mesh: the grid mesher (the
+# fallback, issue 23) and the tetrahedral split it replaced (still an option for comparison).
 UNSTRUCTURED = ("tet-split", "grid")
 
 # The hex count above which Run asks before it starts (a long run and much memory).
@@ -169,7 +169,7 @@ class TaskPanel:
         self.decomposition_time.setRange(1, 3600)
         self.decomposition_time.setSuffix(" s")
         dec_form.addRow("Time limit:", self.decomposition_time)
-        self.fallback = QtGui.QCheckBox("Fallback (tetrahedra split into hexahedra)")
+        self.fallback = QtGui.QCheckBox("Fallback (grid mesher)")
         self.fallback.setObjectName("cb_fallback")
         self.form.gb_limits.layout().addRow(self.fallback)
         self.schemes = QtGui.QLineEdit()
@@ -210,7 +210,7 @@ class TaskPanel:
         self.sub_volumes.setHorizontalHeaderLabels(["id", "type", "scheme", "hexes", "min SJ"])
         self.sub_volumes.horizontalHeaderItem(1).setToolTip(
             "Vs: swept between two faces of the solid (around an f_s face); Ve: a block, or a "
-            "sweep from or to a cut face; -: the tetrahedral fallback")
+            "sweep from or to a cut face; -: the fallback (grid mesher)")
         self.sub_volumes.verticalHeader().setVisible(False)
         self.sub_volumes.setSelectionBehavior(QtGui.QAbstractItemView.SelectRows)
         self.sub_volumes.setSelectionMode(QtGui.QAbstractItemView.SingleSelection)

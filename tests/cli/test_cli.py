@@ -221,6 +221,7 @@ class MeshCommand(unittest.TestCase):
         for size in ("0", "-1", "nan", "inf", "abc"):
             self.expect_bad_input([step, "--size", size], "--size")
         self.expect_bad_input([step, "--frobnicate"], "unknown option")
+        self.expect_bad_input([step, "--fallback-scheme", "octree"], "--fallback-scheme")
 
     def test_unsupported_solid_is_refused_clearly(self):
         sys.path.append("/usr/lib/freecad-python3/lib")
@@ -292,7 +293,7 @@ class MeshCommand(unittest.TestCase):
         self.assertIn("warning [fallback]", stderr)
         with open(rep) as f:
             r = json.load(f)
-        self.assertEqual(r["scheme"], "tet-split")
+        self.assertEqual(r["scheme"], "grid")
         self.assertTrue(r["check"]["valid"])
         self.assertGreater(r["check"]["scaled_jacobian"]["min"], 0)
         self.assertEqual(r["smoothing"]["laplacian_iterations"], 5)
@@ -323,8 +324,10 @@ class MeshCommand(unittest.TestCase):
         # fallback now optimises with ODT and perturbation instead.
         # (The decomposition and the multisweep, which meshes i15 whole, are left out: these
         # tests are about the fallback.)
-        self.assertEqual(self.mesh_hexme("i15o_s8", "--no-decompose", "--schemes",
-                                         "map,sweep")["scheme"], "tet-split")
+        # (The tetrahedral fallback, kept for comparison behind --fallback-scheme.)
+        self.assertEqual(self.mesh_hexme("i15o_s8", "--no-decompose", "--schemes", "map,sweep",
+                                         "--fallback-scheme", "tet-split")["scheme"],
+                         "tet-split")
 
     def test_hexme_i15_is_one_multisweep(self):
         # A tube with lugs, every face parallel or perpendicular to one axis: structured by
@@ -352,7 +355,7 @@ class MeshCommand(unittest.TestCase):
         # CGAL 5.5's ODT optimiser crashes (SIGSEGV) on this model's tetrahedra; the
         # fallback runs CGAL in a child process, so the crash costs a retry with the
         # perturber, not the command.
-        r = self.mesh_hexme("i09o_m9", "--no-decompose")
+        r = self.mesh_hexme("i09o_m9", "--no-decompose", "--fallback-scheme", "tet-split")
         self.assertEqual(r["scheme"], "tet-split")
         for d in r["diagnostics"]:
             if d["code"] == "tet_optimiser_crashed":
@@ -369,7 +372,8 @@ class MeshCommand(unittest.TestCase):
         for k in range(2):
             out = os.path.join(self.dir, "i02_%d.vtu" % k)
             code, stdout, stderr = run("mesh", step, "-o", out, "--no-smooth", "--keep-invalid",
-                                       "--no-decompose", "--quiet")
+                                       "--no-decompose", "--fallback-scheme", "tet-split",
+                                       "--quiet")
             self.assertIn(code, (0, 1), stdout + stderr)
             with open(out, "rb") as f:
                 texts.append(f.read())

@@ -7,7 +7,7 @@
 #    before any work starts, with the count in the message;
 #  - a part that takes more than 10 s to mesh: a QTimer ticking every 50 ms never sees a
 #    gap over 0.3 s, and Stop ends the run within 1 s with no traceback in the Report view;
-#    Stop also within 1 s in the decomposition (HexMe i09o), the tetrahedra and the
+#    Stop also within 1 s in the decomposition (HexMe i09o), the grid mesher and the
 #    smoothing stages;
 #  - a fallback mesh gets a banner with a size that gives a structured mesh, found by trying;
 #  - Run recomputes only the mesh being edited; Cancel on a never-run mesh removes it;
@@ -345,7 +345,7 @@ def main():
           "stopped by the user" in said, "Report view: a message, no traceback: " +
           said.strip().replace("\n", " | "))
     # Stop in each long stage: the smoothing of the long cylinder, the decomposition, the
-    # tetrahedra (CGAL, the fallback's) and the smoothing of the sphere.
+    # grid mesher (the fallback's) and the smoothing of the sphere.
     stop_in_stage(mw, long_mesh, "smooth", 0.5, ticker, size=0.38)
     button(mw, QtGui.QDialogButtonBox.Cancel).click()
     pump(0.3)
@@ -354,8 +354,8 @@ def main():
     button(mw, QtGui.QDialogButtonBox.Cancel).click()
     pump(0.3)
     sphere_mesh = open_panel(mw, sphere)
-    stop_in_stage(mw, sphere_mesh, "tetrahedra", 0.3, ticker)
-    stop_in_stage(mw, sphere_mesh, "smooth", 0.3, ticker)
+    stop_in_stage(mw, sphere_mesh, "grid", 0.3, ticker, size=0.15)
+    stop_in_stage(mw, sphere_mesh, "smooth", 0.3, ticker, size=0.15)
     said = report_text(mw)[len(report_before):]
     check("Traceback" not in said and "Recompute failed" not in said,
           "no traceback after four stops")
@@ -371,7 +371,7 @@ def main():
     ticker.start()
     w["run"].click()
     check(wait_until(lambda: w["run"].isEnabled(), 60), "the sphere meshed by the fallback")
-    check(sphere_mesh.Status == "ok" and sphere_mesh.Scheme == "tet-split",
+    check(sphere_mesh.Status == "ok" and sphere_mesh.Scheme == "grid",
           "scheme {}: {}".format(sphere_mesh.Scheme, sphere_mesh.Message))
     check(w["banner"].isVisible() and "Not a structured mesh" in w["banner"].text(),
           "banner: " + w["banner"].text())

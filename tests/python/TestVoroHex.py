@@ -143,14 +143,21 @@ class TestVoroHexApi(unittest.TestCase):
         sphere = Part.makeSphere(5)
         r = VoroHex.mesh(sphere, size=1.5, smooth_passes=2)
         self.assertTrue(r.ok, r.message)
-        self.assertEqual(r.stats.scheme, "tet-split")
+        self.assertEqual(r.stats.scheme, "grid")
         self.assertIn("fallback", [d.code for d in r.diagnostics])
+        self.assertIn("grid", [d.code for d in r.diagnostics])
         self.assertGreater(r.stats.min_scaled_jacobian, 0)
         self.assertTrue(VoroHex.check(r, sphere).valid)
         with self.assertRaisesRegex(TypeError, "fallback"):
             VoroHex.mesh(sphere, fallback="no")
+        # The tetrahedral fallback stays for comparison; an unknown one is refused.
+        with self.assertRaisesRegex(TypeError, "fallback_scheme"):
+            VoroHex.mesh(sphere, fallback_scheme=1)
+        with self.assertRaisesRegex(ValueError, "fallback_scheme"):
+            VoroHex.mesh(sphere, fallback_scheme="octree")
 
     def test_stop_inside_the_fallbacks_tetrahedra(self):
+        # (The tetrahedral fallback, kept for comparison behind fallback_scheme.)
         # CGAL meshes the tetrahedra in a child process that checks no flag: while it works,
         # the progress callback still hears from the waiting side (heartbeats) and a False
         # from it stops the run there (the child is killed).
@@ -161,7 +168,8 @@ class TestVoroHexApi(unittest.TestCase):
                 beats.append(fraction)
             return len(beats) < 3
 
-        r = VoroHex.mesh(Part.makeSphere(5), size=0.15, progress=stop_in_tetrahedra)
+        r = VoroHex.mesh(Part.makeSphere(5), size=0.15, progress=stop_in_tetrahedra,
+                         fallback_scheme="tet-split")
         self.assertFalse(r.ok)
         self.assertIn("cancelled", [d.code for d in r.errors])
         self.assertEqual(r.hex_count, 0)

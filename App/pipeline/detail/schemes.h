@@ -44,7 +44,8 @@ class Scheme {
                              const core::Progress& progress) = 0;
 };
 
-// Every scheme name, in the default order: map, sweep, multisweep, revolve, midpoint.
+// Every scheme name: map, sweep, multisweep, revolve, midpoint (the default order), and
+// grid (the fallback, tried as a scheme only when named).
 const std::vector<std::string>& scheme_names();
 
 // The schemes for `names` (each one of scheme_names(); throws std::invalid_argument naming

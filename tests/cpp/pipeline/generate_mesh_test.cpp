@@ -252,7 +252,7 @@ TEST(GenerateMesh, UnknownSchemesAreRefused) {
   opt.schemes = {};
   opt.decompose = false;
   const MeshResult r = generate_mesh(box, opt);
-  EXPECT_EQ(r.stats.scheme, "tet-split");
+  EXPECT_EQ(r.stats.scheme, "grid");
 }
 
 // Convex polyhedra that are neither blocks nor sweeps go through midpoint subdivision.
@@ -272,7 +272,7 @@ TEST(GenerateMesh, ConvexPolyhedraAreMidpointSubdivided) {
 
 // What neither a structured scheme nor a decomposition meshes (the cube with a corner notch
 // and the box with a cylinder that were here are now cut into blocks and sweeps) is meshed
-// by the tetrahedral fallback: valid against the CAD, and said so in a warning.
+// by the grid mesher: valid against the CAD, and said so in a warning.
 TEST(GenerateMesh, TheFallbackMeshesWhatNoSchemeAcceptsAndSaysSo) {
   std::vector<Named> solids;
   solids.push_back({"cube with a pyramid pit", testing::make_pyramid_pit()});
@@ -289,7 +289,7 @@ TEST(GenerateMesh, TheFallbackMeshesWhatNoSchemeAcceptsAndSaysSo) {
     ASSERT_NE(d, nullptr);
     EXPECT_EQ(d->severity, core::Severity::warning);
     EXPECT_NE(d->message.find("Not a block"), std::string::npos) << d->message;
-    EXPECT_EQ(r.stats.scheme, "tet-split");
+    EXPECT_EQ(r.stats.scheme, "grid");
     // Every boundary node lies on the CAD (the check measures it against its entity).
     EXPECT_LT(r.check.max_boundary_distance_rel, 1e-7);
   }
@@ -442,8 +442,8 @@ TEST(GenerateMesh, TinyEdgesAndSliverFacesAreNamed) {
 // Curved HexMe solids at the default size (diagonal / 20): valid, boundary nodes on the CAD
 // within 1e-6 x diagonal, min scaled Jacobian >= 0.3 after smoothing. s07 (a box with a
 // cylindrical notch) is cut along the notch's cylinder and plane into three sweeps (it was
-// the fallback's: 0.157); s17 (a sphere) goes through the tetrahedral fallback, whose worst
-// hexahedra the smoothing's max-min phase raises (0.177 before it was added); s15 (a
+// the fallback's: 0.157); s17 (a sphere) goes through the fallback, the grid mesher (the
+// tetrahedral fallback gave 0.177, 0.420 with the smoothing's max-min phase); s15 (a
 // cylinder) is one sweep.
 TEST(GenerateMesh, CurvedSolidsAreValidOnTheCadAndAbove03) {
   for (const char* name : {"s07o_notch", "s15o_cylinder", "s17o_sphere"}) {
@@ -461,10 +461,11 @@ TEST(GenerateMesh, CurvedSolidsAreValidOnTheCadAndAbove03) {
 }
 
 // HexMe n03 is a sweep whose layers fold. Since schemes that apply but fail hand over to
-// the next (81049d6), the multisweep meshes it, with the sweep's failure noted; with the
-// multisweep left out, the sweep's failure goes into the fallback's warning and the
-// fallback meshes it valid; without the fallback the solid is refused and the sweep's
-// failure stands.
+// the next (81049d6), the multisweep meshes it, with the sweep's failure noted; with the map
+// and the sweep only, the sweep's failure goes into the fallback's warning and the fallback
+// meshes it valid; without the fallback the solid is refused and the sweep's failure
+// stands. The tetrahedral fallback is asked for here (fallback_scheme = "tet-split"): the
+// grid mesher leaves two inverted hexes on n03 at this size (reported, never a success).
 TEST(GenerateMesh, AStructuredSchemeThatFailsHandsOverToTheNextAndToTheFallback) {
   const occ::ReadResult in =
       occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/n03o_skijump_box_cyl.step");
@@ -479,7 +480,9 @@ TEST(GenerateMesh, AStructuredSchemeThatFailsHandsOverToTheNextAndToTheFallback)
       << failed->message;
   EXPECT_NE(failed->message.find("fold"), std::string::npos) << failed->message;
 
-  opt.schemes = {"map", "sweep", "revolve", "midpoint"};
+  opt.schemes = {"map", "sweep"};
+  opt.decompose = false;
+  opt.fallback_scheme = "tet-split";
   const MeshResult r = generate_mesh(*in.solid, opt);
   ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
   EXPECT_EQ(r.stats.scheme, "tet-split");
@@ -503,6 +506,7 @@ TEST(GenerateMesh, AStructuredSchemeThatFailsHandsOverToTheNextAndToTheFallback)
   EXPECT_NE(e->message.find("The sweep scheme applied but failed ("), std::string::npos)
       << e->message;
   EXPECT_EQ(refused.mesh.num_hexes(), 0u);
+  EXPECT_NE(e->message.find("fold"), std::string::npos) << e->message;
 }
 
 // The Voronoi graph's and the decomposition's options are mesh options: refused with the

@@ -1,0 +1,437 @@
+#include "grid/detail/features.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <map>
+#include <queue>
+#include <set>
+#include <unordered_map>
+#include <unordered_set>
+
+namespace vorohex::grid::detail {
+namespace {
+
+using core::NodeClass;
+using core::NodeId;
+using core::Vec3;
+
+struct Surface {
+  std::vector<std::int32_t> nodes;                                       // outer nodes
+  std::unordered_map<std::int32_t, std::vector<std::int32_t>> adjacent;  // along quad edges
+};
+
+std::int64_t edge_key(std::int32_t a, std::int32_t b) {
+  if (a > b) std::swap(a, b);
+  return (std::int64_t(a) << 32) | std::uint32_t(b);
+}
+
+// Shortest path from `from` to `to` over the outer surface; nodes in `blocked` (other than
+// `to`) are not entered. Cost: length plus twice the distance of the entered node from the
+// curve, so the path hugs it. Empty when there is none.
+std::vector<std::int32_t> shortest_path(const core::HexMesh& mesh, const Surface& s,
+                                        std::int32_t from, std::int32_t to,
+                                        const std::unordered_set<std::int32_t>& blocked,
+                                        const std::function<double(std::int32_t)>& off_curve) {
+  if (from == to) return {from};
+  std::unordered_map<std::int32_t, double> dist;
+  std::unordered_map<std::int32_t, std::int32_t> prev;
+  using Item = std::pair<double, std::int32_t>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
+  dist[from] = 0;
+  queue.push({0, from});
+  std::size_t settled = 0;
+  while (!queue.empty()) {
+    const auto [d, u] = queue.top();
+    queue.pop();
+    if (d > dist[u]) continue;
+    if (u == to) break;
+    if (++settled > 20000) return {};
+    auto it = s.adjacent.find(u);
+    if (it == s.adjacent.end()) continue;
+    for (std::int32_t v : it->second) {
+      if (v != to && blocked.count(v)) continue;
+      const double off = off_curve(v);
+      if (!std::isfinite(off)) continue;
+      const double w = (mesh.point(NodeId(u)) - mesh.point(NodeId(v))).norm() + 2 * off;
+      auto [dv, fresh] = dist.try_emplace(v, std::numeric_limits<double>::infinity());
+      if (d + w < dv->second) {
+        dv->second = d + w;
+        prev[v] = u;
+        queue.push({d + w, v});
+      }
+    }
+  }
+  if (!prev.count(to)) return {};
+  std::vector<std::int32_t> path{to};
+  while (path.back() != from) path.push_back(prev[path.back()]);
+  std::reverse(path.begin(), path.end());
+  return path;
+}
+
+// Surface Laplacian over the outer quads: each node that may move goes to the mean of its
+// neighbours on the outer surface, then back onto its entity (a face node onto its face, or
+// onto the nearest face when `nearest`; an edge node onto its curve, moving only along
+// neighbours on the same curve or its vertices). Vertex nodes stay.
+void relax(core::HexMesh& mesh, const Surface& s, const core::MeshDomain& solid, int iterations,
+           const std::function<bool(std::int32_t)>& movable, bool nearest) {
+  for (int it = 0; it < iterations; ++it)
+    for (std::int32_t n : s.nodes) {
+      const NodeClass c = mesh.node_class(NodeId(n));
+      if (c.dim == 0 || c.dim == 3 || !movable(n)) continue;
+      Vec3 sum = Vec3::Zero();
+      int k = 0;
+      for (std::int32_t m : s.adjacent.at(n)) {
+        const NodeClass cm = mesh.node_class(NodeId(m));
+        if (c.dim == 1 && !(cm.dim == 0 || (cm.dim == 1 && cm.id == c.id))) continue;
+        sum += mesh.point(NodeId(m)), ++k;
+      }
+      if (k < 2) continue;
+      const Vec3 target = sum / k;
+      if (c.dim == 1) {
+        mesh.set_point(NodeId(n), solid.project_to_edge(core::EdgeId(c.id), target));
+      } else {
+        const core::FaceId f = nearest ? solid.nearest_face(target) : core::FaceId(c.id);
+        if (f.value() <= 0) continue;
+        mesh.set_point(NodeId(n), solid.project_to_face(f, target));
+        mesh.set_node_class(NodeId(n), NodeClass::on(f));
+      }
+    }
+}
+
+}  // namespace
+
+FeatureCapture capture_features(core::HexMesh& mesh,
+                                const std::vector<std::array<std::int32_t, 4>>& outer_quads,
+                                const std::vector<std::int32_t>& outer_nodes,
+                                const std::vector<core::Vec3>& normals,
+                                const core::MeshDomain& solid, double size) {
+  FeatureCapture r;
+  std::unordered_map<std::int32_t, Vec3> normal_of;
+  for (std::size_t i = 0; i < outer_nodes.size() && i < normals.size(); ++i)
+    normal_of[outer_nodes[i]] = normals[i];
+  auto normal = [&](std::int32_t n) {
+    auto it = normal_of.find(n);
+    return it == normal_of.end() ? Vec3(Vec3::Zero()) : it->second;
+  };
+  // Mismatch between a node's direction and a feature's mean outward normal m, in length.
+  auto mismatch = [&](std::int32_t n, const Vec3& m) { return size * (1 - normal(n).dot(m)); };
+  Surface s;
+  {
+    std::unordered_set<std::int64_t> seen;
+    for (const auto& q : outer_quads)
+      for (int c = 0; c < 4; ++c) {
+        const std::int32_t a = q[c], b = q[(c + 1) % 4];
+        s.nodes.push_back(a);
+        if (seen.insert(edge_key(a, b)).second) {
+          s.adjacent[a].push_back(b);
+          s.adjacent[b].push_back(a);
+        }
+      }
+    std::sort(s.nodes.begin(), s.nodes.end());
+    s.nodes.erase(std::unique(s.nodes.begin(), s.nodes.end()), s.nodes.end());
+  }
+  // 0. Outer nodes that closest points put (nearly) on top of a neighbour - the core's
+  // nodes in the shadow of a concave edge all project onto that edge - are spread out.
+  {
+    double mean = 0;
+    std::size_t count = 0;
+    for (std::int32_t n : s.nodes)
+      for (std::int32_t m : s.adjacent.at(n))
+        mean += (mesh.point(NodeId(n)) - mesh.point(NodeId(m))).norm(), ++count;
+    mean = count ? mean / double(count) : size;
+    std::unordered_set<std::int32_t> crowded;
+    for (std::int32_t n : s.nodes)
+      for (std::int32_t m : s.adjacent.at(n))
+        if ((mesh.point(NodeId(n)) - mesh.point(NodeId(m))).norm() < 0.3 * mean) {
+          crowded.insert(n);
+          for (std::int32_t k : s.adjacent.at(n)) crowded.insert(k);
+        }
+    relax(
+        mesh, s, solid, 10, [&](std::int32_t n) { return crowded.count(n) > 0; }, true);
+  }
+
+  std::unordered_set<std::int32_t> on_feature;
+
+  // Features smaller than a quarter of the size (the pipeline's tiny_edges and
+  // sliver_faces: engravings, small chamfers) are absorbed, not resolved: their edges get no
+  // chain, their vertices no node, and the nodes near them stay on the face they project to.
+  const double small = 0.25 * size;
+  std::vector<char> small_face(solid.num_faces() + 1, 0), absorbed_edge(solid.num_edges() + 1, 0);
+  {
+    std::vector<double> length(solid.num_edges() + 1, 0.0);
+    for (core::EdgeId e : solid.edges())
+      if (!solid.edge_is_degenerated(e)) length[e.value()] = solid.edge_length(e);
+    for (core::FaceId f : solid.faces()) {
+      double perimeter = 0;
+      for (const auto& wire : solid.face_wires(f))
+        for (const core::OrientedEdge& oe : wire) perimeter += length[oe.edge.value()];
+      small_face[f.value()] = perimeter > 0 && 2 * std::abs(solid.area(f)) / perimeter < small;
+    }
+    for (core::EdgeId e : solid.edges()) {
+      if (solid.edge_is_degenerated(e)) continue;
+      bool a = length[e.value()] < small;
+      for (core::FaceId f : solid.edge_faces(e)) a = a || small_face[f.value()];
+      absorbed_edge[e.value()] = a;
+    }
+  }
+  // Per vertex: its feature edges (not seams, not degenerated) and those not absorbed. A
+  // vertex with none (a sphere's poles, the end of a cylinder's seam) is no feature.
+  std::vector<int> live_edges(solid.num_vertices() + 1, 0), all_edges(solid.num_vertices() + 1, 0);
+  for (core::EdgeId e : solid.edges()) {
+    if (solid.edge_is_degenerated(e)) continue;
+    const std::vector<core::FaceId> ef = solid.edge_faces(e);
+    if (ef.size() < 2 || ef[0] == ef[1]) continue;
+    for (core::VertexId v : {solid.edge_first_vertex(e), solid.edge_last_vertex(e)}) {
+      ++all_edges[v.value()];
+      if (!absorbed_edge[e.value()]) ++live_edges[v.value()];
+    }
+  }
+
+  // 1. Vertices.
+  std::vector<std::vector<core::FaceId>> faces_of_vertex(solid.num_vertices() + 1);
+  for (core::EdgeId e : solid.edges())
+    for (core::VertexId v : {solid.edge_first_vertex(e), solid.edge_last_vertex(e)})
+      for (core::FaceId f : solid.edge_faces(e))
+        if (std::find(faces_of_vertex[v.value()].begin(), faces_of_vertex[v.value()].end(), f) ==
+            faces_of_vertex[v.value()].end())
+          faces_of_vertex[v.value()].push_back(f);
+  std::vector<std::int32_t> vertex_node(solid.num_vertices() + 1, -1);
+  for (core::VertexId v : solid.vertices()) {
+    if (all_edges[v.value()] == 0) continue;
+    ++r.vertices;
+    if (live_edges[v.value()] == 0) {
+      r.absorbed.push_back(core::entity_name(v));
+      continue;
+    }
+    const Vec3 p = solid.vertex_point(v);
+    Vec3 m = Vec3::Zero();
+    for (core::FaceId f : faces_of_vertex[v.value()]) m += solid.face_normal(f, p);
+    m.normalize();
+    std::int32_t n = -1;
+    double best = std::numeric_limits<double>::infinity();
+    for (std::int32_t c : s.nodes) {
+      if (on_feature.count(c)) continue;
+      const double d = (mesh.point(NodeId(c)) - p).norm();
+      if (d >= best) continue;
+      const double score = d + (m.allFinite() ? 2 * mismatch(c, m) : 0.0);
+      if (score < best) best = score, n = c;
+    }
+    if (n < 0) {
+      r.missed.push_back(core::entity_name(v));
+      continue;
+    }
+    vertex_node[v.value()] = n;
+    on_feature.insert(n);
+    mesh.set_point(NodeId(n), p);
+    mesh.set_node_class(NodeId(n), NodeClass::on(v));
+    ++r.vertices_captured;
+  }
+
+  // 2. Edges: chains through the nodes nearest to points along the curve.
+  std::unordered_set<std::int64_t> feature_edges;
+  std::unordered_map<std::int64_t, std::vector<std::size_t>> quads_of_edge;
+  for (std::size_t q = 0; q < outer_quads.size(); ++q)
+    for (int c = 0; c < 4; ++c)
+      quads_of_edge[edge_key(outer_quads[q][c], outer_quads[q][(c + 1) % 4])].push_back(q);
+  // Quads a chain cuts diagonally (see below): in no face region, their edges barriers.
+  std::vector<char> diagonal(outer_quads.size(), 0);
+  std::unordered_set<std::int32_t> reserved;       // turn nodes taken out of a chain
+  std::set<std::pair<int, int>> captured_between;  // face pairs with a captured edge
+  for (core::EdgeId e : solid.edges()) {
+    if (solid.edge_is_degenerated(e)) continue;
+    const std::vector<core::FaceId> faces = solid.edge_faces(e);
+    if (faces.size() < 2 || faces[0] == faces[1]) continue;  // a seam: no feature
+    ++r.edges;
+    if (absorbed_edge[e.value()]) {
+      r.absorbed.push_back(core::entity_name(e));
+      continue;
+    }
+    const std::int32_t a = vertex_node[solid.edge_first_vertex(e).value()];
+    const std::int32_t b = vertex_node[solid.edge_last_vertex(e).value()];
+    if (a < 0 || b < 0) {
+      r.missed.push_back(core::entity_name(e));
+      continue;
+    }
+    const double length = solid.edge_length(e);
+    // Off the curve: the outer node's distance, plus the mismatch of its direction with the
+    // edge's (where outer nodes tie - several on a concave edge - the chain follows the
+    // core's edge instead of zigzagging, which would leave quads with three nodes on it).
+    std::unordered_map<std::int32_t, double> off;
+    auto off_curve = [&](std::int32_t n) {
+      auto [it, fresh] = off.try_emplace(n, 0.0);
+      if (fresh) {
+        const Vec3 p = mesh.point(NodeId(n));
+        const Vec3 q = solid.project_to_edge(e, p);
+        Vec3 m = Vec3::Zero();
+        for (core::FaceId f : faces) m += solid.face_normal(f, q);
+        // Nodes farther than one and a half cells from the curve are not entered: a path
+        // that needs them is no chain along the edge (and the search stays local).
+        const double d = (q - p).norm();
+        it->second = d > 1.5 * size ? std::numeric_limits<double>::infinity()
+                                    : d + mismatch(n, m.normalized());
+      }
+      return it->second;
+    };
+    // A closed curve (one vertex) passes through the nodes best placed at a third and two
+    // thirds of its length; an open one is one shortest path between its vertices.
+    std::vector<std::int32_t> targets;
+    if (a == b) {
+      const std::vector<Vec3> thirds = solid.edge_points_by_length(e, 3);
+      for (int i = 1; i <= 2; ++i) {
+        double best = std::numeric_limits<double>::infinity();
+        std::int32_t t = -1;
+        for (std::int32_t n : s.nodes) {
+          if (on_feature.count(n)) continue;
+          const double d = (mesh.point(NodeId(n)) - thirds[i]).norm();
+          if (d > size || d >= best) continue;
+          const double score = d + off_curve(n);
+          if (score < best) best = score, t = n;
+        }
+        if (t >= 0) targets.push_back(t);
+      }
+      if (targets.size() < 2 || targets[0] == targets[1]) targets.clear();
+    }
+    targets.push_back(b);
+    std::vector<std::int32_t> chain{a};
+    std::unordered_set<std::int32_t> blocked = on_feature;
+    blocked.insert(reserved.begin(), reserved.end());
+    for (std::int32_t t : targets) blocked.insert(t);
+    bool ok = length > 0;
+    for (std::int32_t target : targets) {
+      if (!ok) break;
+      const std::vector<std::int32_t> piece =
+          shortest_path(mesh, s, chain.back(), target, blocked, off_curve);
+      if (piece.size() < 2) {
+        ok = false;
+        break;
+      }
+      for (std::size_t k = 1; k < piece.size(); ++k) {
+        chain.push_back(piece[k]);
+        blocked.insert(piece[k]);
+      }
+    }
+    if (!ok || chain.size() < 2 || chain.back() != b) {
+      r.missed.push_back(core::entity_name(e));
+      continue;
+    }
+    // A chain that turns at a node has that node and its two chain neighbours in one quad,
+    // which would end flat on the curve (an angle of 180 degrees: a hex of scaled Jacobian
+    // about 0). The turn node leaves the chain instead, which then cuts that quad along its
+    // diagonal: a staircase becomes a diagonal line of quads across the curve.
+    {
+      auto quad_with = [&](std::int32_t x, std::int32_t y, std::int32_t z) -> long {
+        for (std::size_t q : quads_of_edge[edge_key(x, y)]) {
+          const auto& n = outer_quads[q];
+          if (std::find(n.begin(), n.end(), z) != n.end()) return long(q);
+        }
+        return -1;
+      };
+      std::vector<std::int32_t> kept{chain[0]};
+      bool last_diagonal = false;  // kept.back() joins its predecessor across a quad
+      for (std::size_t k = 1; k + 1 < chain.size(); ++k) {
+        const long q = last_diagonal ? -1 : quad_with(kept.back(), chain[k], chain[k + 1]);
+        if (q >= 0 && !diagonal[q]) {
+          diagonal[q] = 1;
+          reserved.insert(chain[k]);
+          ++r.quads_across_edges;
+          last_diagonal = true;
+          continue;
+        }
+        kept.push_back(chain[k]);
+        last_diagonal = false;
+      }
+      kept.push_back(chain.back());
+      chain = std::move(kept);
+    }
+    const int m = int(chain.size()) - 1;
+    const std::vector<Vec3> points = solid.edge_points_by_length(e, m);
+    for (int k = 1; k < m; ++k) {
+      mesh.set_point(NodeId(chain[k]), points[k]);
+      mesh.set_node_class(NodeId(chain[k]), NodeClass::on(e));
+      on_feature.insert(chain[k]);
+    }
+    for (int k = 0; k < m; ++k) feature_edges.insert(edge_key(chain[k], chain[k + 1]));
+    captured_between.insert({std::min(faces[0].value(), faces[1].value()),
+                             std::max(faces[0].value(), faces[1].value())});
+    ++r.edges_captured;
+  }
+
+  // 3. Faces: regions of quads between the chains, each on the face most of its free
+  // nodes projected to.
+  std::vector<int> region(outer_quads.size(), -1);
+  int regions = 0;
+  std::vector<char> face_used(solid.num_faces() + 1, 0);
+  for (std::size_t q = 0; q < outer_quads.size(); ++q)
+    if (diagonal[q])
+      for (int c = 0; c < 4; ++c)
+        feature_edges.insert(edge_key(outer_quads[q][c], outer_quads[q][(c + 1) % 4]));
+  for (std::size_t seed = 0; seed < outer_quads.size(); ++seed) {
+    if (region[seed] >= 0 || diagonal[seed]) continue;
+    std::vector<std::size_t> members{seed}, stack{seed};
+    region[seed] = regions;
+    while (!stack.empty()) {
+      const std::size_t q = stack.back();
+      stack.pop_back();
+      for (int c = 0; c < 4; ++c) {
+        const std::int64_t k = edge_key(outer_quads[q][c], outer_quads[q][(c + 1) % 4]);
+        if (feature_edges.count(k)) continue;
+        for (std::size_t o : quads_of_edge[k])
+          if (region[o] < 0 && !diagonal[o])
+            region[o] = regions, stack.push_back(o), members.push_back(o);
+      }
+    }
+    ++regions;
+    std::map<int, int> votes;
+    std::unordered_set<std::int32_t> free_nodes;
+    for (std::size_t q : members)
+      for (std::int32_t n : outer_quads[q]) {
+        const NodeClass c = mesh.node_class(NodeId(n));
+        if (c.dim == 2 && free_nodes.insert(n).second) ++votes[c.id];
+      }
+    if (votes.empty()) continue;
+    const int face = std::max_element(votes.begin(), votes.end(), [](auto& x, auto& y) {
+                       return x.second < y.second;
+                     })->first;
+    face_used[face] = 1;
+    for (std::size_t q : members) {
+      bool moved = false;
+      for (std::int32_t n : outer_quads[q]) {
+        const NodeClass c = mesh.node_class(NodeId(n));
+        moved = moved || (c.dim == 2 && c.id != face);
+      }
+      r.quads_moved += moved;
+    }
+    // A node that projected across a captured edge goes to the region's face; one on
+    // another face (across an absorbed or uncaptured feature) stays where it is.
+    for (std::int32_t n : free_nodes) {
+      const int own = mesh.node_class(NodeId(n)).id;
+      if (own == face) continue;
+      if (!captured_between.count({std::min(own, face), std::max(own, face)})) {
+        face_used[own] = 1;
+        continue;
+      }
+      const core::FaceId f(face);
+      mesh.set_point(NodeId(n), solid.project_to_face(f, mesh.point(NodeId(n))));
+      mesh.set_node_class(NodeId(n), NodeClass::on(f));
+    }
+  }
+  // 4. The surface evened out with every node on its entity (vertices stay, edge nodes
+  // slide along their curve, face nodes on their face).
+  relax(
+      mesh, s, solid, 5, [](std::int32_t) { return true; }, false);
+
+  r.faces = solid.num_faces();
+  for (core::FaceId f : solid.faces()) {
+    if (face_used[f.value()])
+      ++r.faces_captured;
+    else if (small_face[f.value()])
+      r.absorbed.push_back(core::entity_name(f));
+    else
+      r.missed.push_back(core::entity_name(f));
+  }
+  return r;
+}
+
+}  // namespace vorohex::grid::detail

@@ -1,0 +1,39 @@
+// Feature capture on the grid mesher's outer surface (the pillow layer's CAD side), in
+// order: each model vertex takes its nearest outer node; each model edge becomes a chain of
+// mesh edges (shortest paths on the outer quads through the nodes nearest to points along
+// the curve, avoiding nodes already on a feature), its nodes spread along the curve by arc
+// length; then the quads between the chains are grouped into regions, each region put on
+// the model face most of its nodes projected to. What could not be captured is reported.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "core/hex_mesh.h"
+#include "core/mesh_domain.h"
+
+namespace vorohex::grid::detail {
+
+struct FeatureCapture {
+  int vertices = 0, vertices_captured = 0;  // vertices of feature edges only
+  int edges = 0, edges_captured = 0;        // seams and degenerated edges are not features
+  int faces = 0, faces_captured = 0;        // a face is captured when some region lies on it
+  std::size_t quads_moved = 0;         // quads of a region whose nodes first projected elsewhere
+  std::size_t quads_across_edges = 0;  // quads a chain cuts along their diagonal (two faces)
+  std::vector<std::string> missed;     // FreeCAD names of the entities not captured
+  // Entities smaller than a quarter of the size (short edges, faces narrower than that, the
+  // edges and vertices of such faces): absorbed, not captured, on purpose.
+  std::vector<std::string> absorbed;
+};
+
+// normals[i]: the outward direction of outer_nodes[i]'s core node (PillowMesh): where
+// several nodes are as near to a feature, the one whose direction matches the feature's
+// (the mean outward normal of its faces) takes it, so a chain follows the core's edge.
+FeatureCapture capture_features(core::HexMesh& mesh,
+                                const std::vector<std::array<std::int32_t, 4>>& outer_quads,
+                                const std::vector<std::int32_t>& outer_nodes,
+                                const std::vector<core::Vec3>& normals,
+                                const core::MeshDomain& solid, double size);
+
+}  // namespace vorohex::grid::detail

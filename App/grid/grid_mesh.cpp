@@ -1,0 +1,228 @@
+#include "grid/grid_mesh.h"
+
+#include <chrono>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "grid/detail/core_cells.h"
+#include "grid/detail/features.h"
+#include "grid/detail/grid_frame.h"
+#include "grid/detail/pillow.h"
+#include "occ/tessellate.h"
+#include "quality/scaled_jacobian.h"
+#include "smooth/smooth_mesh.h"
+
+namespace vorohex::grid {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void measure(const core::HexMesh& mesh, double& min_sj, double& mean_sj, std::size_t& inverted) {
+  const std::vector<double> sj = quality::scaled_jacobians(mesh);
+  min_sj = sj.empty() ? 0 : 1, mean_sj = 0, inverted = 0;
+  for (double v : sj) min_sj = std::min(min_sj, v), mean_sj += v, inverted += v <= 0;
+  if (!sj.empty()) mean_sj /= double(sj.size());
+}
+
+}  // namespace
+
+void GridOptions::validate() const {
+  auto bad = [](const char* what, double v) {
+    std::ostringstream s;
+    s << what << ", got " << v;
+    throw std::invalid_argument(s.str());
+  };
+  if (!std::isfinite(size) || size <= 0) bad("size must be a positive length", size);
+  if (!std::isfinite(core_margin) || core_margin <= 0) bad("core_margin must be > 0", core_margin);
+  if (laplacian_iterations < 0) bad("laplacian_iterations must be >= 0", laplacian_iterations);
+  if (optimisation_passes < 0) bad("optimisation_passes must be >= 0", optimisation_passes);
+  if (!(quality_target > 0 && quality_target <= 1))
+    bad("quality_target must be in (0, 1]", quality_target);
+  if (max_refinements < 0) bad("max_refinements must be >= 0", max_refinements);
+  if (max_refined_cells == 0) bad("max_refined_cells must be at least 1", 0);
+  if (!(min_core_share >= 0 && min_core_share <= 1))
+    bad("min_core_share must be in [0, 1]", min_core_share);
+  if (max_hexes == 0) bad("max_hexes must be at least 1", 0);
+}
+
+GridResult grid_mesh(const occ::Solid& solid, const GridOptions& options,
+                     const core::Progress& progress) {
+  options.validate();
+  GridResult r;
+  auto t0 = std::chrono::steady_clock::now();
+  progress.report("grid", 0.0);
+  double size = options.size;
+  // Chord error of the boundary's tessellation: small against the margin.
+  occ::TessellationOptions to;
+  to.linear_deflection = std::min(0.05 * size, 0.01 * solid.diagonal());
+  const occ::Tessellation tess = occ::tessellate(solid, to);
+  if (!tess.ok()) {
+    r.diagnostics.push_back(core::make_error("grid_failed",
+                                             "The grid mesher could not "
+                                             "tessellate the solid: " +
+                                                 tess.error));
+    return r;
+  }
+  std::vector<core::Vec3> boundary;
+  for (const occ::FaceTriangulation& f : tess.faces)
+    boundary.insert(boundary.end(), f.nodes.begin(), f.nodes.end());
+
+  detail::GridFrame frame;
+  detail::CoreCells core;
+  for (int attempt = 0;; ++attempt) {
+    frame = detail::grid_frame(solid, boundary, size);
+    const double cells = double(frame.cells(0)) * frame.cells(1) * frame.cells(2);
+    if (cells > 4.0 * double(options.max_hexes)) {
+      std::ostringstream s;
+      s << "The grid would have " << cells << " cells at size " << size
+        << ", more than allowed by max_hexes = " << options.max_hexes << ".";
+      r.diagnostics.push_back(core::make_error("too_many_hexes", s.str()));
+      return r;
+    }
+    core = detail::core_cells(frame, solid, tess, size, options.core_margin, to.linear_deflection);
+    if (progress.cancelled()) {
+      r.diagnostics.push_back(core::make_error("cancelled", "Meshing was cancelled."));
+      return r;
+    }
+    // The core's share of the volume: a thin core (walls thinner than about three cells)
+    // leaves most of the solid to the pillow layer, whose hexes then span whole walls.
+    double core_volume = 0;
+    if (core.core > 0)
+      for (int k = 0; k < core.cells[2]; ++k)
+        for (int j = 0; j < core.cells[1]; ++j)
+          for (int i = 0; i < core.cells[0]; ++i)
+            if (core.at(i, j, k))
+              core_volume += (frame.lines[0][i + 1] - frame.lines[0][i]) *
+                             (frame.lines[1][j + 1] - frame.lines[1][j]) *
+                             (frame.lines[2][k + 1] - frame.lines[2][k]);
+    const double share = core_volume / std::max(std::abs(solid.volume()), 1e-300);
+    const bool split = core.removed_components > core.core / 4;  // pieces joined by thin walls
+    if ((share >= options.min_core_share && !split) || attempt >= options.max_refinements) break;
+    if (8.0 * cells > std::min(4.0 * double(options.max_hexes), double(options.max_refined_cells)))
+      break;
+    std::ostringstream s;
+    s << "The grid's core at size " << size << " holds " << std::lround(100 * share)
+      << "% of the volume (walls thinner than about three cells); the grid was refined to size "
+      << size / 2 << ".";
+    r.diagnostics.push_back(core::make_warning("size_reduced", s.str()));
+    size /= 2;
+  }
+  r.stats.size_used = size;
+  r.stats.grid_cells = core.cells;
+  r.stats.axes_from = frame.how;
+  r.stats.classifier_calls = core.classifier_calls;
+  r.stats.removed_for_manifold = core.removed_for_manifold;
+  r.stats.seconds_core = seconds_since(t0);
+  if (core.core == 0) {
+    r.diagnostics.push_back(core::make_error(
+        "grid_no_core", "No grid cell lies well inside the solid, even at size " +
+                            std::to_string(size) + ": it is too thin for the grid mesher."));
+    return r;
+  }
+  if (core.removed_components > 0) {
+    std::ostringstream s;
+    s << "The grid's core falls apart into pieces joined only by walls thinner than about two "
+      << "cells; " << core.removed_components << " cells away from the largest piece were "
+      << "left out, so the mesh will not fill the solid there.";
+    r.diagnostics.push_back(core::make_warning("grid_core_split", s.str()));
+  }
+  progress.report("grid", 0.3);
+
+  t0 = std::chrono::steady_clock::now();
+  detail::PillowMesh pillow = detail::pillow_mesh(frame, core, solid);
+  r.stats.core_hexes = pillow.core_hexes;
+  r.stats.pillow_hexes = pillow.pillow_hexes;
+  r.stats.seconds_pillow = seconds_since(t0);
+  if (pillow.mesh.num_hexes() > options.max_hexes) {
+    std::ostringstream s;
+    s << "The grid mesh has " << pillow.mesh.num_hexes()
+      << " hexahedra, more than max_hexes = " << options.max_hexes
+      << "; increase the size or the limit.";
+    r.diagnostics.push_back(core::make_error("too_many_hexes", s.str()));
+    return r;
+  }
+  progress.report("grid", 0.5);
+  if (progress.cancelled()) {
+    r.diagnostics.push_back(core::make_error("cancelled", "Meshing was cancelled."));
+    return r;
+  }
+
+  t0 = std::chrono::steady_clock::now();
+  if (options.capture_features) {
+    const detail::FeatureCapture fc = detail::capture_features(
+        pillow.mesh, pillow.outer_quads, pillow.outer_nodes, pillow.outer_normals, solid, size);
+    r.stats.vertices = fc.vertices, r.stats.vertices_captured = fc.vertices_captured;
+    r.stats.edges = fc.edges, r.stats.edges_captured = fc.edges_captured;
+    r.stats.faces = fc.faces, r.stats.faces_captured = fc.faces_captured;
+    if (!fc.absorbed.empty()) {
+      std::ostringstream s;
+      s << fc.absorbed.size() << " model entities smaller than a quarter of the size were "
+        << "absorbed, not resolved (";
+      for (std::size_t i = 0; i < fc.absorbed.size() && i < 8; ++i)
+        s << (i ? ", " : "") << fc.absorbed[i];
+      s << (fc.absorbed.size() > 8 ? ", ..." : "") << "): no mesh edge follows them; the "
+        << "boundary nodes near them stay on the faces they project to.";
+      r.diagnostics.push_back(core::make_warning("features_absorbed", s.str(), fc.absorbed));
+    }
+    if (!fc.missed.empty()) {
+      std::ostringstream s;
+      s << "The grid mesh could not capture " << fc.missed.size() << " model entities (";
+      for (std::size_t i = 0; i < fc.missed.size() && i < 8; ++i)
+        s << (i ? ", " : "") << fc.missed[i];
+      s << (fc.missed.size() > 8 ? ", ..." : "") << "): no chain of mesh edges or region of "
+        << "quads follows them; the mesh cuts across them.";
+      r.diagnostics.push_back(core::make_warning("features_not_captured", s.str(), fc.missed));
+    }
+  }
+  r.stats.seconds_features = seconds_since(t0);
+  progress.report("grid", 0.7);
+  if (progress.cancelled()) {
+    r.diagnostics.push_back(core::make_error("cancelled", "Meshing was cancelled."));
+    return r;
+  }
+
+  t0 = std::chrono::steady_clock::now();
+  double mean = 0;
+  measure(pillow.mesh, r.stats.min_sj_before_optimisation, mean,
+          r.stats.inverted_before_optimisation);
+  if (options.laplacian_iterations > 0 || options.optimisation_passes > 0) {
+    smooth::SmoothOptions so;
+    so.laplacian_iterations = options.laplacian_iterations;
+    so.optimisation_passes = options.optimisation_passes;
+    so.quality_target = options.quality_target;
+    const smooth::SmoothResult sm = smooth::smooth_mesh(pillow.mesh, solid, so, progress);
+    if (sm.status == smooth::SmoothStatus::cancelled) {
+      r.diagnostics.push_back(core::make_error("cancelled", "Meshing was cancelled."));
+      return r;
+    }
+  }
+  measure(pillow.mesh, r.stats.min_sj, r.stats.mean_sj, r.stats.inverted);
+  r.stats.seconds_optimisation = seconds_since(t0);
+  progress.report("grid", 1.0);
+
+  std::ostringstream s;
+  s << "Grid of " << core.cells[0] << " x " << core.cells[1] << " x " << core.cells[2]
+    << " cells of size " << size << " along the part's " << frame.how << ": " << r.stats.core_hexes
+    << " core hexahedra and " << r.stats.pillow_hexes << " in the pillow layer; captured "
+    << r.stats.vertices_captured << "/" << r.stats.vertices << " vertices, "
+    << r.stats.edges_captured << "/" << r.stats.edges << " edges, " << r.stats.faces_captured << "/"
+    << r.stats.faces << " faces; min scaled Jacobian " << r.stats.min_sj_before_optimisation
+    << " -> " << r.stats.min_sj << " after optimisation.";
+  r.diagnostics.push_back(core::make_info("grid", s.str()));
+  r.mesh = std::move(pillow.mesh);
+  const bool optimised = options.laplacian_iterations > 0 || options.optimisation_passes > 0;
+  if (r.stats.inverted > 0 && optimised) {
+    std::ostringstream e;
+    e << r.stats.inverted << " of " << r.mesh.num_hexes() << " grid hexahedra are inverted "
+      << "after optimisation (min scaled Jacobian " << r.stats.min_sj << "): no valid grid mesh.";
+    r.diagnostics.push_back(core::make_error("grid_inverted", e.str()));
+    return r;
+  }
+  r.ok = true;
+  return r;
+}
+
+}  // namespace vorohex::grid
