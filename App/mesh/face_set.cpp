@@ -67,7 +67,18 @@ struct Plan {
 };
 
 // The interval problem: one curve per edge (index = edge id - 1); constraints per face.
-IntervalProblem problem_for(const core::MeshDomain& s, const Plan& plan, const FaceSetOptions& o) {
+// A whole circle (a round hole, a disc's rim): one closed circular edge.
+bool whole_circle(const core::MeshDomain& s, EdgeId e) {
+  return s.edge_first_vertex(e) == s.edge_last_vertex(e) &&
+         s.curve_info(e).kind == core::CurveKind::circle;
+}
+
+// `preferences`: whole circles of quad-meshed faces get a multiple of 4 segments, at least
+// 8, so that their quadrant points are nodes (where a load along the seam's axes peaks at
+// a hole) and the rings around them are symmetric; dropped when they make the counts
+// infeasible.
+IntervalProblem problem_for(const core::MeshDomain& s, const Plan& plan, const FaceSetOptions& o,
+                            bool preferences) {
   IntervalProblem p;
   for (EdgeId e : s.edges()) p.add_curve(std::max(s.edge_length(e), 1e-300), core::entity_name(e));
   p.fixed.assign(s.num_edges(), 0);
@@ -103,6 +114,11 @@ IntervalProblem problem_for(const core::MeshDomain& s, const Plan& plan, const F
             p.even.push_back({{oe.edge.value() - 1},
                               name + ": " + core::entity_name(oe.edge) +
                                   " even (its vertices are corner nodes of the quad mesh)"});
+            if (preferences && whole_circle(s, oe.edge)) {
+              const std::string circle = name + ": " + core::entity_name(oe.edge) + ", a whole circle,";
+              p.even.push_back({{oe.edge.value() - 1}, circle + " in a multiple of 4 segments", 4});
+              p.at_least.push_back({{oe.edge.value() - 1}, 8, circle + " in at least 8 segments"});
+            }
           }
           p.at_least.push_back(
               {curves, minimum,
@@ -144,7 +160,8 @@ FaceSetMesh mesh_face_set(const core::MeshDomain& s, const FaceSetOptions& optio
       out.diagnostics.push_back(core::make_error("cancelled", "Meshing was cancelled."));
       return out;
     }
-    IntervalResult assigned = assign_intervals(problem_for(s, plan, options), io);
+    IntervalResult assigned = assign_intervals(problem_for(s, plan, options, true), io);
+    if (!assigned.ok()) assigned = assign_intervals(problem_for(s, plan, options, false), io);
     if (!assigned.ok()) {
       // Structured faces over-constrain the counts (fixed counts, mapped faces in a ring):
       // once more with every face meshed by quad_face, which needs only even counts.

@@ -79,7 +79,7 @@ Solution solve(const IntervalProblem& p, const IntervalOptions& o, const Selecti
     if (!use.even[j]) continue;
     std::map<int, double> coefs;
     for (int c : p.even[j].curves) coefs[c] += 1;
-    coefs[k] = -2;
+    coefs[k] = -double(p.even[j].multiple);
     add_row(coefs, 0);
     ++k;
   }
@@ -138,7 +138,12 @@ IntervalResult assign_intervals(const IntervalProblem& problem, const IntervalOp
                                   " has no positive length");
   for (const auto& e : problem.equal)
     check_indices(e.lhs, nc, e.why), check_indices(e.rhs, nc, e.why);
-  for (const auto& e : problem.even) check_indices(e.curves, nc, e.why);
+  for (const auto& e : problem.even) {
+    check_indices(e.curves, nc, e.why);
+    if (e.multiple < 2)
+      throw std::invalid_argument("interval constraint '" + e.why + "': multiple " +
+                                  std::to_string(e.multiple) + " is below 2");
+  }
   for (const auto& e : problem.at_least) check_indices(e.curves, nc, e.why);
 
   IntervalResult r;

@@ -23,10 +23,11 @@ struct IntervalProblem {
     std::string why;
   };
   std::vector<Equal> equal;
-  // sum(n[curves]) is even.
+  // sum(n[curves]) is even, or a multiple of `multiple` (>= 2).
   struct Even {
     std::vector<int> curves;
     std::string why;
+    int multiple = 2;
   };
   std::vector<Even> even;
   // sum(n[curves]) >= minimum.

@@ -374,6 +374,11 @@ Plan plan(const Solid& solid, const SweepOptions& options) {
         const double len = solid.edge_length(l.source.edge);
         double n = std::max(1.0, std::round(len / options.size));
         n += std::fmod(n, 2.0);
+        // A whole circle (a round hole): a multiple of 4, at least 8, so that its quadrant
+        // points are nodes and the rings around it are symmetric.
+        if (solid.edge_first_vertex(l.source.edge) == solid.edge_last_vertex(l.source.edge) &&
+            solid.curve_info(l.source.edge).kind == core::CurveKind::circle)
+          n = std::max(8.0, 4 * std::ceil(len / options.size / 4));
         if (n > options.max_intervals) return too_many(len, n, {name(l.source.edge)});
         counts.push_back(int(n));
         lengths.push_back(len);
