@@ -1,6 +1,7 @@
 // Progress reporting and cancellation, passed down explicitly (no globals).
 #pragma once
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <functional>
@@ -26,13 +27,15 @@ class Progress {
   }
   bool timed_out() const { return has_deadline_ && std::chrono::steady_clock::now() > deadline_; }
 
-  // A copy that also counts as cancelled once `seconds` have passed from now.
+  // A copy that also counts as cancelled once `seconds` have passed from now (or at this
+  // one's deadline, if that comes first: a limit never extends another).
   Progress with_time_limit(double seconds) const {
     Progress p = *this;
+    const auto deadline = std::chrono::steady_clock::now() +
+                          std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                              std::chrono::duration<double>(seconds));
+    p.deadline_ = has_deadline_ ? std::min(deadline_, deadline) : deadline;
     p.has_deadline_ = true;
-    p.deadline_ = std::chrono::steady_clock::now() +
-                  std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                      std::chrono::duration<double>(seconds));
     return p;
   }
 

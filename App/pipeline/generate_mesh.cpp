@@ -144,6 +144,15 @@ void finish(MeshResult& result, const occ::Solid& solid, const MeshOptions& opti
   result.ok = result.check.valid && !core::has_error(result.diagnostics);
 }
 
+// Seconds the tetrahedral fallback may take when the grid mesher's mesh was invalid.
+constexpr double kSecondChanceSeconds = 60;
+
+bool has_diagnostic(const std::vector<core::Diagnostic>& ds, const std::string& code) {
+  for (const core::Diagnostic& d : ds)
+    if (d.code == code) return true;
+  return false;
+}
+
 // No structured scheme: the grid mesher (or, on request, tetrahedra split into
 // hexahedra), said so in a warning.
 bool fallback(const occ::Solid& solid, const MeshOptions& options, double size,
@@ -231,6 +240,10 @@ namespace {
 MeshResult generate(const occ::Solid& solid, const MeshOptions& options,
                     const core::Progress& progress);
 }  // namespace
+
+const std::vector<std::string>& scheme_names() {
+  return detail::scheme_names();
+}
 
 MeshResult generate_mesh(const occ::Solid& solid, const MeshOptions& options,
                          const core::Progress& progress) {
@@ -544,6 +557,39 @@ MeshResult generate(const occ::Solid& solid, const MeshOptions& options,
   MeshResult result;
   result.diagnostics = small;
   if (mesh_solid(solid, options, size, progress, result)) finish(result, solid, options, progress);
+  // The grid mesher is not yet valid on every part the tetrahedral fallback meshed validly
+  // (HexMe i02, i06, i13, i23-i25, n06, n07, s08): when its mesh is invalid, the tet split
+  // gets a second chance, within kSecondChanceSeconds, and is used if its mesh is valid.
+  const bool grid_fallback = result.stats.scheme == "grid" &&
+                             has_diagnostic(result.diagnostics, "fallback") && !result.ok;
+  if (grid_fallback && options.fallback_scheme == "grid" && !progress.cancelled() &&
+      !has_diagnostic(result.diagnostics, "too_many_hexes")) {
+    MeshOptions tet = options;
+    tet.fallback_scheme = "tet-split";
+    const core::Progress budget = progress.with_time_limit(kSecondChanceSeconds);
+    MeshResult second;
+    second.stats.size_used = size;
+    const auto t0 = std::chrono::steady_clock::now();
+    if (fallback(solid, tet, size, "The grid mesher's mesh is invalid.", budget, t0, second))
+      finish(second, solid, tet, budget);
+    std::string grid_errors;
+    for (const core::Diagnostic& d : result.diagnostics)
+      if (d.severity == core::Severity::error)
+        grid_errors += (grid_errors.empty() ? "" : ", ") + d.code;
+    if (second.ok) {
+      second.diagnostics.insert(second.diagnostics.begin(), small.begin(), small.end());
+      second.diagnostics.push_back(core::make_warning(
+          "grid_invalid", "The grid mesher's mesh was invalid (" + grid_errors +
+                              "); the tetrahedral fallback's mesh is valid and is used."));
+      return second;
+    }
+    result.diagnostics.push_back(core::make_info(
+        "second_fallback_failed",
+        std::string("The tetrahedral fallback, tried after the grid mesher's invalid mesh, gave "
+                    "no valid mesh either") +
+            (budget.timed_out() ? " within " + std::to_string(int(kSecondChanceSeconds)) + " s."
+                                : ".")));
+  }
   return result;
 }
 

@@ -84,6 +84,10 @@ struct MeshResult {
   std::vector<core::Diagnostic> diagnostics;
 };
 
+// Every single-solid scheme name MeshOptions::schemes accepts, in the default order (then
+// "grid", which is not in the default list: it is the fallback).
+const std::vector<std::string>& scheme_names();
+
 MeshResult generate_mesh(const occ::Solid& solid, const MeshOptions& options,
                          const core::Progress& progress = {});
 

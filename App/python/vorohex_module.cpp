@@ -502,6 +502,8 @@ PYBIND11_MODULE(_VoroHexCore, m) {
   py::register_exception<CancelledError>(m, "Cancelled", PyExc_RuntimeError);
   bind_types(m);
   bind_mesh(m);
+  m.def("scheme_names", &vorohex::pipeline::scheme_names,
+        "every single-solid scheme name MeshOptions.schemes accepts");
   m.def("read_brep", &read_brep, py::arg("brep"), py::arg("several_solids") = false,
         "BREP string -> (Solid or None, [Diagnostic]); several_solids: glue them into one");
   m.def("generate_mesh", &generate, py::arg("solid"), py::arg("options"),

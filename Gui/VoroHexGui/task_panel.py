@@ -41,8 +41,8 @@ def _get_property(obj, option):
     return value.Value if hasattr(value, "Value") else value
 
 
-# The single-solid schemes, in the order the pipeline tries them by default.
-KNOWN_SCHEMES = tuple(VoroHex._core.MeshOptions().schemes)
+# The single-solid schemes, in the order the pipeline tries them by default, then grid.
+KNOWN_SCHEMES = tuple(VoroHex._core.scheme_names())
 
 
 def scheme_list(text):
@@ -174,7 +174,7 @@ class TaskPanel:
         self.form.gb_limits.layout().addRow(self.fallback)
         self.schemes = QtGui.QLineEdit()
         self.schemes.setObjectName("le_schemes")
-        self.schemes.setPlaceholderText(", ".join(KNOWN_SCHEMES))
+        self.schemes.setPlaceholderText(", ".join(VoroHex._core.MeshOptions().schemes))
         self.schemes.textChanged.connect(self._check_schemes)
         self.form.gb_limits.layout().addRow("Schemes:", self.schemes)
         self.time_limit = QtGui.QDoubleSpinBox()
@@ -297,7 +297,7 @@ class TaskPanel:
             if w is None:
                 continue
             if option.kind == "schemes":
-                names = scheme_list(w.text()) or list(KNOWN_SCHEMES)  # empty: all
+                names = scheme_list(w.text()) or list(VoroHex._core.MeshOptions().schemes)
                 if unknown_schemes(names):
                     continue  # keep the property; _check_schemes flags the text
                 value = ",".join(names)
@@ -329,7 +329,7 @@ class TaskPanel:
             "Unknown scheme{}: {}; the schemes are {}".format(
                 "s" if len(unknown) > 1 else "", ", ".join(unknown), ", ".join(KNOWN_SCHEMES))
             if unknown else next(o.doc for o in VoroHex.OPTIONS if o.name == "schemes")
-            + " (empty: all, in the order " + ", ".join(KNOWN_SCHEMES) + ")")
+            + " (empty: " + ", ".join(VoroHex._core.MeshOptions().schemes) + ")")
 
     # The hex count to expect -----------------------------------------------------------
     def estimate(self, size=None):
@@ -485,9 +485,11 @@ class TaskPanel:
         """Stop: the child process is killed at once, whatever stage it is in."""
         if self.runner is not None:
             self.runner.stop()
-        elif self.builder is not None:
+        elif self.builder is not None:  # meshed, the FemMesh still being built
             self.builder = None
             self.finished("Stopped by the user; the previous mesh is kept.", "stopped")
+            FreeCAD.Console.PrintMessage("VoroHex: meshing {} stopped by the user\n".format(
+                self.obj.Label))
         self.stop_trials()
 
     # Not structured: a banner, and sizes that give a structured mesh -------------------

@@ -295,6 +295,32 @@ TEST(GenerateMesh, TheFallbackMeshesWhatNoSchemeAcceptsAndSaysSo) {
   }
 }
 
+// Where the grid mesher's mesh is invalid (HexMe n06, a box minus a pentagonal pyramid:
+// inverted hexes at the pyramid's apex) the tetrahedral fallback gets a second chance and
+// its valid mesh is used, said so in a warning naming the grid's errors. The grid as a
+// scheme of its own gets no second chance and is never reported a success when invalid.
+TEST(GenerateMesh, AnInvalidGridMeshGivesTheTetSplitASecondChance) {
+  const occ::ReadResult in =
+      occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/n06o_anti_pentapyr.step");
+  ASSERT_TRUE(in.ok()) << "HexMe model n06 not found in " << VOROHEX_HEXME_DIR;
+  MeshOptions opt;
+  opt.decompose = false;
+  const MeshResult r = generate_mesh(*in.solid, opt);
+  ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
+  EXPECT_EQ(r.stats.scheme, "tet-split");
+  EXPECT_TRUE(r.check.valid);
+  const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "grid_invalid");
+  ASSERT_NE(d, nullptr);
+  EXPECT_EQ(d->severity, core::Severity::warning);
+  EXPECT_NE(d->message.find("inverted_elements"), std::string::npos) << d->message;
+
+  opt.schemes = {"grid"};  // the grid as a scheme: its own result, no second chance
+  const MeshResult grid = generate_mesh(*in.solid, opt);
+  EXPECT_EQ(grid.stats.scheme, "grid");
+  EXPECT_EQ(testing::find_diagnostic(grid.diagnostics, "grid_invalid"), nullptr);
+  EXPECT_EQ(grid.ok, grid.check.valid);
+}
+
 // Bad input that can be repaired is, and then meshes like any solid; millimetre and
 // kilometre scales mesh the same (relative tolerances everywhere).
 TEST(GenerateMesh, RepairedAndRescaledSolidsMeshValid) {
