@@ -15,6 +15,7 @@ void print_check_report(std::ostream& out, const quality::CheckReport& r) {
       << "\n";
   out << "  below 0.2          " << 100.0 * sj.fraction_below_0_2 << " %\n";
   out << "  inverted (<= 0)    " << sj.inverted << "\n";
+  if (r.degenerate) out << "  flat (< 1e-6)      " << r.degenerate << "\n";
   out << "  histogram          ";
   // Only the non-negative half: bins [0,0.1) ... [0.9,1.0].
   for (int i = quality::QualityStats::kBins / 2; i < quality::QualityStats::kBins; ++i)
@@ -61,6 +62,7 @@ nlohmann::json check_report_json(const quality::CheckReport& r) {
                           {"mean", sj.mean},
                           {"max", sj.max},
                           {"inverted", sj.inverted},
+                          {"degenerate", r.degenerate},
                           {"fraction_below_0_2", sj.fraction_below_0_2},
                           {"histogram_bins", "20 bins of 0.1 from -1 to 1"},
                           {"histogram", sj.histogram}};

@@ -127,6 +127,7 @@ void bind_types(py::module_& m) {
       .def_readonly("hexes", &R::hexes)
       .def_readonly("scaled_jacobian", &R::scaled_jacobian)
       .def_readonly("non_positive", &R::non_positive)
+      .def_readonly("degenerate", &R::degenerate)
       .def_readonly("interior_quads", &R::interior_quads)
       .def_readonly("boundary_quads", &R::boundary_quads)
       .def_readonly("non_manifold_quads", &R::non_manifold_quads)

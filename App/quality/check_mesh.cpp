@@ -21,6 +21,8 @@ using core::NodeClass;
 using core::Vec3;
 
 constexpr std::size_t kListHexes = 10;
+// Below this a positive scaled Jacobian is rounding, not an element: the hex is flat.
+constexpr double kDegenerateScaledJacobian = 1e-6;
 constexpr std::size_t kListNodes = 5;
 
 // "3, 7, 12 and 4 more"
@@ -387,6 +389,22 @@ CheckReport check_mesh(const HexMesh& mesh, const occ::Solid* cad, const CheckOp
         core::make_error("inverted_elements", std::to_string(report.non_positive) +
                                                   " hexahedra have a scaled Jacobian <= 0 (hexes " +
                                                   list_indices(shown, report.non_positive) + ")"));
+  }
+  {
+    // Positive only by rounding: a hexahedron flattened onto a face or an edge (a smoothing
+    // that untangled it to just above zero) is no usable element.
+    std::vector<std::size_t> shown;
+    for (std::size_t h = 0; h < sj.size(); ++h)
+      if (sj[h] > 0 && sj[h] < kDegenerateScaledJacobian) {
+        ++report.degenerate;
+        if (shown.size() < kListHexes) shown.push_back(h);
+      }
+    if (report.degenerate)
+      diags.push_back(core::make_error(
+          "degenerate_elements", std::to_string(report.degenerate) +
+                                     " hexahedra have a scaled Jacobian below 1e-6, flat up to "
+                                     "rounding (hexes " +
+                                     list_indices(shown, report.degenerate) + ")"));
   }
   {
     std::vector<std::size_t> shown;

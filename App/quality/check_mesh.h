@@ -29,6 +29,7 @@ struct CheckReport {
   std::size_t nodes = 0, hexes = 0;
   QualityStats scaled_jacobian;         // Verdict scaled Jacobian statistics
   std::size_t non_positive = 0;         // hexes with scaled Jacobian <= 0
+  std::size_t degenerate = 0;           // hexes with 0 < scaled Jacobian < 1e-6 (flat)
   std::size_t non_positive_gauss = 0;   // 20-node hexes with det J <= 0 at a Gauss point
   int order = 1;                        // 1: 8-node hexahedra, 2: 20-node
   std::size_t interior_quads = 0;       // quads shared by exactly two hexes
