@@ -230,9 +230,10 @@ def write_table(rows):
         "(prismatic parts: many-to-one, submapped walls), `revolve` (turned parts), `midpoint`",
         "(convex polyhedron), several sub-volumes of a decomposition meshed into one mesh",
         "(`map+sweep`, ...; tried before the fallback, in a child process stopped after 60 s)",
-        "and `tet-split`, the fallback for solids neither accepts (tetrahedra split into",
-        "hexahedra, docs/meshing.md). The decomposition column is `vorohex decompose` on its own",
-        "(30 s, 3 GB limit).",
+        "and the fallback for solids none accepts: `grid` (the grid mesher), or `tet-split`",
+        "(tetrahedra split into hexahedra) where the grid's mesh is invalid and the tet split's",
+        "is valid within its 60 s second chance (docs/meshing.md). The decomposition column is",
+        "`vorohex decompose` on its own (30 s, 3 GB limit).",
         "",
         "VoroHex meshes %d of %d models today (VoroHex columns measured at commit %s%s)." % (
             valid, len(rows), BUILT_FROM,

@@ -583,12 +583,17 @@ MeshResult generate(const occ::Solid& solid, const MeshOptions& options,
                               "); the tetrahedral fallback's mesh is valid and is used."));
       return second;
     }
+    std::string tet_errors;
+    for (const core::Diagnostic& d : second.diagnostics)
+      if (d.severity == core::Severity::error)
+        tet_errors += (tet_errors.empty() ? "" : ", ") + d.code;
     result.diagnostics.push_back(core::make_info(
         "second_fallback_failed",
         std::string("The tetrahedral fallback, tried after the grid mesher's invalid mesh, gave "
                     "no valid mesh either") +
-            (budget.timed_out() ? " within " + std::to_string(int(kSecondChanceSeconds)) + " s."
-                                : ".")));
+            (budget.timed_out() ? " within " + std::to_string(int(kSecondChanceSeconds)) + " s"
+                                : "") +
+            (tet_errors.empty() ? "." : " (" + tet_errors + ").")));
   }
   return result;
 }
