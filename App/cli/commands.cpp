@@ -194,13 +194,12 @@ bool known_mesh_extension(const std::string& path) {
 }
 
 int mesh_command(const std::vector<std::string>& argv) {
-  const Args args =
-      parse(argv,
-            {"-o", "--output", "--size", "--report", "--max-hexes", "--smooth-iterations",
-             "--smooth-passes", "--time-limit", "--decomposition-time-limit", "--sharp-angle",
-             "--eps", "--delta", "--max-depth", "--schemes", "--fallback-scheme", "--order",
-             "--element"},
-            {"--no-smooth", "--no-fallback", "--no-decompose", "--keep-invalid", "--quiet"});
+  const Args args = parse(
+      argv,
+      {"-o", "--output", "--size", "--report", "--max-hexes", "--smooth-iterations",
+       "--smooth-passes", "--time-limit", "--decomposition-time-limit", "--sharp-angle", "--eps",
+       "--delta", "--max-depth", "--schemes", "--fallback-scheme", "--order", "--element"},
+      {"--no-smooth", "--no-fallback", "--no-decompose", "--keep-invalid", "--quiet"});
   if (args.positional.size() != 1)
     throw UsageError("expected exactly one input file, got " +
                      std::to_string(args.positional.size()));

@@ -15,7 +15,18 @@ const std::array<std::array<int, 4>, 6> kHexFaces = {{
 }};
 
 const std::array<std::array<int, 2>, 12> kHexEdges = {{
-    {0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6}, {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7},
+    {0, 1},
+    {1, 2},
+    {2, 3},
+    {3, 0},
+    {4, 5},
+    {5, 6},
+    {6, 7},
+    {7, 4},
+    {0, 4},
+    {1, 5},
+    {2, 6},
+    {3, 7},
 }};
 
 void HexMesh::reserve(std::size_t nodes, std::size_t hexes) {

@@ -38,11 +38,16 @@ std::string format_sj(double v) {
 
 const char* element_type_name(ElementType type) {
   switch (type) {
-    case ElementType::C3D8: return "C3D8";
-    case ElementType::C3D8I: return "C3D8I";
-    case ElementType::C3D8R: return "C3D8R";
-    case ElementType::C3D20: return "C3D20";
-    case ElementType::C3D20R: return "C3D20R";
+    case ElementType::C3D8:
+      return "C3D8";
+    case ElementType::C3D8I:
+      return "C3D8I";
+    case ElementType::C3D8R:
+      return "C3D8R";
+    case ElementType::C3D20:
+      return "C3D20";
+    case ElementType::C3D20R:
+      return "C3D20R";
   }
   return "?";
 }
@@ -93,8 +98,9 @@ ElementChoice choose_element_type(const core::HexMesh& mesh,
         "gauss_point_jacobian",
         std::to_string(choice.non_positive_gauss) +
             " hexahedra have det J <= 0 at a Gauss point of the 2 x 2 x 2 rule, which the "
-            "scaled Jacobian (corners and centre) does not see; CalculiX refuses them (\"nonpositive jacobian\"): elements " + list +
-            (choice.non_positive_gauss > folded.size() ? ", ..." : "")));
+            "scaled Jacobian (corners and centre) does not see; CalculiX refuses them "
+            "(\"nonpositive jacobian\"): elements " +
+            list + (choice.non_positive_gauss > folded.size() ? ", ..." : "")));
   }
   if (!options.requested.empty()) {
     asked = parse_element_type(options.requested);
@@ -108,16 +114,17 @@ ElementChoice choose_element_type(const core::HexMesh& mesh,
       choice.diagnostics.push_back(core::make_error(
           "element_order_mismatch",
           std::string(element_type_name(*asked)) + " is a " +
-              (element_order(*asked) == 1 ? "first" : "second") + "-order element but the mesh is " +
+              (element_order(*asked) == 1 ? "first" : "second") +
+              "-order element but the mesh is " +
               (order == 1 ? "first order (use C3D8, C3D8I or C3D8R, or mesh with order 2)"
                           : "second order (use C3D20 or C3D20R)")));
       return choice;
     }
   }
   choice.one_through_thickness = count_one_through_thickness(mesh);
-  const std::vector<double> computed =
-      scaled_jacobian.size() == mesh.num_hexes() ? std::vector<double>{}
-                                                 : quality::scaled_jacobians(mesh);
+  const std::vector<double> computed = scaled_jacobian.size() == mesh.num_hexes()
+                                           ? std::vector<double>{}
+                                           : quality::scaled_jacobians(mesh);
   const std::vector<double>& sj = computed.empty() ? scaled_jacobian : computed;
   double sum = 0;
   for (double v : sj) sum += v;
@@ -142,9 +149,8 @@ ElementChoice choose_element_type(const core::HexMesh& mesh,
     }
     if (*asked == ElementType::C3D8I && distorted_mesh)
       choice.diagnostics.push_back(core::make_warning(
-          "incompatible_modes_distorted",
-          "C3D8I on distorted hexahedra is too soft: " + distorted +
-              " (consider C3D8 with a finer size, or order 2)"));
+          "incompatible_modes_distorted", "C3D8I on distorted hexahedra is too soft: " + distorted +
+                                              " (consider C3D8 with a finer size, or order 2)"));
     if (*asked == ElementType::C3D8R)
       choice.diagnostics.push_back(core::make_warning(
           "reduced_integration_bending",

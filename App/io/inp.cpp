@@ -38,8 +38,7 @@ bool write_inp(const core::HexMesh& mesh, const std::string& path, const WriteOp
   if (!detail::check_hex_indices(mesh, error)) return false;
   const int order = mesh.order();
   const ElementType element =
-      options.element ? *options.element
-                      : (order == 2 ? ElementType::C3D20R : ElementType::C3D8I);
+      options.element ? *options.element : (order == 2 ? ElementType::C3D20R : ElementType::C3D8I);
   if (element_order(element) != order) {
     detail::set_error(error, std::string(element_type_name(element)) +
                                  " does not match the mesh's order " + std::to_string(order));

@@ -93,12 +93,11 @@ bool write_msh(const core::HexMesh& mesh, const std::string& path, const WriteOp
   std::string& t = out.text();
   t += "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$PhysicalNames\n";
   detail::append_int(&t, static_cast<std::int64_t>(volumes.size() + entities[0].size() +
-                                                    entities[1].size() + entities[2].size()));
+                                                   entities[1].size() + entities[2].size()));
   t += '\n';
   for (int dim = 0; dim < 3; ++dim)
     for (const Entity& e : entities[dim])
-      t += std::to_string(dim) + " " + std::to_string(e.group->id) + " \"" + e.group->name +
-           "\"\n";
+      t += std::to_string(dim) + " " + std::to_string(e.group->id) + " \"" + e.group->name + "\"\n";
   for (const auto& [s, v] : volumes) {
     t += "3 ";
     detail::append_int(&t, s + 1);
@@ -162,8 +161,8 @@ bool write_msh(const core::HexMesh& mesh, const std::string& path, const WriteOp
     t += "0 0 0 0\n";
   } else {
     // Hexahedra keep tags 1..nh (their index + 1); group elements follow.
-    t += std::to_string(blocks) + " " + std::to_string(total) + " 1 " + std::to_string(total) +
-         "\n";
+    t +=
+        std::to_string(blocks) + " " + std::to_string(total) + " 1 " + std::to_string(total) + "\n";
     auto node = [&](std::int32_t n) {
       t += ' ';
       detail::append_int(&t, static_cast<std::int64_t>(n) + 1);
@@ -353,8 +352,8 @@ class MshReader {
     }
     if (!have_nodes_) return fail("no $Nodes section");
     if (hexes_.empty()) return fail("the file contains no hexahedron (type 5 or 17)");
-    const auto quadratic = std::count_if(hexes_.begin(), hexes_.end(),
-                                         [](const Hex& h) { return h.quadratic; });
+    const auto quadratic =
+        std::count_if(hexes_.begin(), hexes_.end(), [](const Hex& h) { return h.quadratic; });
     if (quadratic > 0 && quadratic < static_cast<std::ptrdiff_t>(hexes_.size()))
       return fail("the file mixes 8-node and 20-node hexahedra");
     store_hexes();
@@ -444,9 +443,10 @@ class MshReader {
           "boundary_elements_skipped",
           "Skipped " + std::to_string(skipped_[0]) + " point, line and surface elements"));
     if (skipped_[1] > 0)
-      result_->diagnostics.push_back(core::make_warning(
-          "non_hex_elements_skipped", "Skipped " + std::to_string(skipped_[1]) +
-                                          " volume elements that are not hexahedra (8 or 20 nodes)"));
+      result_->diagnostics.push_back(
+          core::make_warning("non_hex_elements_skipped",
+                             "Skipped " + std::to_string(skipped_[1]) +
+                                 " volume elements that are not hexahedra (8 or 20 nodes)"));
   }
 
   bool nodes41() {

@@ -33,8 +33,8 @@ struct Closure {
     for (int e = 1; e <= d.num_edges(); ++e) {
       for (core::FaceId f : d.edge_faces(core::EdgeId(e))) edge_faces[e].push_back(f.value());
       sort_unique(&edge_faces[e]);
-      for (core::VertexId v : {d.edge_first_vertex(core::EdgeId(e)),
-                               d.edge_last_vertex(core::EdgeId(e))}) {
+      for (core::VertexId v :
+           {d.edge_first_vertex(core::EdgeId(e)), d.edge_last_vertex(core::EdgeId(e))}) {
         if (v.value() < 1 || v.value() > d.num_vertices()) continue;
         vertex_edges[v.value()].push_back(e);
         vertex_faces[v.value()].insert(vertex_faces[v.value()].end(), edge_faces[e].begin(),
@@ -114,7 +114,8 @@ std::vector<NamedGroup> named_groups(const core::HexMesh& mesh, const core::Mesh
       }
       faces = {best};
     }
-    if (faces.size() == 1 && faces[0] <= counts[2]) group(2, faces[0]).faces.push_back({b.hex, b.face});
+    if (faces.size() == 1 && faces[0] <= counts[2])
+      group(2, faces[0]).faces.push_back({b.hex, b.face});
 
     // The quad's sides along model edges (each mesh edge once).
     for (int i = 0; i < 4; ++i) {

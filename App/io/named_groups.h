@@ -25,12 +25,12 @@ struct GroupEdge {
 };
 
 struct NamedGroup {
-  std::string name;                  // "Face7", "Edge3", "Vertex1"
-  int dim = 2;                       // 0 vertex, 1 edge, 2 face
-  std::int32_t id = 0;               // the entity's MapShapes index (1-based)
-  std::vector<std::int32_t> nodes;   // 0-based, ascending: nodes on the entity or its boundary
-  std::vector<GroupFace> faces;      // faces only: the boundary quads on the face
-  std::vector<GroupEdge> edges;      // edges only: the mesh edges along it (each once)
+  std::string name;                 // "Face7", "Edge3", "Vertex1"
+  int dim = 2;                      // 0 vertex, 1 edge, 2 face
+  std::int32_t id = 0;              // the entity's MapShapes index (1-based)
+  std::vector<std::int32_t> nodes;  // 0-based, ascending: nodes on the entity or its boundary
+  std::vector<GroupFace> faces;     // faces only: the boundary quads on the face
+  std::vector<GroupEdge> edges;     // edges only: the mesh edges along it (each once)
 };
 
 // One group per face, edge and vertex of `domain` that has at least one node, faces first,

@@ -15,11 +15,11 @@
 namespace vorohex::io {
 
 struct SecondOrderStats {
-  std::size_t mid_nodes = 0;          // nodes added
-  std::size_t on_edges = 0;           // of which projected onto model edges
-  std::size_t on_faces = 0;           // onto model faces
-  std::size_t straightened = 0;       // projected, then put back straight (still classified
-                                      // on the entity): the projection folded an element
+  std::size_t mid_nodes = 0;     // nodes added
+  std::size_t on_edges = 0;      // of which projected onto model edges
+  std::size_t on_faces = 0;      // onto model faces
+  std::size_t straightened = 0;  // projected, then put back straight (still classified
+                                 // on the entity): the projection folded an element
 };
 
 // mesh: first order (its order() becomes 2); groups: named_groups(mesh, domain) of it,

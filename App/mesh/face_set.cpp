@@ -115,7 +115,8 @@ IntervalProblem problem_for(const core::MeshDomain& s, const Plan& plan, const F
                               name + ": " + core::entity_name(oe.edge) +
                                   " even (its vertices are corner nodes of the quad mesh)"});
             if (preferences && whole_circle(s, oe.edge)) {
-              const std::string circle = name + ": " + core::entity_name(oe.edge) + ", a whole circle,";
+              const std::string circle =
+                  name + ": " + core::entity_name(oe.edge) + ", a whole circle,";
               p.even.push_back({{oe.edge.value() - 1}, circle + " in a multiple of 4 segments", 4});
               p.at_least.push_back({{oe.edge.value() - 1}, 8, circle + " in at least 8 segments"});
             }

@@ -111,7 +111,8 @@ QuadFaceMesh planar_quad_face(const core::MeshDomain& solid, core::FaceId face,
     l = std::move(canonical);
     start += m;
   }
-  const detail::QuadMesh2d m = detail::quad_mesh_2d(loops2, options.size, options.smoothing_passes, options.ring_layers);
+  const detail::QuadMesh2d m =
+      detail::quad_mesh_2d(loops2, options.size, options.smoothing_passes, options.ring_layers);
   if (!m.error.empty()) {
     out.diagnostics.push_back(core::make_error(
         "quad_face_failed", "Quad meshing of " + name + " failed: " + m.error + ".", {name}));

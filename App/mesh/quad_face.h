@@ -21,7 +21,7 @@ struct QuadFaceOptions {
   // Rings of quads laid along each loop without sharp corners (round holes) before the rest
   // is meshed, at most this many (>= 0; 0: none, the lattice reaches the loops).
   int ring_layers = 3;
-  void validate() const;      // throws std::invalid_argument naming the bad field
+  void validate() const;  // throws std::invalid_argument naming the bad field
 };
 
 struct QuadFaceMesh {

@@ -105,7 +105,8 @@ struct Plan {
   std::vector<core::Diagnostic> diagnostics;
 };
 
-Plan plan(const core::MeshDomain& solid, const RevolveOptions& options, const core::Progress& progress) {
+Plan plan(const core::MeshDomain& solid, const RevolveOptions& options,
+          const core::Progress& progress) {
   options.validate();
   Plan p;
   p.structure = occ::revolution_structure(solid);

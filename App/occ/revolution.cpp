@@ -2,28 +2,28 @@
 
 #include <BRepAdaptor_Surface.hxx>
 #include <BRepAlgoAPI_Common.hxx>
-#include <BRepBuilderAPI_MakeEdge.hxx>
-#include <BRepBuilderAPI_MakeWire.hxx>
-#include <GC_MakeArcOfCircle.hxx>
-#include <GeomAPI_Interpolate.hxx>
-#include <ShapeFix_Face.hxx>
-#include <TColgp_HArray1OfPnt.hxx>
-#include <gp_Ax2.hxx>
-#include <gp_Circ.hxx>
-#include <gp_Pln.hxx>
 #include <BRepAlgoAPI_Cut.hxx>
+#include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepBuilderAPI_MakePolygon.hxx>
+#include <BRepBuilderAPI_MakeWire.hxx>
 #include <BRepGProp.hxx>
 #include <BRep_Builder.hxx>
+#include <GC_MakeArcOfCircle.hxx>
 #include <GProp_GProps.hxx>
+#include <GeomAPI_Interpolate.hxx>
 #include <GeomAdaptor_Surface.hxx>
+#include <ShapeFix_Face.hxx>
 #include <Standard_Failure.hxx>
+#include <TColgp_HArray1OfPnt.hxx>
 #include <TopExp.hxx>
 #include <TopTools_IndexedMapOfShape.hxx>
 #include <TopTools_ListOfShape.hxx>
 #include <TopoDS.hxx>
 #include <TopoDS_Compound.hxx>
+#include <gp_Ax2.hxx>
+#include <gp_Circ.hxx>
+#include <gp_Pln.hxx>
 
 #include <algorithm>
 #include <cmath>
@@ -204,9 +204,8 @@ class SectionBuilder {
     return int(nodes_.size()) - 1;
   }
 
-  // The (r, z) where edge e, a parallel (a circle about the axis) crossing the half-plane,
-  // meets it; false when e is no parallel or does not reach the half-plane.
-  bool parallel_point(EdgeId e, Rz& out) const {
+  // Whether edge e is a parallel (a circle about the axis, off it), with its (r, z).
+  bool parallel(EdgeId e, Rz& out) const {
     const std::vector<Vec3> p = solid_.edge_points_by_length(e, 8);
     const Rz a = rz(p.front());
     if (a.r <= tol_) return false;
@@ -214,32 +213,32 @@ class SectionBuilder {
       const Rz b = rz(q);
       if (std::abs(b.r - a.r) > tol_ || std::abs(b.z - a.z) > tol_) return false;
     }
-    if (solid_.distance_to_edge(e, lift(a)) > 10 * tol_) return false;
     out = a;
     return true;
+  }
+  // A parallel's arc reaches the half-plane when the half-plane's point on it lies on it.
+  bool crosses(EdgeId e, const Rz& q) const {
+    return solid_.distance_to_edge(e, lift(q)) <= 10 * tol_;
   }
 
   bool trace(FaceId f, std::string& why) {
     const core::SurfaceInfo info = solid_.surface_info(f);
     std::vector<Rz> ends;
-    bool has_parallel = false;
+    bool misses_half_plane = false;
     for (const auto& wire : solid_.face_wires(f))
       for (const core::OrientedEdge& oe : wire) {
         Rz q;
         if (solid_.edge_is_degenerated(oe.edge)) {
           q = rz(solid_.vertex_point(solid_.edge_first_vertex(oe.edge)));
           if (q.r <= tol_) ends.push_back({0, q.z});
-        } else if (parallel_point(oe.edge, q)) {
-          ends.push_back(q);
-        } else {
-          const std::vector<Vec3> p = solid_.edge_points_by_length(oe.edge, 4);
-          bool same = true;
-          for (const Vec3& x : p) same = same && std::abs(rz(x).r - rz(p[0]).r) <= tol_ &&
-                                         std::abs(rz(x).z - rz(p[0]).z) <= tol_;
-          has_parallel = has_parallel || (same && rz(p[0]).r > tol_);
+        } else if (parallel(oe.edge, q)) {
+          if (crosses(oe.edge, q))
+            ends.push_back(q);
+          else
+            misses_half_plane = true;
         }
       }
-    if (ends.empty() && has_parallel) return true;  // a face on the other side of a seam
+    if (ends.empty() && misses_half_plane) return true;  // a face on the other side of a seam
     if (info.kind == core::SurfaceKind::plane && ends.size() == 1) ends.push_back({0, ends[0].z});
     const std::string name = face_name(f.value());
     const bool seam_twice =
@@ -248,8 +247,9 @@ class SectionBuilder {
       // A whole torus (its wire may run twice along a parallel seam): its tube's circle,
       // from that seam's point or, with none, from a projected point.
       const Rz c{info.radius, (info.origin - l_.o).dot(l_.a)};
-      const Rz on = seam_twice ? ends[0]
-                               : rz(solid_.project_to_face(f, lift({c.r + 0.5 * info.radius, c.z})));
+      const Rz on = seam_twice
+                        ? ends[0]
+                        : rz(solid_.project_to_face(f, lift({c.r + 0.5 * info.radius, c.z})));
       const double rho = std::hypot(on.r - c.r, on.z - c.z);
       const double a0 = std::atan2(on.z - c.z, on.r - c.r);
       Trace t;
@@ -314,10 +314,14 @@ class SectionBuilder {
             if (!t.points.empty() || solid_.edge_is_degenerated(oe.edge)) continue;
             std::vector<Vec3> p = solid_.edge_points_by_length(oe.edge, n);
             const Rz p0 = rz(p.front()), p1 = rz(p.back());
-            auto near = [&](const Rz& x, const Rz& y) { return std::hypot(x.r - y.r, x.z - y.z) <= 10 * tol_; };
+            auto near = [&](const Rz& x, const Rz& y) {
+              return std::hypot(x.r - y.r, x.z - y.z) <= 10 * tol_;
+            };
             if (near(p0, p1)) continue;  // a parallel
-            if (near(p0, b) && near(p1, a)) std::reverse(p.begin(), p.end());
-            else if (!(near(p0, a) && near(p1, b))) continue;
+            if (near(p0, b) && near(p1, a))
+              std::reverse(p.begin(), p.end());
+            else if (!(near(p0, a) && near(p1, b)))
+              continue;
             for (const Vec3& q : p) t.points.push_back(rz(q));
             t.points.front() = a, t.points.back() = b;
           }
@@ -363,7 +367,8 @@ class SectionBuilder {
       const Vec3 p = lift(q);
       return gp_Pnt(p.x(), p.y(), p.z());
     };
-    if (t.points.size() == 2) return BRepBuilderAPI_MakeEdge(pnt(t.points[0]), pnt(t.points[1])).Edge();
+    if (t.points.size() == 2)
+      return BRepBuilderAPI_MakeEdge(pnt(t.points[0]), pnt(t.points[1])).Edge();
     if (t.circle > 0) {
       const Vec3 n = l_.a.cross(er_);
       const gp_Ax2 frame(pnt(t.centre), gp_Dir(n.x(), n.y(), n.z()),

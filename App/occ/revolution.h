@@ -4,9 +4,10 @@
 // a meridian curve (a seam). Such a solid is its meridian section turned by a full turn: the
 // section is built from the faces' traces in a half-plane through the axis (read through
 // core::MeshDomain: surface and curve kinds, parallels, projections; no boolean with the
-// solid), checked against the volume (Pappus), meshed with quads and revolved. Where the section lies along the axis, a coaxial core of radius
-// core_radius is cut out of it (to be swept along the axis from an O-grid disc, so that no
-// hexahedron degenerates on the axis); the section's remaining faces are given here.
+// solid), checked against the volume (Pappus), meshed with quads and revolved. Where the section
+// lies along the axis, a coaxial core of radius core_radius is cut out of it (to be swept along the
+// axis from an O-grid disc, so that no hexahedron degenerates on the axis); the section's remaining
+// faces are given here.
 #pragma once
 
 #include <memory>

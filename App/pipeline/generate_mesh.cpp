@@ -187,10 +187,10 @@ bool fallback(const occ::Solid& solid, const MeshOptions& options, double size,
   if (!split.ok) return false;
   result.mesh = std::move(split.mesh);
   result.diagnostics.push_back(core::make_warning(
-      "fallback", why + " Meshed by the tetrahedral fallback instead: " +
-                      std::to_string(split.tetrahedra) +
-                      " tetrahedra, each split into four hexahedra; expect poorer elements than a "
-                      "structured mesh."));
+      "fallback",
+      why + " Meshed by the tetrahedral fallback instead: " + std::to_string(split.tetrahedra) +
+          " tetrahedra, each split into four hexahedra; expect poorer elements than a "
+          "structured mesh."));
   return true;
 }
 
@@ -560,8 +560,8 @@ MeshResult generate(const occ::Solid& solid, const MeshOptions& options,
   // The grid mesher is not yet valid on every part the tetrahedral fallback meshed validly
   // (HexMe i02, i06, i13, i23-i25, n06, n07, s08): when its mesh is invalid, the tet split
   // gets a second chance, within kSecondChanceSeconds, and is used if its mesh is valid.
-  const bool grid_fallback = result.stats.scheme == "grid" &&
-                             has_diagnostic(result.diagnostics, "fallback") && !result.ok;
+  const bool grid_fallback =
+      result.stats.scheme == "grid" && has_diagnostic(result.diagnostics, "fallback") && !result.ok;
   if (grid_fallback && options.fallback_scheme == "grid" && !progress.cancelled() &&
       !has_diagnostic(result.diagnostics, "too_many_hexes")) {
     MeshOptions tet = options;

@@ -219,8 +219,9 @@ void bind_types(py::module_& m) {
           "distance_rel_tol", [](const O& o) { return o.check.distance_rel_tol; },
           [](O& o, double v) { o.check.distance_rel_tol = v; },
           "check: allowed boundary node distance, relative to the diagonal")
-      .def_readwrite("order", &O::order,
-                     "element order: 1 (8-node hexahedra) or 2 (20-node, mid-edge nodes on the CAD)")
+      .def_readwrite(
+          "order", &O::order,
+          "element order: 1 (8-node hexahedra) or 2 (20-node, mid-edge nodes on the CAD)")
       .def("validate", &O::validate, "raises ValueError naming the bad option");
 
   using V = voronoi::VoronoiOptions;
@@ -307,10 +308,9 @@ void bind_mesh(py::module_& m) {
       .def_readonly("check", &pipeline::MeshResult::check)
       .def_readonly("scaled_jacobian", &pipeline::MeshResult::scaled_jacobian)
       .def_readonly("stats", &pipeline::MeshResult::stats)
-      .def_property_readonly("diagnostics",
-                             [](const pipeline::MeshResult& r) {
-                               return diagnostics_list(r.diagnostics);
-                             })
+      .def_property_readonly(
+          "diagnostics",
+          [](const pipeline::MeshResult& r) { return diagnostics_list(r.diagnostics); })
       .def_property_readonly(
           "groups",
           [](const pipeline::MeshResult& r) {

@@ -443,9 +443,9 @@ CheckReport check_mesh(const HexMesh& mesh, const occ::Solid* cad, const CheckOp
   // the 27 Gauss points (the corners' scaled Jacobian above does not see a curved edge fold).
   const auto& mid = mesh.mid_edge_nodes();
   if (!mid.empty() && mid.size() != hexes.size()) {
-    diags.push_back(core::make_error(
-        "bad_mid_edge_nodes", std::to_string(mid.size()) + " mid-edge node lists for " +
-                                  std::to_string(hexes.size()) + " hexahedra"));
+    diags.push_back(core::make_error("bad_mid_edge_nodes",
+                                     std::to_string(mid.size()) + " mid-edge node lists for " +
+                                         std::to_string(hexes.size()) + " hexahedra"));
     return report;
   }
   if (!mid.empty()) {
@@ -455,9 +455,9 @@ CheckReport check_mesh(const HexMesh& mesh, const occ::Solid* cad, const CheckOp
       bool index_ok = true;
       for (std::int32_t n : mid[h]) index_ok = index_ok && valid_node_index(n, mesh.num_nodes());
       if (!index_ok) {
-        diags.push_back(core::make_error("invalid_node_index",
-                                         "hexahedron " + std::to_string(h) +
-                                             " refers to a mid-edge node that does not exist"));
+        diags.push_back(core::make_error(
+            "invalid_node_index",
+            "hexahedron " + std::to_string(h) + " refers to a mid-edge node that does not exist"));
         return report;
       }
       std::array<core::Vec3, 20> nodes;
@@ -470,11 +470,11 @@ CheckReport check_mesh(const HexMesh& mesh, const occ::Solid* cad, const CheckOp
     }
     report.non_positive_gauss = count;
     if (count)
-      diags.push_back(core::make_error(
-          "inverted_quadratic_elements",
-          std::to_string(count) +
-              " 20-node hexahedra have a Jacobian <= 0 at a Gauss point (hexes " +
-              list_indices(shown, count) + ")"));
+      diags.push_back(
+          core::make_error("inverted_quadratic_elements",
+                           std::to_string(count) +
+                               " 20-node hexahedra have a Jacobian <= 0 at a Gauss point (hexes " +
+                               list_indices(shown, count) + ")"));
   }
 
   std::vector<char> used(mesh.num_nodes(), 0);

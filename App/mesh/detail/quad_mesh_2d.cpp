@@ -441,7 +441,8 @@ QuadMesh2d quad_mesh_2d(const std::vector<std::vector<Vec2>>& loops, double size
   std::vector<Vec2> pts;
   std::vector<std::vector<int>> front(L);
   for (std::size_t l = 0; l < L; ++l) {
-    if (loops[l].size() < 6 || loops[l].size() % 2) return lattice_mesh(loops, size, smoothing_passes);
+    if (loops[l].size() < 6 || loops[l].size() % 2)
+      return lattice_mesh(loops, size, smoothing_passes);
     for (const Vec2& q : loops[l]) {
       front[l].push_back(int(pts.size()));
       pts.push_back(q);
@@ -472,7 +473,8 @@ QuadMesh2d quad_mesh_2d(const std::vector<std::vector<Vec2>>& loops, double size
       // Not crossing itself, and at least a ring's width clear of every other loop's front.
       for (int i = 0; i < n && ok; ++i)
         for (int k = i + 2; k < n && ok; ++k)
-          if ((k + 1) % n != i) ok = !segments_cross(ring[i], ring[(i + 1) % n], ring[k], ring[(k + 1) % n]);
+          if ((k + 1) % n != i)
+            ok = !segments_cross(ring[i], ring[(i + 1) % n], ring[k], ring[(k + 1) % n]);
       for (std::size_t o = 0; o < L && ok; ++o) {
         if (o == l) continue;
         const std::vector<int>& g = front[o];
@@ -521,7 +523,8 @@ QuadMesh2d quad_mesh_2d(const std::vector<std::vector<Vec2>>& loops, double size
     out.points.push_back(core.points[k]);
   }
   out.quads = std::move(ring_quads);
-  for (const auto& q : core.quads) out.quads.push_back({index[q[0]], index[q[1]], index[q[2]], index[q[3]]});
+  for (const auto& q : core.quads)
+    out.quads.push_back({index[q[0]], index[q[1]], index[q[2]], index[q[3]]});
   // The first rings stay where they follow the loops; the outer rings relax into the rest.
   Smoother(out.points, out.quads, first_free).run(smoothing_passes);
   for (const auto& q : out.quads)

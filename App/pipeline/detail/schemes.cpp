@@ -221,8 +221,8 @@ class GridScheme : public Scheme {
 }  // namespace
 
 const std::vector<std::string>& scheme_names() {
-  static const std::vector<std::string> names = {"map",      "sweep", "multisweep", "revolve",
-                                                 "midpoint", "grid"};
+  static const std::vector<std::string> names = {"map",     "sweep",    "multisweep",
+                                                 "revolve", "midpoint", "grid"};
   return names;
 }
 

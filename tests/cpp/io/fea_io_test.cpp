@@ -231,8 +231,7 @@ TEST(QuadraticJacobian, StraightCubeIsConstantAndAFoldedEdgeIsNegative) {
   const int sign[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
                           {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
   for (int i = 0; i < 8; ++i) p[i] = core::Vec3(2 * sign[i][0], 2 * sign[i][1], 2 * sign[i][2]);
-  for (int e = 0; e < 12; ++e)
-    p[8 + e] = (p[core::kHexEdges[e][0]] + p[core::kHexEdges[e][1]]) / 2;
+  for (int e = 0; e < 12; ++e) p[8 + e] = (p[core::kHexEdges[e][0]] + p[core::kHexEdges[e][1]]) / 2;
   quality::QuadraticJacobian j = quality::quadratic_hex_jacobian(p);
   EXPECT_NEAR(j.min_det, 1.0, 1e-12);  // a cube of side 2 maps [-1, 1]^3 with det 1
   EXPECT_NEAR(j.max_det, 1.0, 1e-12);
@@ -260,7 +259,8 @@ TEST(SecondOrder, CylinderMidNodesLieOnTheCadAndEveryGaussPointIsPositive) {
       ++on_faces;
       const auto& hex = r.mesh.hex(core::HexId(static_cast<std::int32_t>(h)));
       const core::Vec3 chord = (r.mesh.point(core::NodeId(hex[core::kHexEdges[e][0]])) +
-                                r.mesh.point(core::NodeId(hex[core::kHexEdges[e][1]]))) / 2;
+                                r.mesh.point(core::NodeId(hex[core::kHexEdges[e][1]]))) /
+                               2;
       if ((r.mesh.point(m) - chord).norm() > 1e-6) ++off_chord;
     }
   EXPECT_GT(on_faces, 0u);

@@ -167,8 +167,10 @@ TEST(QuadMesh2d, RingsFollowARoundHole) {
   const auto [lo2, hi2] = radii(rings, second);
   EXPECT_GT(lo2, hi1);
   EXPECT_LT(hi2 - lo2, 0.1 * hi2);  // smoothed into the rest, still round
-  std::printf("[quad_mesh_2d] round hole with rings: %zu quads, mean quality %.3f, rings at "
-              "r = %.3f and %.3f-%.3f\n", rings.quads.size(), mean, lo1, lo2, hi2);
+  std::printf(
+      "[quad_mesh_2d] round hole with rings: %zu quads, mean quality %.3f, rings at "
+      "r = %.3f and %.3f-%.3f\n",
+      rings.quads.size(), mean, lo1, lo2, hi2);
 
   const auto lattice = detail::quad_mesh_2d(loops, 0.5, 30, 0);
   check_2d(loops, lattice, 0.3);

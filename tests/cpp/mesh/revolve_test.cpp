@@ -116,15 +116,15 @@ TEST(Revolve, SectionAndCoreOfAShaft) {
 // (Pappus, checked by the structure) and meshes valid.
 TEST(Revolve, SectionsFromTheFacesTraces) {
   const occ::Solid torus = occ::make_torus(10, 3, Vec3::Zero(), Vec3::UnitZ());
-  const occ::Solid hollow =
-      testing::cut(occ::make_torus(10, 3, Vec3::Zero(), Vec3::UnitZ()),
-                   occ::make_torus(10, 1.5, Vec3::Zero(), Vec3::UnitZ()));
+  const occ::Solid hollow = testing::cut(occ::make_torus(10, 3, Vec3::Zero(), Vec3::UnitZ()),
+                                         occ::make_torus(10, 1.5, Vec3::Zero(), Vec3::UnitZ()));
   const occ::Solid grooved =
       testing::cut(testing::cut(occ::make_cylinder(20, 10, Vec3::Zero(), Vec3::UnitZ()),
                                 occ::make_cylinder(8, 10, Vec3::Zero(), Vec3::UnitZ())),
                    occ::make_torus(20, 3, {0, 0, 5}, Vec3::UnitZ()));
-  for (const auto& [name, solid, loops] :
-       {std::tuple{"torus", &torus, 1}, {"hollow torus", &hollow, 2}, {"grooved ring", &grooved, 1}}) {
+  for (const auto& [name, solid, loops] : {std::tuple{"torus", &torus, 1},
+                                           {"hollow torus", &hollow, 2},
+                                           {"grooved ring", &grooved, 1}}) {
     SCOPED_TRACE(name);
     const core::MeshDomain& domain = *solid;
     const occ::RevolutionStructure s = occ::revolution_structure(domain);
