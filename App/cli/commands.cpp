@@ -18,7 +18,8 @@
 namespace vorohex::cli {
 
 const char* const kMeshUsage =
-    "usage: vorohex mesh IN -o OUT [--size H] [--report REPORT.json] [--max-hexes N]\n"
+    "usage: vorohex mesh IN -o OUT [--size H] [--size-at ENTITY=H ...] [--size-grading G]\n"
+    "                    [--report REPORT.json] [--max-hexes N]\n"
     "                    [--smooth-iterations N] [--smooth-passes N] [--no-smooth]\n"
     "                    [--no-decompose] [--decomposition-time-limit S] [--sharp-angle A]\n"
     "                    [--eps E] [--delta D] [--max-depth N] [--no-fallback]\n"
@@ -29,6 +30,10 @@ const char* const kMeshUsage =
     "  OUT   the hex mesh: .vtu (ParaView), .msh (Gmsh 4.1) or .inp (Abaqus/CalculiX), with\n"
     "        named groups per CAD face, edge and vertex (Face7, Edge3, Vertex1) in .inp/.msh\n"
     "  --size H        target edge length in model units (default: diagonal / 20)\n"
+    "  --size-at ENTITY[,ENTITY...]=H  a smaller size at CAD faces, edges or vertices\n"
+    "                  (Face7, Edge3, Vertex2: FreeCAD's names), graded into --size; repeatable\n"
+    "  --size-grading G  growth of the size per unit distance from a --size-at entity\n"
+    "                  (default 0.3: 1 mm away the size is 0.3 mm larger)\n"
     "  --order N       1: 8-node hexahedra (default); 2: 20-node, mid-edge nodes on the CAD\n"
     "  --element TYPE  .inp element: C3D8, C3D8I, C3D8R (order 1), C3D20, C3D20R (order 2);\n"
     "                  default C3D8I / C3D20R, replaced where known to fail (C3D8 on distorted\n"
@@ -77,17 +82,26 @@ struct UsageError : std::runtime_error {
 
 struct Args {
   std::vector<std::string> positional;
-  std::map<std::string, std::string> values;  // --name value
-  std::map<std::string, bool> flags;          // --name
+  std::map<std::string, std::string> values;                 // --name value
+  std::map<std::string, bool> flags;                         // --name
+  std::map<std::string, std::vector<std::string>> repeated;  // --name value, given any times
 };
 
 Args parse(const std::vector<std::string>& args, const std::vector<std::string>& value_options,
-           const std::vector<std::string>& flag_options) {
+           const std::vector<std::string>& flag_options,
+           const std::vector<std::string>& repeat_options = {}) {
   Args out;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     if (a.size() > 1 && a[0] == '-') {
       bool known = false;
+      for (const auto& r : repeat_options) {
+        if (a == r) {
+          if (i + 1 >= args.size()) throw UsageError("option " + a + " needs a value");
+          out.repeated[a].push_back(args[++i]);
+          known = true;
+        }
+      }
       for (const auto& v : value_options) {
         if (a == v) {
           if (i + 1 >= args.size()) throw UsageError("option " + a + " needs a value");
@@ -122,6 +136,29 @@ double parse_positive(const std::string& name, const std::string& text) {
   if (!std::isfinite(v) || v <= 0)
     throw UsageError(name + " must be a positive finite number, got '" + text + "'");
   return v;
+}
+
+// "Face7=0.5" or "Face7,Edge3=0.5": entity names (checked here for their form, against the
+// solid by the pipeline) and one size.
+std::vector<core::LocalSize> parse_size_at(const std::string& text) {
+  const std::size_t eq = text.rfind('=');
+  if (eq == std::string::npos)
+    throw UsageError("--size-at needs ENTITY=SIZE (e.g. Face7=0.5), got '" + text + "'");
+  const double size = parse_positive("--size-at " + text.substr(0, eq), text.substr(eq + 1));
+  std::vector<core::LocalSize> out;
+  const std::string names = text.substr(0, eq);
+  for (std::size_t start = 0; start <= names.size();) {
+    const std::size_t comma = std::min(names.find(',', start), names.size());
+    const std::string name = names.substr(start, comma - start);
+    char kind = 0;
+    int id = 0;
+    if (!core::parse_entity_name(name, kind, id))
+      throw UsageError("--size-at: '" + name +
+                       "' is not an entity name (expected FaceN, EdgeN or VertexN, as in FreeCAD)");
+    out.push_back({name, size});
+    start = comma + 1;
+  }
+  return out;
 }
 
 std::size_t parse_count(const std::string& name, const std::string& text) {
@@ -194,12 +231,14 @@ bool known_mesh_extension(const std::string& path) {
 }
 
 int mesh_command(const std::vector<std::string>& argv) {
-  const Args args = parse(
-      argv,
-      {"-o", "--output", "--size", "--report", "--max-hexes", "--smooth-iterations",
-       "--smooth-passes", "--time-limit", "--decomposition-time-limit", "--sharp-angle", "--eps",
-       "--delta", "--max-depth", "--schemes", "--fallback-scheme", "--order", "--element"},
-      {"--no-smooth", "--no-fallback", "--no-decompose", "--keep-invalid", "--quiet"});
+  const Args args =
+      parse(argv,
+            {"-o", "--output", "--size", "--report", "--max-hexes", "--smooth-iterations",
+             "--smooth-passes", "--time-limit", "--decomposition-time-limit", "--sharp-angle",
+             "--eps", "--delta", "--max-depth", "--schemes", "--fallback-scheme", "--order",
+             "--element", "--size-grading"},
+            {"--no-smooth", "--no-fallback", "--no-decompose", "--keep-invalid", "--quiet"},
+            {"--size-at"});
   if (args.positional.size() != 1)
     throw UsageError("expected exactly one input file, got " +
                      std::to_string(args.positional.size()));
@@ -213,6 +252,11 @@ int mesh_command(const std::vector<std::string>& argv) {
   pipeline::MeshOptions options;
   if (args.values.count("--size"))
     options.size = parse_positive("--size", args.values.at("--size"));
+  if (args.repeated.count("--size-at"))
+    for (const std::string& text : args.repeated.at("--size-at"))
+      for (core::LocalSize& l : parse_size_at(text)) options.local_sizes.push_back(std::move(l));
+  if (args.values.count("--size-grading"))
+    options.size_grading = parse_positive("--size-grading", args.values.at("--size-grading"));
   if (args.values.count("--max-hexes"))
     options.max_hexes = parse_count("--max-hexes", args.values.at("--max-hexes"));
   if (args.values.count("--smooth-iterations"))
@@ -299,6 +343,12 @@ int mesh_command(const std::vector<std::string>& argv) {
     std::cout << "mesh of " << args.positional[0] << " (scheme " << result.stats.scheme << ", size "
               << result.stats.size_used << ", intervals " << result.stats.intervals[0] << " x "
               << result.stats.intervals[1] << " x " << result.stats.intervals[2] << ")\n";
+    if (!result.stats.local_sizes.empty()) {
+      std::cout << "local sizes         ";
+      for (const core::LocalSize& l : result.stats.local_sizes)
+        std::cout << " " << l.entity << " " << l.size;
+      std::cout << " (grading " << options.size_grading << ")\n";
+    }
     std::cout << "before smoothing     min " << result.stats.min_sj_before_smoothing << "  mean "
               << result.stats.mean_sj_before_smoothing << "\n";
     print_check_report(std::cout, result.check);
@@ -354,6 +404,9 @@ int mesh_command(const std::vector<std::string>& argv) {
     j["ok"] = result.ok;
     j["scheme"] = result.stats.scheme;
     j["size"] = result.stats.size_used;
+    j["size_grading"] = options.size_grading;
+    j["local_sizes"] = nlohmann::json::object();
+    for (const core::LocalSize& l : result.stats.local_sizes) j["local_sizes"][l.entity] = l.size;
     j["intervals"] = result.stats.intervals;
     j["sub_volumes"] = result.stats.sub_volumes;
     j["order"] = options.order;

@@ -76,6 +76,9 @@ class MeshDomain {
   virtual double volume() const = 0;
   virtual double area(FaceId f) const = 0;
   virtual BoundingBox bounding_box() const = 0;
+  // A box holding the face or edge (not necessarily tight).
+  virtual BoundingBox face_bounding_box(FaceId f) const = 0;
+  virtual BoundingBox edge_bounding_box(EdgeId e) const = 0;
   double diagonal() const { return bounding_box().diagonal(); }
   // The largest vertex, edge or face tolerance: closer geometry counts as coincident.
   virtual double tolerance() const = 0;

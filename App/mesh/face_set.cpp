@@ -7,6 +7,7 @@
 
 #include "core/option_checks.h"
 #include "mesh/detail/grid_face.h"
+#include "mesh/detail/sizing.h"
 #include "mesh/interval_assignment.h"
 #include "mesh/quad_face.h"
 #include "mesh/submap_face.h"
@@ -80,7 +81,10 @@ bool whole_circle(const core::MeshDomain& s, EdgeId e) {
 IntervalProblem problem_for(const core::MeshDomain& s, const Plan& plan, const FaceSetOptions& o,
                             bool preferences) {
   IntervalProblem p;
-  for (EdgeId e : s.edges()) p.add_curve(std::max(s.edge_length(e), 1e-300), core::entity_name(e));
+  for (EdgeId e : s.edges())
+    p.add_curve(
+        std::max(s.edge_length(e), 1e-300), core::entity_name(e),
+        detail::graded(o.size_field) ? detail::edge_segments(s, e, o.size, o.size_field) : 0);
   p.fixed.assign(s.num_edges(), 0);
   for (EdgeId e : s.edges())
     if (e.value() < int(o.fixed_counts.size())) p.fixed[e.value() - 1] = o.fixed_counts[e.value()];
@@ -187,7 +191,8 @@ FaceSetMesh mesh_face_set(const core::MeshDomain& s, const FaceSetOptions& optio
     }
     out.edge_nodes.assign(ne + 1, {});
     for (EdgeId e : s.edges()) {
-      const std::vector<Vec3> p = s.edge_points_by_length(e, out.edge_counts[e.value()]);
+      const std::vector<Vec3> p =
+          detail::edge_points(s, e, out.edge_counts[e.value()], options.size_field);
       auto& ids = out.edge_nodes[e.value()];
       ids.push_back(vertex_node[s.edge_first_vertex(e).value()]);
       for (std::size_t i = 1; i + 1 < p.size(); ++i) {
@@ -229,6 +234,7 @@ FaceSetMesh mesh_face_set(const core::MeshDomain& s, const FaceSetOptions& optio
         QuadFaceOptions qo;
         qo.size = options.size;
         qo.smoothing_passes = options.smoothing_passes;
+        qo.size_field = options.size_field;
         m = quad_face(s, f, loops, qo);
         if (!m.ok) {
           out.diagnostics = m.diagnostics;

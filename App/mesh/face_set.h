@@ -16,6 +16,7 @@
 #include "core/hex_mesh.h"
 #include "core/mesh_domain.h"
 #include "core/progress.h"
+#include "core/size_field.h"
 
 namespace vorohex::mesh {
 
@@ -26,6 +27,9 @@ struct FaceSetOptions {
   double interval_time_limit = 20;  // seconds for the integer program (> 0)
   // Per edge id (entry 0 unused; 0 or missing: free): counts the edges must have.
   std::vector<int> fixed_counts;
+  // Local sizes (null or uniform: `size` everywhere): edge counts, edge nodes and quad
+  // faces follow them. Not owned.
+  const core::SizeField* size_field = nullptr;
   void validate() const;  // throws std::invalid_argument naming the bad field
 };
 

@@ -14,10 +14,19 @@
 
 namespace vorohex::mesh {
 
-int IntervalProblem::add_curve(double length, std::string name) {
+int IntervalProblem::add_curve(double length, std::string name, double target) {
   lengths.push_back(length);
   names.push_back(std::move(name));
+  if (target > 0 || !targets.empty()) {
+    targets.resize(lengths.size() - 1, 0.0);
+    targets.push_back(target);
+  }
   return int(lengths.size()) - 1;
+}
+
+double IntervalProblem::target(int c, double size) const {
+  if (c < int(targets.size()) && targets[c] > 0) return targets[c];
+  return lengths[c] / size;
 }
 
 void IntervalOptions::validate() const {
@@ -58,7 +67,7 @@ Solution solve(const IntervalProblem& p, const IntervalOptions& o, const Selecti
     row_ub.push_back(rhs);
   };
   for (int c = 0; c < nc; ++c) {
-    const double target = p.lengths[c] / o.size;
+    const double target = p.target(c, o.size);
     col_lb[c] = 1;
     col_ub[c] = o.max_intervals;
     if (c < int(p.fixed.size()) && p.fixed[c] > 0) col_lb[c] = col_ub[c] = p.fixed[c];
@@ -112,7 +121,7 @@ Solution solve(const IntervalProblem& p, const IntervalOptions& o, const Selecti
   s.intervals.resize(nc);
   for (int c = 0; c < nc; ++c) {
     s.intervals[c] = int(std::lround(x[c]));
-    const double target = p.lengths[c] / o.size;
+    const double target = p.target(c, o.size);
     s.deviation += std::abs(s.intervals[c] - target) / std::max(1.0, target);
   }
   return s;

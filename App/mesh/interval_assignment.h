@@ -1,6 +1,7 @@
 // Interval assignment (paper §5.1): the number of mesh segments on every curve of a set of
 // sub-volumes, chosen together so that their meshes conform. One integer program, solved by
-// COIN-OR CBC: integer counts n_c >= 1 close to length_c / size (weighted absolute
+// COIN-OR CBC: integer counts n_c >= 1 close to their targets, length_c / size or the
+// local size field's count along the curve (weighted absolute
 // deviation), subject to equal sums (opposite sides of mapped faces, the two sides of a
 // sweep's linking face, the layers of a sweep) and even sums (loops of faces meshed with
 // unstructured quads) and lower bounds on sums (a loop of quads has at least 4 segments).
@@ -40,8 +41,13 @@ struct IntervalProblem {
   // Per curve: a count it must have (0 or missing: free), e.g. a curve whose nodes a
   // neighbour has already placed.
   std::vector<int> fixed;
+  // Per curve: the count it should have (0 or missing: length / size); local sizes give
+  // the integral of ds / h along the curve (core::SizeField).
+  std::vector<double> targets;
 
-  int add_curve(double length, std::string name);  // its index
+  // Its index; target as in `targets`.
+  int add_curve(double length, std::string name, double target = 0);
+  double target(int curve, double size) const;
 };
 
 struct IntervalOptions {
@@ -56,7 +62,7 @@ enum class IntervalStatus { optimal, feasible, infeasible };
 struct IntervalResult {
   std::vector<int> intervals;  // per curve (empty unless ok())
   IntervalStatus status = IntervalStatus::infeasible;
-  double deviation = 0;  // objective: sum over curves of |n - length/size| / max(1, length/size)
+  double deviation = 0;  // objective: sum over curves of |n - target| / max(1, target)
   std::vector<core::Diagnostic> diagnostics;  // infeasible: error naming the constraints
   bool ok() const { return status != IntervalStatus::infeasible; }
 };

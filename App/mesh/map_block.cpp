@@ -1,6 +1,7 @@
 #include "mesh/map_block.h"
 
 #include "core/option_checks.h"
+#include "mesh/detail/sizing.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -199,9 +200,16 @@ Plan plan(const Solid& solid, const MapBlockOptions& options) {
     return p;
   }
   for (int d = 0; d < 3; ++d) {
-    double mean = 0;
+    double mean = 0, want = 0;
     for (const BlockEdge& e : p.block.edges[d]) mean += solid.edge_length(e.id) / 4;
-    double n = std::max(1.0, std::round(mean / options.size));
+    // With local sizes, the finest count any of the four parallel edges asks for.
+    if (detail::graded(options.size_field)) {
+      for (const BlockEdge& e : p.block.edges[d])
+        want = std::max(want, detail::edge_segments(solid, e.id, options.size, options.size_field));
+    } else {
+      want = mean / options.size;
+    }
+    double n = std::max(1.0, std::round(want));
     if (!options.edge_intervals.empty()) {
       std::vector<int> given;
       std::vector<std::string> names;
@@ -319,7 +327,7 @@ MapBlockResult map_block(const core::MeshDomain& solid, const MapBlockOptions& o
       const auto o = others(d);
       for (int m = 0; m < 4; ++m) {
         const BlockEdge& e = b.edges[d][m];
-        std::vector<Vec3> pts = solid.edge_points_by_length(e.id, n[d]);
+        std::vector<Vec3> pts = detail::edge_points(solid, e.id, n[d], options.size_field);
         if (!e.forward) std::reverse(pts.begin(), pts.end());
         const std::int64_t base =
             (m & 1) * n[o[0]] * stride[o[0]] + (m >> 1) * n[o[1]] * stride[o[1]];

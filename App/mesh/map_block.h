@@ -13,6 +13,7 @@
 #include "core/hex_mesh.h"
 #include "core/mesh_domain.h"
 #include "core/progress.h"
+#include "core/size_field.h"
 
 namespace vorohex::mesh {
 
@@ -22,6 +23,9 @@ struct MapBlockOptions {
   // Given intervals per edge id (entry 0 unused), e.g. from assign_intervals, instead of
   // the size: the four parallel edges of each direction must agree (else an error).
   std::vector<int> edge_intervals;
+  // Local sizes (null or uniform: `size` everywhere): each direction takes the finest count
+  // its four edges ask for, and the edge nodes follow the field. Not owned.
+  const core::SizeField* size_field = nullptr;
   void validate() const;  // throws std::invalid_argument naming the bad field
 };
 

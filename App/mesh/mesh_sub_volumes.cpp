@@ -10,6 +10,7 @@
 
 #include "core/option_checks.h"
 #include "mesh/assemble.h"
+#include "mesh/detail/sizing.h"
 #include "mesh/interval_assignment.h"
 #include "mesh/map_block.h"
 #include "mesh/submap_face.h"
@@ -54,17 +55,20 @@ struct Curves {
   std::map<int, int> of_edge;  // pieces edge id -> curve
 };
 
-int curve(Curves& c, const occ::Solid& pieces, int whole_edge) {
+int curve(Curves& c, const occ::Solid& pieces, int whole_edge, const SubVolumeMeshOptions& o) {
   const auto it = c.of_edge.find(whole_edge);
   if (it != c.of_edge.end()) return it->second;
   const EdgeId e(whole_edge);
-  const int k = c.problem.add_curve(pieces.edge_length(e), core::entity_name(e));
+  const int k = c.problem.add_curve(
+      pieces.edge_length(e), core::entity_name(e),
+      detail::graded(o.size_field) ? detail::edge_segments(pieces, e, o.size, o.size_field) : 0);
   c.of_edge.emplace(whole_edge, k);
   return k;
 }
 
-void add_constraints(Curves& c, const occ::Solid& pieces, const Part& part, int k) {
-  auto cv = [&](EdgeId e) { return curve(c, pieces, part.whole_edge[e.value()]); };
+void add_constraints(Curves& c, const occ::Solid& pieces, const Part& part, int k,
+                     const SubVolumeMeshOptions& o) {
+  auto cv = [&](EdgeId e) { return curve(c, pieces, part.whole_edge[e.value()], o); };
   const std::string who = sub_volume_name(k);
   if (part.is_block()) {
     static const char* axis[3] = {"first", "second", "third"};
@@ -138,6 +142,7 @@ PartMesh mesh_part(const Part& part, const std::vector<int>& counts,
     o.size = options.size;
     o.max_intervals = options.max_intervals;
     o.edge_intervals = counts;
+    o.size_field = options.size_field;
     MapBlockResult r = map_block(part.solid, o, progress);
     out.ok = r.ok;
     out.mesh = std::move(r.mesh);
@@ -149,6 +154,7 @@ PartMesh mesh_part(const Part& part, const std::vector<int>& counts,
     o.smoothing_passes = options.smoothing_passes;
     o.edge_intervals = counts;
     o.avoid_sources = part.shared_faces;
+    o.size_field = options.size_field;
     SweepResult r = sweep(part.solid, o, progress);
     out.ok = r.ok;
     out.mesh = std::move(r.mesh);
@@ -206,7 +212,7 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
   // One interval assignment for all of them.
   const auto t0 = std::chrono::steady_clock::now();
   Curves curves;
-  for (int k = 0; k < n; ++k) add_constraints(curves, pieces, parts[k], k);
+  for (int k = 0; k < n; ++k) add_constraints(curves, pieces, parts[k], k, options);
   result.stats.curves = int(curves.problem.lengths.size());
   result.stats.constraints = int(curves.problem.equal.size() + curves.problem.even.size() +
                                  curves.problem.at_least.size());
@@ -240,6 +246,7 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
       o.size = options.size;
       o.smoothing_passes = 0;
       o.edge_intervals = counts[k];
+      o.size_field = options.size_field;
       predicted += sweep_evaluate(p.solid, o).hexes;
     }
   }

@@ -14,6 +14,7 @@
 #include "core/diagnostic.h"
 #include "core/hex_mesh.h"
 #include "core/progress.h"
+#include "core/size_field.h"
 #include "occ/solid.h"
 
 namespace vorohex::mesh {
@@ -25,7 +26,10 @@ struct SubVolumeMeshOptions {
   double interval_time_limit = 20;   // seconds for the integer program (> 0)
   std::size_t max_hexes = 50000000;  // more is refused before meshing (>= 1)
   int threads = 0;                   // sub-volumes meshed at once (0: the machine's cores)
-  void validate() const;             // throws std::invalid_argument naming the bad field
+  // Local sizes (null or uniform: `size` everywhere): the interval assignment's targets and
+  // every piece's edge nodes and sweep sources follow them. Not owned.
+  const core::SizeField* size_field = nullptr;
+  void validate() const;  // throws std::invalid_argument naming the bad field
 };
 
 struct SubVolumeMeshStats {

@@ -10,6 +10,7 @@
 
 #include "core/option_checks.h"
 #include "mesh/detail/cad_lookup.h"
+#include "mesh/detail/sizing.h"
 #include "mesh/face_set.h"
 #include "occ/prismatic.h"
 
@@ -53,6 +54,17 @@ Plan plan(const core::MeshDomain& solid, const MultisweepOptions& options,
   fo.size = options.size;
   fo.max_intervals = options.max_intervals;
   fo.smoothing_passes = options.smoothing_passes;
+  // Local sizes: the cross-section refines wherever any slab (its levels and middles) asks.
+  core::SizeField section_field;
+  if (detail::graded(options.size_field)) {
+    std::vector<double> heights;
+    for (std::size_t l = 0; l < s.levels.size(); ++l) {
+      heights.push_back(s.levels[l]);
+      if (l + 1 < s.levels.size()) heights.push_back(0.5 * (s.levels[l] + s.levels[l + 1]));
+    }
+    section_field = options.size_field->extruded(s.origin, s.axis, heights);
+    fo.size_field = &section_field;
+  }
   p.regions = mesh_face_set(*s.arrangement, fo, progress);
   if (!p.regions.ok) {
     p.diagnostics = p.regions.diagnostics;
@@ -63,7 +75,18 @@ Plan plan(const core::MeshDomain& solid, const MultisweepOptions& options,
   p.level_z.push_back(0);
   for (std::size_t l = 0; l < slabs; ++l) {
     const double t = s.levels[l + 1] - s.levels[l];
-    const double k = std::max(1.0, std::round(t / options.size));
+    // With local sizes: the finest column over the section's vertices sets the layers and
+    // their spacing (one set of heights per slab).
+    double want = t / options.size;
+    Vec3 column = s.origin;
+    if (detail::graded(options.size_field))
+      for (core::VertexId v : s.arrangement->vertices()) {
+        const Vec3 b = s.arrangement->vertex_point(v);
+        const Vec3 lo = b + (s.levels[l] - s.height(b)) * s.axis, hi = lo + t * s.axis;
+        const double n = options.size_field->segments_along({lo, lo + 0.5 * (hi - lo), hi});
+        if (n > want) want = n, column = lo;
+      }
+    const double k = std::max(1.0, std::round(want));
     if (k > options.max_intervals) {
       std::ostringstream m;
       m << "A slab " << t << " thick at size " << options.size << " needs " << k
@@ -72,8 +95,10 @@ Plan plan(const core::MeshDomain& solid, const MultisweepOptions& options,
       return p;
     }
     p.layers.push_back(int(k));
+    const std::vector<double> w =
+        detail::graded_parameters(column, column + t * s.axis, int(k), options.size_field);
     for (int i = 1; i <= int(k); ++i)
-      p.heights.push_back(i == int(k) ? s.levels[l + 1] : s.levels[l] + t * i / k);
+      p.heights.push_back(i == int(k) ? s.levels[l + 1] : s.levels[l] + t * w[i]);
     p.level_z.push_back(int(p.heights.size()) - 1);
   }
   p.ok = true;

@@ -17,6 +17,7 @@
 #include "core/hex_mesh.h"
 #include "core/mesh_domain.h"
 #include "core/progress.h"
+#include "core/size_field.h"
 
 namespace vorohex::mesh {
 
@@ -24,7 +25,10 @@ struct MultisweepOptions {
   double size = 1.0;           // target edge length, model units (> 0)
   int max_intervals = 100000;  // per edge and per slab (> 0)
   int smoothing_passes = 30;   // of regions meshed by the general quad mesher (>= 0)
-  void validate() const;       // throws std::invalid_argument naming the bad field
+  // Local sizes (null or uniform: `size` everywhere): the cross-section is graded where any
+  // slab asks, each slab's layers follow its finest column. Not owned.
+  const core::SizeField* size_field = nullptr;
+  void validate() const;  // throws std::invalid_argument naming the bad field
 };
 
 struct MultisweepApplicability {

@@ -8,6 +8,7 @@
 
 #include "core/option_checks.h"
 #include "mesh/detail/quad_mesh_2d.h"
+#include "mesh/detail/sizing.h"
 
 namespace vorohex::mesh {
 
@@ -111,8 +112,13 @@ QuadFaceMesh planar_quad_face(const core::MeshDomain& solid, core::FaceId face,
     l = std::move(canonical);
     start += m;
   }
-  const detail::QuadMesh2d m =
-      detail::quad_mesh_2d(loops2, options.size, options.smoothing_passes, options.ring_layers);
+  detail::SizeAt size_at;
+  if (detail::graded(options.size_field))
+    size_at = [&](const Vec2& q) {
+      return options.size_field->at(offset * n + q.x() * u + q.y() * v);
+    };
+  const detail::QuadMesh2d m = detail::quad_mesh_2d(loops2, options.size, options.smoothing_passes,
+                                                    options.ring_layers, size_at);
   if (!m.error.empty()) {
     out.diagnostics.push_back(core::make_error(
         "quad_face_failed", "Quad meshing of " + name + " failed: " + m.error + ".", {name}));
@@ -167,8 +173,13 @@ QuadFaceMesh quad_face(const core::MeshDomain& solid, core::FaceId face,
     if (mirror)
       for (auto& l : loops2)
         for (Vec2& p : l) p.x() = -p.x();
-    const detail::QuadMesh2d m =
-        detail::quad_mesh_2d(loops2, options.size, options.smoothing_passes, options.ring_layers);
+    detail::SizeAt size_at;
+    if (detail::graded(options.size_field))
+      size_at = [&](const Vec2& q) {
+        return options.size_field->at(chart.to_surface(mirror ? Vec2(-q.x(), q.y()) : q));
+      };
+    const detail::QuadMesh2d m = detail::quad_mesh_2d(
+        loops2, options.size, options.smoothing_passes, options.ring_layers, size_at);
     if (!m.error.empty()) return fail(m.error);
 
     for (const auto& loop : loops) out.points.insert(out.points.end(), loop.begin(), loop.end());

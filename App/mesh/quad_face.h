@@ -12,6 +12,7 @@
 #include "core/geometry.h"
 #include "core/ids.h"
 #include "core/mesh_domain.h"
+#include "core/size_field.h"
 
 namespace vorohex::mesh {
 
@@ -21,6 +22,8 @@ struct QuadFaceOptions {
   // Rings of quads laid along each loop without sharp corners (round holes) before the rest
   // is meshed, at most this many (>= 0; 0: none, the lattice reaches the loops).
   int ring_layers = 3;
+  // Local sizes (model coordinates; null or uniform: `size` everywhere). Not owned.
+  const core::SizeField* size_field = nullptr;
   void validate() const;  // throws std::invalid_argument naming the bad field
 };
 

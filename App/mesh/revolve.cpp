@@ -9,6 +9,7 @@
 
 #include "core/option_checks.h"
 #include "mesh/detail/cad_lookup.h"
+#include "mesh/detail/sizing.h"
 #include "mesh/face_set.h"
 #include "occ/revolution.h"
 
@@ -120,12 +121,23 @@ Plan plan(const core::MeshDomain& solid, const RevolveOptions& options,
   fo.size = options.size;
   fo.max_intervals = options.max_intervals;
   fo.smoothing_passes = options.smoothing_passes;
+  // Local sizes: the section refines wherever the field asks at any of 16 turns about the axis.
+  core::SizeField section_field;
+  if (detail::graded(options.size_field)) {
+    section_field = options.size_field->revolved(s.origin, s.axis, 16);
+    fo.size_field = &section_field;
+  }
   p.section = mesh_face_set(*s.section, fo, progress);
   if (!p.section.ok) {
     p.diagnostics = p.section.diagnostics;
     return p;
   }
-  const double quarter = std::ceil(2 * kPi * s.max_radius / (4 * options.size));
+  // Sectors: one count for the whole turn, the finest any section node asks for.
+  double turn = 2 * kPi * s.max_radius / options.size;
+  if (detail::graded(options.size_field))
+    for (const Vec3& q : p.section.points)
+      turn = std::max(turn, 2 * kPi * s.radius(q) / section_field.at(q));
+  const double quarter = std::ceil(turn / 4);
   if (4 * quarter > options.max_intervals) {
     std::ostringstream m;
     m << "A full turn of radius " << s.max_radius << " at size " << options.size << " needs "
@@ -145,7 +157,11 @@ Plan plan(const core::MeshDomain& solid, const RevolveOptions& options,
   if (!s.cores.empty()) {
     const double rc = s.core_radius;
     const double ratio = 0.55;
-    const int layers = std::max(1, int(std::lround((1 - ratio) * rc / options.size)));
+    double core_size = options.size;
+    if (detail::graded(options.size_field))
+      for (const occ::RevolutionCore& c : s.cores)
+        core_size = std::min(core_size, section_field.at(s.origin + 0.5 * (c.z0 + c.z1) * s.axis));
+    const int layers = std::max(1, int(std::lround((1 - ratio) * rc / core_size)));
     p.disc = o_grid_disc(m, layers, ratio);
     for (const occ::RevolutionCore& c : s.cores) {
       std::vector<std::pair<double, int>> side;

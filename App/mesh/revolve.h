@@ -12,6 +12,7 @@
 #include "core/diagnostic.h"
 #include "core/hex_mesh.h"
 #include "core/progress.h"
+#include "core/size_field.h"
 #include "occ/solid.h"
 
 namespace vorohex::mesh {
@@ -20,7 +21,10 @@ struct RevolveOptions {
   double size = 1.0;           // target edge length, model units (> 0)
   int max_intervals = 100000;  // per edge and for the sectors (> 0)
   int smoothing_passes = 30;   // of section faces meshed by the general quad mesher (>= 0)
-  void validate() const;       // throws std::invalid_argument naming the bad field
+  // Local sizes (null or uniform: `size` everywhere): the section is graded where the field
+  // asks at any angle; the sectors take the finest count any section node asks for. Not owned.
+  const core::SizeField* size_field = nullptr;
+  void validate() const;  // throws std::invalid_argument naming the bad field
 };
 
 struct RevolveApplicability {

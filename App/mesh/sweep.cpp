@@ -15,6 +15,7 @@
 
 #include "mesh/detail/grid_face.h"
 #include "mesh/detail/quad_quality.h"
+#include "mesh/detail/sizing.h"
 #include "mesh/interval_assignment.h"
 #include "mesh/quad_face.h"
 #include "mesh/submap_face.h"
@@ -194,8 +195,9 @@ std::string choose(const Solid& s, Topology& best, const std::vector<int>& avoid
   return "no two faces are joined by four-sided linking faces (" + first_reason + ")";
 }
 
-std::vector<Vec3> read_edge(const Solid& s, const Directed& d, int n) {
-  auto pts = s.edge_points_by_length(d.edge, n);
+std::vector<Vec3> read_edge(const Solid& s, const Directed& d, int n,
+                            const core::SizeField* field) {
+  auto pts = detail::edge_points(s, d.edge, n, field);
   if (!d.forward) std::reverse(pts.begin(), pts.end());
   return pts;
 }
@@ -221,6 +223,7 @@ bool mesh_source_unstructured(const Solid& solid, const SweepOptions& options, P
   QuadFaceOptions qo;
   qo.size = options.size;
   qo.smoothing_passes = options.smoothing_passes;
+  qo.size_field = options.size_field;
   p.source_mesh = quad_face(solid, p.topo.source, p.source_loops, qo);
   if (!p.source_mesh.ok) p.diagnostics = p.source_mesh.diagnostics;
   return p.source_mesh.ok;
@@ -291,7 +294,7 @@ Plan plan_given(const Solid& solid, const SweepOptions& options, Plan p) {
     p.counts.push_back(counts);
     std::vector<Vec3> nodes;
     for (std::size_t e = 0; e < loop.size(); ++e) {
-      auto pts = read_edge(solid, loop[e].source, counts[e]);
+      auto pts = read_edge(solid, loop[e].source, counts[e], options.size_field);
       nodes.insert(nodes.end(), pts.begin(), pts.end() - 1);
     }
     p.source_loops.push_back(std::move(nodes));
@@ -330,7 +333,16 @@ Plan plan(const Solid& solid, const SweepOptions& options) {
       return p;
     };
     if (!options.edge_intervals.empty()) return plan_given(solid, options, std::move(p));
-    const double k = std::max(1.0, std::round(t.link_length / options.size));
+    // Layers: with local sizes, the finest count a linking edge asks for (a sweep has one
+    // layer count for all).
+    double layer_target = t.link_length / options.size;
+    if (detail::graded(options.size_field))
+      for (const auto& loop : t.loops)
+        for (const Link& l : loop)
+          layer_target =
+              std::max(layer_target,
+                       detail::edge_segments(solid, l.col0.edge, options.size, options.size_field));
+    const double k = std::max(1.0, std::round(layer_target));
     if (k > options.max_intervals) return too_many(t.link_length, k, {});
     p.layers = int(k);
     // A submappable source (an L, a T, a stepped outline): counts from one interval
@@ -341,7 +353,9 @@ Plan plan(const Solid& solid, const SweepOptions& options) {
         IntervalProblem ip;
         std::vector<int> curves;
         for (const Link& l : t.loops[0])
-          curves.push_back(ip.add_curve(solid.edge_length(l.source.edge), name(l.source.edge)));
+          curves.push_back(ip.add_curve(
+              solid.edge_length(l.source.edge), name(l.source.edge),
+              detail::edge_segments(solid, l.source.edge, options.size, options.size_field)));
         add_submap_balance(ip, dirs, curves, name(t.source));
         IntervalOptions io;
         io.size = options.size;
@@ -350,7 +364,8 @@ Plan plan(const Solid& solid, const SweepOptions& options) {
         if (assigned.ok()) {
           std::vector<Vec3> nodes;
           for (std::size_t e = 0; e < t.loops[0].size(); ++e) {
-            auto pts = read_edge(solid, t.loops[0][e].source, assigned.intervals[e]);
+            auto pts =
+                read_edge(solid, t.loops[0][e].source, assigned.intervals[e], options.size_field);
             nodes.insert(nodes.end(), pts.begin(), pts.end() - 1);
           }
           QuadFaceMesh lattice = submap_face(solid, t.source, nodes, assigned.intervals, dirs);
@@ -372,13 +387,15 @@ Plan plan(const Solid& solid, const SweepOptions& options) {
       int total = 0;
       for (const Link& l : loop) {
         const double len = solid.edge_length(l.source.edge);
-        double n = std::max(1.0, std::round(len / options.size));
+        const double want =
+            detail::edge_segments(solid, l.source.edge, options.size, options.size_field);
+        double n = std::max(1.0, std::round(want));
         n += std::fmod(n, 2.0);
         // A whole circle (a round hole): a multiple of 4, at least 8, so that its quadrant
         // points are nodes and the rings around it are symmetric.
         if (solid.edge_first_vertex(l.source.edge) == solid.edge_last_vertex(l.source.edge) &&
             solid.curve_info(l.source.edge).kind == core::CurveKind::circle)
-          n = std::max(8.0, 4 * std::ceil(len / options.size / 4));
+          n = std::max(8.0, 4 * std::ceil(want / 4));
         if (n > options.max_intervals) return too_many(len, n, {name(l.source.edge)});
         counts.push_back(int(n));
         lengths.push_back(len);
@@ -395,7 +412,7 @@ Plan plan(const Solid& solid, const SweepOptions& options) {
       p.counts.push_back(counts);
       std::vector<Vec3> nodes;
       for (std::size_t e = 0; e < loop.size(); ++e) {
-        auto pts = solid.edge_points_by_length(loop[e].source.edge, counts[e]);
+        auto pts = detail::edge_points(solid, loop[e].source.edge, counts[e], options.size_field);
         if (!loop[e].source.forward) std::reverse(pts.begin(), pts.end());
         nodes.insert(nodes.end(), pts.begin(), pts.end() - 1);
       }
@@ -556,8 +573,10 @@ SweepResult sweep(const core::MeshDomain& solid, const SweepOptions& options,
       for (std::size_t e = 0; e < t.loops[l].size(); ++e) {
         const Link& link = t.loops[l][e];
         const int n = p.counts[l][e];
-        const auto rs = read_edge(solid, link.source, n), rt = read_edge(solid, link.target, n);
-        const auto c0 = read_edge(solid, link.col0, K), c1 = read_edge(solid, link.col1, K);
+        const core::SizeField* f = options.size_field;
+        const auto rs = read_edge(solid, link.source, n, f),
+                   rt = read_edge(solid, link.target, n, f);
+        const auto c0 = read_edge(solid, link.col0, K, f), c1 = read_edge(solid, link.col1, K, f);
         const bool curved = !solid.face_is_planar(link.face);
         for (int m = 0; m < n; ++m) {
           const double s = double(m) / n;

@@ -15,6 +15,7 @@
 #include "core/hex_mesh.h"
 #include "core/mesh_domain.h"
 #include "core/progress.h"
+#include "core/size_field.h"
 
 namespace vorohex::mesh {
 
@@ -32,6 +33,9 @@ struct SweepOptions {
   // Face ids not to take as the source while another source/target pair exists (as for
   // sweep_structure, so that both choose the same pair).
   std::vector<int> avoid_sources;
+  // Local sizes (null or uniform: `size` everywhere): edge counts and node spacing follow
+  // them, and the layers take the finest count any linking edge asks for. Not owned.
+  const core::SizeField* size_field = nullptr;
   void validate() const;  // throws std::invalid_argument naming the bad field
 };
 

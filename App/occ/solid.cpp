@@ -268,9 +268,8 @@ double Solid::area(FaceId f) const {
   return props.Mass();
 }
 
-BoundingBox Solid::bounding_box() const {
-  Bnd_Box box;
-  BRepBndLib::AddOptimal(impl_->solid, box, false, false);
+namespace {
+BoundingBox to_box(const Bnd_Box& box) {
   BoundingBox b;
   if (box.IsVoid()) return b;
   double x0, y0, z0, x1, y1, z1;
@@ -278,6 +277,23 @@ BoundingBox Solid::bounding_box() const {
   b.min = Vec3(x0, y0, z0);
   b.max = Vec3(x1, y1, z1);
   return b;
+}
+}  // namespace
+
+BoundingBox Solid::bounding_box() const {
+  Bnd_Box box;
+  BRepBndLib::AddOptimal(impl_->solid, box, false, false);
+  return to_box(box);
+}
+
+BoundingBox Solid::face_bounding_box(FaceId f) const {
+  check_id(f.value(), num_faces(), "face");
+  return to_box(impl_->face(f.value()).box);
+}
+
+BoundingBox Solid::edge_bounding_box(EdgeId e) const {
+  check_id(e.value(), num_edges(), "edge");
+  return to_box(impl_->edge(e.value()).box);
 }
 
 bool Solid::face_is_planar(FaceId f) const {

@@ -53,6 +53,8 @@ class Solid : public core::MeshDomain {
   double volume() const override;
   double area(FaceId f) const override;
   BoundingBox bounding_box() const override;  // tight (optimal) box
+  BoundingBox face_bounding_box(FaceId f) const override;
+  BoundingBox edge_bounding_box(EdgeId e) const override;
   bool face_is_planar(FaceId f) const override;
 
   Vec3 vertex_point(VertexId v) const override;

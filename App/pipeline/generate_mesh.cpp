@@ -33,23 +33,31 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 // absorbs them yet (that needs the virtual topology's composite entities), so the mesh
 // keeps them as entities of their own and its elements there are small and poor. Said
 // before meshing, naming them, with what the user can do.
-std::vector<core::Diagnostic> small_features(const occ::Solid& solid, double size) {
-  const double limit = 0.25 * size;
+// With local sizes, each entity is compared with the size where it is.
+std::vector<core::Diagnostic> small_features(const occ::Solid& solid,
+                                             const core::SizeField& sizes) {
+  const double size = sizes.global();
   std::vector<std::pair<double, std::string>> edges, faces;
   std::vector<double> length(solid.num_edges() + 1, 0.0);  // by edge id; 0 when degenerated
+  std::vector<double> local(solid.num_edges() + 1, size);  // by edge id: the size at its middle
   for (core::EdgeId e : solid.edges()) {
     if (solid.edge_is_degenerated(e)) continue;
     length[e.value()] = solid.edge_length(e);
-    if (length[e.value()] < limit) edges.emplace_back(length[e.value()], core::entity_name(e));
+    if (!sizes.uniform()) local[e.value()] = sizes.at(solid.edge_points_by_length(e, 2)[1]);
+    if (length[e.value()] < 0.25 * local[e.value()])
+      edges.emplace_back(length[e.value()], core::entity_name(e));
   }
   for (core::FaceId f : solid.faces()) {
-    double perimeter = 0;
+    double perimeter = 0, at = size;
     for (const auto& wire : solid.face_wires(f))
-      for (const occ::OrientedEdge& oe : wire) perimeter += length[oe.edge.value()];
+      for (const occ::OrientedEdge& oe : wire) {
+        perimeter += length[oe.edge.value()];
+        at = std::min(at, local[oe.edge.value()]);
+      }
     // Width of a strip of that area and perimeter (a rectangle a x b: ab / (a + b), about b
     // for b << a; a disc: its radius).
     const double width = perimeter > 0 ? 2 * solid.area(f) / perimeter : 0;
-    if (width < limit) faces.emplace_back(width, core::entity_name(f));
+    if (width < 0.25 * at) faces.emplace_back(width, core::entity_name(f));
   }
   std::vector<core::Diagnostic> out;
   auto say = [&](std::vector<std::pair<double, std::string>>& list, const char* code,
@@ -57,7 +65,9 @@ std::vector<core::Diagnostic> small_features(const occ::Solid& solid, double siz
     if (list.empty()) return;
     std::sort(list.begin(), list.end());
     std::ostringstream s;
-    s << list.size() << " " << what << " " << measure << " a quarter of the size " << size << " (";
+    s << list.size() << " " << what << " " << measure << " a quarter of the size "
+      << (sizes.uniform() ? "" : "where they are (global size ") << size
+      << (sizes.uniform() ? "" : ")") << " (";
     std::vector<std::string> names;
     for (std::size_t i = 0; i < list.size(); ++i) {
       if (i < 5) s << (i ? ", " : "") << list[i].second << " " << list[i].first;
@@ -147,6 +157,13 @@ void finish(MeshResult& result, const occ::Solid& solid, const MeshOptions& opti
 // Seconds the tetrahedral fallback may take when the grid mesher's mesh was invalid.
 constexpr double kSecondChanceSeconds = 60;
 
+core::Diagnostic local_sizes_ignored(const std::string& scheme) {
+  return core::make_warning("local_sizes_ignored",
+                            "The " + scheme +
+                                " scheme meshes at the global size: the local sizes are not "
+                                "applied to this solid.");
+}
+
 bool has_diagnostic(const std::vector<core::Diagnostic>& ds, const std::string& code) {
   for (const core::Diagnostic& d : ds)
     if (d.code == code) return true;
@@ -223,6 +240,24 @@ void MeshOptions::validate() const {
   if (fallback_scheme != "grid" && fallback_scheme != "tet-split")
     throw std::invalid_argument("fallback_scheme must be \"grid\" or \"tet-split\", got \"" +
                                 fallback_scheme + "\"");
+  if (!std::isfinite(size_grading) || size_grading <= 0 || size_grading > 10) {
+    std::ostringstream s;
+    s << "size_grading must be in (0, 10] (growth of the size per unit distance), got "
+      << size_grading;
+    throw std::invalid_argument(s.str());
+  }
+  for (const core::LocalSize& l : local_sizes) {
+    char kind = 0;
+    int id = 0;
+    if (!core::parse_entity_name(l.entity, kind, id))
+      throw std::invalid_argument("local size: '" + l.entity +
+                                  "' is not an entity name (expected FaceN, EdgeN or VertexN)");
+    if (!std::isfinite(l.size) || l.size <= 0) {
+      std::ostringstream s;
+      s << "local size of " << l.entity << " must be a positive length, got " << l.size;
+      throw std::invalid_argument(s.str());
+    }
+  }
   if (order != 1 && order != 2)
     throw std::invalid_argument("order must be 1 (8-node hexahedra) or 2 (20-node), got " +
                                 std::to_string(order));
@@ -284,8 +319,9 @@ std::string joined_schemes(const std::vector<std::string>& schemes) {
 // meshed into one conforming mesh, which is put back onto the solid's own topology. True
 // when result.mesh holds it; else false with `why_not` (a sentence fragment), or a
 // `cancelled` error when the user stopped it.
-bool mesh_decomposed(const occ::Solid& solid, const MeshOptions& options, double size,
-                     const core::Progress& progress, MeshResult& result, std::string& why_not) {
+bool mesh_decomposed(const occ::Solid& solid, const MeshOptions& options,
+                     const core::SizeField& sizes, const core::Progress& progress,
+                     MeshResult& result, std::string& why_not) {
   const auto t0 = std::chrono::steady_clock::now();
   const detail::IsolatedDecomposition d = detail::decompose_isolated(solid, options, progress);
   if (d.cancelled) {
@@ -297,7 +333,8 @@ bool mesh_decomposed(const occ::Solid& solid, const MeshOptions& options, double
     return false;
   }
   mesh::SubVolumeMeshOptions o;
-  o.size = size;
+  o.size = sizes.global();
+  o.size_field = &sizes;
   o.max_hexes = options.max_hexes;
   mesh::SubVolumeMeshResult m = mesh::mesh_sub_volumes(*d.pieces, o, progress);
   const int n = d.pieces->num_solids();
@@ -362,9 +399,10 @@ bool mesh_decomposed(const occ::Solid& solid, const MeshOptions& options, double
 
 // Meshes one solid with the first scheme that applies, without smoothing or checking:
 // true when result.mesh holds its mesh (else result.diagnostics say why not).
-bool mesh_solid(const occ::Solid& solid, const MeshOptions& options, double size,
+bool mesh_solid(const occ::Solid& solid, const MeshOptions& options, const core::SizeField& sizes,
                 const core::Progress& progress, MeshResult& result) {
   const auto t0 = std::chrono::steady_clock::now();
+  const double size = sizes.global();
   result.stats.size_used = size;
 
   progress.report("scheme", 0.0);
@@ -382,7 +420,7 @@ bool mesh_solid(const occ::Solid& solid, const MeshOptions& options, double size
       add_reason(check.reason);
       continue;
     }
-    const detail::SchemeEstimate estimate = scheme->evaluate(solid, size);
+    const detail::SchemeEstimate estimate = scheme->evaluate(solid, sizes);
     if (estimate.hexes > options.max_hexes) {
       std::ostringstream s;
       s << "The mesh would have " << estimate.hexes
@@ -391,7 +429,7 @@ bool mesh_solid(const occ::Solid& solid, const MeshOptions& options, double size
       result.diagnostics.push_back(core::make_error("too_many_hexes", s.str()));
       return false;
     }
-    detail::SchemeMesh meshed = scheme->compute(solid, size, progress);
+    detail::SchemeMesh meshed = scheme->compute(solid, sizes, progress);
     result.stats.seconds_meshing = seconds_since(t0);
     if (meshed.ok) {
       append(result.diagnostics, meshed.diagnostics);
@@ -399,6 +437,8 @@ bool mesh_solid(const occ::Solid& solid, const MeshOptions& options, double size
       result.stats.scheme = scheme->name();
       result.mesh = std::move(meshed.mesh);
       if (!meshed.summary.code.empty()) result.diagnostics.push_back(meshed.summary);
+      if (!sizes.uniform() && !scheme->grades())
+        result.diagnostics.push_back(local_sizes_ignored(scheme->name()));
       return true;
     }
     if (progress.cancelled()) {
@@ -424,7 +464,7 @@ bool mesh_solid(const occ::Solid& solid, const MeshOptions& options, double size
   why_not_structured += ".";
   std::string not_decomposed = "decomposition is off";
   if (options.decompose) {
-    if (mesh_decomposed(solid, options, size, progress, result, not_decomposed)) return true;
+    if (mesh_decomposed(solid, options, sizes, progress, result, not_decomposed)) return true;
     if (progress.cancelled() || core::has_error(result.diagnostics)) return false;
   }
   if (!options.fallback) {
@@ -434,6 +474,7 @@ bool mesh_solid(const occ::Solid& solid, const MeshOptions& options, double size
     return false;
   }
   result.stats.intervals = {0, 0, 0};
+  if (!sizes.uniform()) result.diagnostics.push_back(local_sizes_ignored(options.fallback_scheme));
   return fallback(
       solid, options, size,
       "No structured scheme applies (" + why_not_structured + ") and " + not_decomposed + ".",
@@ -443,8 +484,9 @@ bool mesh_solid(const occ::Solid& solid, const MeshOptions& options, double size
 // Several solids glued at common faces: each meshed with the same size, joined into one
 // mesh (nodes on shared faces merged where the meshes coincide), then smoothed and checked
 // as a whole, so nodes on a shared face stay on it and the check sees the interfaces.
-MeshResult generate_parts(const occ::Solid& whole, const MeshOptions& options, double size,
-                          const core::Progress& progress) {
+MeshResult generate_parts(const occ::Solid& whole, const MeshOptions& options,
+                          const core::SizeField& sizes, const core::Progress& progress) {
+  const double size = sizes.global();
   MeshResult result;
   result.stats.size_used = size;
   const auto t0 = std::chrono::steady_clock::now();
@@ -453,6 +495,7 @@ MeshResult generate_parts(const occ::Solid& whole, const MeshOptions& options, d
   {
     mesh::SubVolumeMeshOptions o;
     o.size = size;
+    o.size_field = &sizes;
     o.max_hexes = options.max_hexes;
     mesh::SubVolumeMeshResult m = mesh::mesh_sub_volumes(whole, o, progress);
     if (m.ok) {
@@ -488,7 +531,7 @@ MeshResult generate_parts(const occ::Solid& whole, const MeshOptions& options, d
   for (int k = 0; k < whole.num_solids(); ++k) {
     const occ::Solid part = whole.part(k);
     MeshResult one;
-    const bool meshed = mesh_solid(part, options, size, progress, one);
+    const bool meshed = mesh_solid(part, options, sizes, progress, one);
     const std::string prefix = "Solid " + std::to_string(k + 1) + ": ";
     for (core::Diagnostic d : one.diagnostics) {
       d.message = prefix + d.message;
@@ -548,15 +591,23 @@ MeshResult generate(const occ::Solid& solid, const MeshOptions& options,
       return refused;
     }
   }
-  const std::vector<core::Diagnostic> small = small_features(solid, size);
+  // Local sizes (a uniform field without them); an unknown entity throws, naming it.
+  const core::SizeField sizes =
+      options.local_sizes.empty()
+          ? core::SizeField(size)
+          : core::SizeField(solid, size, options.local_sizes, options.size_grading);
+  std::vector<core::Diagnostic> small = small_features(solid, sizes);
+  append(small, sizes.diagnostics());
   if (solid.num_solids() > 1) {
-    MeshResult parts = generate_parts(solid, options, size, progress);
+    MeshResult parts = generate_parts(solid, options, sizes, progress);
     parts.diagnostics.insert(parts.diagnostics.begin(), small.begin(), small.end());
+    parts.stats.local_sizes = sizes.applied();
     return parts;
   }
   MeshResult result;
   result.diagnostics = small;
-  if (mesh_solid(solid, options, size, progress, result)) finish(result, solid, options, progress);
+  result.stats.local_sizes = sizes.applied();
+  if (mesh_solid(solid, options, sizes, progress, result)) finish(result, solid, options, progress);
   // The grid mesher is not yet valid on every part the tetrahedral fallback meshed validly
   // (HexMe i02, i06, i13, i23-i25, n06, n07, s08): when its mesh is invalid, the tet split
   // gets a second chance, within kSecondChanceSeconds, and is used if its mesh is valid.
@@ -569,6 +620,7 @@ MeshResult generate(const occ::Solid& solid, const MeshOptions& options,
     const core::Progress budget = progress.with_time_limit(kSecondChanceSeconds);
     MeshResult second;
     second.stats.size_used = size;
+    second.stats.local_sizes = sizes.applied();
     const auto t0 = std::chrono::steady_clock::now();
     if (fallback(solid, tet, size, "The grid mesher's mesh is invalid.", budget, t0, second))
       finish(second, solid, tet, budget);

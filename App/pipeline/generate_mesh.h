@@ -10,6 +10,7 @@
 #include "core/diagnostic.h"
 #include "core/hex_mesh.h"
 #include "core/progress.h"
+#include "core/size_field.h"
 #include "io/named_groups.h"
 #include "occ/solid.h"
 #include "quality/check_mesh.h"
@@ -19,7 +20,14 @@
 namespace vorohex::pipeline {
 
 struct MeshOptions {
-  double size = 0;                     // target edge length, model units; 0 = diagonal / 20
+  double size = 0;  // target edge length, model units; 0 = diagonal / 20
+  // Local sizes: smaller target lengths at faces, edges or vertices ("Face7", "Edge3",
+  // "Vertex2"; model units), graded into the global size: at distance d from the entity the
+  // target is local + size_grading * d, never above `size` (core/size_field.h). The map,
+  // sweep, multisweep and revolve schemes and the decomposition follow them; midpoint and
+  // the fallbacks mesh at the global size and say so.
+  std::vector<core::LocalSize> local_sizes;
+  double size_grading = 0.3;           // growth of the size per unit distance (> 0, at most 10)
   std::size_t max_hexes = 50'000'000;  // refused up front when the prediction exceeds it
   smooth::SmoothOptions smoothing;     // global smoothing; 0 iterations and 0 passes = off
   quality::CheckOptions check;         // tolerances of the final validity check
@@ -54,8 +62,9 @@ struct MeshOptions {
 };
 
 struct MeshStats {
-  double size_used = 0;            // the target size actually applied
-  std::array<int, 3> intervals{};  // map: per block direction; sweep: {0, 0, layers}
+  double size_used = 0;                      // the target size actually applied
+  std::vector<core::LocalSize> local_sizes;  // the local sizes applied (each entity once)
+  std::array<int, 3> intervals{};            // map: per block direction; sweep: {0, 0, layers}
   double seconds_meshing = 0;
   double seconds_smoothing = 0;
   double seconds_checking = 0;

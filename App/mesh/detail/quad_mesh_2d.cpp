@@ -10,6 +10,8 @@
 #include <cmath>
 #include <deque>
 #include <map>
+#include <set>
+#include <tuple>
 #include <utility>
 
 namespace vorohex::mesh::detail {
@@ -217,8 +219,94 @@ double quad_quality(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) 
 
 namespace {
 
+// Lattice points for a graded size: a quadtree over the lattice frame (root cells of side
+// H), each cell split while it is more than 1.5 times twice the local size at its centre, then
+// balanced so that edge neighbours differ by at most one level. Returns the leaf corners with
+// the side of the smallest leaf at each (in the frame's coordinates (i, j) x cell side).
+struct LatticePoint {
+  Vec2 p;
+  double spacing;
+};
+std::vector<LatticePoint> graded_lattice(const Vec2& anchor, const Vec2& u, const Vec2& v, double H,
+                                         long i0, long i1, long j0, long j1,
+                                         const SizeAt& size_at) {
+  constexpr int kMaxLevel = 8;
+  using Key = std::tuple<int, long, long>;  // level, i, j (in cells of side H / 2^level)
+  std::set<Key> leaves;
+  std::vector<Key> stack;
+  for (long j = j0; j < j1; ++j)
+    for (long i = i0; i < i1; ++i) stack.emplace_back(0, i, j);
+  auto centre = [&](const Key& k) {
+    const auto [l, i, j] = k;
+    const double side = H / double(1L << l);
+    return Vec2(anchor + (double(i) + 0.5) * side * u + (double(j) + 0.5) * side * v);
+  };
+  auto split = [&](const Key& k, std::vector<Key>& out) {
+    const auto [l, i, j] = k;
+    for (long dj = 0; dj < 2; ++dj)
+      for (long di = 0; di < 2; ++di) out.emplace_back(l + 1, 2 * i + di, 2 * j + dj);
+  };
+  while (!stack.empty()) {
+    const Key k = stack.back();
+    stack.pop_back();
+    const double side = H / double(1L << std::get<0>(k));
+    if (std::get<0>(k) < kMaxLevel && side > 1.5 * 2 * size_at(centre(k))) {
+      split(k, stack);
+    } else {
+      leaves.insert(k);
+    }
+  }
+  // The leaf holding cell (l, i, j)'s area, if one at level <= l holds it.
+  auto holder = [&](int l, long i, long j) -> const Key* {
+    for (int m = l; m >= 0; --m) {
+      const long s = l - m;
+      auto it = leaves.find(Key(m, i >> s, j >> s));
+      if (it != leaves.end()) return &*it;
+    }
+    return nullptr;
+  };
+  for (bool changed = true; changed;) {
+    changed = false;
+    std::vector<Key> too_big;
+    for (const Key& k : leaves) {
+      const auto [l, i, j] = k;
+      if (l < 2) continue;
+      const long nb[4][2] = {{i + 1, j}, {i - 1, j}, {i, j + 1}, {i, j - 1}};
+      for (const auto& n : nb) {
+        const Key* h = holder(l, n[0], n[1]);
+        if (h != nullptr && std::get<0>(*h) < l - 1) too_big.push_back(*h);
+      }
+    }
+    std::sort(too_big.begin(), too_big.end());
+    too_big.erase(std::unique(too_big.begin(), too_big.end()), too_big.end());
+    for (const Key& k : too_big) {
+      leaves.erase(k);
+      std::vector<Key> kids;
+      split(k, kids);
+      leaves.insert(kids.begin(), kids.end());
+      changed = true;
+    }
+  }
+  std::map<std::pair<long, long>, double> corners;  // at the finest level's coordinates
+  for (const auto& [l, i, j] : leaves) {
+    const long s = 1L << (kMaxLevel - l);
+    const double side = H / double(1L << l);
+    for (long dj = 0; dj < 2; ++dj)
+      for (long di = 0; di < 2; ++di) {
+        auto [it, fresh] = corners.emplace(std::make_pair((i + di) * s, (j + dj) * s), side);
+        if (!fresh) it->second = std::min(it->second, side);
+      }
+  }
+  std::vector<LatticePoint> out;
+  out.reserve(corners.size());
+  const double fine = H / double(1L << kMaxLevel);
+  for (const auto& [ij, side] : corners)
+    out.push_back({anchor + double(ij.first) * fine * u + double(ij.second) * fine * v, side});
+  return out;
+}
+
 QuadMesh2d lattice_mesh(const std::vector<std::vector<Vec2>>& loops, double size,
-                        int smoothing_passes) {
+                        int smoothing_passes, const SizeAt& size_at) {
   QuadMesh2d out;
   if (loops.empty() || !(size > 0)) {
     out.error = "no boundary loops or no positive size";
@@ -299,14 +387,21 @@ QuadMesh2d lattice_mesh(const std::vector<std::vector<Vec2>>& loops, double size
   const SegmentGrid grid(segs, H);
   std::vector<Vec2> lattice;
   Cdt::Face_handle hint;
-  for (long j = long(std::floor(t0 / H)); j <= long(std::ceil(t1 / H)); ++j)
-    for (long i = long(std::floor(s0 / H)); i <= long(std::ceil(s1 / H)); ++i) {
-      const Vec2 p = anchor + double(i) * H * u + double(j) * H * v;
-      hint = cdt.locate(Point(p.x(), p.y()), hint);
-      if (cdt.is_infinite(hint) || hint->info() % 2 != 1) continue;
-      if (grid.near(p, 0.5 * H)) continue;
-      lattice.push_back(p);
-    }
+  auto keep = [&](const Vec2& p, double spacing) {
+    hint = cdt.locate(Point(p.x(), p.y()), hint);
+    if (cdt.is_infinite(hint) || hint->info() % 2 != 1) return;
+    if (grid.near(p, 0.5 * spacing)) return;
+    lattice.push_back(p);
+  };
+  const long i0 = long(std::floor(s0 / H)), i1 = long(std::ceil(s1 / H));
+  const long j0 = long(std::floor(t0 / H)), j1 = long(std::ceil(t1 / H));
+  if (size_at) {
+    for (const LatticePoint& q : graded_lattice(anchor, u, v, H, i0, i1, j0, j1, size_at))
+      keep(q.p, q.spacing);
+  } else {
+    for (long j = j0; j <= j1; ++j)
+      for (long i = i0; i <= i1; ++i) keep(anchor + double(i) * H * u + double(j) * H * v, H);
+  }
   Cdt::Vertex_handle vhint;
   for (std::size_t i = 0; i < lattice.size(); ++i) {
     const Point p(lattice[i].x(), lattice[i].y());
@@ -434,15 +529,15 @@ bool smooth_loop(const std::vector<Vec2>& l) {
 }  // namespace
 
 QuadMesh2d quad_mesh_2d(const std::vector<std::vector<Vec2>>& loops, double size,
-                        int smoothing_passes, int ring_layers) {
+                        int smoothing_passes, int ring_layers, const SizeAt& size_at) {
   if (ring_layers <= 0 || loops.empty() || !(size > 0))
-    return lattice_mesh(loops, size, smoothing_passes);
+    return lattice_mesh(loops, size, smoothing_passes, size_at);
   const std::size_t L = loops.size();
   std::vector<Vec2> pts;
   std::vector<std::vector<int>> front(L);
   for (std::size_t l = 0; l < L; ++l) {
     if (loops[l].size() < 6 || loops[l].size() % 2)
-      return lattice_mesh(loops, size, smoothing_passes);
+      return lattice_mesh(loops, size, smoothing_passes, size_at);
     for (const Vec2& q : loops[l]) {
       front[l].push_back(int(pts.size()));
       pts.push_back(q);
@@ -458,7 +553,7 @@ QuadMesh2d quad_mesh_2d(const std::vector<std::vector<Vec2>>& loops, double size
       if (!growing[l]) continue;
       const std::vector<int>& f = front[l];
       const int n = int(f.size());
-      const double t = std::min(mean_segment(pts, f), size);
+      const double t = std::min(mean_segment(pts, f), size_at ? size_at(pts[f[0]]) : size);
       const std::vector<Vec2> ring = offset_loop(pts, f, t);
       bool ok = true;
       double seg = 0;
@@ -503,7 +598,7 @@ QuadMesh2d quad_mesh_2d(const std::vector<std::vector<Vec2>>& loops, double size
       front[l] = std::move(next);
     }
   }
-  if (ring_quads.empty()) return lattice_mesh(loops, size, smoothing_passes);
+  if (ring_quads.empty()) return lattice_mesh(loops, size, smoothing_passes, size_at);
 
   // The rest of the domain inside the last rings.
   std::vector<std::vector<Vec2>> inner(L);
@@ -513,8 +608,8 @@ QuadMesh2d quad_mesh_2d(const std::vector<std::vector<Vec2>>& loops, double size
       inner[l].push_back(pts[v]);
       index.push_back(v);
     }
-  QuadMesh2d core = lattice_mesh(inner, size, smoothing_passes);
-  if (!core.error.empty()) return lattice_mesh(loops, size, smoothing_passes);
+  QuadMesh2d core = lattice_mesh(inner, size, smoothing_passes, size_at);
+  if (!core.error.empty()) return lattice_mesh(loops, size, smoothing_passes, size_at);
   QuadMesh2d out;
   out.points = std::move(pts);
   if (first_free < 0) first_free = int(out.points.size());
@@ -529,7 +624,7 @@ QuadMesh2d quad_mesh_2d(const std::vector<std::vector<Vec2>>& loops, double size
   Smoother(out.points, out.quads, first_free).run(smoothing_passes);
   for (const auto& q : out.quads)
     if (quad_quality(out.points[q[0]], out.points[q[1]], out.points[q[2]], out.points[q[3]]) <= 0)
-      return lattice_mesh(loops, size, smoothing_passes);
+      return lattice_mesh(loops, size, smoothing_passes, size_at);
   return out;
 }
 

@@ -14,12 +14,15 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <functional>
 #include <string>
 #include <vector>
 
 namespace vorohex::mesh::detail {
 
 using Vec2 = Eigen::Vector2d;
+// A local target size at a point of the domain (at most the global size); empty: uniform.
+using SizeAt = std::function<double(const Vec2&)>;
 
 struct QuadMesh2d {
   std::vector<Vec2> points;               // the boundary nodes (loops in order), then inner nodes
@@ -29,9 +32,11 @@ struct QuadMesh2d {
 
 // loops: closed cycles of boundary nodes (first not repeated), the domain on their left
 // (outer counter-clockwise, holes clockwise). Each loop needs an even number of nodes, at
-// least 6, except a domain of one loop with 4 nodes (one quad). size: target edge length.
+// least 6, except a domain of one loop with 4 nodes (one quad). size: target edge length;
+// size_at, when given, a smaller local size: the lattice becomes a balanced quadtree whose
+// cells follow it (a graded mesh).
 QuadMesh2d quad_mesh_2d(const std::vector<std::vector<Vec2>>& loops, double size,
-                        int smoothing_passes, int ring_layers = 0);
+                        int smoothing_passes, int ring_layers = 0, const SizeAt& size_at = {});
 
 // 2-D quad scaled Jacobian: the minimum over the corners of the cross product of the two
 // corner edges divided by their lengths (1 for a square, <= 0 when inverted or collapsed).

@@ -22,16 +22,18 @@ class MapScheme : public Scheme {
     const mesh::Applicability a = mesh::map_block_applicable(solid);
     return {a.ok, "Not a block: " + a.reason};
   }
-  SchemeEstimate evaluate(const occ::Solid& solid, double size) override {
+  SchemeEstimate evaluate(const occ::Solid& solid, const core::SizeField& size) override {
     mesh::MapBlockOptions o;
-    o.size = size;
+    o.size = size.global();
+    o.size_field = &size;
     const mesh::MapBlockEstimate e = mesh::map_block_evaluate(solid, o);
     return {e.hexes, e.intervals};
   }
-  SchemeMesh compute(const occ::Solid& solid, double size,
+  SchemeMesh compute(const occ::Solid& solid, const core::SizeField& size,
                      const core::Progress& progress) override {
     mesh::MapBlockOptions o;
-    o.size = size;
+    o.size = size.global();
+    o.size_field = &size;
     mesh::MapBlockResult r = mesh::map_block(solid, o, progress);
     SchemeMesh m;
     m.ok = r.ok;
@@ -49,16 +51,18 @@ class SweepScheme : public Scheme {
     const mesh::SweepApplicability a = mesh::sweep_applicable(solid);
     return {a.ok, "Not a sweep: " + a.reason};
   }
-  SchemeEstimate evaluate(const occ::Solid& solid, double size) override {
+  SchemeEstimate evaluate(const occ::Solid& solid, const core::SizeField& size) override {
     mesh::SweepOptions o;
-    o.size = size;
+    o.size = size.global();
+    o.size_field = &size;
     const mesh::SweepEstimate e = mesh::sweep_evaluate(solid, o);
     return {e.hexes, {0, 0, e.layers}};
   }
-  SchemeMesh compute(const occ::Solid& solid, double size,
+  SchemeMesh compute(const occ::Solid& solid, const core::SizeField& size,
                      const core::Progress& progress) override {
     mesh::SweepOptions o;
-    o.size = size;
+    o.size = size.global();
+    o.size_field = &size;
     mesh::SweepResult r = mesh::sweep(solid, o, progress);
     SchemeMesh m;
     m.ok = r.ok;
@@ -83,16 +87,18 @@ class MultisweepScheme : public Scheme {
     const mesh::MultisweepApplicability a = mesh::multisweep_applicable(solid);
     return {a.ok, "Not prismatic (multisweep): " + a.reason};
   }
-  SchemeEstimate evaluate(const occ::Solid& solid, double size) override {
+  SchemeEstimate evaluate(const occ::Solid& solid, const core::SizeField& size) override {
     mesh::MultisweepOptions o;
-    o.size = size;
+    o.size = size.global();
+    o.size_field = &size;
     const mesh::MultisweepEstimate e = mesh::multisweep_evaluate(solid, o);
     return {e.hexes, {0, 0, e.layers}};
   }
-  SchemeMesh compute(const occ::Solid& solid, double size,
+  SchemeMesh compute(const occ::Solid& solid, const core::SizeField& size,
                      const core::Progress& progress) override {
     mesh::MultisweepOptions o;
-    o.size = size;
+    o.size = size.global();
+    o.size_field = &size;
     mesh::MultisweepResult r = mesh::multisweep(solid, o, progress);
     SchemeMesh m;
     m.ok = r.ok;
@@ -119,16 +125,18 @@ class RevolveScheme : public Scheme {
     const mesh::RevolveApplicability a = mesh::revolve_applicable(solid);
     return {a.ok, "Not of revolution: " + a.reason};
   }
-  SchemeEstimate evaluate(const occ::Solid& solid, double size) override {
+  SchemeEstimate evaluate(const occ::Solid& solid, const core::SizeField& size) override {
     mesh::RevolveOptions o;
-    o.size = size;
+    o.size = size.global();
+    o.size_field = &size;
     const mesh::RevolveEstimate e = mesh::revolve_evaluate(solid, o);
     return {e.hexes, {0, 0, e.sectors}};
   }
-  SchemeMesh compute(const occ::Solid& solid, double size,
+  SchemeMesh compute(const occ::Solid& solid, const core::SizeField& size,
                      const core::Progress& progress) override {
     mesh::RevolveOptions o;
-    o.size = size;
+    o.size = size.global();
+    o.size_field = &size;
     mesh::RevolveResult r = mesh::revolve(solid, o, progress);
     SchemeMesh m;
     m.ok = r.ok;
@@ -154,20 +162,21 @@ class RevolveScheme : public Scheme {
 class MidpointScheme : public Scheme {
  public:
   const char* name() const override { return "midpoint"; }
+  bool grades() const override { return false; }  // one subdivision count for all
   SchemeCheck applicable(const occ::Solid& solid) override {
     const mesh::Applicability a = mesh::midpoint_applicable(solid);
     return {a.ok, "No midpoint subdivision: " + a.reason};
   }
-  SchemeEstimate evaluate(const occ::Solid& solid, double size) override {
+  SchemeEstimate evaluate(const occ::Solid& solid, const core::SizeField& size) override {
     mesh::MidpointOptions o;
-    o.size = size;
+    o.size = size.global();
     const mesh::MidpointEstimate e = mesh::midpoint_evaluate(solid, o);
     return {e.hexes, {e.subdivisions, e.subdivisions, e.subdivisions}};
   }
-  SchemeMesh compute(const occ::Solid& solid, double size,
+  SchemeMesh compute(const occ::Solid& solid, const core::SizeField& size,
                      const core::Progress& progress) override {
     mesh::MidpointOptions o;
-    o.size = size;
+    o.size = size.global();
     mesh::MidpointResult r = mesh::midpoint_subdivide(solid, o, progress);
     SchemeMesh m;
     m.ok = r.ok;
@@ -191,18 +200,19 @@ class MidpointScheme : public Scheme {
 class GridScheme : public Scheme {
  public:
   const char* name() const override { return "grid"; }
+  bool grades() const override { return false; }  // a uniform grid (no octree yet)
   SchemeCheck applicable(const occ::Solid&) override { return {true, ""}; }
-  SchemeEstimate evaluate(const occ::Solid& solid, double size) override {
+  SchemeEstimate evaluate(const occ::Solid& solid, const core::SizeField& size) override {
     // Core cells and one pillow hex per boundary quad.
     double area = 0;
     for (core::FaceId f : solid.faces()) area += std::abs(solid.area(f));
-    const double h3 = size * size * size;
-    return {std::size_t(std::abs(solid.volume()) / h3 + area / (size * size)), {0, 0, 0}};
+    const double h = size.global(), h3 = h * h * h;
+    return {std::size_t(std::abs(solid.volume()) / h3 + area / (h * h)), {0, 0, 0}};
   }
-  SchemeMesh compute(const occ::Solid& solid, double size,
+  SchemeMesh compute(const occ::Solid& solid, const core::SizeField& size,
                      const core::Progress& progress) override {
     grid::GridOptions o;
-    o.size = size;
+    o.size = size.global();
     o.laplacian_iterations = 0;
     o.optimisation_passes = 0;
     grid::GridResult r = grid::grid_mesh(solid, o, progress);

@@ -11,6 +11,7 @@
 #include "core/diagnostic.h"
 #include "core/hex_mesh.h"
 #include "core/progress.h"
+#include "core/size_field.h"
 #include "occ/solid.h"
 
 namespace vorohex::pipeline::detail {
@@ -39,9 +40,12 @@ class Scheme {
   virtual const char* name() const = 0;
   // The reason, when not applicable, starts like "Not a block: ...".
   virtual SchemeCheck applicable(const occ::Solid& solid) = 0;
-  virtual SchemeEstimate evaluate(const occ::Solid& solid, double size) = 0;
-  virtual SchemeMesh compute(const occ::Solid& solid, double size,
+  // size: the global size and local sizes (a scheme that cannot grade uses the global).
+  virtual SchemeEstimate evaluate(const occ::Solid& solid, const core::SizeField& size) = 0;
+  virtual SchemeMesh compute(const occ::Solid& solid, const core::SizeField& size,
                              const core::Progress& progress) = 0;
+  // Whether its mesh follows local sizes (else it meshes at the global size).
+  virtual bool grades() const { return true; }
 };
 
 // Every scheme name: map, sweep, multisweep, revolve, midpoint (the default order), and
