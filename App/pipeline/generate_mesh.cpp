@@ -95,7 +95,7 @@ std::string type_of_scheme(const std::string& scheme) {
 
 // Smoothing and the validity check every result goes through.
 void finish(MeshResult& result, const occ::Solid& solid, const MeshOptions& options,
-            const core::Progress& progress) {
+            const core::Progress& progress, const core::SizeField& sizes) {
   if (result.stats.sub_volumes == 0) result.stats.sub_volumes = 1;
   if (result.stats.sub_volume_schemes.empty())
     result.stats.sub_volume_schemes.assign(result.stats.sub_volumes, result.stats.scheme);
@@ -114,8 +114,10 @@ void finish(MeshResult& result, const occ::Solid& solid, const MeshOptions& opti
   // scaled Jacobian and never inverts an element.
   const auto ts = std::chrono::steady_clock::now();
   if (options.smoothing.laplacian_iterations > 0 || options.smoothing.optimisation_passes > 0) {
+    smooth::SmoothOptions smoothing = options.smoothing;
+    smoothing.size_field = &sizes;  // keeps a graded mesh graded
     const smooth::SmoothResult smoothed =
-        smooth::smooth_mesh(result.mesh, solid, options.smoothing, progress);
+        smooth::smooth_mesh(result.mesh, solid, smoothing, progress);
     append(result.diagnostics, smoothed.diagnostics);
     result.stats.min_sj_before_smoothing = smoothed.min_before;
     result.stats.mean_sj_before_smoothing = smoothed.mean_before;
@@ -512,7 +514,7 @@ MeshResult generate_parts(const occ::Solid& whole, const MeshOptions& options,
         << (shared == 1 ? " face they share; " : " faces they share; ") << m.stats.nodes_merged
         << " nodes merged.";
       result.diagnostics.push_back(core::make_info("solids_joined", s.str()));
-      finish(result, whole, options, progress);
+      finish(result, whole, options, progress, sizes);
       return result;
     }
     if (progress.cancelled()) {
@@ -566,7 +568,7 @@ MeshResult generate_parts(const occ::Solid& whole, const MeshOptions& options,
     << shared << (shared == 1 ? " shared face" : " shared faces")
     << " (with their edges and vertices) merged.";
   result.diagnostics.push_back(core::make_info("solids_joined", s.str()));
-  finish(result, whole, options, progress);
+  finish(result, whole, options, progress, sizes);
   return result;
 }
 
@@ -607,7 +609,8 @@ MeshResult generate(const occ::Solid& solid, const MeshOptions& options,
   MeshResult result;
   result.diagnostics = small;
   result.stats.local_sizes = sizes.applied();
-  if (mesh_solid(solid, options, sizes, progress, result)) finish(result, solid, options, progress);
+  if (mesh_solid(solid, options, sizes, progress, result))
+    finish(result, solid, options, progress, sizes);
   // The grid mesher is not yet valid on every part the tetrahedral fallback meshed validly
   // (HexMe i02, i06, i13, i23-i25, n06, n07, s08): when its mesh is invalid, the tet split
   // gets a second chance, within kSecondChanceSeconds, and is used if its mesh is valid.
@@ -623,7 +626,7 @@ MeshResult generate(const occ::Solid& solid, const MeshOptions& options,
     second.stats.local_sizes = sizes.applied();
     const auto t0 = std::chrono::steady_clock::now();
     if (fallback(solid, tet, size, "The grid mesher's mesh is invalid.", budget, t0, second))
-      finish(second, solid, tet, budget);
+      finish(second, solid, tet, budget, sizes);
     std::string grid_errors;
     for (const core::Diagnostic& d : result.diagnostics)
       if (d.severity == core::Severity::error)

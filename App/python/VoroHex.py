@@ -17,6 +17,7 @@ import json
 import math
 import numbers
 import os
+import re
 from array import array
 
 import _VoroHexCore as _core
@@ -79,6 +80,9 @@ OPTIONS = (
     _Option("size", "TargetSize", "App::PropertyLength", "Mesh",
             "Target hex edge length; 0 = automatic (bounding-box diagonal / 20)", "length",
             auto_zero=True),
+    _Option("size_grading", "SizeGrading", "App::PropertyFloat", "Mesh",
+            "How fast the size grows away from a local size (a FEM mesh region child): "
+            "0.3 = 0.3 mm larger per mm of distance, in (0, 10]", "grading"),
     _Option("max_hexes", "MaxHexes", "App::PropertyInteger", "Mesh",
             "Refuse to mesh when more hexahedra than this are predicted", "count"),
     _Option("time_limit", "TimeLimit", "App::PropertyFloat", "Mesh",
@@ -155,6 +159,8 @@ def _check_range(option, value):
             if option.auto_zero else ""))
     if kind == "fraction" and not 0 < value <= 1:
         raise ValueError("VoroHex: option '{}' must be in (0, 1], got {}".format(name, value))
+    if kind == "grading" and not 0 < value <= 10:
+        raise ValueError("VoroHex: option '{}' must be in (0, 10], got {}".format(name, value))
     if kind == "angle" and not 0 < value <= 180:
         raise ValueError("VoroHex: option '{}' must be in (0, 180] degrees, got {}".format(
             name, value))
@@ -205,10 +211,35 @@ def validate_options(**options):
     """Raises TypeError (unknown option, wrong type) or ValueError (bad value) naming the
     option, for keyword options of VoroHex.OPTIONS and order; returns None when they are
     fine."""
+    options = dict(options)
     if "order" in options:
-        options = dict(options)
         _order(options.pop("order"))
+    if "sizes" in options:
+        _local_sizes(options.pop("sizes"))
     _make_options(options)
+
+
+_ENTITY_NAME = re.compile(r"^(Face|Edge|Vertex)[1-9][0-9]{0,8}$")
+
+
+def _local_sizes(sizes):
+    """[(name, size)] from {"Face7": 0.5, ...} (sizes may be Quantities); TypeError or
+    ValueError naming the entry."""
+    if sizes is None:
+        return []
+    if not isinstance(sizes, dict):
+        raise TypeError("VoroHex: sizes must be a dict such as {{'Face7': 0.5}}, got {!r}".format(
+            sizes))
+    out = []
+    for name, value in sizes.items():
+        if not isinstance(name, str) or not _ENTITY_NAME.match(name):
+            raise ValueError("VoroHex: sizes: {!r} is not an entity name (FaceN, EdgeN or "
+                             "VertexN, as FreeCAD names sub-elements)".format(name))
+        value = _number("sizes[{!r}]".format(name), value)
+        if value <= 0:
+            raise ValueError("VoroHex: sizes[{!r}] must be > 0, got {}".format(name, value))
+        out.append((name, value))
+    return out
 
 
 def _shape_of(shape):
@@ -291,6 +322,7 @@ class MeshStats:
         self.sub_volumes = s.sub_volumes
         self.sub_volume_schemes = list(s.sub_volume_schemes)  # per sub-volume 1, 2, ...
         self.size_used = s.size_used
+        self.local_sizes = dict(s.local_sizes)  # {"Face7": 0.5}: the local sizes applied
         self.intervals = tuple(s.intervals)
         self.scheme = s.scheme  # "map" (mapped block), "sweep" (one-to-one) or "midpoint"
         # Quality before global smoothing (equal to the final one when smoothing is off).
@@ -486,12 +518,15 @@ def _order(order):
     return int(order)
 
 
-def mesh(shape, size=None, progress=None, cancel=None, order=1, **options):
+def mesh(shape, size=None, progress=None, cancel=None, order=1, sizes=None, **options):
     """Hex-meshes the one solid in `shape` (a Part.Shape or a Part feature).
 
     size: target edge length (a number or a Quantity, mm); None = automatic.
     order: 1 (8-node hexahedra) or 2 (20-node: mid-edge nodes on the CAD edge or face they
     belong to, straight inside); "1st"/"2nd" also work.
+    sizes: smaller sizes at CAD entities, {"Face7": 0.5, "Edge3": 1}, graded into size at
+    size_grading (0.3: 0.3 mm larger per mm of distance); an entity the solid does not
+    have raises ValueError.
     progress: optional callable(stage, fraction); returning False cancels.
     cancel: optional VoroHex.CancelToken, .cancel() from another thread stops meshing.
     Other keyword options: see VoroHex.OPTIONS. Unknown keywords raise TypeError; bad
@@ -504,6 +539,7 @@ def mesh(shape, size=None, progress=None, cancel=None, order=1, **options):
         raise TypeError("VoroHex: cancel must be a VoroHex.CancelToken")
     opts = _make_options(dict(options, size=size))
     opts.order = _order(order)
+    opts.local_sizes = _local_sizes(sizes)
     solid = _read_solid(check_shape(shape, True), True)
     core_result = _core.generate_mesh(solid, opts, progress, cancel)
     return MeshResult(core_result, solid)

@@ -160,7 +160,64 @@ def options_of(obj):
         opts[o.name] = None if (o.auto_zero and value == 0) else value
     if hasattr(obj, "ElementOrder"):
         opts["order"] = str(obj.ElementOrder)
+    sizes = region_sizes(obj)
+    if sizes:
+        opts["sizes"] = sizes
     return opts
+
+
+def region_sizes(obj):
+    """Local sizes {"Face7": 0.5, ...} from the FEM mesh region objects in the object's
+    MeshRegionList (FreeCAD's Fem::MeshRegion: CharacteristicLength and References). A
+    region must reference faces, edges or vertices of the meshed part itself and have a
+    size; ValueError naming the region otherwise. An entity in two regions keeps the
+    smaller size."""
+    sizes = {}
+    part = getattr(obj, "Part", None)
+    for region in getattr(obj, "MeshRegionList", []) or []:
+        if region is None or not hasattr(region, "CharacteristicLength"):
+            continue
+        if getattr(region, "Suppressed", False):
+            continue
+        size = region.CharacteristicLength.Value
+        if size <= 0:
+            raise ValueError("VoroHex: mesh region '{}' has no size (CharacteristicLength is "
+                             "0)".format(region.Label))
+        refs = getattr(region, "References", []) or []
+        if not refs:
+            raise ValueError("VoroHex: mesh region '{}' references no face, edge or vertex"
+                             .format(region.Label))
+        for ref_obj, subs in refs:
+            same = part is not None and (ref_obj == part or (
+                hasattr(ref_obj, "Shape") and ref_obj.Shape.isSame(part.Shape)))
+            if not same:
+                raise ValueError("VoroHex: mesh region '{}' references '{}', not the meshed part "
+                                 "'{}'".format(region.Label, ref_obj.Label,
+                                               part.Label if part is not None else "(none)"))
+            for sub in (subs if isinstance(subs, (list, tuple)) else [subs]):
+                if not sub or not sub.startswith(("Face", "Edge", "Vertex")):
+                    raise ValueError("VoroHex: mesh region '{}' references '{}' of '{}'; only "
+                                     "faces, edges and vertices can take a local size".format(
+                                         region.Label, sub or "the whole object", ref_obj.Label))
+                sizes[sub] = min(size, sizes.get(sub, size))
+    return sizes
+
+
+def addMeshRegion(mesh_obj, size, references):
+    """Adds a FreeCAD FEM mesh region (a local size) to a VoroHex mesh object: `size` in
+    mm at `references`, a list of sub-element names of its part ("Face7", "Edge3"). Returns
+    the region; the mesh follows it on the next recompute."""
+    import ObjectsFem
+
+    if getattr(getattr(mesh_obj, "Proxy", None), "Type", None) != TYPE:
+        raise TypeError("VoroHex: {} is not a VoroHex mesh object".format(
+            getattr(mesh_obj, "Label", mesh_obj)))
+    if isinstance(references, str):
+        references = [references]
+    region = ObjectsFem.makeMeshRegion(mesh_obj.Document, mesh_obj, size,
+                                       object_name(mesh_obj, "MeshRegion"))
+    region.References = [(mesh_obj.Part, tuple(references))]
+    return region
 
 
 class HexMesh:
@@ -191,6 +248,10 @@ class HexMesh:
                             "1st: 8-node hexahedra; 2nd: 20-node, mid-edge nodes on the CAD")
             obj.ElementOrder = list(VoroHex.ELEMENT_ORDERS)
             obj.ElementOrder = "1st"
+        if not hasattr(obj, "MeshRegionList"):  # as FemMeshGmsh names it: local sizes
+            obj.addProperty("App::PropertyLinkList", "MeshRegionList", "FEM Mesh",
+                            "FEM mesh regions: a smaller size at the faces, edges and vertices "
+                            "they reference, graded into TargetSize at SizeGrading")
         if not hasattr(obj, "PreviewObjects"):  # names, not links: no dependency on them
             obj.addProperty("App::PropertyStringList", "PreviewObjects", "Result",
                             "The graph and decomposition the panel's last Preview made")

@@ -155,7 +155,12 @@ void bind_types(py::module_& m) {
       .def_readonly("sub_volumes", &S::sub_volumes)
       .def_readonly("sub_volume_schemes", &S::sub_volume_schemes)
       .def_readonly("sub_volume_types", &S::sub_volume_types)
-      .def_readonly("scheme", &S::scheme);
+      .def_readonly("scheme", &S::scheme)
+      .def_property_readonly("local_sizes", [](const S& st) {
+        std::vector<std::pair<std::string, double>> out;
+        for (const core::LocalSize& l : st.local_sizes) out.emplace_back(l.entity, l.size);
+        return out;
+      });
 
   // Flat option names: the one list VoroHex.py maps FreeCAD properties onto.
   using O = pipeline::MeshOptions;
@@ -163,6 +168,20 @@ void bind_types(py::module_& m) {
       .def(py::init<>())
       .def_readwrite("size", &O::size, "target edge length, model units; 0 = diagonal / 20")
       .def_readwrite("max_hexes", &O::max_hexes, "refuse up front above this predicted count")
+      .def_property(
+          "local_sizes",
+          [](const O& o) {
+            std::vector<std::pair<std::string, double>> out;
+            for (const core::LocalSize& l : o.local_sizes) out.emplace_back(l.entity, l.size);
+            return out;
+          },
+          [](O& o, const std::vector<std::pair<std::string, double>>& v) {
+            o.local_sizes.clear();
+            for (const auto& [entity, size] : v) o.local_sizes.push_back({entity, size});
+          },
+          "smaller sizes at CAD entities: [(\"Face7\", 0.5), ...], graded into size")
+      .def_readwrite("size_grading", &O::size_grading,
+                     "growth of the size per unit distance from a local size, in (0, 10]")
       .def_readwrite("time_limit", &O::time_limit,
                      "seconds after which meshing stops like a cancel (0: none)")
       .def_readwrite("schemes", &O::schemes,

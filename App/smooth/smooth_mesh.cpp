@@ -61,6 +61,12 @@ class Smoother {
     input_min_ = before.min;
     const std::vector<double> input_sj = sj_;
     const std::vector<Vec3> input_points = mesh_.points();
+    // Local sizes: the size at every node, once (nodes move little), for the weights.
+    if (options_.size_field != nullptr && !options_.size_field->uniform()) {
+      node_size_.resize(mesh_.num_nodes());
+      for (std::size_t n = 0; n < mesh_.num_nodes(); ++n)
+        node_size_[n] = options_.size_field->at(mesh_.points()[n]);
+    }
 
     const auto t0 = std::chrono::steady_clock::now();
     laplacian_phase();
@@ -240,15 +246,19 @@ class Smoother {
     const auto& nb = topology_.neighbours;
     const auto& pts = mesh_.points();
     const Vec3 x = pts[n];
+    // With local sizes each neighbour weighs 1 / (the size along the edge to it): at rest
+    // the edges are then as long as the sizes ask (a graded mesh stays graded).
     Vec3 sum = Vec3::Zero();
-    double length = 0;
+    double length = 0, weights = 0;
     for (std::int64_t k = nb.begin(n); k < nb.end(n); ++k) {
       const Vec3& q = pts[nb.items[k]];
-      sum += q;
+      const double w = node_size_.empty() ? 1.0 : 2.0 / (node_size_[n] + node_size_[nb.items[k]]);
+      sum += w * q;
+      weights += w;
       length += (q - x).norm();
     }
     const double count = static_cast<double>(nb.size(n));
-    const Vec3 d = options_.relaxation * (sum / count - x);
+    const Vec3 d = options_.relaxation * (sum / weights - x);
     const double tol = options_.tolerance * length / count;
     if (!(d.norm() > tol)) return 0;
     Vec3 y;
@@ -566,8 +576,9 @@ class Smoother {
   SmoothResult& result_;
   detail::SmoothTopology topology_;
   std::vector<char> movable_;
-  std::vector<double> sj_;        // current scaled Jacobian per hex
-  std::vector<double> trial_sj_;  // incident values of the last serial acceptable() call
+  std::vector<double> sj_;         // current scaled Jacobian per hex
+  std::vector<double> node_size_;  // per node: the local size (empty: uniform)
+  std::vector<double> trial_sj_;   // incident values of the last serial acceptable() call
   std::vector<std::vector<std::int32_t>> colour_classes_;  // interior nodes by colour
   std::vector<std::int32_t> serial_nodes_;                 // boundary and uncoloured nodes
   std::vector<IncidentHex> incident_;

@@ -17,6 +17,7 @@
 #include "core/diagnostic.h"
 #include "core/hex_mesh.h"
 #include "core/progress.h"
+#include "core/size_field.h"
 #include "occ/solid.h"
 
 namespace vorohex::smooth {
@@ -39,6 +40,9 @@ struct SmoothOptions {
   // this, in (0, 1] (1 = every node). Nodes whose hexes are all nearly perfect are left
   // alone: moving them gains nothing and costs most of the time on large good meshes.
   double active_below = 0.95;
+  // Local sizes (null or uniform: none): the Laplacian weighs each neighbour by the inverse
+  // of the size between them, so that it keeps a graded mesh graded. Not owned.
+  const core::SizeField* size_field = nullptr;
   void validate() const;  // throws std::invalid_argument naming the bad field
 };
 

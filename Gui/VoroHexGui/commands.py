@@ -320,12 +320,54 @@ class MeshQualityCommand:
         FreeCADGui.Control.showDialog(panel)
 
 
+def selected_vorohex_mesh():
+    """The single selected VoroHex mesh object, or None."""
+    if FreeCADGui.ActiveDocument is None:
+        return None
+    sel = FreeCADGui.Selection.getSelection()
+    if len(sel) == 1 and getattr(getattr(sel[0], "Proxy", None), "Type", None) == \
+            VoroHexObjects.TYPE:
+        return sel[0]
+    return None
+
+
+class LocalSizeCommand:
+    """Adds a FEM mesh region (FreeCAD's own object: a size and references) under the
+    selected VoroHex mesh and opens FreeCAD's panel to pick its faces, edges or vertices."""
+
+    def GetResources(self):
+        return {
+            "Pixmap": VoroHexGui.resource("icons", "VoroHexLocalSize.svg"),
+            "MenuText": "Local size",
+            "ToolTip": "Add a mesh region to the selected VoroHex mesh: a smaller size at the "
+                       "faces, edges or vertices you pick, graded into the mesh size",
+        }
+
+    def IsActive(self):
+        return selected_vorohex_mesh() is not None and not FreeCADGui.Control.activeDialog()
+
+    def Activated(self):
+        mesh = selected_vorohex_mesh()
+        size = mesh.TargetSize.Value or VoroHexObjects.automatic_size(mesh.Part.Shape) \
+            if mesh.Part is not None else mesh.TargetSize.Value
+        doc = mesh.Document
+        doc.openTransaction("VoroHex local size")
+        FreeCADGui.addModule("ObjectsFem")
+        FreeCADGui.doCommand(
+            "_region = ObjectsFem.makeMeshRegion(App.ActiveDocument, App.ActiveDocument.{}, "
+            "{!r})".format(mesh.Name, round(size / 4.0, 6)))
+        doc.commitTransaction()
+        FreeCADGui.Selection.clearSelection()
+        FreeCADGui.doCommand("Gui.ActiveDocument.setEdit(_region.Name)")
+
+
 def register():
     FreeCADGui.addCommand("VoroHex_HexMesh", HexMeshCommand())
+    FreeCADGui.addCommand("VoroHex_LocalSize", LocalSizeCommand())
     FreeCADGui.addCommand("VoroHex_VoronoiGraph", VoronoiGraphCommand())
     FreeCADGui.addCommand("VoroHex_Decomposition", DecompositionCommand())
     FreeCADGui.addCommand("VoroHex_MeshQuality", MeshQualityCommand())
 
 
-COMMANDS = ["VoroHex_HexMesh", "VoroHex_VoronoiGraph", "VoroHex_Decomposition",
+COMMANDS = ["VoroHex_HexMesh", "VoroHex_LocalSize", "VoroHex_VoronoiGraph", "VoroHex_Decomposition",
             "VoroHex_MeshQuality"]

@@ -51,6 +51,10 @@ class ViewProviderBase:
 
 
 class ViewProviderHexMesh(ViewProviderBase):
+    def claimChildren(self):
+        # The FEM mesh regions (local sizes) sit under the mesh, as under a FemMeshGmsh.
+        return list(getattr(self.Object, "MeshRegionList", []) or [])
+
     def make_panel(self, obj):
         from VoroHexGui import task_panel
 
