@@ -2,4 +2,4 @@
 # `import VoroHex` and `import VoroHexObjects` work because this folder is on sys.path.
 import FreeCAD
 
-FreeCAD.__unit_test__ += ["TestVoroHex", "TestVoroHexFea"]
+FreeCAD.__unit_test__ += ["TestVoroHex", "TestVoroHexFea", "TestVoroHexSizes"]

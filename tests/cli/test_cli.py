@@ -223,6 +223,32 @@ class MeshCommand(unittest.TestCase):
         self.expect_bad_input([step, "--frobnicate"], "unknown option")
         self.expect_bad_input([step, "--fallback-scheme", "octree"], "--fallback-scheme")
 
+    def test_local_sizes(self):
+        """--size-at refines at the named entities only, the report lists what was applied,
+        and the written mesh checks valid against its CAD."""
+        step = os.path.join(EXAMPLES, "box_3x2x1.step")
+        out = os.path.join(self.dir, "graded.vtu")
+        rep = os.path.join(self.dir, "graded.json")
+        code, stdout, stderr = run("mesh", step, "-o", out, "--size", "0.5", "--size-at",
+                                   "Vertex1=0.1", "--size-at", "Edge1,Edge2=0.2",
+                                   "--size-grading", "0.5", "--report", rep, "--quiet")
+        self.assertEqual(code, 0, stdout + stderr)
+        self.assertIn("local sizes          Edge1 0.2 Edge2 0.2 Vertex1 0.1 (grading 0.5)", stdout)
+        with open(rep) as f:
+            r = json.load(f)
+        self.assertEqual(r["local_sizes"], {"Vertex1": 0.1, "Edge1": 0.2, "Edge2": 0.2})
+        self.assertEqual(r["size_grading"], 0.5)
+        self.assertTrue(r["check"]["valid"])
+        self.assertGreater(r["check"]["hexes"], 6 * 4 * 2)  # the uniform mesh at 0.5
+        code, stdout, stderr = run("check", out, "--cad", step)
+        self.assertEqual(code, 0, stdout + stderr)
+        self.expect_bad_input([step, "--size-at", "Face7=0.1"], "the solid has no Face7")
+        self.expect_bad_input([step, "--size-at", "Face1"], "needs ENTITY=SIZE")
+        self.expect_bad_input([step, "--size-at", "Face1=0"], "--size-at Face1")
+        self.expect_bad_input([step, "--size-at", "Solid1=1"], "'Solid1' is not an entity name")
+        self.expect_bad_input([step, "--size-at", "Face1=0.1", "--size-grading", "-2"],
+                              "--size-grading")
+
     def test_unsupported_solid_is_refused_clearly(self):
         sys.path.append("/usr/lib/freecad-python3/lib")
         import FreeCAD  # noqa: F401  (FreeCAD must be imported before Part)
