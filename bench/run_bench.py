@@ -104,17 +104,23 @@ def write_fixtures(work):
                             (20, 20), (8, 20)]),
         "chamfered_shaft": revolved([(0, 0), (10, 0), (12, 2), (12, 30), (15, 33), (15, 50),
                                      (8, 50), (8, 75), (0, 75)]),
+        # Issue 21's plate with a hole (200 x 100 x 10, hole of radius 10): local sizes.
+        "plate_200_hole": Part.makeBox(200, 100, 10).cut(Part.makeCylinder(10, 10, V(100, 50, 0))),
     }
     paths = {}
     for name, solid in solids.items():
         paths[name] = os.path.join(work, name + ".step")
         if not os.path.exists(paths[name]):
             solid.exportStep(paths[name])
+    read = Part.Shape()
+    read.read(paths["plate_200_hole"])  # its faces as the STEP file numbers them
+    paths["hole_face"] = next("Face%d" % (i + 1) for i, face in enumerate(read.Faces)
+                              if isinstance(face.Surface, Part.Cylinder))
     return paths
 
 
 def models():
-    """(name, step path, target size, run gmsh too)."""
+    """(name, step path, target size, run gmsh too[, more vorohex arguments])."""
     ex = os.path.join(REPO, "examples")
     work = os.path.join(HERE, "work")
     os.makedirs(work, exist_ok=True)
@@ -135,6 +141,10 @@ def models():
         ("chamfered shaft (revolve, O-grid core)", f["chamfered_shaft"], 2.0, True),
         ("plate with boss and holes 1M hexes (multisweep)", f["plate_boss_holes"], 0.27, False),
         ("pulley 1M hexes (revolve)", f["pulley"], 0.48, False),
+        # Local sizes (--size-at on the hole's face), beside the uniform mesh.
+        ("plate 200x100x10 with a hole (sweep)", f["plate_200_hole"], 2.0, False),
+        ("same, size 0.2 at the hole (local size)", f["plate_200_hole"], 2.0, False,
+         ["--size-at", f["hole_face"] + "=0.2"]),
     ]
     if hexme_available("the HexMe s01 cube row is"):
         out.insert(3, ("HexMe s01 cube", os.path.join(HEXME, "s01o_cube.step"), None, True))
@@ -149,8 +159,8 @@ def main():
     vorohex = os.path.join(args.build, "vorohex")
     work = os.path.join(HERE, "work")
     rows = []
-    for name, step, size, with_gmsh in models():
-        size_args = ["--size", str(size)] if size else []
+    for name, step, size, with_gmsh, *more in models():
+        size_args = (["--size", str(size)] if size else []) + (more[0] if more else [])
         vtu = os.path.join(work, "vorohex.vtu")
         rep = os.path.join(work, "vorohex.json")
         code, sec, mb, err = measure([vorohex, "mesh", step, "-o", vtu, "--report", rep, "--quiet",
