@@ -756,8 +756,11 @@ class TestVoroHexObject(unittest.TestCase):
         self.assertEqual(obj.Proxy.Type, "Fem::VoroHexMesh")
         self.assertTrue(obj.isValid(), obj.getStatusString())
         self.assertEqual(obj.Status, "ok")
-        self.assertEqual((obj.HexCount, obj.NodeCount), (48, 105))
-        self.assertEqual((obj.FemMesh.VolumeCount, obj.FemMesh.NodeCount), (48, 105))
+        # New meshes are quadratic (ElementOrder "2nd"): the 3 x 5 x 7 corners and one node
+        # on each mesh edge (2 x 5 x 7 along x, 3 x 4 x 7 along y, 3 x 5 x 6 along z).
+        self.assertEqual(obj.ElementOrder, "2nd")
+        self.assertEqual((obj.HexCount, obj.NodeCount), (48, 105 + 70 + 84 + 90))
+        self.assertEqual((obj.FemMesh.VolumeCount, obj.FemMesh.NodeCount), (48, 349))
         self.assertEqual(obj.SubVolumeCount, 1)
         self.assertEqual((list(obj.SubVolumeSchemes), list(obj.SubVolumeHexCounts)), (["map"], [48]))
         self.assertAlmostEqual(obj.SubVolumeMinScaledJacobian[0], 1.0, places=9)

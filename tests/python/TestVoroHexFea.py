@@ -115,8 +115,12 @@ class TestVoroHexFeaObject(unittest.TestCase):
         from femtools import ccxtools
 
         mesh = self.make_mesh(size=10)
-        self.assertEqual(mesh.ElementOrder, "1st")
+        self.assertEqual(mesh.ElementOrder, "2nd")  # new meshes are quadratic, as Gmsh's
         self.assertEqual(list(mesh.getEnumerationsOfProperty("ElementOrder")), ["1st", "2nd"])
+        mesh.ElementOrder = "1st"
+        self.doc.recompute()
+        self.assertTrue(all(len(mesh.FemMesh.getElementNodes(v)) == 8
+                            for v in mesh.FemMesh.Volumes))
         self.assertEqual(mesh.FemMesh.VolumeCount, 6)
         self.assertTrue(any(mesh.FemMesh.getGroupName(g) == "Face6"
                             for g in mesh.FemMesh.Groups))
