@@ -925,6 +925,8 @@ class TestVoroHexObject(unittest.TestCase):
         import Fem
 
         obj = self.make_mesh(size=5)
+        obj.ElementOrder = "1st"  # linear hexahedra: FreeCAD exports them as C3D8
+        self.doc.recompute()
         with tempfile.TemporaryDirectory() as d:
             path = os.path.join(d, "mesh.inp")
             Fem.export([obj], path)
@@ -955,6 +957,7 @@ class TestVoroHexObject(unittest.TestCase):
         force.Force = 1000.0
         analysis.addObject(force)
         mesh = VoroHexObjects.makeHexMesh(self.doc, self.box, size=5)
+        mesh.ElementOrder = "1st"  # FreeCAD's writer on linear hexahedra (new meshes: 2nd)
         analysis.addObject(mesh)
         self.doc.recompute()
         self.assertTrue(mesh.isValid())
