@@ -42,7 +42,8 @@ struct IntervalProblem {
   // neighbour has already placed.
   std::vector<int> fixed;
   // Per curve: the count it should have (0 or missing: length / size); local sizes give
-  // the integral of ds / h along the curve (core::SizeField).
+  // the integral of ds / h along the curve (core::SizeField). A target above length / size
+  // (a refined curve) costs ten times more when missed from below than from above.
   std::vector<double> targets;
 
   // Its index; target as in `targets`.

@@ -96,6 +96,27 @@ TEST(IntervalAssignment, MaxIntervalsBoundsEveryCurve) {
   EXPECT_EQ(r.intervals[0], 50);
 }
 
+// Local sizes give targets of their own; an equality with unrefined curves keeps the
+// refined count (missing it from below costs more), and a curve without a target keeps
+// length / size.
+TEST(IntervalAssignment, TargetsFromLocalSizesWinAnEqualityWithUnrefinedCurves) {
+  IntervalProblem p;
+  const int refined = p.add_curve(10, "Edge1", 19.0);
+  std::vector<int> others;
+  for (int k = 2; k <= 4; ++k) others.push_back(p.add_curve(10, "Edge" + std::to_string(k)));
+  for (int c : others) p.equal.push_back({{refined}, {c}, "parallel edges"});
+  const int free = p.add_curve(7, "Edge5");
+  IntervalOptions o;
+  o.size = 1;
+  const IntervalResult r = assign_intervals(p, o);
+  ASSERT_TRUE(r.ok());
+  EXPECT_EQ(r.intervals[refined], 19);
+  for (int c : others) EXPECT_EQ(r.intervals[c], 19);
+  EXPECT_EQ(r.intervals[free], 7);
+  EXPECT_DOUBLE_EQ(p.target(free, 1.0), 7.0);
+  EXPECT_DOUBLE_EQ(p.target(refined, 1.0), 19.0);
+}
+
 TEST(IntervalAssignment, RejectsBadInput) {
   IntervalProblem p;
   p.add_curve(1, "Edge1");

@@ -12,6 +12,7 @@
 #include "fixtures/machined.h"
 #include "io/named_groups.h"
 #include "occ/primitives.h"
+#include "occ/shape_io.h"
 #include "pipeline/generate_mesh.h"
 
 namespace vorohex::pipeline {
@@ -151,6 +152,34 @@ TEST(LocalSizes, RevolveTakesTheFinestSectorCount) {
   EXPECT_EQ(r.stats.scheme, "revolve");
   EXPECT_GE(r.stats.intervals[2], int(2 * testing::kPi * 15 / 2.0));
   EXPECT_GT(r.stats.intervals[2], r0.stats.intervals[2]);
+}
+
+// Two solids glued at a face are meshed with one interval assignment: a refined edge
+// among parallel unrefined ones keeps its refinement (missing a local size from below
+// costs more than a few extra segments), and the meshes still conform.
+TEST(LocalSizes, OneIntervalAssignmentKeepsTheRefinement) {
+  const occ::Solid lower = occ::make_box(40, 20, 10);
+  const occ::Solid upper = occ::make_box(20, 20, 15, {10, 0, 10});
+  occ::ReadResult glued = occ::glue_solids({&lower, &upper}, "The test");
+  ASSERT_TRUE(glued.ok());
+  const occ::Solid& whole = *glued.solid;
+  core::VertexId origin;
+  for (core::VertexId v : whole.vertices())
+    if (whole.vertex_point(v).norm() < 1e-9) origin = v;
+  ASSERT_TRUE(origin.valid());
+  MeshOptions o;
+  o.size = 2.5;
+  const MeshResult r0 = generate_mesh(whole, o);
+  o.local_sizes = {{core::entity_name(origin), 0.5}};
+  const MeshResult r = generate_mesh(whole, o);
+  expect_valid(r);
+  EXPECT_GT(r.mesh.num_hexes(), r0.mesh.num_hexes());
+  for (core::EdgeId e : whole.edges()) {
+    if (whole.edge_first_vertex(e) != origin && whole.edge_last_vertex(e) != origin) continue;
+    const std::vector<double> l = segments(r, core::entity_name(e));
+    ASSERT_FALSE(l.empty());
+    EXPECT_LT(*std::min_element(l.begin(), l.end()), 0.9) << core::entity_name(e);
+  }
 }
 
 // Schemes that mesh at one size everywhere say the local sizes were not applied.
