@@ -4,6 +4,8 @@
 
 from array import array
 
+import math
+
 import FreeCAD
 
 import VoroHex
@@ -466,13 +468,37 @@ def automatic_size(shape):
     return shape.BoundBox.DiagonalLength / 20.0
 
 
-def predicted_hexes(shape, size):
+def predicted_hexes(shape, size, sizes=None, grading=0.3):
     """(low, high): the hexahedra to expect at `size` (0 or None: automatic). low = volume /
     size^3, what a structured mesh (map, sweep) has; high = 4 x that, a bound for the
     fallback (the grid mesher's core plus its pillow layer, refined up to twice where walls
-    are thin, stays below it on HexMe's curved models)."""
+    are thin, stays below it on HexMe's curved models). Local sizes ({"Face7": 0.5}) add
+    the hexahedra of the graded layer around each entity: the integral of 1 / h^3 - 1 /
+    size^3 over the distance d from it (h = local + grading d, up to size), on the solid's
+    side of a face, around an edge (a half cylinder) and a vertex (an eighth of a ball)."""
     size = size or automatic_size(shape)
     low = shape.Volume / size ** 3 if size > 0 else float("inf")
+    for name, local in (sizes or {}).items():
+        if not 0 < local < size:
+            continue
+        reach = (size - local) / grading  # where the size is back to the global one
+        samples = 64
+        extra = 0.0
+        for k in range(samples):  # midpoint rule over the distance
+            d = (k + 0.5) * reach / samples
+            density = 1.0 / (local + grading * d) ** 3 - 1.0 / size ** 3
+            try:
+                sub = shape.getElement(name)
+            except Exception:  # an unknown entity: the meshing says so
+                break
+            if name.startswith("Face"):
+                measure = sub.Area
+            elif name.startswith("Edge"):
+                measure = sub.Length * math.pi * d
+            else:
+                measure = 0.5 * math.pi * d * d
+            extra += measure * density * reach / samples
+        low += extra
     return low, 4.0 * low
 
 
@@ -483,7 +509,11 @@ def refusal(obj, size=None):
         return None
     if size is None:
         size = obj.TargetSize.Value
-    low, _ = predicted_hexes(obj.Part.Shape, size)
+    try:
+        sizes = region_sizes(obj)
+    except ValueError:  # a bad region: meshing reports it
+        sizes = {}
+    low, _ = predicted_hexes(obj.Part.Shape, size, sizes, getattr(obj, "SizeGrading", 0.3))
     if low <= obj.MaxHexes:
         return None
     return ("size {:g} mm would give about {} hexahedra (volume / size\u00b3), more than the "

@@ -343,8 +343,14 @@ class TaskPanel:
         last = self.obj.SizeUsed if self.obj.Status == "ok" else 0
         if last > 0 and self.obj.HexCount > 0:  # scaled from the last run: knows its scheme
             return self.obj.HexCount * (last / size) ** 3, "scaled from the last run"
-        low, high = VoroHexObjects.predicted_hexes(shape, size)
-        return low, "volume / size\u00b3; up to {} if the fallback meshes it".format(
+        try:
+            sizes = VoroHexObjects.region_sizes(self.obj)
+        except ValueError:  # a bad region: Run says so
+            sizes = {}
+        low, high = VoroHexObjects.predicted_hexes(shape, size, sizes,
+                                                   getattr(self.obj, "SizeGrading", 0.3))
+        return low, "volume / size\u00b3{}; up to {} if the fallback meshes it".format(
+            ", plus the layers graded around {} local sizes".format(len(sizes)) if sizes else "",
             VoroHexObjects.format_count(high))
 
     def update_estimate(self, *args):

@@ -95,6 +95,15 @@ class TestVoroHexSizesObject(unittest.TestCase):
         self.assertEqual(sizes[self.hole], 0.5)
         self.assertEqual(sizes["Edge{}".format(circle)], 0.5)
 
+    def test_the_hex_estimate_counts_the_graded_layers(self):
+        shape = self.part.Shape
+        plain, _ = VoroHexObjects.predicted_hexes(shape, 10)
+        local, _ = VoroHexObjects.predicted_hexes(shape, 10, {self.hole: 1.0})
+        # The layer around the hole: area 628 x the integral of 1/(1 + 0.3 d)^3 - 1/1000
+        # up to d = 30, about 1,020 more than volume / size^3 = 197.
+        self.assertAlmostEqual(plain, shape.Volume / 1000, places=6)
+        self.assertAlmostEqual(local - plain, 628.3 * (0.99 / 0.6 - 0.03), delta=15)
+
     def test_bad_regions_are_errors_that_keep_the_previous_mesh(self):
         obj = VoroHexObjects.makeHexMesh(self.doc, self.part, size=10)
         self.doc.recompute()
