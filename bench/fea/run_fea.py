@@ -12,6 +12,9 @@ the thickness) with its inner cross-sections tilted alternately (trapezoidal ele
 classic distortion test), C3D8I's deflection against the converged C3D20R value of the
 same beam, per minimum scaled Jacobian.
 
+Part 3: Gmsh's quadratic tetrahedra (FreeCAD's default FEM mesh) of the same beam, for
+comparison at similar node counts.
+
 Writes bench/results/fea.md.  usage: run_fea.py [--build BUILD]
 """
 import argparse
@@ -168,6 +171,21 @@ def main():
                              nodes, "{:.4f}".format(uz),
                              "{:+.2f} %".format(100 * (uz / EULER_BERNOULLI - 1)),
                              "{:.2f}".format(seconds)))
+    # FreeCAD's default FEM mesh beside them: Gmsh's quadratic tetrahedra (C3D10).
+    for size in (10, 5, 2.5):
+        out_inp = os.path.join(work, "gmsh.inp")
+        p = subprocess.run([sys.executable, os.path.join(HERE, "gmsh_tet10.py"), step, out_inp,
+                            str(size), "Face1=abs(x)<1e-6", "Face2=abs(x-100)<1e-6"],
+                           capture_output=True, text=True)
+        if p.returncode != 0:
+            rows.append(("Gmsh tet10", size, "C3D10", "-", "failed: " + p.stderr[-200:], "", ""))
+            continue
+        with open(out_inp) as f:
+            text = f.read()
+        uz, seconds, nodes = solve(text, work, "g")
+        rows.append(("Gmsh tet10", size, "C3D10", nodes, "{:.4f}".format(uz),
+                     "{:+.2f} %".format(100 * (uz / EULER_BERNOULLI - 1)),
+                     "{:.2f}".format(seconds)))
     # C3D8I on distorted (trapezoidal) elements against the converged C3D20R value.
     ref_text, _ = mesh(vorohex, step, work, 2.5, 2, "C3D20R")
     reference = solve(ref_text, work, "ref")[0]
@@ -197,7 +215,9 @@ def main():
         "material, *BOUNDARY on NSET Face1, *CLOAD on NSET Face2 and a *STEP. Tip deflection: "
         "mean z displacement of Face2's nodes. Reference: Euler-Bernoulli "
         "{:.4f} mm (Timoshenko: +0.78 %). Size 10 is one element through the thickness, 5 two, "
-        "2.5 four.".format(EULER_BERNOULLI), "",
+        "2.5 four. Gmsh tet10 rows: Gmsh's quadratic tetrahedra (FreeCAD's default FEM mesh) "
+        "of the same STEP at that size, loaded the same way (bench/fea/gmsh_tet10.py writes "
+        "the same named node sets).".format(EULER_BERNOULLI), "",
         "| order | size | element | nodes | tip uz (mm) | error vs E-B | ccx s |",
         "|---|---|---|---|---|---|---|"]
     out += ["| {} | {} | {} | {} | {} | {} | {} |".format(*r) for r in rows]
