@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace vorohex::mesh::detail {
 
@@ -32,20 +33,31 @@ double edge_segments(const core::MeshDomain& s, core::EdgeId e, double size,
   return field->segments_along(s.edge_points_by_length(e, samples(length, *field)));
 }
 
-std::vector<Vec3> graded_points(const std::vector<Vec3>& polyline, int n,
-                                const core::SizeField& field) {
-  const std::vector<double> c = field.cumulative(polyline);
-  std::vector<Vec3> out;
-  out.reserve(n + 1);
-  out.push_back(polyline.front());
+namespace {
+
+// Where the n-1 inner points at equal shares of a cumulative integral fall: per point, the
+// sample k before it and the fraction w of the way to sample k + 1.
+std::vector<std::pair<std::size_t, double>> equal_shares(const std::vector<double>& c, int n) {
+  std::vector<std::pair<std::size_t, double>> out;
   std::size_t k = 0;
   for (int i = 1; i < n; ++i) {
     const double t = c.back() * double(i) / n;
     while (k + 2 < c.size() && c[k + 1] < t) ++k;
     const double span = c[k + 1] - c[k];
-    const double w = span > 0 ? std::clamp((t - c[k]) / span, 0.0, 1.0) : 0.0;
-    out.push_back((1 - w) * polyline[k] + w * polyline[k + 1]);
+    out.emplace_back(k, span > 0 ? std::clamp((t - c[k]) / span, 0.0, 1.0) : 0.0);
   }
+  return out;
+}
+
+}  // namespace
+
+std::vector<Vec3> graded_points(const std::vector<Vec3>& polyline, int n,
+                                const core::SizeField& field) {
+  std::vector<Vec3> out;
+  out.reserve(n + 1);
+  out.push_back(polyline.front());
+  for (const auto& [k, w] : equal_shares(field.cumulative(polyline), n))
+    out.push_back((1 - w) * polyline[k] + w * polyline[k + 1]);
   out.push_back(polyline.back());
   return out;
 }
@@ -68,15 +80,8 @@ std::vector<double> graded_parameters(const Vec3& a, const Vec3& b, int n,
   const int m = std::max(samples((b - a).norm(), *field), 4 * n);
   std::vector<Vec3> line(m + 1);
   for (int k = 0; k <= m; ++k) line[k] = a + (b - a) * (double(k) / m);
-  const std::vector<double> c = field->cumulative(line);
-  std::size_t k = 0;
-  for (int i = 1; i < n; ++i) {
-    const double target = c.back() * double(i) / n;
-    while (k + 2 < c.size() && c[k + 1] < target) ++k;
-    const double span = c[k + 1] - c[k];
-    const double w = span > 0 ? std::clamp((target - c[k]) / span, 0.0, 1.0) : 0.0;
-    t[i] = (double(k) + w) / m;
-  }
+  int i = 1;
+  for (const auto& [k, w] : equal_shares(field->cumulative(line), n)) t[i++] = (double(k) + w) / m;
   return t;
 }
 
