@@ -37,6 +37,9 @@ void IntervalOptions::validate() const {
 
 namespace {
 
+// How much more a refined curve's missing segment costs than an extra one (see solve()).
+constexpr double kRefinedWeight = 1000;
+
 // Which constraints take part in one solve (all, or a subset while looking for a conflict).
 struct Selection {
   std::vector<char> equal, even, at_least;
@@ -73,10 +76,12 @@ Solution solve(const IntervalProblem& p, const IntervalOptions& o, const Selecti
     if (c < int(p.fixed.size()) && p.fixed[c] > 0) col_lb[c] = col_ub[c] = p.fixed[c];
     const double w = 1.0 / std::max(1.0, target);
     obj[nc + c] = obj[2 * nc + c] = w;
-    // A curve a local size refines: too few segments cost ten times more than too many, so
-    // that an equality with unrefined curves (the four parallel edges of a block, a sweep's
-    // layers) keeps the refinement the user asked for instead of the majority's count.
-    if (p.target(c, o.size) > p.lengths[c] / o.size * (1 + 1e-9)) obj[2 * nc + c] = 10 * w;
+    // A curve a local size refines: too few segments cost far more than too many, so that
+    // an equality with unrefined curves (the parallel edges of a block, of a row of glued
+    // blocks, a sweep's layers) keeps the refinement the user asked for instead of the
+    // majority's count: in effect a lower bound that stays soft.
+    if (p.target(c, o.size) > p.lengths[c] / o.size * (1 + 1e-9))
+      obj[2 * nc + c] = kRefinedWeight * w;
     // n - over + under = target
     add_row({{c, 1.0}, {nc + c, -1.0}, {2 * nc + c, 1.0}}, target);
   }

@@ -43,7 +43,8 @@ struct IntervalProblem {
   std::vector<int> fixed;
   // Per curve: the count it should have (0 or missing: length / size); local sizes give
   // the integral of ds / h along the curve (core::SizeField). A target above length / size
-  // (a refined curve) costs ten times more when missed from below than from above.
+  // (a refined curve) costs a thousand times more when missed from below than from above:
+  // in effect a soft lower bound, so the finest request wins an equality.
   std::vector<double> targets;
 
   // Its index; target as in `targets`.
