@@ -60,8 +60,17 @@ class SizeField {
 
   // Warnings found while building (a local size not below the global size has no effect).
   const std::vector<Diagnostic>& diagnostics() const { return diagnostics_; }
-  // The sources as applied, for reports: "Face7" -> size.
+  // The sources as applied (each entity once, only sizes below the global one), for
+  // reports: "Face7" -> size.
   const std::vector<LocalSize>& applied() const { return applied_; }
+
+  // About how many hexahedra the graded layers around the sources add to volume / size^3:
+  // the integral of 1 / h^3 - 1 / size^3 over the distance d from each entity, on the
+  // solid's side of a face (its area), around an edge (a half cylinder, pi d per unit
+  // length) and a vertex (a quarter ball, pi d^2 / 2; corners of solids hold an eighth to
+  // a half), in closed form. A structured mesh has about this many more, or more (its layers and sectors
+  // run through); used to refuse tiny local sizes before meshing.
+  double graded_cells() const;
 
  private:
   struct Source {

@@ -439,8 +439,10 @@ bool mesh_solid(const occ::Solid& solid, const MeshOptions& options, const core:
       result.stats.scheme = scheme->name();
       result.mesh = std::move(meshed.mesh);
       if (!meshed.summary.code.empty()) result.diagnostics.push_back(meshed.summary);
-      if (!sizes.uniform() && !scheme->grades())
+      if (!sizes.uniform() && !scheme->grades()) {
         result.diagnostics.push_back(local_sizes_ignored(scheme->name()));
+        result.stats.local_sizes.clear();  // none applied
+      }
       return true;
     }
     if (progress.cancelled()) {
@@ -476,7 +478,10 @@ bool mesh_solid(const occ::Solid& solid, const MeshOptions& options, const core:
     return false;
   }
   result.stats.intervals = {0, 0, 0};
-  if (!sizes.uniform()) result.diagnostics.push_back(local_sizes_ignored(options.fallback_scheme));
+  if (!sizes.uniform()) {
+    result.diagnostics.push_back(local_sizes_ignored(options.fallback_scheme));
+    result.stats.local_sizes.clear();  // none applied
+  }
   return fallback(
       solid, options, size,
       "No structured scheme applies (" + why_not_structured + ") and " + not_decomposed + ".",
@@ -598,6 +603,28 @@ MeshResult generate(const occ::Solid& solid, const MeshOptions& options,
       options.local_sizes.empty()
           ? core::SizeField(size)
           : core::SizeField(solid, size, options.local_sizes, options.size_grading);
+  // The layers graded around local sizes hold at least about this many more hexahedra: a
+  // tiny local size (a typo) is refused here, before any work.
+  if (!sizes.uniform()) {
+    const double at_least = std::abs(solid.volume()) / (size * size * size) + sizes.graded_cells();
+    if (at_least > double(options.max_hexes)) {
+      MeshResult refused;
+      std::ostringstream s;
+      s << "The local sizes (";
+      for (std::size_t i = 0; i < sizes.applied().size(); ++i)
+        s << (i ? ", " : "") << sizes.applied()[i].entity << " " << sizes.applied()[i].size;
+      s << ") would give at least about " << std::setprecision(3) << at_least
+        << " hexahedra (the layers graded around them at " << options.size_grading
+        << " per unit of distance), more than max_hexes = " << options.max_hexes
+        << "; give larger local sizes, a larger grading or a larger limit.";
+      std::vector<std::string> names;
+      for (const core::LocalSize& l : sizes.applied()) names.push_back(l.entity);
+      refused.diagnostics.push_back(core::make_error("too_many_hexes", s.str(), names));
+      refused.stats.size_used = size;
+      refused.stats.local_sizes = sizes.applied();
+      return refused;
+    }
+  }
   std::vector<core::Diagnostic> small = small_features(solid, sizes);
   append(small, sizes.diagnostics());
   if (solid.num_solids() > 1) {
@@ -622,8 +649,7 @@ MeshResult generate(const occ::Solid& solid, const MeshOptions& options,
     tet.fallback_scheme = "tet-split";
     const core::Progress budget = progress.with_time_limit(kSecondChanceSeconds);
     MeshResult second;
-    second.stats.size_used = size;
-    second.stats.local_sizes = sizes.applied();
+    second.stats.size_used = size;  // the tet split meshes at the global size
     const auto t0 = std::chrono::steady_clock::now();
     if (fallback(solid, tet, size, "The grid mesher's mesh is invalid.", budget, t0, second))
       finish(second, solid, tet, budget, sizes);
@@ -633,6 +659,7 @@ MeshResult generate(const occ::Solid& solid, const MeshOptions& options,
         grid_errors += (grid_errors.empty() ? "" : ", ") + d.code;
     if (second.ok) {
       second.diagnostics.insert(second.diagnostics.begin(), small.begin(), small.end());
+      if (!sizes.uniform()) second.diagnostics.push_back(local_sizes_ignored("tet-split"));
       second.diagnostics.push_back(core::make_warning(
           "grid_invalid", "The grid mesher's mesh was invalid (" + grid_errors +
                               "); the tetrahedral fallback's mesh is valid and is used."));

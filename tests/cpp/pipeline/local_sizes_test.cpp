@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <numeric>
 #include <stdexcept>
@@ -211,6 +212,29 @@ TEST(LocalSizes, ACoarserLocalSizeChangesNothing) {
   EXPECT_TRUE(
       std::any_of(b.diagnostics.begin(), b.diagnostics.end(),
                   [](const core::Diagnostic& d) { return d.code == "local_size_not_finer"; }));
+}
+
+// A tiny local size (a typo: 0.001 for 1) is refused before any work, naming it.
+TEST(LocalSizes, ATinyLocalSizeIsRefusedUpFront) {
+  const occ::Solid plate = testing::cut(occ::make_box(200, 100, 10),
+                                        occ::make_cylinder(10, 30, {100, 50, -10}, {0, 0, 1}));
+  MeshOptions o;
+  o.size = 10;
+  o.local_sizes = {{core::entity_name(cylinder(plate, 10)), 0.001}};
+  const auto t0 = std::chrono::steady_clock::now();
+  const MeshResult r = generate_mesh(plate, o);
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 5.0);
+  EXPECT_FALSE(r.ok);
+  ASSERT_FALSE(r.diagnostics.empty());
+  EXPECT_EQ(r.diagnostics.back().code, "too_many_hexes");
+  EXPECT_NE(r.diagnostics.back().message.find("local sizes"), std::string::npos);
+  EXPECT_EQ(r.mesh.num_hexes(), 0u);
+  // The estimate: the face's graded layer in closed form (area x the integral of h^-3).
+  const core::SizeField field(plate, 10, o.local_sizes, 0.3);
+  const double area = 2 * testing::kPi * 10 * 10, s = 0.001, g = 0.3, H = 10;
+  EXPECT_NEAR(field.graded_cells(),
+              area * ((1 / (s * s) - 1 / (H * H)) / (2 * g) - (H - s) / g / (H * H * H)),
+              1e-6 * field.graded_cells());
 }
 
 TEST(LocalSizes, UnknownEntitiesAndBadSizesAreRefused) {
