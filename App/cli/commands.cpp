@@ -32,8 +32,8 @@ const char* const kMeshUsage =
     "  --size H        target edge length in model units (default: diagonal / 20)\n"
     "  --size-at ENTITY[,ENTITY...]=H  a smaller size at CAD faces, edges or vertices\n"
     "                  (Face7, Edge3, Vertex2: FreeCAD's names), graded into --size; repeatable\n"
-    "  --size-grading G  growth of the size per unit distance from a --size-at entity\n"
-    "                  (default 0.3: 1 mm away the size is 0.3 mm larger)\n"
+    "  --size-grading G  growth of the size per unit distance from a --size-at entity,\n"
+    "                  in (0, 10] (default 0.3: 1 mm away the size is 0.3 mm larger)\n"
     "  --order N       1: 8-node hexahedra (default); 2: 20-node, mid-edge nodes on the CAD\n"
     "  --element TYPE  .inp element: C3D8, C3D8I, C3D8R (order 1), C3D20, C3D20R (order 2);\n"
     "                  default C3D8I / C3D20R, replaced where known to fail (C3D8 on distorted\n"
@@ -149,7 +149,9 @@ std::vector<core::LocalSize> parse_size_at(const std::string& text) {
   const std::string names = text.substr(0, eq);
   for (std::size_t start = 0; start <= names.size();) {
     const std::size_t comma = std::min(names.find(',', start), names.size());
-    const std::string name = names.substr(start, comma - start);
+    std::string name = names.substr(start, comma - start);
+    name.erase(0, name.find_first_not_of(" \t"));  // "Face7, Edge3=1": spaces after commas
+    name.erase(name.find_last_not_of(" \t") + 1);
     char kind = 0;
     int id = 0;
     if (!core::parse_entity_name(name, kind, id))

@@ -598,6 +598,15 @@ MeshResult generate(const occ::Solid& solid, const MeshOptions& options,
       return refused;
     }
   }
+  // Several solids are glued first, which renumbers their faces, edges and vertices: a name
+  // given for the file's numbering would refine another entity, so they are refused.
+  if (!options.local_sizes.empty() && solid.num_solids() > 1)
+    throw std::invalid_argument(
+        "local sizes are not supported yet on several solids: gluing them at their common "
+        "faces renumbers their faces, edges and vertices (the file's " +
+        options.local_sizes[0].entity +
+        " is not the glued solid's), so a size would land on another entity; mesh the solids "
+        "one by one, or without local sizes");
   // Local sizes (a uniform field without them); an unknown entity throws, naming it.
   const core::SizeField sizes =
       options.local_sizes.empty()

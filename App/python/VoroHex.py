@@ -174,7 +174,7 @@ def _make_options(kwargs):
     unknown = sorted(set(kwargs) - set(_OPTION_BY_NAME))
     if unknown:
         raise TypeError("VoroHex: unknown option(s) {}; known options: {}".format(
-            ", ".join(unknown), ", ".join(o.name for o in OPTIONS)))
+            ", ".join(unknown), ", ".join([o.name for o in OPTIONS] + ["order", "sizes"])))
     opts = _core.MeshOptions()
     for name, value in kwargs.items():
         if value is None:

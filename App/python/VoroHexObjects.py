@@ -2,9 +2,10 @@
 # Fem::FemMeshObjectPython whose proxy re-meshes its linked Part on recompute.
 """VoroHex document objects (usable headless, in freecadcmd)."""
 
-from array import array
-
 import math
+import os
+import sys
+from array import array
 
 import FreeCAD
 
@@ -190,12 +191,17 @@ def region_sizes(obj):
             raise ValueError("VoroHex: mesh region '{}' references no face, edge or vertex"
                              .format(region.Label))
         for ref_obj, subs in refs:
-            same = part is not None and (ref_obj == part or (
-                hasattr(ref_obj, "Shape") and ref_obj.Shape.isSame(part.Shape)))
+            # The part itself, the same shape, or the tip of a PartDesign Body (a pick in the
+            # 3D view names the tip feature; the Body's faces are numbered as the tip's).
+            same = part is not None and (
+                ref_obj == part or getattr(part, "Tip", None) == ref_obj or (
+                    hasattr(ref_obj, "Shape") and ref_obj.Shape.isSame(part.Shape)))
             if not same:
                 raise ValueError("VoroHex: mesh region '{}' references '{}', not the meshed part "
-                                 "'{}'".format(region.Label, ref_obj.Label,
-                                               part.Label if part is not None else "(none)"))
+                                 "'{}': pick faces, edges or vertices of '{}'".format(
+                                     region.Label, ref_obj.Label,
+                                     part.Label if part is not None else "(none)",
+                                     part.Label if part is not None else "the part"))
             for sub in (subs if isinstance(subs, (list, tuple)) else [subs]):
                 if not sub or not sub.startswith(("Face", "Edge", "Vertex")):
                     raise ValueError("VoroHex: mesh region '{}' references '{}' of '{}'; only "
@@ -209,13 +215,28 @@ def addMeshRegion(mesh_obj, size, references):
     """Adds a FreeCAD FEM mesh region (a local size) to a VoroHex mesh object: `size` in
     mm at `references`, a list of sub-element names of its part ("Face7", "Edge3"). Returns
     the region; the mesh follows it on the next recompute."""
-    import ObjectsFem
+    try:
+        import ObjectsFem
+    except ImportError:  # plain python3 with FreeCAD's lib: the FEM module is not on the path
+        sys.path.append(os.path.join(FreeCAD.getHomePath(), "Mod", "Fem"))
+        import ObjectsFem
 
     if getattr(getattr(mesh_obj, "Proxy", None), "Type", None) != TYPE:
         raise TypeError("VoroHex: {} is not a VoroHex mesh object".format(
             getattr(mesh_obj, "Label", mesh_obj)))
     if isinstance(references, str):
         references = [references]
+    size = VoroHex._number("size", size)
+    if size <= 0:
+        raise ValueError("VoroHex: a local size must be > 0, got {}".format(size))
+    for name in references:
+        if not isinstance(name, str) or not VoroHex._ENTITY_NAME.match(name):
+            raise ValueError("VoroHex: {!r} is not a face, edge or vertex name (FaceN, EdgeN, "
+                             "VertexN)".format(name))
+        try:
+            mesh_obj.Part.Shape.getElement(name)
+        except Exception:
+            raise ValueError("VoroHex: '{}' has no {}".format(mesh_obj.Part.Label, name))
     region = ObjectsFem.makeMeshRegion(mesh_obj.Document, mesh_obj, size,
                                        object_name(mesh_obj, "MeshRegion"))
     region.References = [(mesh_obj.Part, tuple(references))]

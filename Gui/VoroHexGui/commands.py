@@ -348,8 +348,9 @@ class LocalSizeCommand:
 
     def Activated(self):
         mesh = selected_vorohex_mesh()
-        size = mesh.TargetSize.Value or VoroHexObjects.automatic_size(mesh.Part.Shape) \
-            if mesh.Part is not None else mesh.TargetSize.Value
+        part = mesh.Part
+        size = mesh.TargetSize.Value or (
+            VoroHexObjects.automatic_size(part.Shape) if part is not None else 1.0)
         doc = mesh.Document
         doc.openTransaction("VoroHex local size")
         FreeCADGui.addModule("ObjectsFem")
@@ -357,8 +358,55 @@ class LocalSizeCommand:
             "_region = ObjectsFem.makeMeshRegion(App.ActiveDocument, App.ActiveDocument.{}, "
             "{!r})".format(mesh.Name, round(size / 4.0, 6)))
         doc.commitTransaction()
+        region = mesh.MeshRegionList[-1]
+        # FreeCAD's region panel hides every FEM mesh; the part must show to be picked.
+        shown = part.ViewObject.Visibility if part is not None else None
+        if part is not None:
+            part.ViewObject.Visibility = True
         FreeCADGui.Selection.clearSelection()
         FreeCADGui.doCommand("Gui.ActiveDocument.setEdit(_region.Name)")
+        RegionWatcher.start(mesh, region, part, shown)
+
+
+class RegionWatcher:
+    """Waits for FreeCAD's region panel to close, then shows the mesh again (the panel hid
+    it) and puts the part's visibility back; a region left without faces, edges or vertices
+    (the panel cancelled) is removed again, as it was only just added."""
+
+    active = []  # keeps the watchers (and their timers) alive
+
+    @classmethod
+    def start(cls, mesh, region, part, part_shown):
+        cls.active.append(cls(mesh, region, part, part_shown))
+
+    def __init__(self, mesh, region, part, part_shown):
+        self.doc, self.mesh_name, self.region_name = mesh.Document, mesh.Name, region.Name
+        self.part_name = part.Name if part is not None else None
+        self.part_shown = part_shown
+        self.timer = QtCore.QTimer()
+        self.timer.timeout.connect(self.check)
+        self.timer.start(250)
+
+    def check(self):
+        if FreeCADGui.Control.activeDialog():
+            return
+        self.timer.stop()
+        RegionWatcher.active.remove(self)
+        mesh = self.doc.getObject(self.mesh_name)
+        region = self.doc.getObject(self.region_name)
+        if region is not None and not region.References:
+            if mesh is not None:
+                mesh.MeshRegionList = [r for r in mesh.MeshRegionList if r != region]
+            self.doc.removeObject(self.region_name)
+            FreeCAD.Console.PrintMessage(
+                "VoroHex: the mesh region picked no face, edge or vertex and was removed.\n")
+        part = self.doc.getObject(self.part_name) if self.part_name else None
+        if part is not None and self.part_shown is not None:
+            part.ViewObject.Visibility = self.part_shown
+        if mesh is not None:
+            mesh.ViewObject.Visibility = True
+            if "Touched" in mesh.State:
+                self.doc.recompute()
 
 
 def register():
@@ -369,5 +417,5 @@ def register():
     FreeCADGui.addCommand("VoroHex_MeshQuality", MeshQualityCommand())
 
 
-COMMANDS = ["VoroHex_HexMesh", "VoroHex_LocalSize", "VoroHex_VoronoiGraph", "VoroHex_Decomposition",
-            "VoroHex_MeshQuality"]
+COMMANDS = ["VoroHex_HexMesh", "VoroHex_LocalSize", "VoroHex_VoronoiGraph",
+            "VoroHex_Decomposition", "VoroHex_MeshQuality"]

@@ -155,32 +155,54 @@ TEST(LocalSizes, RevolveTakesTheFinestSectorCount) {
   EXPECT_GT(r.stats.intervals[2], r0.stats.intervals[2]);
 }
 
-// Two solids glued at a face are meshed with one interval assignment: a refined edge
-// among parallel unrefined ones keeps its refinement (missing a local size from below
-// costs more than a few extra segments), and the meshes still conform.
-TEST(LocalSizes, OneIntervalAssignmentKeepsTheRefinement) {
+// Several solids are glued first, which renumbers their entities: local sizes on them are
+// refused (a name from the file would refine another entity) rather than misplaced.
+TEST(LocalSizes, AreRefusedOnSeveralSolids) {
   const occ::Solid lower = occ::make_box(40, 20, 10);
   const occ::Solid upper = occ::make_box(20, 20, 15, {10, 0, 10});
   occ::ReadResult glued = occ::glue_solids({&lower, &upper}, "The test");
   ASSERT_TRUE(glued.ok());
-  const occ::Solid& whole = *glued.solid;
-  core::VertexId origin;
-  for (core::VertexId v : whole.vertices())
-    if (whole.vertex_point(v).norm() < 1e-9) origin = v;
-  ASSERT_TRUE(origin.valid());
   MeshOptions o;
   o.size = 2.5;
-  const MeshResult r0 = generate_mesh(whole, o);
-  o.local_sizes = {{core::entity_name(origin), 0.5}};
-  const MeshResult r = generate_mesh(whole, o);
-  expect_valid(r);
-  EXPECT_GT(r.mesh.num_hexes(), r0.mesh.num_hexes());
-  for (core::EdgeId e : whole.edges()) {
-    if (whole.edge_first_vertex(e) != origin && whole.edge_last_vertex(e) != origin) continue;
-    const std::vector<double> l = segments(r, core::entity_name(e));
-    ASSERT_FALSE(l.empty());
-    EXPECT_LT(*std::min_element(l.begin(), l.end()), 0.9) << core::entity_name(e);
+  o.local_sizes = {{"Vertex1", 0.5}};
+  try {
+    generate_mesh(*glued.solid, o);
+    ADD_FAILURE() << "no error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("not supported yet on several solids"), std::string::npos);
   }
+}
+
+// A row of glued blocks (the decomposition's pieces) is meshed with one interval
+// assignment: a refined edge among parallel unrefined ones keeps its refinement (missing a
+// local size from below costs far more than extra segments), and the pieces conform.
+TEST(LocalSizes, OneIntervalAssignmentKeepsTheRefinement) {
+  const occ::Solid post =
+      testing::fuse(occ::make_box(60, 60, 10), occ::make_box(20, 20, 30, {20, 20, 10}));
+  core::FaceId top;
+  for (core::FaceId f : post.faces()) {
+    const core::SurfaceInfo i = post.surface_info(f);
+    if (i.kind == core::SurfaceKind::plane &&
+        std::abs(post.project_to_face(f, Vec3(30, 30, 100)).z() - 40) < 1e-9)
+      top = f;
+  }
+  ASSERT_TRUE(top.valid());
+  MeshOptions o;
+  o.size = 5;
+  o.schemes = {"map", "sweep"};  // a post on a plate: cut into blocks and sweeps
+  const MeshResult r0 = generate_mesh(post, o);
+  o.local_sizes = {{core::entity_name(top), 1.0}};
+  const MeshResult r = generate_mesh(post, o);
+  expect_valid(r);
+  EXPECT_GT(r.stats.sub_volumes, 1);
+  EXPECT_GT(r.mesh.num_hexes(), 4 * r0.mesh.num_hexes());
+  // The top's edges: segments of about 1.
+  for (const auto& wire : post.face_wires(top))
+    for (const core::OrientedEdge& oe : wire) {
+      const std::vector<double> l = segments(r, core::entity_name(oe.edge));
+      ASSERT_FALSE(l.empty());
+      EXPECT_NEAR(std::accumulate(l.begin(), l.end(), 0.0) / double(l.size()), 1.0, 0.15);
+    }
 }
 
 // Schemes that mesh at one size everywhere say the local sizes were not applied.
