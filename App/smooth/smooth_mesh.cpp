@@ -51,6 +51,15 @@ class Smoother {
 
   void run() {
     topology_ = detail::build_topology(mesh_);
+    for (core::EdgeId e : solid_.edges()) {
+      const std::vector<FaceId> ef = solid_.edge_faces(e);
+      for (std::size_t i = 0; i < ef.size(); ++i)
+        for (std::size_t j = i + 1; j < ef.size(); ++j)
+          if (ef[i] != ef[j])
+            face_pairs_.emplace_back(std::min(ef[i].value(), ef[j].value()),
+                                     std::max(ef[i].value(), ef[j].value()));
+    }
+    std::sort(face_pairs_.begin(), face_pairs_.end());
     classify_movable();
     sj_ = quality::scaled_jacobians(mesh_);
     const quality::QualityStats before = quality::quality_stats(sj_);
@@ -61,6 +70,7 @@ class Smoother {
     input_min_ = before.min;
     const std::vector<double> input_sj = sj_;
     const std::vector<Vec3> input_points = mesh_.points();
+    const std::vector<NodeClass> input_classes = mesh_.node_classes();  // untangling may change
 
     const auto t0 = std::chrono::steady_clock::now();
     laplacian_phase();
@@ -78,8 +88,10 @@ class Smoother {
     // Untangling may deepen one inverted hex to clear others; the result must never have a
     // lower minimum than its input, so such a trade is undone as a whole.
     if (after.min < before.min) {
-      for (std::size_t n = 0; n < input_points.size(); ++n)
+      for (std::size_t n = 0; n < input_points.size(); ++n) {
         mesh_.set_point(core::NodeId(static_cast<std::int32_t>(n)), input_points[n]);
+        mesh_.set_node_class(core::NodeId(static_cast<std::int32_t>(n)), input_classes[n]);
+      }
       std::ostringstream s;
       s << "Smoothing lowered the minimum scaled Jacobian from " << before.min << " to "
         << after.min << " (" << after.inverted << " inverted instead of " << before.inverted
@@ -172,8 +184,11 @@ class Smoother {
 
   // Writes node n and its incident hexes' values. Nodes of one colour share no hex, so
   // concurrent commits of such nodes touch disjoint entries.
-  void commit(std::size_t n, const Vec3& x, const std::vector<double>& trial) {
+  void commit(std::size_t n, const Vec3& x, const std::vector<double>& trial,
+              FaceId face = FaceId()) {
     mesh_.set_point(core::NodeId(static_cast<std::int32_t>(n)), x);
+    if (face.value() > 0)
+      mesh_.set_node_class(core::NodeId(static_cast<std::int32_t>(n)), NodeClass::on(face));
     std::size_t i = 0;
     for (std::int64_t k = topology_.node_hexes.begin(n); k < topology_.node_hexes.end(n); ++k)
       sj_[topology_.node_hexes.items[k] / 8] = trial[i++];
@@ -196,6 +211,34 @@ class Smoother {
       y = solid_.project_to_edge(EdgeId(c.id), x + d);
     }
     return y.allFinite() && (y - x).norm() <= 3 * step;
+  }
+
+  // As constrained_move, for a face node while untangling: where the step leaves the node's
+  // face (its projection is held at the face's boundary, so nodes pile up there: a quad of
+  // a pillow layer pressed flat against a boundary edge of its face), the node may cross
+  // onto the adjacent face nearest to the step's target; *face is then that face.
+  bool untangling_move(std::size_t n, const Vec3& x, const Vec3& d, Vec3& y, FaceId* face) const {
+    *face = FaceId();
+    const NodeClass c = mesh_.node_classes()[n];
+    if (!constrained_move(n, x, d, y)) return false;
+    if (c.dim != 2) return true;
+    const Vec3 normal = solid_.face_normal(FaceId(c.id), x);
+    const Vec3 target = x + d - d.dot(normal) * normal;
+    const double held = (y - target).norm();
+    if (!(held > 0.25 * d.norm())) return true;
+    const FaceId g = solid_.nearest_face(target);
+    if (g.value() <= 0 || g.value() == c.id || !adjacent_faces(c.id, g.value())) return true;
+    const Vec3 z = solid_.project_to_face(g, target);
+    if (!z.allFinite() || !((z - target).norm() < held) || (z - x).norm() > 3 * d.norm())
+      return true;
+    y = z;
+    *face = g;
+    return true;
+  }
+
+  bool adjacent_faces(int f, int g) const {
+    return std::binary_search(face_pairs_.begin(), face_pairs_.end(),
+                              std::make_pair(std::min(f, g), std::max(f, g)));
   }
 
   // Greedy colouring of the movable interior nodes so that nodes of one colour share no hex
@@ -339,11 +382,14 @@ class Smoother {
     const double decrease = 1e-12 * std::abs(v.value);
     for (int tries = 0; tries < 14; ++tries, step *= 0.5) {
       Vec3 y;
-      if (!constrained_move(n, x, step * d, y)) continue;
+      FaceId face;
+      if (!(mode == Mode::untangle ? untangling_move(n, x, step * d, y, &face)
+                                   : constrained_move(n, x, step * d, y)))
+        continue;
       const double value = detail::node_objective_value(incident_, y, delta);
       if (!(value < v.value - decrease)) continue;
       if (!acceptable(n, y, mode, trial_sj_)) continue;
-      commit(n, y, trial_sj_);
+      commit(n, y, trial_sj_, face);
       ++result_.optimisation_moves;
       return true;
     }
@@ -385,10 +431,11 @@ class Smoother {
     double scale = 1;
     for (int tries = 0; tries < 12; ++tries, scale *= 0.5) {
       Vec3 y;
-      if (!constrained_move(n, x, scale * d, y)) continue;
+      FaceId face;
+      if (!untangling_move(n, x, scale * d, y, &face)) continue;
       if (!(detail::untangle_value(frames, y - x, kUntangleTarget) < u0)) continue;
       if (!acceptable(n, y, Mode::untangle, trial_sj_)) continue;
-      commit(n, y, trial_sj_);
+      commit(n, y, trial_sj_, face);
       ++result_.optimisation_moves;
       return true;
     }
@@ -571,6 +618,7 @@ class Smoother {
   std::vector<std::vector<std::int32_t>> colour_classes_;  // interior nodes by colour
   std::vector<std::int32_t> serial_nodes_;                 // boundary and uncoloured nodes
   std::vector<IncidentHex> incident_;
+  std::vector<std::pair<int, int>> face_pairs_;  // faces sharing an edge, (lower, higher)
   double floor_ = 0;
   double input_min_ = 0;  // the input's minimum, which no hex may fall below
 };

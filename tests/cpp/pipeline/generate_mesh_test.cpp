@@ -295,14 +295,14 @@ TEST(GenerateMesh, TheFallbackMeshesWhatNoSchemeAcceptsAndSaysSo) {
   }
 }
 
-// Where the grid mesher's mesh is invalid (HexMe n06, a box minus a pentagonal pyramid:
-// inverted hexes at the pyramid's apex) the tetrahedral fallback gets a second chance and
+// Where the grid mesher's mesh is invalid (HexMe n07, a box minus a square pyramid:
+// an inverted hex at the pyramid's apex) the tetrahedral fallback gets a second chance and
 // its valid mesh is used, said so in a warning naming the grid's errors. The grid as a
 // scheme of its own gets no second chance and is never reported a success when invalid.
 TEST(GenerateMesh, AnInvalidGridMeshGivesTheTetSplitASecondChance) {
   const occ::ReadResult in =
-      occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/n06o_anti_pentapyr.step");
-  ASSERT_TRUE(in.ok()) << "HexMe model n06 not found in " << VOROHEX_HEXME_DIR;
+      occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/n07o_anti_pyramid.step");
+  ASSERT_TRUE(in.ok()) << "HexMe model n07 not found in " << VOROHEX_HEXME_DIR;
   MeshOptions opt;
   opt.decompose = false;
   const MeshResult r = generate_mesh(*in.solid, opt);
