@@ -36,6 +36,10 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 constexpr double kUntangleFloor = 1e-3;
 // Scaled corner determinant the untangling model lifts every frame towards.
 constexpr double kUntangleTarget = 0.2;
+// Hexes the untangling takes on: inverted ones, and those flat up to rounding (the check's
+// degenerate_elements), which the optimisation's moves, each keeping every hex at least as
+// good, cannot lift when a quad lies folded flat on a face.
+constexpr double kFlat = 1e-6;
 
 // What a trial position must respect, besides the per-hex floor rule.
 enum class Mode {
@@ -234,6 +238,31 @@ class Smoother {
     y = z;
     *face = g;
     return true;
+  }
+
+  // A face node lying on its face's boundary, whose hexes no move on its face untangles (a
+  // quad folded flat onto the face along an edge it straddles: every step in the face's
+  // tangent plane keeps it flat), tries the moves of a node on each adjacent face it also
+  // lies on; the first that is accepted classifies it on that face.
+  bool untangle_across(std::size_t n) {
+    const NodeClass c = mesh_.node_classes()[n];
+    if (c.dim != 2) return false;
+    const Vec3 x = mesh_.points()[n];
+    double mean_edge = 0;
+    const auto& nb = topology_.neighbours;
+    for (std::int64_t k = nb.begin(n); k < nb.end(n); ++k)
+      mean_edge += (mesh_.points()[nb.items[k]] - x).norm();
+    mean_edge /= static_cast<double>(std::max<std::int64_t>(nb.size(n), 1));
+    const core::NodeId id(static_cast<std::int32_t>(n));
+    for (const auto& [a, b] : face_pairs_) {
+      if (a != c.id && b != c.id) continue;
+      const FaceId g(a == c.id ? b : a);
+      if (!(solid_.distance_to_face(g, x) <= 1e-6 * mean_edge)) continue;
+      mesh_.set_node_class(id, NodeClass::on(g));
+      if (descend(n, Mode::untangle) || untangle_node(n)) return true;
+      mesh_.set_node_class(id, c);
+    }
+    return false;
   }
 
   bool adjacent_faces(int f, int g) const {
@@ -457,7 +486,7 @@ class Smoother {
       progress_.report("smooth", (untangle ? 0.5 : 0.75) + 0.25 * pass / passes);
       std::vector<std::pair<double, std::int32_t>> bad;
       for (std::size_t h = 0; h < nh; ++h) {
-        const bool is_bad = untangle ? sj_[h] <= 0 : sj_[h] < options_.quality_target;
+        const bool is_bad = untangle ? sj_[h] <= kFlat : sj_[h] < options_.quality_target;
         if (is_bad) bad.emplace_back(sj_[h], static_cast<std::int32_t>(h));
       }
       if (bad.empty()) return;
@@ -500,6 +529,7 @@ class Smoother {
           const bool knupp_first = untangle && pass % 2 == 1;
           bool moved = knupp_first ? untangle_node(node) : descend(node, mode);
           if (!moved && untangle) moved = knupp_first ? descend(node, mode) : untangle_node(node);
+          if (!moved && untangle) moved = untangle_across(node);
           if (!moved) break;
           ++moves;
         }

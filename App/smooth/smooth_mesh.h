@@ -3,10 +3,13 @@
 // Model-vertex nodes are fixed, edge nodes slide along their CAD curve, face nodes slide on
 // their CAD surface (tangent step, then projection), interior nodes are free. Three phases:
 //  1. Laplacian: each node moves towards the mean of its smoothing neighbours.
-//  2. Untangling: nodes of inverted hexes descend a regularised mean-ratio objective that
-//     stays finite for inverted corners (Escobar et al.'s modified determinant). A face
-//     node whose step would leave its face (held at the face's boundary) may cross onto the
-//     adjacent face nearest to the step's target and is classified on it from then on.
+//  2. Untangling: nodes of inverted hexes (and of hexes flat up to rounding, scaled
+//     Jacobian <= 1e-6) descend a regularised mean-ratio objective that stays finite for
+//     inverted corners (Escobar et al.'s modified determinant). A face node whose step
+//     would leave its face (held at the face's boundary) may cross onto the adjacent face
+//     nearest to the step's target; one lying on its face's boundary that no move on its
+//     face untangles tries the moves of a node on the adjacent face; either is classified
+//     on the new face from then on.
 //  3. Optimisation: nodes of hexes below the quality target descend the same objective.
 // Every move is accepted only when no incident hex's scaled Jacobian falls below
 // min(its previous value, floor), floor = max(quality_target, minimum of the input), so the
