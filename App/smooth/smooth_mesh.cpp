@@ -103,12 +103,20 @@ class Smoother {
       result_.diagnostics.push_back(core::make_warning("smoothing_reverted", s.str()));
       after_sj = input_sj;
       after = before;
+      result_.edge_nodes_released = 0;
     }
     result_.min_after = after.min;
     result_.mean_after = after.mean;
     result_.inverted_after = after.inverted;
     for (std::size_t h = 0; h < after_sj.size(); ++h)
       if (input_sj[h] <= 0 && after_sj[h] > 0) ++result_.untangled;
+    if (result_.edge_nodes_released > 0) {
+      std::ostringstream s;
+      s << result_.edge_nodes_released << " nodes on model edges were moved onto a face of "
+        << "their edge to untangle hexahedra that no move along the edge could: the mesh "
+        << "cuts the edge there.";
+      result_.diagnostics.push_back(core::make_warning("edge_nodes_released", s.str()));
+    }
     if (result_.status != SmoothStatus::cancelled && after.inverted > 0) {
       result_.status = SmoothStatus::inverted_remain;
       std::ostringstream s;
@@ -243,9 +251,24 @@ class Smoother {
   // A face node lying on its face's boundary, whose hexes no move on its face untangles (a
   // quad folded flat onto the face along an edge it straddles: every step in the face's
   // tangent plane keeps it flat), tries the moves of a node on each adjacent face it also
-  // lies on; the first that is accepted classifies it on that face.
+  // lies on; the first that is accepted classifies it on that face. An edge node that no
+  // move along its edge untangles (a quad with all four nodes on one straight line of model
+  // edges) tries those of a node on each face of the edge: it then leaves the edge, which
+  // the mesh no longer follows there (counted, and reported).
   bool untangle_across(std::size_t n) {
     const NodeClass c = mesh_.node_classes()[n];
+    const core::NodeId id(static_cast<std::int32_t>(n));
+    if (c.dim == 1) {
+      for (FaceId f : solid_.edge_faces(EdgeId(c.id))) {
+        mesh_.set_node_class(id, NodeClass::on(f));
+        if (descend(n, Mode::untangle) || untangle_node(n)) {
+          ++result_.edge_nodes_released;
+          return true;
+        }
+        mesh_.set_node_class(id, c);
+      }
+      return false;
+    }
     if (c.dim != 2) return false;
     const Vec3 x = mesh_.points()[n];
     double mean_edge = 0;
@@ -253,7 +276,6 @@ class Smoother {
     for (std::int64_t k = nb.begin(n); k < nb.end(n); ++k)
       mean_edge += (mesh_.points()[nb.items[k]] - x).norm();
     mean_edge /= static_cast<double>(std::max<std::int64_t>(nb.size(n), 1));
-    const core::NodeId id(static_cast<std::int32_t>(n));
     for (const auto& [a, b] : face_pairs_) {
       if (a != c.id && b != c.id) continue;
       const FaceId g(a == c.id ? b : a);

@@ -9,7 +9,8 @@
 //     would leave its face (held at the face's boundary) may cross onto the adjacent face
 //     nearest to the step's target; one lying on its face's boundary that no move on its
 //     face untangles tries the moves of a node on the adjacent face; either is classified
-//     on the new face from then on.
+//     on the new face from then on. An edge node that no move along its edge untangles
+//     may leave the edge for one of its faces (warning edge_nodes_released).
 //  3. Optimisation: nodes of hexes below the quality target descend the same objective.
 // Every move is accepted only when no incident hex's scaled Jacobian falls below
 // min(its previous value, floor), floor = max(quality_target, minimum of the input), so the
@@ -60,11 +61,12 @@ struct SmoothResult {
   // Verdict scaled Jacobian before and after (hexes with value <= 0 count as inverted).
   double min_before = 0, mean_before = 0, min_after = 0, mean_after = 0;
   std::size_t inverted_before = 0, inverted_after = 0;
-  std::size_t untangled = 0;           // hexes inverted in the input and valid in the output
-  std::size_t fixed_nodes = 0;         // vertex nodes and nodes with an unknown/invalid entity
-  std::size_t laplacian_moves = 0;     // accepted Laplacian node moves
-  std::size_t optimisation_moves = 0;  // accepted untangling/optimisation steps
-  int laplacian_sweeps = 0;            // Laplacian sweeps actually run
+  std::size_t untangled = 0;            // hexes inverted in the input and valid in the output
+  std::size_t fixed_nodes = 0;          // vertex nodes and nodes with an unknown/invalid entity
+  std::size_t laplacian_moves = 0;      // accepted Laplacian node moves
+  std::size_t optimisation_moves = 0;   // accepted untangling/optimisation steps
+  std::size_t edge_nodes_released = 0;  // edge nodes moved onto a face to untangle
+  int laplacian_sweeps = 0;             // Laplacian sweeps actually run
   double seconds = 0, seconds_laplacian = 0, seconds_optimisation = 0;
   std::vector<core::Diagnostic> diagnostics;
   bool ok() const { return status == SmoothStatus::ok; }
