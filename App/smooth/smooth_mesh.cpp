@@ -84,6 +84,15 @@ class Smoother {
     if (!cancelled()) optimisation_phase(false);
     if (!cancelled() && maxmin_phase() > 0 && !cancelled())
       optimisation_phase(false);  // what max-min traded, where it can
+    // The optimisation and max-min moved the neighbours of what is still inverted: the
+    // untangling may now get further (a few rounds, while the count of inverted falls).
+    for (int round = 0, left = count_inverted(); round < 3 && left > 0 && !cancelled(); ++round) {
+      optimisation_phase(true);
+      if (!cancelled()) optimisation_phase(false);
+      const int now = count_inverted();
+      if (now >= left) break;
+      left = now;
+    }
     result_.seconds_optimisation = seconds_since(t1);
 
     // Recomputed from scratch, not taken from the running values.
@@ -135,6 +144,12 @@ class Smoother {
     result_.diagnostics.push_back(core::make_warning(
         "cancelled", "Smoothing was cancelled; the mesh keeps the moves made so far."));
     return true;
+  }
+
+  int count_inverted() const {
+    int n = 0;
+    for (double v : sj_) n += v <= kFlat;
+    return n;
   }
 
   // Vertex nodes, nodes without neighbours and nodes naming no entity of the solid stay put.

@@ -12,6 +12,8 @@
 //     on the new face from then on. An edge node that no move along its edge untangles
 //     may leave the edge for one of its faces (warning edge_nodes_released).
 //  3. Optimisation: nodes of hexes below the quality target descend the same objective.
+//     Where hexes are still inverted after it and the max-min phase, untangling and
+//     optimisation run again (at most three rounds, while the inverted count falls).
 // Every move is accepted only when no incident hex's scaled Jacobian falls below
 // min(its previous value, floor), floor = max(quality_target, minimum of the input), so the
 // minimum never decreases and no valid hex is ever inverted.
