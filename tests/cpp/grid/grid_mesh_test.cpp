@@ -218,6 +218,28 @@ TEST(GridMesh, NodesHeldAtAFaceBoundaryCrossItWhileUntangling) {
   }
 }
 
+// HexMe industrial parts the grid mesher left with inverted or flat hexes: i10 (outer quads
+// cut along their diagonal by a curved edge, folded flat onto a plane: scaled Jacobian
+// 1e-15) and i15 (pillow nodes pressed together at the boundary of a cylinder). The
+// untangling takes on flat hexes, lets boundary nodes cross onto the neighbouring face and
+// runs again after the optimisation: both are valid, every boundary node on its entity.
+TEST(GridMesh, IndustrialPartsWithFoldedBoundaryQuadsEndValid) {
+  for (const char* name : {"i10o_simp.step", "i15o_s8.step"}) {
+    SCOPED_TRACE(name);
+    const occ::ReadResult in = occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/" + name);
+    ASSERT_TRUE(in.ok()) << name << " not found in " << VOROHEX_HEXME_DIR;
+    grid::GridOptions o;
+    o.size = in.solid->diagonal() / 20;
+    const grid::GridResult r = grid::grid_mesh(*in.solid, o);
+    expect_valid(*in.solid, r);
+    const std::vector<double> sj = quality::scaled_jacobians(r.mesh);
+    EXPECT_GT(*std::min_element(sj.begin(), sj.end()), 1e-6);  // none flat either
+    EXPECT_GT(r.stats.inverted_before_optimisation, 0u);
+    const quality::CheckReport c = quality::check_mesh(r.mesh, in.solid.get());
+    EXPECT_LT(c.max_boundary_distance_rel, 1e-7);
+  }
+}
+
 // A 10 x 5 x 2 box with the letters VHX engraved 0.05 deep (into its bottom face), at
 // size 0.5: the engraving's walls and short edges are absorbed, not resolved, and said so;
 // the mesh is valid (nodes on the real faces, volume within the chord allowance).
