@@ -1,6 +1,7 @@
 #include "occ/tessellate.h"
 
 #include <BRepMesh_IncrementalMesh.hxx>
+#include <BRepTools.hxx>
 #include <BRep_Tool.hxx>
 #include <Poly_PolygonOnTriangulation.hxx>
 #include <Poly_Triangulation.hxx>
@@ -30,6 +31,11 @@ Tessellation tessellate(const Solid& solid, const TessellationOptions& options) 
   out.faces.resize(nf + 1);
   out.edge_polylines.resize(ne + 1);
   try {
+    // OCCT keeps a face's triangulation on the shape and does not redo it when it is finer
+    // than asked: without this the result would depend on earlier calls (the grid mesher's
+    // fine tessellation gave the tet split's second chance another surface, and on HexMe
+    // i23 inverted hexes where the tet split alone is valid).
+    BRepTools::Clean(impl.solid);
     BRepMesh_IncrementalMesh mesher(impl.solid, options.linear_deflection, false,
                                     options.angular_deflection, false);
     if (!mesher.IsDone()) {

@@ -34,7 +34,9 @@ struct Tessellation {
 };
 
 // Meshes the solid's faces with OCCT's incremental mesher (the triangulation is stored on
-// the shape, as FreeCAD does) and reads it back. OCCT failures become `error`.
+// the shape, as FreeCAD does) and reads it back. A triangulation left on the shape by an
+// earlier call is removed first, so the result depends on the options only. OCCT failures
+// become `error`.
 Tessellation tessellate(const Solid& solid, const TessellationOptions& options);
 
 }  // namespace vorohex::occ

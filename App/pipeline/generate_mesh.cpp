@@ -647,9 +647,9 @@ MeshResult generate(const occ::Solid& solid, const MeshOptions& options,
   result.stats.local_sizes = sizes.applied();
   if (mesh_solid(solid, options, sizes, progress, result))
     finish(result, solid, options, progress, sizes);
-  // The grid mesher is not yet valid on every part the tetrahedral fallback meshed validly
-  // (HexMe i02, i06, i13, i23-i25, n06, n07, s08): when its mesh is invalid, the tet split
-  // gets a second chance, within kSecondChanceSeconds, and is used if its mesh is valid.
+  // The grid mesher is not yet valid on every part the tetrahedral fallback meshes validly
+  // (several of HexMe's industrial models): when its mesh is invalid, the tet split gets a
+  // second chance, within kSecondChanceSeconds, and is used if its mesh is valid.
   const bool grid_fallback =
       result.stats.scheme == "grid" && has_diagnostic(result.diagnostics, "fallback") && !result.ok;
   if (grid_fallback && options.fallback_scheme == "grid" && !progress.cancelled() &&

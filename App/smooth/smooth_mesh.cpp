@@ -36,6 +36,10 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 constexpr double kUntangleFloor = 1e-3;
 // Scaled corner determinant the untangling model lifts every frame towards.
 constexpr double kUntangleTarget = 0.2;
+// Hexes the untangling takes on: inverted ones, and those flat up to rounding (the check's
+// degenerate_elements), which the optimisation's moves, each keeping every hex at least as
+// good, cannot lift when a quad lies folded flat on a face.
+constexpr double kFlat = 1e-6;
 
 // What a trial position must respect, besides the per-hex floor rule.
 enum class Mode {
@@ -51,6 +55,15 @@ class Smoother {
 
   void run() {
     topology_ = detail::build_topology(mesh_);
+    for (core::EdgeId e : solid_.edges()) {
+      const std::vector<FaceId> ef = solid_.edge_faces(e);
+      for (std::size_t i = 0; i < ef.size(); ++i)
+        for (std::size_t j = i + 1; j < ef.size(); ++j)
+          if (ef[i] != ef[j])
+            face_pairs_.emplace_back(std::min(ef[i].value(), ef[j].value()),
+                                     std::max(ef[i].value(), ef[j].value()));
+    }
+    std::sort(face_pairs_.begin(), face_pairs_.end());
     classify_movable();
     sj_ = quality::scaled_jacobians(mesh_);
     const quality::QualityStats before = quality::quality_stats(sj_);
@@ -61,6 +74,7 @@ class Smoother {
     input_min_ = before.min;
     const std::vector<double> input_sj = sj_;
     const std::vector<Vec3> input_points = mesh_.points();
+    const std::vector<NodeClass> input_classes = mesh_.node_classes();  // untangling may change
     // Local sizes: the size at every node, once (nodes move little), for the weights.
     if (options_.size_field != nullptr && !options_.size_field->uniform()) {
       node_size_.resize(mesh_.num_nodes());
@@ -76,6 +90,15 @@ class Smoother {
     if (!cancelled()) optimisation_phase(false);
     if (!cancelled() && maxmin_phase() > 0 && !cancelled())
       optimisation_phase(false);  // what max-min traded, where it can
+    // The optimisation and max-min moved the neighbours of what is still inverted: the
+    // untangling may now get further (a few rounds, while the count of inverted falls).
+    for (int round = 0, left = count_inverted(); round < 3 && left > 0 && !cancelled(); ++round) {
+      optimisation_phase(true);
+      if (!cancelled()) optimisation_phase(false);
+      const int now = count_inverted();
+      if (now >= left) break;
+      left = now;
+    }
     result_.seconds_optimisation = seconds_since(t1);
 
     // Recomputed from scratch, not taken from the running values.
@@ -84,8 +107,10 @@ class Smoother {
     // Untangling may deepen one inverted hex to clear others; the result must never have a
     // lower minimum than its input, so such a trade is undone as a whole.
     if (after.min < before.min) {
-      for (std::size_t n = 0; n < input_points.size(); ++n)
+      for (std::size_t n = 0; n < input_points.size(); ++n) {
         mesh_.set_point(core::NodeId(static_cast<std::int32_t>(n)), input_points[n]);
+        mesh_.set_node_class(core::NodeId(static_cast<std::int32_t>(n)), input_classes[n]);
+      }
       std::ostringstream s;
       s << "Smoothing lowered the minimum scaled Jacobian from " << before.min << " to "
         << after.min << " (" << after.inverted << " inverted instead of " << before.inverted
@@ -93,12 +118,20 @@ class Smoother {
       result_.diagnostics.push_back(core::make_warning("smoothing_reverted", s.str()));
       after_sj = input_sj;
       after = before;
+      result_.edge_nodes_released = 0;
     }
     result_.min_after = after.min;
     result_.mean_after = after.mean;
     result_.inverted_after = after.inverted;
     for (std::size_t h = 0; h < after_sj.size(); ++h)
       if (input_sj[h] <= 0 && after_sj[h] > 0) ++result_.untangled;
+    if (result_.edge_nodes_released > 0) {
+      std::ostringstream s;
+      s << result_.edge_nodes_released << " nodes on model edges were moved onto a face of "
+        << "their edge to untangle hexahedra that no move along the edge could: the mesh "
+        << "cuts the edge there.";
+      result_.diagnostics.push_back(core::make_warning("edge_nodes_released", s.str()));
+    }
     if (result_.status != SmoothStatus::cancelled && after.inverted > 0) {
       result_.status = SmoothStatus::inverted_remain;
       std::ostringstream s;
@@ -117,6 +150,12 @@ class Smoother {
     result_.diagnostics.push_back(core::make_warning(
         "cancelled", "Smoothing was cancelled; the mesh keeps the moves made so far."));
     return true;
+  }
+
+  int count_inverted() const {
+    int n = 0;
+    for (double v : sj_) n += v <= kFlat;
+    return n;
   }
 
   // Vertex nodes, nodes without neighbours and nodes naming no entity of the solid stay put.
@@ -178,8 +217,11 @@ class Smoother {
 
   // Writes node n and its incident hexes' values. Nodes of one colour share no hex, so
   // concurrent commits of such nodes touch disjoint entries.
-  void commit(std::size_t n, const Vec3& x, const std::vector<double>& trial) {
+  void commit(std::size_t n, const Vec3& x, const std::vector<double>& trial,
+              FaceId face = FaceId()) {
     mesh_.set_point(core::NodeId(static_cast<std::int32_t>(n)), x);
+    if (face.value() > 0)
+      mesh_.set_node_class(core::NodeId(static_cast<std::int32_t>(n)), NodeClass::on(face));
     std::size_t i = 0;
     for (std::int64_t k = topology_.node_hexes.begin(n); k < topology_.node_hexes.end(n); ++k)
       sj_[topology_.node_hexes.items[k] / 8] = trial[i++];
@@ -202,6 +244,73 @@ class Smoother {
       y = solid_.project_to_edge(EdgeId(c.id), x + d);
     }
     return y.allFinite() && (y - x).norm() <= 3 * step;
+  }
+
+  // As constrained_move, for a face node while untangling: where the step leaves the node's
+  // face (its projection is held at the face's boundary, so nodes pile up there: a quad of
+  // a pillow layer pressed flat against a boundary edge of its face), the node may cross
+  // onto the adjacent face nearest to the step's target; *face is then that face.
+  bool untangling_move(std::size_t n, const Vec3& x, const Vec3& d, Vec3& y, FaceId* face) const {
+    *face = FaceId();
+    const NodeClass c = mesh_.node_classes()[n];
+    if (!constrained_move(n, x, d, y)) return false;
+    if (c.dim != 2) return true;
+    const Vec3 normal = solid_.face_normal(FaceId(c.id), x);
+    const Vec3 target = x + d - d.dot(normal) * normal;
+    const double held = (y - target).norm();
+    if (!(held > 0.25 * d.norm())) return true;
+    const FaceId g = solid_.nearest_face(target);
+    if (g.value() <= 0 || g.value() == c.id || !adjacent_faces(c.id, g.value())) return true;
+    const Vec3 z = solid_.project_to_face(g, target);
+    if (!z.allFinite() || !((z - target).norm() < held) || (z - x).norm() > 3 * d.norm())
+      return true;
+    y = z;
+    *face = g;
+    return true;
+  }
+
+  // A face node lying on its face's boundary, whose hexes no move on its face untangles (a
+  // quad folded flat onto the face along an edge it straddles: every step in the face's
+  // tangent plane keeps it flat), tries the moves of a node on each adjacent face it also
+  // lies on; the first that is accepted classifies it on that face. An edge node that no
+  // move along its edge untangles (a quad with all four nodes on one straight line of model
+  // edges) tries those of a node on each face of the edge: it then leaves the edge, which
+  // the mesh no longer follows there (counted, and reported).
+  bool untangle_across(std::size_t n) {
+    const NodeClass c = mesh_.node_classes()[n];
+    const core::NodeId id(static_cast<std::int32_t>(n));
+    if (c.dim == 1) {
+      for (FaceId f : solid_.edge_faces(EdgeId(c.id))) {
+        mesh_.set_node_class(id, NodeClass::on(f));
+        if (descend(n, Mode::untangle) || untangle_node(n)) {
+          ++result_.edge_nodes_released;
+          return true;
+        }
+        mesh_.set_node_class(id, c);
+      }
+      return false;
+    }
+    if (c.dim != 2) return false;
+    const Vec3 x = mesh_.points()[n];
+    double mean_edge = 0;
+    const auto& nb = topology_.neighbours;
+    for (std::int64_t k = nb.begin(n); k < nb.end(n); ++k)
+      mean_edge += (mesh_.points()[nb.items[k]] - x).norm();
+    mean_edge /= static_cast<double>(std::max<std::int64_t>(nb.size(n), 1));
+    for (const auto& [a, b] : face_pairs_) {
+      if (a != c.id && b != c.id) continue;
+      const FaceId g(a == c.id ? b : a);
+      if (!(solid_.distance_to_face(g, x) <= 1e-6 * mean_edge)) continue;
+      mesh_.set_node_class(id, NodeClass::on(g));
+      if (descend(n, Mode::untangle) || untangle_node(n)) return true;
+      mesh_.set_node_class(id, c);
+    }
+    return false;
+  }
+
+  bool adjacent_faces(int f, int g) const {
+    return std::binary_search(face_pairs_.begin(), face_pairs_.end(),
+                              std::make_pair(std::min(f, g), std::max(f, g)));
   }
 
   // Greedy colouring of the movable interior nodes so that nodes of one colour share no hex
@@ -349,11 +458,14 @@ class Smoother {
     const double decrease = 1e-12 * std::abs(v.value);
     for (int tries = 0; tries < 14; ++tries, step *= 0.5) {
       Vec3 y;
-      if (!constrained_move(n, x, step * d, y)) continue;
+      FaceId face;
+      if (!(mode == Mode::untangle ? untangling_move(n, x, step * d, y, &face)
+                                   : constrained_move(n, x, step * d, y)))
+        continue;
       const double value = detail::node_objective_value(incident_, y, delta);
       if (!(value < v.value - decrease)) continue;
       if (!acceptable(n, y, mode, trial_sj_)) continue;
-      commit(n, y, trial_sj_);
+      commit(n, y, trial_sj_, face);
       ++result_.optimisation_moves;
       return true;
     }
@@ -395,10 +507,11 @@ class Smoother {
     double scale = 1;
     for (int tries = 0; tries < 12; ++tries, scale *= 0.5) {
       Vec3 y;
-      if (!constrained_move(n, x, scale * d, y)) continue;
+      FaceId face;
+      if (!untangling_move(n, x, scale * d, y, &face)) continue;
       if (!(detail::untangle_value(frames, y - x, kUntangleTarget) < u0)) continue;
       if (!acceptable(n, y, Mode::untangle, trial_sj_)) continue;
-      commit(n, y, trial_sj_);
+      commit(n, y, trial_sj_, face);
       ++result_.optimisation_moves;
       return true;
     }
@@ -420,7 +533,7 @@ class Smoother {
       progress_.report("smooth", (untangle ? 0.5 : 0.75) + 0.25 * pass / passes);
       std::vector<std::pair<double, std::int32_t>> bad;
       for (std::size_t h = 0; h < nh; ++h) {
-        const bool is_bad = untangle ? sj_[h] <= 0 : sj_[h] < options_.quality_target;
+        const bool is_bad = untangle ? sj_[h] <= kFlat : sj_[h] < options_.quality_target;
         if (is_bad) bad.emplace_back(sj_[h], static_cast<std::int32_t>(h));
       }
       if (bad.empty()) return;
@@ -463,6 +576,7 @@ class Smoother {
           const bool knupp_first = untangle && pass % 2 == 1;
           bool moved = knupp_first ? untangle_node(node) : descend(node, mode);
           if (!moved && untangle) moved = knupp_first ? descend(node, mode) : untangle_node(node);
+          if (!moved && untangle) moved = untangle_across(node);
           if (!moved) break;
           ++moves;
         }
@@ -582,6 +696,7 @@ class Smoother {
   std::vector<std::vector<std::int32_t>> colour_classes_;  // interior nodes by colour
   std::vector<std::int32_t> serial_nodes_;                 // boundary and uncoloured nodes
   std::vector<IncidentHex> incident_;
+  std::vector<std::pair<int, int>> face_pairs_;  // faces sharing an edge, (lower, higher)
   double floor_ = 0;
   double input_min_ = 0;  // the input's minimum, which no hex may fall below
 };

@@ -3,9 +3,17 @@
 // Model-vertex nodes are fixed, edge nodes slide along their CAD curve, face nodes slide on
 // their CAD surface (tangent step, then projection), interior nodes are free. Three phases:
 //  1. Laplacian: each node moves towards the mean of its smoothing neighbours.
-//  2. Untangling: nodes of inverted hexes descend a regularised mean-ratio objective that
-//     stays finite for inverted corners (Escobar et al.'s modified determinant).
+//  2. Untangling: nodes of inverted hexes (and of hexes flat up to rounding, scaled
+//     Jacobian <= 1e-6) descend a regularised mean-ratio objective that stays finite for
+//     inverted corners (Escobar et al.'s modified determinant). A face node whose step
+//     would leave its face (held at the face's boundary) may cross onto the adjacent face
+//     nearest to the step's target; one lying on its face's boundary that no move on its
+//     face untangles tries the moves of a node on the adjacent face; either is classified
+//     on the new face from then on. An edge node that no move along its edge untangles
+//     may leave the edge for one of its faces (warning edge_nodes_released).
 //  3. Optimisation: nodes of hexes below the quality target descend the same objective.
+//     Where hexes are still inverted after it and the max-min phase, untangling and
+//     optimisation run again (at most three rounds, while the inverted count falls).
 // Every move is accepted only when no incident hex's scaled Jacobian falls below
 // min(its previous value, floor), floor = max(quality_target, minimum of the input), so the
 // minimum never decreases and no valid hex is ever inverted.
@@ -59,11 +67,12 @@ struct SmoothResult {
   // Verdict scaled Jacobian before and after (hexes with value <= 0 count as inverted).
   double min_before = 0, mean_before = 0, min_after = 0, mean_after = 0;
   std::size_t inverted_before = 0, inverted_after = 0;
-  std::size_t untangled = 0;           // hexes inverted in the input and valid in the output
-  std::size_t fixed_nodes = 0;         // vertex nodes and nodes with an unknown/invalid entity
-  std::size_t laplacian_moves = 0;     // accepted Laplacian node moves
-  std::size_t optimisation_moves = 0;  // accepted untangling/optimisation steps
-  int laplacian_sweeps = 0;            // Laplacian sweeps actually run
+  std::size_t untangled = 0;            // hexes inverted in the input and valid in the output
+  std::size_t fixed_nodes = 0;          // vertex nodes and nodes with an unknown/invalid entity
+  std::size_t laplacian_moves = 0;      // accepted Laplacian node moves
+  std::size_t optimisation_moves = 0;   // accepted untangling/optimisation steps
+  std::size_t edge_nodes_released = 0;  // edge nodes moved onto a face to untangle
+  int laplacian_sweeps = 0;             // Laplacian sweeps actually run
   double seconds = 0, seconds_laplacian = 0, seconds_optimisation = 0;
   std::vector<core::Diagnostic> diagnostics;
   bool ok() const { return status == SmoothStatus::ok; }

@@ -413,7 +413,16 @@ FeatureCapture capture_features(core::HexMesh& mesh,
         continue;
       }
       const core::FaceId f(face);
-      mesh.set_point(NodeId(n), solid.project_to_face(f, mesh.point(NodeId(n))));
+      const Vec3 p = solid.project_to_face(f, mesh.point(NodeId(n)));
+      // Far from the node (more than three cells), the region's face is not where the node
+      // is: the region leaked across an uncaptured edge onto another part of the model
+      // (HexMe i11: an end face's nodes sent 38 units, 16 cells, away to the edge of a
+      // cylinder, two hexes inverted per node). Moves of one or two cells are real (n05).
+      if (!p.allFinite() || (p - mesh.point(NodeId(n))).norm() > 3 * size) {
+        face_used[own] = 1;
+        continue;
+      }
+      mesh.set_point(NodeId(n), p);
       mesh.set_node_class(NodeId(n), NodeClass::on(f));
     }
   }

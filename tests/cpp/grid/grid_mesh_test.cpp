@@ -19,6 +19,7 @@
 #include "occ/tessellate.h"
 #include "pipeline/generate_mesh.h"
 #include "quality/check_mesh.h"
+#include "quality/scaled_jacobian.h"
 
 namespace vorohex {
 namespace {
@@ -183,6 +184,59 @@ TEST(GridMesh, AnInvalidResultIsNeverASuccess) {
     EXPECT_EQ(p.stats.scheme, "grid");
     if (p.ok) EXPECT_TRUE(p.check.valid);
     if (!p.check.valid) EXPECT_FALSE(p.ok);
+  }
+}
+
+// A pit cut into a block (HexMe n06, a pentagonal pyramid; a square pyramid built here):
+// near the pit's concave edges the pillow layer's outer nodes of two faces end pressed
+// against the faces' common edge, each held at its own face's boundary, so the quads
+// between them are flat and their hexes inverted. Untangling lets such a node cross onto
+// the neighbouring face; the mesh is then valid: every scaled Jacobian positive, the
+// layer conforming and closed, every boundary node on its CAD entity.
+TEST(GridMesh, NodesHeldAtAFaceBoundaryCrossItWhileUntangling) {
+  std::vector<Named> solids;
+  const occ::ReadResult n06 =
+      occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/n06o_anti_pentapyr.step");
+  ASSERT_TRUE(n06.ok()) << "HexMe model n06 not found in " << VOROHEX_HEXME_DIR;
+  solids.push_back({"n06", n06.solid->clone(), n06.solid->diagonal() / 20});
+  const occ::Solid pit = testing::make_pyramid_pit();
+  solids.push_back({"pyramid pit", pit.clone(), pit.diagonal() / 15});
+  for (const Named& s : solids) {
+    SCOPED_TRACE(s.name);
+    grid::GridOptions o;
+    o.size = s.size;
+    const grid::GridResult r = grid::grid_mesh(s.solid, o);
+    for (const core::Diagnostic& d : r.diagnostics)
+      if (d.severity == core::Severity::error) ADD_FAILURE() << core::format(d);
+    expect_valid(s.solid, r);
+    for (double sj : quality::scaled_jacobians(r.mesh)) ASSERT_GT(sj, 0.0);
+    const quality::CheckReport c = quality::check_mesh(r.mesh, &s.solid);
+    EXPECT_LT(c.max_boundary_distance_rel, 1e-7);
+    // Before the optimisation the layer had inverted hexes: the crossing made the change.
+    EXPECT_GT(r.stats.inverted_before_optimisation, 0u);
+    EXPECT_GT(r.stats.min_sj, 0.1);
+  }
+}
+
+// HexMe industrial parts the grid mesher left with inverted or flat hexes: i10 (outer quads
+// cut along their diagonal by a curved edge, folded flat onto a plane: scaled Jacobian
+// 1e-15) and i15 (pillow nodes pressed together at the boundary of a cylinder). The
+// untangling takes on flat hexes, lets boundary nodes cross onto the neighbouring face and
+// runs again after the optimisation: both are valid, every boundary node on its entity.
+TEST(GridMesh, IndustrialPartsWithFoldedBoundaryQuadsEndValid) {
+  for (const char* name : {"i10o_simp.step", "i15o_s8.step"}) {
+    SCOPED_TRACE(name);
+    const occ::ReadResult in = occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/" + name);
+    ASSERT_TRUE(in.ok()) << name << " not found in " << VOROHEX_HEXME_DIR;
+    grid::GridOptions o;
+    o.size = in.solid->diagonal() / 20;
+    const grid::GridResult r = grid::grid_mesh(*in.solid, o);
+    expect_valid(*in.solid, r);
+    const std::vector<double> sj = quality::scaled_jacobians(r.mesh);
+    EXPECT_GT(*std::min_element(sj.begin(), sj.end()), 1e-6);  // none flat either
+    EXPECT_GT(r.stats.inverted_before_optimisation, 0u);
+    const quality::CheckReport c = quality::check_mesh(r.mesh, in.solid.get());
+    EXPECT_LT(c.max_boundary_distance_rel, 1e-7);
   }
 }
 

@@ -295,17 +295,15 @@ TEST(GenerateMesh, TheFallbackMeshesWhatNoSchemeAcceptsAndSaysSo) {
   }
 }
 
-// Where the grid mesher's mesh is invalid (HexMe n06, a box minus a pentagonal pyramid:
-// inverted hexes at the pyramid's apex) the tetrahedral fallback gets a second chance and
+// Where the grid mesher's mesh is invalid (a cube with a square pyramid pit at the default
+// size: inverted hexes at the pit's apex) the tetrahedral fallback gets a second chance and
 // its valid mesh is used, said so in a warning naming the grid's errors. The grid as a
 // scheme of its own gets no second chance and is never reported a success when invalid.
 TEST(GenerateMesh, AnInvalidGridMeshGivesTheTetSplitASecondChance) {
-  const occ::ReadResult in =
-      occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/n06o_anti_pentapyr.step");
-  ASSERT_TRUE(in.ok()) << "HexMe model n06 not found in " << VOROHEX_HEXME_DIR;
+  const occ::Solid pit = testing::make_pyramid_pit();
   MeshOptions opt;
   opt.decompose = false;
-  const MeshResult r = generate_mesh(*in.solid, opt);
+  const MeshResult r = generate_mesh(pit, opt);
   ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
   EXPECT_EQ(r.stats.scheme, "tet-split");
   EXPECT_TRUE(r.check.valid);
@@ -315,7 +313,7 @@ TEST(GenerateMesh, AnInvalidGridMeshGivesTheTetSplitASecondChance) {
   EXPECT_NE(d->message.find("inverted_elements"), std::string::npos) << d->message;
 
   opt.schemes = {"grid"};  // the grid as a scheme: its own result, no second chance
-  const MeshResult grid = generate_mesh(*in.solid, opt);
+  const MeshResult grid = generate_mesh(pit, opt);
   EXPECT_EQ(grid.stats.scheme, "grid");
   EXPECT_EQ(testing::find_diagnostic(grid.diagnostics, "grid_invalid"), nullptr);
   EXPECT_EQ(grid.ok, grid.check.valid);
