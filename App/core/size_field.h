@@ -68,8 +68,8 @@ class SizeField {
   // the integral of 1 / h^3 - 1 / size^3 over the distance d from each entity, on the
   // solid's side of a face (its area), around an edge (a half cylinder, pi d per unit
   // length) and a vertex (a quarter ball, pi d^2 / 2; corners of solids hold an eighth to
-  // a half), in closed form. A structured mesh has about this many more, or more (its layers and sectors
-  // run through); used to refuse tiny local sizes before meshing.
+  // a half), in closed form. A structured mesh has about this many more, or more (its layers and
+  // sectors run through); used to refuse tiny local sizes before meshing.
   double graded_cells() const;
 
  private:
