@@ -299,7 +299,7 @@ double common_volume(const Solid& a, const Solid& b) {
     BRepAlgoAPI_Common common(a.impl().solid, b.impl().solid);
     if (!common.IsDone()) return -1;
     GProp_GProps props;
-    BRepGProp::VolumeProperties(common.Shape(), props);
+    BRepGProp::VolumeProperties(common.Shape(), props, 1e-11);  // as Solid::volume
     return std::abs(props.Mass());
   } catch (const Standard_Failure&) {
     return -1;
