@@ -6,12 +6,15 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <optional>
 #include <set>
 
 #include "decompose/detail/topology.h"
 #include "mesh/map_block.h"
+#include "mesh/mesh_sub_volumes.h"
 #include "mesh/midpoint.h"
 #include "mesh/sweep.h"
+#include "occ/shape_io.h"
 #include "occ/split_solid.h"
 
 namespace vorohex::decompose {
@@ -514,17 +517,42 @@ int invalid_faces(const DecompositionResult& r) {
   return n;
 }
 
+// Sub-volumes without a scheme once glued to their neighbours, as the meshing of several
+// sub-volumes judges them (mesh/mesh_sub_volumes.h): a face a neighbour's interface splits
+// is no longer one face, and a sweep across it may not be one any more. Per sub-volume its
+// scheme, empty for none; no value when the pieces do not glue.
+std::optional<std::vector<std::string>> glued_schemes(const DecompositionResult& r) {
+  if (r.sub_volumes.size() == 1) return mesh::plan_sub_volumes(*r.sub_volumes[0].solid).schemes;
+  std::vector<const occ::Solid*> solids;
+  for (const SubVolume& sv : r.sub_volumes) solids.push_back(sv.solid.get());
+  try {
+    const occ::ReadResult glued = occ::glue_solids(solids, "The sub-volumes");
+    if (!glued.ok() || glued.solid->num_solids() != int(solids.size())) return std::nullopt;
+    return mesh::plan_sub_volumes(*glued.solid).schemes;
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+}
+
+int count_unmeshable(const std::optional<std::vector<std::string>>& schemes, int n) {
+  return schemes ? int(std::count(schemes->begin(), schemes->end(), std::string())) : n;
+}
+
 // Merge pass (§7): unite sub-volumes whose union is sweepable. Candidates, largest first:
 // all sub-volumes, each one with all its neighbours across decomposition faces, each
 // neighbouring pair. A union is kept only if no decomposition face becomes invalid: a
 // union whose face is partly a model face and partly the interface to a neighbour would
-// leave a T-shaped, non-conforming interface (the thick L's corner with one leg). Repeats
+// leave a T-shaped, non-conforming interface (the thick L's corner with one leg), and only
+// if, glued to the others, it is still a sweep and no more sub-volumes lack a scheme than
+// before (the L with a hole in each leg: its corner and one leg make a sweep alone, but the
+// other leg's interface splits its end face). Repeats
 // until nothing qualifies. A rejected group is not fused again (its solids are unchanged),
 // and the pass stops at the time limit: each try is an OCCT fuse.
 void merge_pass(const occ::Solid& solid, const VoronoiGraph& g, double tol, double time_limit,
                 DecompositionResult& r) {
   std::set<std::vector<const occ::Solid*>> rejected;
   const auto start = Clock::now();
+  int unmeshable_now = count_unmeshable(glued_schemes(r), int(r.sub_volumes.size()));
   for (bool merged = true; merged;) {
     merged = false;
     const int n = int(r.sub_volumes.size());
@@ -593,7 +621,14 @@ void merge_pass(const occ::Solid& solid, const VoronoiGraph& g, double tol, doub
         rejected.insert(key);
         continue;
       }
+      const auto schemes = glued_schemes(trial);
+      const int lacking = count_unmeshable(schemes, int(trial.sub_volumes.size()));
+      if (!schemes || (*schemes)[group[0]].empty() || lacking > unmeshable_now) {
+        rejected.insert(key);
+        continue;
+      }
       r = std::move(trial);
+      unmeshable_now = lacking;
       for (std::size_t i = 0; i < r.sub_volumes.size(); ++i)
         type_sub_volume(g, r, int(i), r.sub_volumes[i]);
       merged = true;

@@ -47,6 +47,7 @@ struct Part {
   std::vector<int> shared_faces;             // part face ids shared with a neighbour
   std::vector<int> whole_edge;               // by part edge id
   bool is_block() const { return !block[0].empty(); }
+  bool has_scheme() const { return is_block() || sweep.source.valid(); }
 };
 
 // The interval problem over the curves of `pieces` (one per non-degenerated edge).
@@ -127,6 +128,32 @@ void add_constraints(Curves& c, const occ::Solid& pieces, const Part& part, int 
   }
 }
 
+// Sub-volume k of `pieces` with its scheme once glued: a mapped block, else a sweep whose
+// source and target avoid the faces it shares with a neighbour where possible (neither:
+// has_scheme() is false).
+Part plan_part(const occ::Solid& pieces, int k) {
+  Part p{pieces.part(k), {}, {}, {}, {}};
+  p.whole_edge = pieces.part_ids(p.solid, 1);
+  p.block = map_block_edge_groups(p.solid);
+  if (p.is_block()) return p;
+  // A face shared with a neighbour is the sweep's target where possible: its mesh is then
+  // the projection of this part's own far end, and two sweeps meeting there (a post on the
+  // column under it) project congruent ends onto it the same way.
+  const std::vector<int> whole_face = pieces.part_ids(p.solid, 2);
+  for (std::size_t f = 1; f < whole_face.size(); ++f)
+    if (whole_face[f] > 0 && pieces.face_is_interface(core::FaceId(whole_face[f])))
+      p.shared_faces.push_back(int(f));
+  p.sweep = sweep_structure(p.solid, p.shared_faces);
+  return p;
+}
+
+std::string no_scheme_message(const Part& p, int k, int n) {
+  const Applicability map = map_block_applicable(p.solid);
+  const SweepApplicability sw = sweep_applicable(p.solid);
+  return sub_volume_name(k) + " of " + std::to_string(n) + " is neither a mapped block (" +
+         map.reason + ") nor a sweep (" + sw.reason + ") once glued to its neighbours.";
+}
+
 // Meshes one part with the assigned counts (by its own edge ids).
 struct PartMesh {
   core::HexMesh mesh;
@@ -176,28 +203,11 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
   std::vector<Part> parts;
   parts.reserve(n);
   for (int k = 0; k < n; ++k) {
-    Part p{pieces.part(k), {}, {}, {}, {}};
-    p.whole_edge = pieces.part_ids(p.solid, 1);
-    p.block = map_block_edge_groups(p.solid);
-    if (!p.is_block()) {
-      // A face shared with a neighbour is the sweep's target where possible: its mesh is
-      // then the projection of this part's own far end, and two sweeps meeting there (a
-      // post on the column under it) project congruent ends onto it the same way.
-      const std::vector<int> whole_face = pieces.part_ids(p.solid, 2);
-      for (std::size_t f = 1; f < whole_face.size(); ++f)
-        if (whole_face[f] > 0 && pieces.face_is_interface(core::FaceId(whole_face[f])))
-          p.shared_faces.push_back(int(f));
-      p.sweep = sweep_structure(p.solid, p.shared_faces);
-      if (!p.sweep.source.valid()) {
-        const Applicability map = map_block_applicable(p.solid);
-        const SweepApplicability sw = sweep_applicable(p.solid);
-        result.diagnostics.push_back(core::make_error(
-            "no_scheme",
-            sub_volume_name(k) + " of " + std::to_string(n) + " is neither a mapped block (" +
-                map.reason + ") nor a sweep (" + sw.reason + ") once glued to its neighbours.",
-            {sub_volume_name(k)}));
-        return result;
-      }
+    Part p = plan_part(pieces, k);
+    if (!p.has_scheme()) {
+      result.diagnostics.push_back(
+          core::make_error("no_scheme", no_scheme_message(p, k, n), {sub_volume_name(k)}));
+      return result;
     }
     result.stats.schemes.push_back(p.is_block() ? "map" : "sweep");
     auto shared = [&](core::FaceId f) {
@@ -317,6 +327,23 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
   progress.report("sub_volumes", 1.0);
   result.ok = true;
   return result;
+}
+
+SubVolumePlan plan_sub_volumes(const occ::Solid& pieces) {
+  SubVolumePlan plan;
+  const int n = pieces.num_solids();
+  plan.ok = n > 0;
+  for (int k = 0; k < n; ++k) {
+    const Part p = plan_part(pieces, k);
+    if (p.has_scheme()) {
+      plan.schemes.push_back(p.is_block() ? "map" : "sweep");
+      continue;
+    }
+    plan.schemes.emplace_back();
+    if (plan.ok) plan.why_not = no_scheme_message(p, k, n);
+    plan.ok = false;
+  }
+  return plan;
 }
 
 }  // namespace vorohex::mesh

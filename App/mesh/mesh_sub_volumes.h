@@ -58,4 +58,14 @@ struct SubVolumeMeshResult {
 SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMeshOptions& options,
                                      const core::Progress& progress = {});
 
+// The scheme mesh_sub_volumes gives each sub-volume of `pieces` ("map" or "sweep"; empty
+// for one that has none), without meshing: what a decomposition's merge pass asks of a
+// union once glued to its neighbours. `why_not` names the first sub-volume without one.
+struct SubVolumePlan {
+  bool ok = false;  // every sub-volume has a scheme
+  std::vector<std::string> schemes;
+  std::string why_not;
+};
+SubVolumePlan plan_sub_volumes(const occ::Solid& pieces);
+
 }  // namespace vorohex::mesh

@@ -7,11 +7,13 @@
 
 #include <functional>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <memory>
 
 #include "fixtures/diagnostics.h"
+#include "fixtures/machined.h"
 #include "fixtures/solids.h"
 #include "occ/detail/fixtures.h"
 #include "occ/primitives.h"
@@ -122,6 +124,32 @@ TEST(GenerateMesh, SolidsNeedingSeveralSubVolumesAreCutAndMeshedAsOne) {
       }
     }
   }
+}
+
+// An L bracket with a hole in each leg, as a FreeCAD user makes one: its Voronoi graph cuts
+// it into the corner and the two legs. The corner with either leg is a sweep alone, but
+// not once glued to the other leg, whose interface splits the union's end face; the merge
+// pass judges unions glued, so the three pieces stay and are meshed structured.
+TEST(GenerateMesh, AnLBracketWithAHoleInEachLegIsCutIntoSweepsAndABlock) {
+  const occ::Solid bracket = testing::make_l_bracket_with_holes();
+  MeshOptions opt;
+  opt.size = 2.5;
+  opt.fallback = false;
+  const MeshResult r = generate_mesh(bracket, opt);
+  ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
+  EXPECT_EQ(r.stats.sub_volumes, 3);
+  ASSERT_EQ(r.stats.sub_volume_schemes.size(), 3u);
+  EXPECT_EQ(std::count(r.stats.sub_volume_schemes.begin(), r.stats.sub_volume_schemes.end(),
+                       std::string("sweep")),
+            2);
+  EXPECT_NE(testing::find_diagnostic(r.diagnostics, "decomposed"), nullptr);
+  EXPECT_GE(r.check.scaled_jacobian.min, 0.3);
+  EXPECT_GE(r.check.scaled_jacobian.mean, 0.85);
+  // The holes' chords cut off volume: the checker's allowance for them, and no more.
+  EXPECT_LE(std::abs(r.check.mesh_volume - bracket.volume()), r.check.volume_allowance);
+  EXPECT_TRUE(r.check.valid);
+  EXPECT_EQ(r.check.open_boundary_edges, 0u);
+  EXPECT_EQ(r.check.boundary_quads + 2 * r.check.interior_quads, 6 * r.mesh.num_hexes());
 }
 
 // A round post on a plate and HexMe s11 (a cylinder on a cube), without the multisweep:
