@@ -209,6 +209,13 @@ void self_check(const occ::Solid& solid, double tol, bool pairs, double sharp_an
       const double c = occ::common_volume(*r.sub_volumes[i].solid, *r.sub_volumes[j].solid);
       if (c >= 0 && c < 1e-9 * total) continue;
       partition = false;
+      if (c < 0) {  // the boolean failed: not known to be disjoint, which is no partition
+        r.diagnostics.push_back(core::make_error(
+            "overlap_unchecked", "OCCT could not intersect sub-volumes " + std::to_string(i) +
+                                     " and " + std::to_string(j) +
+                                     " to check that they do not overlap"));
+        continue;
+      }
       r.diagnostics.push_back(core::make_error("overlapping_sub_volumes",
                                                "Sub-volumes " + std::to_string(i) + " and " +
                                                    std::to_string(j) + " overlap (common volume " +
