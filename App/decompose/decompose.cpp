@@ -519,23 +519,47 @@ int invalid_faces(const DecompositionResult& r) {
 
 // Sub-volumes without a scheme once glued to their neighbours, as the meshing of several
 // sub-volumes judges them (mesh/mesh_sub_volumes.h): a face a neighbour's interface splits
-// is no longer one face, and a sweep across it may not be one any more. Per sub-volume its
-// scheme, empty for none; no value when the pieces do not glue.
-std::optional<std::vector<std::string>> glued_schemes(const DecompositionResult& r) {
-  if (r.sub_volumes.size() == 1) return mesh::plan_sub_volumes(*r.sub_volumes[0].solid).schemes;
+// is no longer one face, and a sweep across it may not be one any more. No value when the
+// pieces do not glue.
+std::optional<mesh::SubVolumePlan> glued_plan(const DecompositionResult& r) {
+  if (r.sub_volumes.size() == 1) return mesh::plan_sub_volumes(*r.sub_volumes[0].solid);
   std::vector<const occ::Solid*> solids;
   for (const SubVolume& sv : r.sub_volumes) solids.push_back(sv.solid.get());
   try {
     const occ::ReadResult glued = occ::glue_solids(solids, "The sub-volumes");
     if (!glued.ok() || glued.solid->num_solids() != int(solids.size())) return std::nullopt;
-    return mesh::plan_sub_volumes(*glued.solid).schemes;
+    return mesh::plan_sub_volumes(*glued.solid);
   } catch (const std::exception&) {
     return std::nullopt;
   }
 }
 
+// Per sub-volume its scheme once glued, empty for none.
+std::optional<std::vector<std::string>> glued_schemes(const DecompositionResult& r) {
+  std::optional<mesh::SubVolumePlan> plan = glued_plan(r);
+  if (!plan) return std::nullopt;
+  return std::move(plan->schemes);
+}
+
 int count_unmeshable(const std::optional<std::vector<std::string>>& schemes, int n) {
   return schemes ? int(std::count(schemes->begin(), schemes->end(), std::string())) : n;
+}
+
+// A block or sweep alone that is none once glued to its neighbours gets no scheme: the
+// report says what the meshing of several sub-volumes will find (and the pipeline then
+// tries other cuts instead of failing there).
+void judge_glued(DecompositionResult& r) {
+  if (r.sub_volumes.size() < 2) return;
+  const std::optional<mesh::SubVolumePlan> plan = glued_plan(r);
+  if (!plan) return;
+  for (std::size_t i = 0; i < r.sub_volumes.size(); ++i) {
+    SubVolume& sv = r.sub_volumes[i];
+    if ((sv.scheme != Scheme::map && sv.scheme != Scheme::sweep) || !plan->schemes[i].empty())
+      continue;
+    sv.reason = std::string(sv.scheme == Scheme::map ? "a topological hexahedron" : "a sweep") +
+                " alone, but no scheme once glued to its neighbours: " + plan->reasons[i];
+    sv.scheme = Scheme::none;
+  }
 }
 
 // Merge pass (§7): unite sub-volumes whose union is sweepable. Candidates, largest first:
@@ -729,6 +753,7 @@ DecompositionResult decompose(const occ::Solid& solid, const voronoi::VoronoiRes
                       r.diagnostics.end());
 
   if (options.merge) merge_pass(solid, g, tol, options.split_time_limit, r);
+  judge_glued(r);
   detail::build_virtual_edges(solid, tol, r);
 
   r.stats.sub_volumes = int(r.sub_volumes.size());

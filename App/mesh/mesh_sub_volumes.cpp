@@ -337,10 +337,12 @@ SubVolumePlan plan_sub_volumes(const occ::Solid& pieces) {
     const Part p = plan_part(pieces, k);
     if (p.has_scheme()) {
       plan.schemes.push_back(p.is_block() ? "map" : "sweep");
+      plan.reasons.emplace_back();
       continue;
     }
     plan.schemes.emplace_back();
-    if (plan.ok) plan.why_not = no_scheme_message(p, k, n);
+    plan.reasons.push_back(no_scheme_message(p, k, n));
+    if (plan.ok) plan.why_not = plan.reasons.back();
     plan.ok = false;
   }
   return plan;

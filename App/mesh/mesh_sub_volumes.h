@@ -64,6 +64,7 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
 struct SubVolumePlan {
   bool ok = false;  // every sub-volume has a scheme
   std::vector<std::string> schemes;
+  std::vector<std::string> reasons;  // per sub-volume: why it has none (empty when it has one)
   std::string why_not;
 };
 SubVolumePlan plan_sub_volumes(const occ::Solid& pieces);

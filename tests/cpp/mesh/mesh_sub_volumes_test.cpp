@@ -10,7 +10,10 @@
 
 #include "decompose/decompose.h"
 #include "fixtures/solids.h"
+#include "mesh/sweep.h"
+#include "occ/primitives.h"
 #include "occ/shape_io.h"
+#include "occ/split_solid.h"
 #include "quality/check_mesh.h"
 #include "smooth/restore_topology.h"
 #include "voronoi/voronoi_graph.h"
@@ -100,6 +103,36 @@ TEST(MeshSubVolumes, DecomposedSolidsGiveOneConformingValidMesh) {
       EXPECT_LE(d, 1e-7) << "node " << i << " on entity of dimension " << k.dim;
     }
   }
+}
+
+// The plan judges each piece glued to the others: a plate with a hole is a sweep alone, but
+// not once an upright standing on it splits its top face (the merged corner and base of an
+// L bracket); the upright, whose foot is a four-sided linking face, still is.
+TEST(MeshSubVolumes, ThePlanJudgesPiecesGluedToTheirNeighbours) {
+  const std::unique_ptr<occ::Solid> base =
+      occ::cut_solids(occ::make_box(40, 30, 5), occ::make_cylinder(4, 20, {22, 15, -5}, {0, 0, 1}));
+  const std::unique_ptr<occ::Solid> upright = occ::cut_solids(
+      occ::make_box(5, 30, 25, {0, 0, 5}), occ::make_cylinder(4, 20, {-5, 15, 18}, {1, 0, 0}));
+  ASSERT_TRUE(base && upright);
+  EXPECT_TRUE(sweep_applicable(*base).ok);
+  occ::ReadResult glued = occ::glue_solids({base.get(), upright.get()}, "The pieces");
+  ASSERT_TRUE(glued.ok()) << messages(glued.diagnostics);
+  const SubVolumePlan plan = plan_sub_volumes(*glued.solid);
+  EXPECT_FALSE(plan.ok);
+  ASSERT_EQ(plan.schemes.size(), 2u);
+  ASSERT_EQ(plan.reasons.size(), 2u);
+  const int b = glued.solid->part(0).volume() > glued.solid->part(1).volume() ? 0 : 1;
+  EXPECT_EQ(plan.schemes[b], "");
+  EXPECT_NE(plan.reasons[b].find("once glued to its neighbours"), std::string::npos)
+      << plan.reasons[b];
+  EXPECT_EQ(plan.why_not, plan.reasons[b]);
+  EXPECT_EQ(plan.schemes[1 - b], "sweep");
+  EXPECT_EQ(plan.reasons[1 - b], "");
+  // mesh_sub_volumes refuses it with the same reason.
+  const SubVolumeMeshResult r = mesh_sub_volumes(*glued.solid, SubVolumeMeshOptions{});
+  EXPECT_FALSE(r.ok);
+  ASSERT_FALSE(r.diagnostics.empty());
+  EXPECT_EQ(r.diagnostics.back().code, "no_scheme");
 }
 
 }  // namespace
