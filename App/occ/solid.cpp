@@ -25,6 +25,7 @@
 #include <TopoDS_Face.hxx>
 #include <TopoDS_Vertex.hxx>
 #include <TopoDS_Wire.hxx>
+#include <gp_Lin.hxx>
 #include <gp_Pnt2d.hxx>
 
 #include <algorithm>
@@ -557,18 +558,20 @@ core::SurfaceInfo Solid::surface_info(FaceId f) const {
       info.origin = to_vec(a.Location());
       info.direction = Vec3(a.Direction().X(), a.Direction().Y(), a.Direction().Z());
     };
+    // A plane's normal as du x dv: its own axis may be left-handed.
+    auto plane_normal = [&] {
+      gp_Pnt q;
+      gp_Vec du, dv;
+      c.surface->D1(0.5 * (c.umin + c.umax), 0.5 * (c.vmin + c.vmax), q, du, dv);
+      const gp_Vec n = du.Crossed(dv);
+      return Vec3(Vec3(n.X(), n.Y(), n.Z()).normalized());
+    };
     switch (s.GetType()) {
-      case GeomAbs_Plane: {
+      case GeomAbs_Plane:
         info.kind = core::SurfaceKind::plane;
         info.origin = to_vec(s.Plane().Location());
-        // The normal as du x dv: a plane's own axis may be left-handed.
-        gp_Pnt q;
-        gp_Vec du, dv;
-        c.surface->D1(0.5 * (c.umin + c.umax), 0.5 * (c.vmin + c.vmax), q, du, dv);
-        const gp_Vec n = du.Crossed(dv);
-        info.direction = Vec3(n.X(), n.Y(), n.Z()).normalized();
+        info.direction = plane_normal();
         break;
-      }
       case GeomAbs_Cylinder:
         info.kind = core::SurfaceKind::cylinder;
         axis(s.Cylinder().Axis());
@@ -589,10 +592,34 @@ core::SurfaceInfo Solid::surface_info(FaceId f) const {
         axis(s.Torus().Axis());
         info.radius = s.Torus().MajorRadius();
         break;
-      case GeomAbs_SurfaceOfRevolution:
+      case GeomAbs_SurfaceOfRevolution: {
         info.kind = core::SurfaceKind::revolution;
-        axis(s.AxeOfRevolution());
+        const gp_Ax1 ax = s.AxeOfRevolution();
+        axis(ax);
+        // A revolved line is a cylinder, a cone or a plane: some CAD systems export every
+        // turned face so (HexMe's i01, i06, i07, i13, i16). Say which, so that schemes
+        // looking for walls, caps and axes see the geometry, not how it was stored.
+        const Handle(Adaptor3d_Curve) meridian = s.BasisCurve();
+        if (meridian.IsNull() || meridian->GetType() != GeomAbs_Line) break;
+        const gp_Lin line = meridian->Line();
+        const double cosine = line.Direction().Dot(ax.Direction());
+        const double r = gp_Lin(ax).Distance(line.Location());
+        if (std::abs(cosine) > 1 - 1e-12) {
+          info.kind = core::SurfaceKind::cylinder;
+          info.radius = r;
+        } else if (std::abs(cosine) < 1e-12) {
+          info.kind = core::SurfaceKind::plane;
+          info.origin = to_vec(line.Location());
+          info.direction = plane_normal();
+        } else {
+          info.kind = core::SurfaceKind::cone;
+          const gp_Vec along(ax.Location(), line.Location());
+          info.origin = to_vec(
+              ax.Location().Translated(along.Dot(gp_Vec(ax.Direction())) * gp_Vec(ax.Direction())));
+          info.radius = r;
+        }
         break;
+      }
       case GeomAbs_SurfaceOfExtrusion:
         info.kind = core::SurfaceKind::extrusion;
         info.direction = Vec3(s.Direction().X(), s.Direction().Y(), s.Direction().Z());

@@ -91,6 +91,34 @@ TEST(Multisweep, MachinedPartsMeshStructuredAbove03) {
 
 // The structure of a stepped extrusion along z: three levels, the caps' outlines overlaid
 // into two regions, one inside both slabs, the other in the lower one only.
+// HexMe i16 stores each of its turned faces as a revolved line: the solid reports them as
+// cylinders (a line parallel to the axis), so the part is prismatic along that axis and is
+// multiswept (it was the fallback's, with inverted hexahedra, before).
+TEST(Multisweep, RevolvedLinesAreCylindersSoTurnedExportsAreSwept) {
+  occ::ReadResult in = occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/i16o_s9.step");
+  ASSERT_TRUE(in.ok()) << "HexMe model i16 not found in " << VOROHEX_HEXME_DIR;
+  const occ::Solid& solid = *in.solid;
+  int cylinders = 0;
+  for (core::FaceId f : solid.faces()) {
+    const core::SurfaceInfo info = solid.surface_info(f);
+    EXPECT_NE(info.kind, core::SurfaceKind::revolution) << core::entity_name(f);
+    if (info.kind != core::SurfaceKind::cylinder) continue;
+    ++cylinders;
+    EXPECT_NEAR(std::abs(info.direction.x()), 1.0, 1e-12);
+    // Every point of the face lies at the reported radius from the axis.
+    const core::Vec3 p =
+        solid.vertex_point(solid.edge_first_vertex(solid.face_wires(f)[0][0].edge));
+    const core::Vec3 d = p - info.origin;
+    EXPECT_NEAR((d - d.dot(info.direction) * info.direction).norm(), info.radius,
+                1e-6 * solid.diagonal());
+  }
+  EXPECT_EQ(cylinders, 13);
+  const MultisweepApplicability a = multisweep_applicable(solid);
+  ASSERT_TRUE(a.ok) << a.reason;
+  EXPECT_NEAR(std::abs(a.axis.x()), 1.0, 1e-12);
+  expect_valid_multisweep({"HexMe i16", solid.clone(), false}, solid.diagonal() / 20);
+}
+
 TEST(Multisweep, StructureOfAStepAlongAnAxis) {
   const occ::Solid part = testing::make_stepped_extrusion();
   const occ::PrismaticStructure s = occ::prismatic_structure(part, Vec3::UnitZ());
