@@ -305,8 +305,14 @@ std::vector<LatticePoint> graded_lattice(const Vec2& anchor, const Vec2& u, cons
   return out;
 }
 
-QuadMesh2d lattice_mesh(const std::vector<std::vector<Vec2>>& loops, double size,
-                        int smoothing_passes, const SizeAt& size_at) {
+// How the coarse boundary (every other node of each loop) is chosen.
+enum class Coarse {
+  sharpest,   // the parity holding the most turn: corners stay corners
+  least_turn  // the parity whose midpoints turn least (largest turn, then sum)
+};
+
+QuadMesh2d lattice_mesh_by(const std::vector<std::vector<Vec2>>& loops, double size,
+                           int smoothing_passes, const SizeAt& size_at, Coarse coarse) {
   QuadMesh2d out;
   if (loops.empty() || !(size > 0)) {
     out.error = "no boundary loops or no positive size";
@@ -342,14 +348,22 @@ QuadMesh2d lattice_mesh(const std::vector<std::vector<Vec2>>& loops, double size
   int base = 0, inserted = 0;
   for (const auto& loop : loops) {
     const int n = int(loop.size());
-    // Coarse nodes at the parity that holds the sharper corners: a corner that became an
-    // edge midpoint would give a quad with a straight angle.
-    double turn[2] = {0, 0};
+    // A corner that became an edge midpoint would give a quad with a straight angle, and a
+    // midpoint far off its coarse edge (a hole's arc of few, unequal segments) can fold the
+    // quads of a thin triangle beside it.
+    double turn[2] = {0, 0}, worst[2] = {0, 0};
     for (int i = 0; i < n; ++i) {
       const Vec2 a = loop[i] - loop[(i + n - 1) % n], b = loop[(i + 1) % n] - loop[i];
-      turn[i % 2] += std::abs(std::atan2(cross(a, b), a.dot(b)));
+      const double t = std::abs(std::atan2(cross(a, b), a.dot(b)));
+      turn[i % 2] += t;
+      worst[i % 2] = std::max(worst[i % 2], t);
     }
-    const int offset = turn[1] > turn[0] + 1e-9 ? 1 : 0;
+    // worst[k]: the largest turn at a node of parity k, which is a midpoint when the coarse
+    // nodes take the other parity.
+    const int most_turn = turn[1] > turn[0] + 1e-9 ? 1 : 0;
+    const int offset = coarse == Coarse::sharpest || std::abs(worst[0] - worst[1]) <= 1e-9
+                           ? most_turn
+                           : (worst[0] > worst[1] ? 0 : 1);
     std::vector<Cdt::Vertex_handle> vh;
     for (int i = offset; i < n; i += 2) {
       vh.push_back(cdt.insert(Point(loop[i].x(), loop[i].y())));
@@ -481,6 +495,26 @@ QuadMesh2d lattice_mesh(const std::vector<std::vector<Vec2>>& loops, double size
       break;
     }
   return out;
+}
+
+double worst_quad(const QuadMesh2d& m) {
+  double lo = 1;
+  for (const auto& q : m.quads)
+    lo = std::min(lo, quad_quality(m.points[q[0]], m.points[q[1]], m.points[q[2]], m.points[q[3]]));
+  return lo;
+}
+
+// The lattice mesh with the coarse boundary at the parities of least turning midpoints;
+// when that folds a quad or leaves one poor (a hole close to another boundary), also with
+// the sharpest corners coarse, and the better of the two (neither choice is always right).
+QuadMesh2d lattice_mesh(const std::vector<std::vector<Vec2>>& loops, double size,
+                        int smoothing_passes, const SizeAt& size_at) {
+  QuadMesh2d a = lattice_mesh_by(loops, size, smoothing_passes, size_at, Coarse::least_turn);
+  const double qa = a.error.empty() ? worst_quad(a) : -2;
+  if (qa >= 0.5) return a;
+  QuadMesh2d b = lattice_mesh_by(loops, size, smoothing_passes, size_at, Coarse::sharpest);
+  const double qb = b.error.empty() ? worst_quad(b) : -2;
+  return qb > qa ? b : a;
 }
 
 bool segments_cross(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {

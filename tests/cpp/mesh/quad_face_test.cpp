@@ -122,6 +122,27 @@ TEST(QuadMesh2d, PlateWithRoundHole) {
               m.quads.size(), mean);
 }
 
+// A small hole whose six nodes are unequally spaced (its two edges got 2 and 4 segments),
+// close to the outline, as HexMe i01's bolt holes in a multisweep's section. With every
+// other node of the sharpest corners as the coarse boundary, one coarse edge spans half
+// the circle and its midpoint node sits a radius off it, which folds or flattens the quads
+// of a thin triangle beside it (i01 failed so). The coarse nodes whose midpoints turn least
+// are tried first, the sharpest corners too when that gives a poor quad, and the better
+// mesh is kept. Before, at a gap of 2 from the outline: min quality 0.15-0.27.
+TEST(QuadMesh2d, AHoleOfFewUnequalSegmentsNearTheOutlineKeepsGoodQuads) {
+  const double kPi = 3.14159265358979323846;
+  std::vector<Vec2> hole;  // clockwise
+  for (const double deg : {270.0, 180.0, 90.0, 45.0, 0.0, -45.0})
+    hole.push_back(Vec2(5 * std::cos(deg * kPi / 180), 5 * std::sin(deg * kPi / 180)));
+  for (const double left : {-10.0, -8.0, -7.0})
+    for (const double size : {7.0, 8.7, 10.0, 12.0}) {
+      SCOPED_TRACE("outline at x = " + std::to_string(left) + ", size " + std::to_string(size));
+      const std::vector<std::vector<Vec2>> loops = {
+          polygon_nodes({{left, -14}, {14, -14}, {14, 16}, {left, 16}}, size, true), hole};
+      check_2d(loops, detail::quad_mesh_2d(loops, size, 30, 0), 0.45);
+    }
+}
+
 // Rings (an O-grid) around a round hole: the nodes next to the hole lie on one circle
 // (the first ring is an exact offset of the hole), a second ring follows it, and the quads
 // stay good; with no rings the lattice reaches the hole and those nodes are scattered.
