@@ -212,6 +212,7 @@ def write_table(rows):
     valid = sum(1 for r in rows if r.get("v", "").startswith("valid"))
     structured = [r["model"].split("_")[0] for r in rows
                   if r.get("v", "").startswith("valid") and "tet-split" not in r["v"]
+                  and "grid" not in r["v"]
                   and r["model"].startswith("i") and r.get("v_min", -1) >= 0.2]
     decomposed = [r for r in rows if r.get("d", "") and not r["d"].startswith("failed")]
     schemed = [r for r in decomposed if " none" not in r["d"]]
