@@ -517,14 +517,15 @@ int invalid_faces(const DecompositionResult& r) {
   return n;
 }
 
-// Sub-volumes without a scheme once glued to their neighbours, as the meshing of several
-// sub-volumes judges them (mesh/mesh_sub_volumes.h): a face a neighbour's interface splits
-// is no longer one face, and a sweep across it may not be one any more. No value when the
-// pieces do not glue.
-std::optional<mesh::SubVolumePlan> glued_plan(const DecompositionResult& r) {
-  if (r.sub_volumes.size() == 1) return mesh::plan_sub_volumes(*r.sub_volumes[0].solid);
+// The schemes of the sub-volumes `which` once glued to each other, as the meshing of
+// several sub-volumes judges them (mesh/mesh_sub_volumes.h): a face a neighbour's
+// interface splits is no longer one face, and a sweep across it may not be one any more.
+// No value when the pieces do not glue.
+std::optional<mesh::SubVolumePlan> glued_plan(const DecompositionResult& r,
+                                              const std::vector<int>& which) {
+  if (which.size() == 1) return mesh::plan_sub_volumes(*r.sub_volumes[which[0]].solid);
   std::vector<const occ::Solid*> solids;
-  for (const SubVolume& sv : r.sub_volumes) solids.push_back(sv.solid.get());
+  for (int i : which) solids.push_back(r.sub_volumes[i].solid.get());
   try {
     const occ::ReadResult glued = occ::glue_solids(solids, "The sub-volumes");
     if (!glued.ok() || glued.solid->num_solids() != int(solids.size())) return std::nullopt;
@@ -534,15 +535,19 @@ std::optional<mesh::SubVolumePlan> glued_plan(const DecompositionResult& r) {
   }
 }
 
-// Per sub-volume its scheme once glued, empty for none.
-std::optional<std::vector<std::string>> glued_schemes(const DecompositionResult& r) {
-  std::optional<mesh::SubVolumePlan> plan = glued_plan(r);
-  if (!plan) return std::nullopt;
-  return std::move(plan->schemes);
-}
-
-int count_unmeshable(const std::optional<std::vector<std::string>>& schemes, int n) {
-  return schemes ? int(std::count(schemes->begin(), schemes->end(), std::string())) : n;
+// Whether the union at index u of `trial` keeps a scheme glued to its neighbours, and so
+// does every neighbour that has one alone. Only they are glued (one OCCT general fuse of a
+// few pieces per try, not of all): the judgement of the whole is judge_glued's, at the end.
+bool union_meshable_glued(const DecompositionResult& trial, int u,
+                          const std::vector<int>& neighbours) {
+  std::vector<int> which{u};
+  which.insert(which.end(), neighbours.begin(), neighbours.end());
+  const std::optional<mesh::SubVolumePlan> plan = glued_plan(trial, which);
+  if (!plan || plan->schemes[0].empty()) return false;
+  for (std::size_t k = 1; k < which.size(); ++k)
+    if (trial.sub_volumes[which[k]].scheme != Scheme::none && plan->schemes[k].empty())
+      return false;
+  return true;
 }
 
 // A block or sweep alone that is none once glued to its neighbours gets no scheme: the
@@ -550,7 +555,9 @@ int count_unmeshable(const std::optional<std::vector<std::string>>& schemes, int
 // tries other cuts instead of failing there).
 void judge_glued(DecompositionResult& r) {
   if (r.sub_volumes.size() < 2) return;
-  const std::optional<mesh::SubVolumePlan> plan = glued_plan(r);
+  std::vector<int> all(r.sub_volumes.size());
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = int(i);
+  const std::optional<mesh::SubVolumePlan> plan = glued_plan(r, all);
   if (!plan) return;
   for (std::size_t i = 0; i < r.sub_volumes.size(); ++i) {
     SubVolume& sv = r.sub_volumes[i];
@@ -576,7 +583,6 @@ void merge_pass(const occ::Solid& solid, const VoronoiGraph& g, double tol, doub
                 DecompositionResult& r) {
   std::set<std::vector<const occ::Solid*>> rejected;
   const auto start = Clock::now();
-  int unmeshable_now = count_unmeshable(glued_schemes(r), int(r.sub_volumes.size()));
   for (bool merged = true; merged;) {
     merged = false;
     const int n = int(r.sub_volumes.size());
@@ -645,14 +651,23 @@ void merge_pass(const occ::Solid& solid, const VoronoiGraph& g, double tol, doub
         rejected.insert(key);
         continue;
       }
-      const auto schemes = glued_schemes(trial);
-      const int lacking = count_unmeshable(schemes, int(trial.sub_volumes.size()));
-      if (!schemes || (*schemes)[group[0]].empty() || lacking > unmeshable_now) {
+      // The union's neighbours, by their index in the trial (the group's other members,
+      // all above group[0], are gone from it).
+      std::vector<int> neighbours;
+      for (int i : group)
+        for (int j : around[i])
+          if (std::find(group.begin(), group.end(), j) == group.end())
+            neighbours.push_back(j - int(std::count_if(group.begin() + 1, group.end(),
+                                                       [&](int k) { return k < j; })));
+      std::sort(neighbours.begin(), neighbours.end());
+      neighbours.erase(std::unique(neighbours.begin(), neighbours.end()), neighbours.end());
+      for (std::size_t i = 0; i < trial.sub_volumes.size(); ++i)
+        type_sub_volume(g, trial, int(i), trial.sub_volumes[i]);
+      if (!union_meshable_glued(trial, group[0], neighbours)) {
         rejected.insert(key);
         continue;
       }
       r = std::move(trial);
-      unmeshable_now = lacking;
       for (std::size_t i = 0; i < r.sub_volumes.size(); ++i)
         type_sub_volume(g, r, int(i), r.sub_volumes[i]);
       merged = true;
@@ -753,7 +768,10 @@ DecompositionResult decompose(const occ::Solid& solid, const voronoi::VoronoiRes
                       r.diagnostics.end());
 
   if (options.merge) merge_pass(solid, g, tol, options.split_time_limit, r);
-  judge_glued(r);
+  // Judged glued only when it is a candidate for meshing: every piece has a scheme alone.
+  if (std::none_of(r.sub_volumes.begin(), r.sub_volumes.end(),
+                   [](const SubVolume& sv) { return sv.scheme == Scheme::none; }))
+    judge_glued(r);
   detail::build_virtual_edges(solid, tol, r);
 
   r.stats.sub_volumes = int(r.sub_volumes.size());
