@@ -58,7 +58,7 @@ bool write_inp(const core::HexMesh& mesh, const std::string& path, const WriteOp
     detail::append_int(&t, static_cast<std::int64_t>(i + 1));
     for (int k = 0; k < 3; ++k) {
       t += ", ";
-      detail::append_double(&t, points[i][k]);
+      detail::append_double_20(&t, points[i][k]);  // CalculiX reads 20 characters
     }
     t += '\n';
     out.flush_if_full();

@@ -80,6 +80,12 @@ void append_double(std::string* s, double v) {
   s->append(buf, r.ptr);
 }
 
+void append_double_20(std::string* s, double v) {
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::general, 13);
+  s->append(buf, r.ptr);
+}
+
 void append_int(std::string* s, std::int64_t v) {
   char buf[24];
   const auto r = std::to_chars(buf, buf + sizeof buf, v);

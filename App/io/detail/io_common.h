@@ -48,6 +48,10 @@ class OutputFile {
 
 // Shortest text that reads back to the same double (std::to_chars).
 void append_double(std::string* s, double v);
+// 13 significant digits, at most 20 characters: for formats whose readers take
+// fixed-width fields, e.g. CalculiX, which reads a number in 20 characters and refused
+// "1.4145660816281972E-30" (a coordinate that is zero up to rounding).
+void append_double_20(std::string* s, double v);
 void append_int(std::string* s, std::int64_t v);
 
 // False (with *error set) if a hexahedron refers to a node that does not exist.
