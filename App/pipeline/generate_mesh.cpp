@@ -131,8 +131,9 @@ void finish(MeshResult& result, const occ::Solid& solid, const MeshOptions& opti
   // Named groups per CAD entity; second order adds the mid-edge nodes (on the CAD where the
   // edge is), after smoothing, which moves corners only.
   result.groups = io::named_groups(result.mesh, solid);
+  io::SecondOrderStats second;
   if (options.order == 2 && result.mesh.num_hexes() > 0) {
-    const io::SecondOrderStats second = io::make_second_order(result.mesh, solid, result.groups);
+    second = io::make_second_order(result.mesh, solid, result.groups);
     if (second.straightened)
       result.diagnostics.push_back(core::make_warning(
           "mid_nodes_straightened",
@@ -152,6 +153,16 @@ void finish(MeshResult& result, const occ::Solid& solid, const MeshOptions& opti
   }
   result.stats.seconds_checking = seconds_since(t1);
   progress.report("check", 1.0);
+  // Straightened mid-edge nodes off the CAD: say what they are and what helps.
+  if (second.straightened)
+    for (core::Diagnostic& d : result.check.diagnostics)
+      if (d.code == "nodes_off_cad")
+        d.message += std::string(!d.message.empty() && d.message.back() == '.' ? "" : ".") + " " +
+                     std::to_string(second.straightened) +
+                     " mid-edge nodes were put back straight (mid_nodes_straightened): at this "
+                     "size some elements are too thin for the curvature of their face. Give a "
+                     "smaller size (more elements across the curved faces) or first-order "
+                     "elements.";
   append(result.diagnostics, result.check.diagnostics);
   result.ok = result.check.valid && !core::has_error(result.diagnostics);
 }

@@ -608,5 +608,25 @@ TEST(GenerateMesh, TimeLimitStopsMeshingWithADiagnostic) {
   EXPECT_THROW(generate_mesh(box, opt), std::invalid_argument);
 }
 
+// Second order on a coarse mesh of a curved part (HexMe i16 at the default size, holes of
+// eight segments): mid-edge nodes that fold an element on the CAD are put back straight,
+// off the CAD, so the check refuses the mesh; the error says why and what helps.
+TEST(GenerateMesh, SecondOrderTooCoarseForTheCurvatureSaysWhatHelps) {
+  const occ::ReadResult in = occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/i16o_s9.step");
+  ASSERT_TRUE(in.ok()) << "HexMe model i16 not found in " << VOROHEX_HEXME_DIR;
+  MeshOptions opt;
+  opt.order = 2;
+  const MeshResult r = generate_mesh(*in.solid, opt);
+  ASSERT_FALSE(r.ok);
+  EXPECT_NE(testing::find_diagnostic(r.diagnostics, "mid_nodes_straightened"), nullptr);
+  const core::Diagnostic* off = testing::find_diagnostic(r.diagnostics, "nodes_off_cad");
+  ASSERT_NE(off, nullptr);
+  EXPECT_NE(off->message.find("smaller size"), std::string::npos) << off->message;
+  EXPECT_NE(off->message.find("first-order"), std::string::npos) << off->message;
+  // At first order the same part is meshed.
+  opt.order = 1;
+  EXPECT_TRUE(generate_mesh(*in.solid, opt).ok);
+}
+
 }  // namespace
 }  // namespace vorohex::pipeline
