@@ -342,9 +342,16 @@ int mesh_command(const std::vector<std::string>& argv) {
   all.insert(all.end(), result.diagnostics.begin(), result.diagnostics.end());
   const bool meshed = result.mesh.num_hexes() > 0;
   if (meshed) {
+    // Intervals per direction only where a scheme has three (a block or a sweep; a
+    // multisweep or revolve gives its layers, several sub-volumes none).
+    const auto& n = result.stats.intervals;
     std::cout << "mesh of " << args.positional[0] << " (scheme " << result.stats.scheme << ", size "
-              << result.stats.size_used << ", intervals " << result.stats.intervals[0] << " x "
-              << result.stats.intervals[1] << " x " << result.stats.intervals[2] << ")\n";
+              << result.stats.size_used;
+    if (n[0] > 0 && n[1] > 0)
+      std::cout << ", intervals " << n[0] << " x " << n[1] << " x " << n[2];
+    else if (n[2] > 0)
+      std::cout << ", " << n[2] << " layers";
+    std::cout << ")\n";
     if (!result.stats.local_sizes.empty()) {
       std::cout << "local sizes         ";
       for (const core::LocalSize& l : result.stats.local_sizes)

@@ -107,7 +107,8 @@ class MultisweepScheme : public Scheme {
     if (r.ok) {
       m.mesh = std::move(r.mesh);
       std::ostringstream s;
-      s << "Swept along (" << r.axis.x() << ", " << r.axis.y() << ", " << r.axis.z() << ") through "
+      const core::Vec3 a = r.axis + core::Vec3::Zero();  // + 0: no "-0" in the text
+      s << "Swept along (" << a.x() << ", " << a.y() << ", " << a.z() << ") through "
         << r.levels - 1 << (r.levels == 2 ? " slab" : " slabs") << " in " << r.layers
         << " layers: the caps' outlines overlaid into " << r.regions
         << " regions meshed with quads (min 2-D quality " << std::setprecision(3)
