@@ -56,20 +56,28 @@ Vec3 closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3
 }
 
 // Points of face f's triangulation no farther apart than `spacing` (a barycentric grid on
-// each triangle: a planar face's triangulation may have no node inside it), at most `cap`.
+// each triangle: a planar face's triangulation may have no node inside it), one per cube of
+// half that edge (a fine triangulation along a curved outline gives many), at most `cap`.
 std::vector<Vec3> face_samples(const occ::Tessellation& tess, FaceId f, double spacing,
                                std::size_t cap) {
   std::vector<Vec3> out;
   if (f.value() >= int(tess.faces.size())) return out;
   const occ::FaceTriangulation& t = tess.faces[f.value()];
+  std::unordered_set<std::int64_t> taken;
+  auto add = [&](const Vec3& x) {
+    const double h = spacing / 2;
+    const std::int64_t i = std::int64_t(std::floor(x.x() / h)),
+                       j = std::int64_t(std::floor(x.y() / h)),
+                       k = std::int64_t(std::floor(x.z() / h));
+    if (taken.insert((i * 73856093) ^ (j * 19349663) ^ (k * 83492791)).second) out.push_back(x);
+  };
   for (const auto& tri : t.triangles) {
     const Vec3 &a = t.nodes[tri[0]], &b = t.nodes[tri[1]], &c = t.nodes[tri[2]];
     const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
-    out.push_back((a + b + c) / 3);
+    add((a + b + c) / 3);
     const int n = std::clamp(int(std::ceil(longest / spacing)), 1, 64);
     for (int i = 0; i <= n; ++i)
-      for (int j = 0; i + j <= n; ++j)
-        out.push_back(a + (b - a) * (double(i) / n) + (c - a) * (double(j) / n));
+      for (int j = 0; i + j <= n; ++j) add(a + (b - a) * (double(i) / n) + (c - a) * (double(j) / n));
   }
   if (out.size() > cap) {  // evenly thinned
     std::vector<Vec3> thin;
@@ -169,11 +177,14 @@ SmallFeatures find_small_features(const core::MeshDomain& solid, const occ::Tess
     std::vector<core::BoundingBox> boxes;
     for (FaceId g : neighbours) boxes.push_back(solid.face_bounding_box(g));
     bool near = true;
+    std::size_t last = 0;  // the neighbour the previous point was near: likely this one's
     for (std::size_t i = 0; i < nodes.size() && near; ++i) {
-      double d = std::numeric_limits<double>::infinity();
+      double d = solid.distance_to_face(neighbours[last], nodes[i]);
       for (std::size_t k = 0; k < neighbours.size() && d > size; ++k)
-        if (box_distance(boxes[k], nodes[i]) < d)
-          d = std::min(d, solid.distance_to_face(neighbours[k], nodes[i]));
+        if (box_distance(boxes[k], nodes[i]) < d) {
+          const double dk = solid.distance_to_face(neighbours[k], nodes[i]);
+          if (dk < d) d = dk, last = k;
+        }
       near = d <= size;
     }
     enclosed[f.value()] = near;
