@@ -77,7 +77,8 @@ std::vector<Vec3> face_samples(const occ::Tessellation& tess, FaceId f, double s
     add((a + b + c) / 3);
     const int n = std::clamp(int(std::ceil(longest / spacing)), 1, 64);
     for (int i = 0; i <= n; ++i)
-      for (int j = 0; i + j <= n; ++j) add(a + (b - a) * (double(i) / n) + (c - a) * (double(j) / n));
+      for (int j = 0; i + j <= n; ++j)
+        add(a + (b - a) * (double(i) / n) + (c - a) * (double(j) / n));
   }
   if (out.size() > cap) {  // evenly thinned
     std::vector<Vec3> thin;
@@ -242,6 +243,13 @@ SmallFeatures find_small_features(const core::MeshDomain& solid, const occ::Tess
       for (const Vec3& x : face_samples(tess, f, 0.25 * size, 400)) r.samples.push_back(x);
     }
   }
+  constexpr std::size_t kMaxSamples = 50'000;  // the deviation's cost stays bounded
+  if (r.samples.size() > kMaxSamples) {
+    std::vector<Vec3> thin;
+    for (std::size_t i = 0; i < kMaxSamples; ++i)
+      thin.push_back(r.samples[i * r.samples.size() / kMaxSamples]);
+    r.samples.swap(thin);
+  }
   return r;
 }
 
@@ -333,14 +341,22 @@ CompositeDeviation composite_deviation(const core::HexMesh& mesh, const core::Me
   for (const Vec3& x : features.samples) {
     double d = std::numeric_limits<double>::infinity();
     const std::int64_t ci = cell_of(x, 0), cj = cell_of(x, 1), ck = cell_of(x, 2);
-    for (std::int64_t i = ci - 1; i <= ci + 1; ++i)
-      for (std::int64_t j = cj - 1; j <= cj + 1; ++j)
-        for (std::int64_t k = ck - 1; k <= ck + 1; ++k) {
-          auto it = grid.find(key_of(i, j, k));
-          if (it != grid.end())
-            for (std::size_t q : it->second) d = std::min(d, distance_to_quad(q, x));
-        }
-    if (d > cell)  // a nearer quad may lie outside the cells searched
+    // Shells of cells around x, nearest first: after shell s every quad within s cells of x
+    // has been seen, so a distance below that is final.
+    constexpr int kShells = 4;
+    int shell = 1;
+    for (; shell <= kShells && d > (shell - 1) * cell; ++shell)
+      for (std::int64_t i = ci - shell; i <= ci + shell; ++i)
+        for (std::int64_t j = cj - shell; j <= cj + shell; ++j)
+          for (std::int64_t k = ck - shell; k <= ck + shell; ++k) {
+            if (std::max({std::abs(i - ci), std::abs(j - cj), std::abs(k - ck)}) != shell &&
+                shell > 1)
+              continue;  // seen in an inner shell
+            auto it = grid.find(key_of(i, j, k));
+            if (it != grid.end())
+              for (std::size_t q : it->second) d = std::min(d, distance_to_quad(q, x));
+          }
+    if (d > (shell - 1) * cell)  // a nearer quad may lie outside the cells searched
       for (std::size_t q = 0; q < on.size(); ++q) d = std::min(d, distance_to_quad(q, x));
     if (d > r.cad_side) r.cad_side = d;
     if (d > r.max) r.max = d, r.where = x;
