@@ -273,8 +273,10 @@ CompositeDeviation composite_deviation(const core::HexMesh& mesh, const core::Me
     }
   // Quads on a composite: a node on one of its faces and none on a face outside it.
   std::vector<std::pair<std::array<std::int32_t, 4>, int>> on;
+  std::vector<std::array<std::int32_t, 4>> boundary;
   for (const auto& [key, q] : faces) {
     if (q.count != 1) continue;
+    boundary.push_back(q.n);
     int c = -1;
     bool outside = false;
     for (std::int32_t n : q.n) {
@@ -313,16 +315,19 @@ CompositeDeviation composite_deviation(const core::HexMesh& mesh, const core::Me
     }
   }
   cell = std::max(cell / double(4 * on.size()), 1e-12);
-  // CAD side: each sample of an absorbed face against the quads (four triangles each, about
-  // the centre), found through a hash of cells of the mean quad edge length.
+  std::sort(boundary.begin(), boundary.end());
+  // CAD side: each sample of an absorbed face against every boundary quad (the real surface
+  // may be followed by quads on a neighbouring face: the distance is to the mesh's boundary),
+  // four triangles each about the centre, found through a hash of cells of the mean composite
+  // quad edge length.
   auto cell_of = [&](const Vec3& x, int i) { return std::int64_t(std::floor(x[i] / cell)); };
   auto key_of = [](std::int64_t i, std::int64_t j, std::int64_t k) {
     return (i * 73856093) ^ (j * 19349663) ^ (k * 83492791);
   };
   std::unordered_map<std::int64_t, std::vector<std::size_t>> grid;
-  for (std::size_t q = 0; q < on.size(); ++q) {
-    Vec3 lo = mesh.point(core::NodeId(on[q].first[0])), hi = lo;
-    for (std::int32_t n : on[q].first)
+  for (std::size_t q = 0; q < boundary.size(); ++q) {
+    Vec3 lo = mesh.point(core::NodeId(boundary[q][0])), hi = lo;
+    for (std::int32_t n : boundary[q])
       lo = lo.cwiseMin(mesh.point(core::NodeId(n))), hi = hi.cwiseMax(mesh.point(core::NodeId(n)));
     for (std::int64_t i = cell_of(lo, 0); i <= cell_of(hi, 0); ++i)
       for (std::int64_t j = cell_of(lo, 1); j <= cell_of(hi, 1); ++j)
@@ -331,7 +336,7 @@ CompositeDeviation composite_deviation(const core::HexMesh& mesh, const core::Me
   }
   auto distance_to_quad = [&](std::size_t q, const Vec3& x) {
     std::array<Vec3, 4> p;
-    for (int i = 0; i < 4; ++i) p[i] = mesh.point(core::NodeId(on[q].first[i]));
+    for (int i = 0; i < 4; ++i) p[i] = mesh.point(core::NodeId(boundary[q][i]));
     const Vec3 m = (p[0] + p[1] + p[2] + p[3]) / 4;
     double d = std::numeric_limits<double>::infinity();
     for (int i = 0; i < 4; ++i)
@@ -357,7 +362,7 @@ CompositeDeviation composite_deviation(const core::HexMesh& mesh, const core::Me
               for (std::size_t q : it->second) d = std::min(d, distance_to_quad(q, x));
           }
     if (d > (shell - 1) * cell)  // a nearer quad may lie outside the cells searched
-      for (std::size_t q = 0; q < on.size(); ++q) d = std::min(d, distance_to_quad(q, x));
+      for (std::size_t q = 0; q < boundary.size(); ++q) d = std::min(d, distance_to_quad(q, x));
     if (d > r.cad_side) r.cad_side = d;
     if (d > r.max) r.max = d, r.where = x;
   }
