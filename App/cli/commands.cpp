@@ -423,6 +423,17 @@ int mesh_command(const std::vector<std::string>& argv) {
     j["groups"] = groups_json(result.groups);
     j["sub_volume_schemes"] = result.stats.sub_volume_schemes;
     j["sub_volume_types"] = result.stats.sub_volume_types;
+    if (!result.absorbed.empty()) {  // the grid mesher's composites (grid/composites.h)
+      nlohmann::json a;
+      a["entities"] = nlohmann::json::array();
+      for (const core::Diagnostic& d : result.diagnostics)
+        if (d.code == "features_absorbed") a["entities"] = d.entities;
+      a["composites"] = nlohmann::json::array();
+      for (const grid::Composite& c : result.absorbed.composites)
+        a["composites"].push_back(c.name());
+      a["max_deviation"] = result.stats.absorbed_deviation;
+      j["absorbed"] = a;
+    }
     j["decomposition"] = {{"decompose", options.decompose},
                           {"sharp_angle", options.sharp_angle},
                           {"eps", options.graph.eps},

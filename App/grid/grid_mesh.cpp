@@ -152,19 +152,27 @@ GridResult grid_mesh(const occ::Solid& solid, const GridOptions& options,
 
   t0 = std::chrono::steady_clock::now();
   if (options.capture_features) {
-    const detail::FeatureCapture fc = detail::capture_features(
-        pillow.mesh, pillow.outer_quads, pillow.outer_nodes, pillow.outer_normals, solid, size);
+    r.absorbed = find_small_features(solid, tess, size);
+    const detail::FeatureCapture fc =
+        detail::capture_features(pillow.mesh, pillow.outer_quads, pillow.outer_nodes,
+                                 pillow.outer_normals, solid, r.absorbed, size);
+    r.absorbed_names = fc.absorbed;
     r.stats.vertices = fc.vertices, r.stats.vertices_captured = fc.vertices_captured;
     r.stats.edges = fc.edges, r.stats.edges_captured = fc.edges_captured;
     r.stats.faces = fc.faces, r.stats.faces_captured = fc.faces_captured;
     if (!fc.absorbed.empty()) {
       std::ostringstream s;
-      s << fc.absorbed.size() << " model entities smaller than a quarter of the size were "
-        << "absorbed, not resolved (";
+      s << fc.absorbed.size() << " model entities smaller than a quarter of the size (and "
+        << "faces they enclose) were absorbed, not resolved (";
       for (std::size_t i = 0; i < fc.absorbed.size() && i < 8; ++i)
         s << (i ? ", " : "") << fc.absorbed[i];
-      s << (fc.absorbed.size() > 8 ? ", ..." : "") << "): no mesh edge follows them; the "
-        << "boundary nodes near them stay on the faces they project to.";
+      s << (fc.absorbed.size() > 8 ? ", ..." : "") << "): no mesh edge follows them; they "
+        << "form " << r.absorbed.composites.size() << " composite faces with their neighbours "
+        << "(";
+      for (std::size_t c = 0; c < r.absorbed.composites.size() && c < 4; ++c)
+        s << (c ? "; " : "") << r.absorbed.composites[c].summary();
+      s << (r.absorbed.composites.size() > 4 ? "; ..." : "") << "), each boundary node near "
+        << "them on the nearest face of its composite.";
       r.diagnostics.push_back(core::make_warning("features_absorbed", s.str(), fc.absorbed));
     }
     if (!fc.missed.empty()) {
@@ -201,6 +209,12 @@ GridResult grid_mesh(const occ::Solid& solid, const GridOptions& options,
   }
   measure(pillow.mesh, r.stats.min_sj, r.stats.mean_sj, r.stats.inverted);
   r.stats.seconds_optimisation = seconds_since(t0);
+  if (!r.absorbed.empty() &&
+      (options.laplacian_iterations > 0 || options.optimisation_passes > 0)) {
+    const CompositeDeviation d = composite_deviation(pillow.mesh, solid, r.absorbed);
+    r.stats.absorbed_deviation = d.max;
+    r.diagnostics.push_back(deviation_diagnostic(r.absorbed, d));
+  }
   progress.report("grid", 1.0);
 
   std::ostringstream s;

@@ -20,6 +20,7 @@
 #include "core/diagnostic.h"
 #include "core/hex_mesh.h"
 #include "core/progress.h"
+#include "grid/composites.h"
 #include "occ/solid.h"
 
 namespace vorohex::grid {
@@ -57,6 +58,9 @@ struct GridStats {
   double min_sj_before_optimisation = 0, min_sj = 0, mean_sj = 0;
   std::size_t inverted_before_optimisation = 0, inverted = 0;
   double seconds_core = 0, seconds_pillow = 0, seconds_features = 0, seconds_optimisation = 0;
+  // Largest deviation of the boundary on the composites from the real surface (after the
+  // optimisation; -1 when not measured: no composite, or step 4 off).
+  double absorbed_deviation = -1;
 };
 
 struct GridResult {
@@ -64,6 +68,10 @@ struct GridResult {
   bool ok = false;  // a mesh was made (without inverted elements, if optimised)
   GridStats stats;
   std::vector<core::Diagnostic> diagnostics;
+  // The absorbed features and their composites (to measure the deviation again after a
+  // later smoothing), and the FreeCAD names of the absorbed entities.
+  SmallFeatures absorbed;
+  std::vector<std::string> absorbed_names;
 };
 
 GridResult grid_mesh(const occ::Solid& solid, const GridOptions& options,

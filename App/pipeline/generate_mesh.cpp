@@ -201,6 +201,7 @@ bool fallback(const occ::Solid& solid, const MeshOptions& options, double size,
     result.stats.seconds_meshing = seconds_since(t0);
     if (!g.ok) return false;
     result.mesh = std::move(g.mesh);
+    result.absorbed = std::move(g.absorbed);
     result.diagnostics.push_back(core::make_warning(
         "fallback", why + " Meshed by the grid mesher instead (core grid, one pillow layer to "
                           "the CAD, features captured); expect poorer elements at the boundary "
@@ -449,6 +450,7 @@ bool mesh_solid(const occ::Solid& solid, const MeshOptions& options, const core:
       result.stats.intervals = meshed.intervals;
       result.stats.scheme = scheme->name();
       result.mesh = std::move(meshed.mesh);
+      result.absorbed = std::move(meshed.absorbed);
       if (!meshed.summary.code.empty()) result.diagnostics.push_back(meshed.summary);
       if (!sizes.uniform() && !scheme->grades()) {
         result.diagnostics.push_back(local_sizes_ignored(scheme->name()));
@@ -656,8 +658,16 @@ MeshResult generate(const occ::Solid& solid, const MeshOptions& options,
   MeshResult result;
   result.diagnostics = small;
   result.stats.local_sizes = sizes.applied();
-  if (mesh_solid(solid, options, sizes, progress, result))
+  if (mesh_solid(solid, options, sizes, progress, result)) {
     finish(result, solid, options, progress, sizes);
+    // The grid mesher's composites: how far the final boundary strays from the real surface.
+    if (!result.absorbed.empty() && result.mesh.num_hexes() > 0) {
+      const grid::CompositeDeviation d =
+          grid::composite_deviation(result.mesh, solid, result.absorbed);
+      result.stats.absorbed_deviation = d.max;
+      result.diagnostics.push_back(grid::deviation_diagnostic(result.absorbed, d));
+    }
+  }
   // The grid mesher is not yet valid on every part the tetrahedral fallback meshes validly
   // (several of HexMe's industrial models): when its mesh is invalid, the tet split gets a
   // second chance, within kSecondChanceSeconds, and is used if its mesh is valid.

@@ -11,6 +11,7 @@
 #include "core/hex_mesh.h"
 #include "core/progress.h"
 #include "core/size_field.h"
+#include "grid/composites.h"
 #include "io/named_groups.h"
 #include "occ/solid.h"
 #include "quality/check_mesh.h"
@@ -81,6 +82,10 @@ struct MeshStats {
   // Per sub-volume: "Vs" (swept between two faces of the solid, the paper's f_s volumes),
   // "Ve" (a block, or a sweep from or to a cut face); one entry "Vs"/"Ve" for one scheme.
   std::vector<std::string> sub_volume_types;
+  // The grid mesher's features smaller than the size, absorbed into composite faces
+  // (grid/composites.h): the largest deviation of the final mesh's boundary on them from the
+  // real surface, model units (-1: nothing absorbed, or not the grid mesher).
+  double absorbed_deviation = -1;
 };
 
 struct MeshResult {
@@ -91,6 +96,7 @@ struct MeshResult {
   std::vector<io::NamedGroup> groups;   // per CAD face, edge and vertex (nodes, element faces)
   MeshStats stats;
   std::vector<core::Diagnostic> diagnostics;
+  grid::SmallFeatures absorbed;  // the grid mesher's composites (empty otherwise)
 };
 
 // Every single-solid scheme name MeshOptions::schemes accepts, in the default order (then

@@ -156,6 +156,7 @@ void bind_types(py::module_& m) {
       .def_readonly("sub_volume_schemes", &S::sub_volume_schemes)
       .def_readonly("sub_volume_types", &S::sub_volume_types)
       .def_readonly("scheme", &S::scheme)
+      .def_readonly("absorbed_deviation", &S::absorbed_deviation)
       .def_property_readonly("local_sizes", [](const S& st) {
         std::vector<std::pair<std::string, double>> out;
         for (const core::LocalSize& l : st.local_sizes) out.emplace_back(l.entity, l.size);

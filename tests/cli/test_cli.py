@@ -9,6 +9,7 @@ import shutil
 import subprocess
 import sys
 import tempfile
+import time
 import unittest
 
 import numpy as np
@@ -17,6 +18,7 @@ VOROHEX = None
 EXAMPLES = None
 # The HexMe models the tests need, copied into the repository (tests/data/hexme/INDEX.md).
 HEXME = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "data", "hexme")
+DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "data")
 
 
 def run(*args):
@@ -327,6 +329,55 @@ class MeshCommand(unittest.TestCase):
         # The written mesh passes the independent check against the CAD.
         code, stdout, stderr = run("check", out, "--cad", path)
         self.assertEqual(code, 0, stdout + stderr)
+
+    def test_engraved_text_is_absorbed_by_the_grid_and_reported(self):
+        # tests/data/engraved_box.step (bench/engraved_box.py): "ABC" cut 0.05 deep into the
+        # top of a 10 x 5 x 2 box (66 faces). At size 0.5 the engraving's 60 faces join the
+        # top face as one composite; the report names them and gives the deviation.
+        path = os.path.join(DATA, "engraved_box.step")
+        out = os.path.join(self.dir, "engraved.vtu")
+        rep = os.path.join(self.dir, "engraved.json")
+        t0 = time.monotonic()
+        code, stdout, stderr = run("mesh", path, "-o", out, "--size", "0.5", "--schemes", "grid",
+                                   "--no-decompose", "--report", rep, "--quiet")
+        seconds = time.monotonic() - t0
+        self.assertEqual(code, 0, stdout + stderr)
+        self.assertLess(seconds, 10)
+        with open(rep) as f:
+            r = json.load(f)
+        self.assertTrue(r["check"]["valid"])
+        self.assertGreater(r["check"]["scaled_jacobian"]["min"], 0.3)
+        codes = [d["code"] for d in r["diagnostics"]]
+        self.assertIn("features_absorbed", codes)
+        self.assertIn("absorbed_deviation", codes)
+        self.assertNotIn("features_not_captured", codes)
+        a = r["absorbed"]
+        self.assertEqual(len(a["composites"]), 1)
+        composite = a["composites"][0].split("+")
+        self.assertEqual(len(composite), 61)
+        # Every absorbed face is in the composite, after its host (the top face, resolved).
+        faces = sorted(e for e in a["entities"] if e.startswith("Face"))
+        self.assertEqual(faces, sorted(composite[1:]))
+        self.assertGreater(a["max_deviation"], 0.01)
+        self.assertLessEqual(a["max_deviation"], 0.05 + 1e-9)
+        # The written mesh passes the independent check against the real CAD.
+        code, stdout, stderr = run("check", out, "--cad", path)
+        self.assertEqual(code, 0, stdout + stderr)
+
+    def test_a_part_without_small_features_reports_nothing_absorbed(self):
+        out = os.path.join(self.dir, "box.vtu")
+        rep = os.path.join(self.dir, "box.json")
+        code, stdout, stderr = run("mesh", os.path.join(EXAMPLES, "box_3x2x1.step"), "-o", out,
+                                   "--size", "0.25", "--schemes", "grid", "--no-decompose",
+                                   "--report", rep, "--quiet")
+        self.assertEqual(code, 0, stdout + stderr)
+        with open(rep) as f:
+            r = json.load(f)
+        self.assertEqual(r["scheme"], "grid")
+        self.assertNotIn("absorbed", r)
+        codes = [d["code"] for d in r["diagnostics"]]
+        self.assertNotIn("features_absorbed", codes)
+        self.assertNotIn("absorbed_deviation", codes)
 
     def mesh_hexme(self, model, *extra):
         """Meshes a HexMe model; the exit code must be 0 with a valid mesh written or 1 with

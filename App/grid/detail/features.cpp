@@ -72,10 +72,12 @@ std::vector<std::int32_t> shortest_path(const core::HexMesh& mesh, const Surface
 
 // Surface Laplacian over the outer quads: each node that may move goes to the mean of its
 // neighbours on the outer surface, then back onto its entity (a face node onto its face, or
-// onto the nearest face when `nearest`; an edge node onto its curve, moving only along
-// neighbours on the same curve or its vertices). Vertex nodes stay.
+// onto the nearest face when `nearest`, onto the nearest face of its composite when it is
+// in one; an edge node onto its curve, moving only along neighbours on the same curve or its
+// vertices). Vertex nodes stay.
 void relax(core::HexMesh& mesh, const Surface& s, const core::MeshDomain& solid, int iterations,
-           const std::function<bool(std::int32_t)>& movable, bool nearest) {
+           const std::function<bool(std::int32_t)>& movable, bool nearest,
+           const SmallFeatures& small) {
   for (int it = 0; it < iterations; ++it)
     for (std::int32_t n : s.nodes) {
       const NodeClass c = mesh.node_class(NodeId(n));
@@ -92,9 +94,9 @@ void relax(core::HexMesh& mesh, const Surface& s, const core::MeshDomain& solid,
       if (c.dim == 1) {
         mesh.set_point(NodeId(n), solid.project_to_edge(core::EdgeId(c.id), target));
       } else {
-        const core::FaceId f = nearest ? solid.nearest_face(target) : core::FaceId(c.id);
+        core::FaceId f = nearest ? solid.nearest_face(target) : core::FaceId(c.id);
         if (f.value() <= 0) continue;
-        mesh.set_point(NodeId(n), solid.project_to_face(f, target));
+        mesh.set_point(NodeId(n), small.project(solid, f, target, f));
         mesh.set_node_class(NodeId(n), NodeClass::on(f));
       }
     }
@@ -106,7 +108,8 @@ FeatureCapture capture_features(core::HexMesh& mesh,
                                 const std::vector<std::array<std::int32_t, 4>>& outer_quads,
                                 const std::vector<std::int32_t>& outer_nodes,
                                 const std::vector<core::Vec3>& normals,
-                                const core::MeshDomain& solid, double size) {
+                                const core::MeshDomain& solid, const SmallFeatures& small,
+                                double size) {
   FeatureCapture r;
   std::unordered_map<std::int32_t, Vec3> normal_of;
   for (std::size_t i = 0; i < outer_nodes.size() && i < normals.size(); ++i)
@@ -149,33 +152,16 @@ FeatureCapture capture_features(core::HexMesh& mesh,
           for (std::int32_t k : s.adjacent.at(n)) crowded.insert(k);
         }
     relax(
-        mesh, s, solid, 10, [&](std::int32_t n) { return crowded.count(n) > 0; }, true);
+        mesh, s, solid, 10, [&](std::int32_t n) { return crowded.count(n) > 0; }, true, small);
   }
 
   std::unordered_set<std::int32_t> on_feature;
 
   // Features smaller than a quarter of the size (the pipeline's tiny_edges and
-  // sliver_faces: engravings, small chamfers) are absorbed, not resolved: their edges get no
-  // chain, their vertices no node, and the nodes near them stay on the face they project to.
-  const double small = 0.25 * size;
-  std::vector<char> small_face(solid.num_faces() + 1, 0), absorbed_edge(solid.num_edges() + 1, 0);
-  {
-    std::vector<double> length(solid.num_edges() + 1, 0.0);
-    for (core::EdgeId e : solid.edges())
-      if (!solid.edge_is_degenerated(e)) length[e.value()] = solid.edge_length(e);
-    for (core::FaceId f : solid.faces()) {
-      double perimeter = 0;
-      for (const auto& wire : solid.face_wires(f))
-        for (const core::OrientedEdge& oe : wire) perimeter += length[oe.edge.value()];
-      small_face[f.value()] = perimeter > 0 && 2 * std::abs(solid.area(f)) / perimeter < small;
-    }
-    for (core::EdgeId e : solid.edges()) {
-      if (solid.edge_is_degenerated(e)) continue;
-      bool a = length[e.value()] < small;
-      for (core::FaceId f : solid.edge_faces(e)) a = a || small_face[f.value()];
-      absorbed_edge[e.value()] = a;
-    }
-  }
+  // sliver_faces: engravings, small chamfers, with the faces they enclose) are absorbed, not
+  // resolved (grid/composites.h): their edges get no chain, their vertices no node, and the
+  // nodes near them go to the nearest face of the composite they form with a resolved face.
+  const std::vector<char>& absorbed_edge = small.absorbed_edge;
   // Per vertex: its feature edges (not seams, not degenerated) and those not absorbed. A
   // vertex with none (a sphere's poles, the end of a cylinder's seam) is no feature.
   std::vector<int> live_edges(solid.num_vertices() + 1, 0), all_edges(solid.num_vertices() + 1, 0);
@@ -383,12 +369,17 @@ FeatureCapture capture_features(core::HexMesh& mesh,
       }
     }
     ++regions;
+    // A composite votes as one face (its host).
+    auto host_of = [&](int f) {
+      const int c = small.composite_of_face[f];
+      return c < 0 ? f : small.composites[c].host.value();
+    };
     std::map<int, int> votes;
     std::unordered_set<std::int32_t> free_nodes;
     for (std::size_t q : members)
       for (std::int32_t n : outer_quads[q]) {
         const NodeClass c = mesh.node_class(NodeId(n));
-        if (c.dim == 2 && free_nodes.insert(n).second) ++votes[c.id];
+        if (c.dim == 2 && free_nodes.insert(n).second) ++votes[host_of(c.id)];
       }
     if (votes.empty()) continue;
     const int face = std::max_element(votes.begin(), votes.end(), [](auto& x, auto& y) {
@@ -399,7 +390,7 @@ FeatureCapture capture_features(core::HexMesh& mesh,
       bool moved = false;
       for (std::int32_t n : outer_quads[q]) {
         const NodeClass c = mesh.node_class(NodeId(n));
-        moved = moved || (c.dim == 2 && c.id != face);
+        moved = moved || (c.dim == 2 && !small.same_composite(c.id, face));
       }
       r.quads_moved += moved;
     }
@@ -407,13 +398,13 @@ FeatureCapture capture_features(core::HexMesh& mesh,
     // another face (across an absorbed or uncaptured feature) stays where it is.
     for (std::int32_t n : free_nodes) {
       const int own = mesh.node_class(NodeId(n)).id;
-      if (own == face) continue;
+      if (small.same_composite(own, face)) continue;
       if (!captured_between.count({std::min(own, face), std::max(own, face)})) {
         face_used[own] = 1;
         continue;
       }
-      const core::FaceId f(face);
-      const Vec3 p = solid.project_to_face(f, mesh.point(NodeId(n)));
+      core::FaceId f(face);
+      const Vec3 p = small.project(solid, f, mesh.point(NodeId(n)), f);
       // Far from the node (more than three cells), the region's face is not where the node
       // is: the region leaked across an uncaptured edge onto another part of the model
       // (HexMe i11: an end face's nodes sent 38 units, 16 cells, away to the edge of a
@@ -429,14 +420,14 @@ FeatureCapture capture_features(core::HexMesh& mesh,
   // 4. The surface evened out with every node on its entity (vertices stay, edge nodes
   // slide along their curve, face nodes on their face).
   relax(
-      mesh, s, solid, 5, [](std::int32_t) { return true; }, false);
+      mesh, s, solid, 5, [](std::int32_t) { return true; }, false, small);
 
   r.faces = solid.num_faces();
   for (core::FaceId f : solid.faces()) {
-    if (face_used[f.value()])
-      ++r.faces_captured;
-    else if (small_face[f.value()])
+    if (small.absorbed_face[f.value()])
       r.absorbed.push_back(core::entity_name(f));
+    else if (face_used[f.value()])
+      ++r.faces_captured;
     else
       r.missed.push_back(core::entity_name(f));
   }

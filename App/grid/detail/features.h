@@ -12,6 +12,7 @@
 
 #include "core/hex_mesh.h"
 #include "core/mesh_domain.h"
+#include "grid/composites.h"
 
 namespace vorohex::grid::detail {
 
@@ -23,7 +24,8 @@ struct FeatureCapture {
   std::size_t quads_across_edges = 0;  // quads a chain cuts along their diagonal (two faces)
   std::vector<std::string> missed;     // FreeCAD names of the entities not captured
   // Entities smaller than a quarter of the size (short edges, faces narrower than that, the
-  // edges and vertices of such faces): absorbed, not captured, on purpose.
+  // faces they enclose, the edges and vertices of such faces): absorbed into composites
+  // (grid/composites.h), not captured, on purpose.
   std::vector<std::string> absorbed;
 };
 
@@ -34,6 +36,7 @@ FeatureCapture capture_features(core::HexMesh& mesh,
                                 const std::vector<std::array<std::int32_t, 4>>& outer_quads,
                                 const std::vector<std::int32_t>& outer_nodes,
                                 const std::vector<core::Vec3>& normals,
-                                const core::MeshDomain& solid, double size);
+                                const core::MeshDomain& solid, const SmallFeatures& small,
+                                double size);
 
 }  // namespace vorohex::grid::detail

@@ -224,7 +224,7 @@ class GridScheme : public Scheme {
         m.summary = std::move(d);
       else
         m.diagnostics.push_back(std::move(d));
-    if (r.ok) m.mesh = std::move(r.mesh);
+    if (r.ok) m.mesh = std::move(r.mesh), m.absorbed = std::move(r.absorbed);
     return m;
   }
 };

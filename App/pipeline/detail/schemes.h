@@ -12,6 +12,7 @@
 #include "core/hex_mesh.h"
 #include "core/progress.h"
 #include "core/size_field.h"
+#include "grid/composites.h"
 #include "occ/solid.h"
 
 namespace vorohex::pipeline::detail {
@@ -32,6 +33,7 @@ struct SchemeMesh {
   std::array<int, 3> intervals{};
   std::vector<core::Diagnostic> diagnostics;  // the scheme's own (errors when !ok)
   core::Diagnostic summary;                   // an info saying what was done, when ok
+  grid::SmallFeatures absorbed;               // the grid scheme's composites (empty otherwise)
 };
 
 class Scheme {
