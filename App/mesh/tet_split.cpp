@@ -102,15 +102,43 @@ std::array<int, 3> facet_of(const std::array<int, 4>& t, int skip) {
   return k;
 }
 
+// Two boundary facets k1, k2 of a tet on one model face, sharing an edge (the crease):
+// the split puts a hex corner at the crease's midpoint, framed by an end of the crease and
+// the two facets' centroids. Placing those nodes on the curved face bends the crease open;
+// true when that frame's determinant falls below a quarter of its straight value (or flips):
+// the hex then inverts there, and no move on the face undoes it (HexMe i14: facets 61
+// degrees apart on a cylinder, i17: 41).
+bool crease_flattens(const std::array<int, 3>& k1, const std::array<int, 3>& k2,
+                     const std::vector<Vec3>& points, const occ::Solid& solid, int face) {
+  std::vector<int> shared, other;
+  for (int v : k1) (std::find(k2.begin(), k2.end(), v) != k2.end() ? shared : other).push_back(v);
+  for (int v : k2)
+    if (std::find(k1.begin(), k1.end(), v) == k1.end()) other.push_back(v);
+  if (shared.size() != 2 || other.size() != 2) return false;
+  const Vec3 &a = points[shared[0]], &b = points[shared[1]];
+  const Vec3 m = 0.5 * (a + b), g1 = (a + b + points[other[0]]) / 3.0,
+             g2 = (a + b + points[other[1]]) / 3.0;
+  auto on = [&](const Vec3& p) { return solid.project_to_face(core::FaceId(face), p); };
+  const Vec3 m1 = on(m), h1 = on(g1), h2 = on(g2);
+  if (!m1.allFinite() || !h1.allFinite() || !h2.allFinite()) return false;
+  for (const Vec3* end : {&a, &b}) {
+    const double straight = (*end - m).dot((g1 - m).cross(g2 - m));
+    const double placed = (on(*end) - m1).dot((h1 - m1).cross(h2 - m1));
+    if (straight != 0 && placed / straight < 0.25) return true;
+  }
+  return false;
+}
+
 // Leaves out tetrahedra lying flat on the boundary: two or three of their faces are
 // boundary faces whose outward normals agree within 40 degrees (on one curved model face,
 // or on two faces meeting smoothly, as fillets do). The boundary triangles there are coarse
 // next to the curvature, and moving their nodes onto the CAD would flatten and invert
-// them. A tet across a sharp model edge (normals far apart) stays. Its other faces become
-// boundary faces (of the same model face when there was one), unless that would pinch the
-// boundary (an edge in more than two boundary faces).
+// them. A tet across a sharp model edge (normals far apart) stays. So does one with two
+// faces on one model face further apart, unless crease_flattens() says its split inverts
+// on the CAD. Its other faces become boundary faces (of the same model face when there was
+// one), unless that would pinch the boundary (an edge in more than two boundary faces).
 std::size_t remove_caps(std::vector<std::array<int, 4>>& tets, const std::vector<Vec3>& points,
-                        FacetFaces& facet_face, EdgeFaces& edge_face) {
+                        const occ::Solid& solid, FacetFaces& facet_face, EdgeFaces& edge_face) {
   std::map<std::array<int, 3>, int> count;
   for (const auto& t : tets)
     for (int j = 0; j < 4; ++j) ++count[facet_of(t, j)];
@@ -130,9 +158,11 @@ std::size_t remove_caps(std::vector<std::array<int, 4>>& tets, const std::vector
     int on_boundary = 0, face = 0;
     bool same_face = true;
     std::array<Vec3, 4> normal;  // outward, per boundary facet
+    std::array<std::array<int, 3>, 4> facets;
     for (int j = 0; j < 4; ++j) {
       const std::array<int, 3> k = facet_of(t, j);
       if (count[k] != 1) continue;
+      facets[on_boundary] = k;
       Vec3 n = (points[k[1]] - points[k[0]]).cross(points[k[2]] - points[k[0]]);
       if (n.dot(points[t[j]] - points[k[0]]) > 0) n = -n;
       const double len = n.norm();
@@ -142,11 +172,13 @@ std::size_t remove_caps(std::vector<std::array<int, 4>>& tets, const std::vector
       if (f == 0 || (face != 0 && f != face)) same_face = false;
       face = f;
     }
+    if (!same_face) face = 0;
     bool smooth = true;
     for (int a = 0; a < on_boundary; ++a)
       for (int b = a + 1; b < on_boundary; ++b) smooth &= normal[a].dot(normal[b]) > flat;
-    const bool lies_flat = on_boundary >= 2 && on_boundary <= 3 && smooth;
-    if (!same_face) face = 0;
+    const bool crease = !smooth && on_boundary == 2 && face != 0 && normal[0].dot(normal[1]) > 0 &&
+                        crease_flattens(facets[0], facets[1], points, solid, face);
+    const bool lies_flat = on_boundary >= 2 && on_boundary <= 3 && (smooth || crease);
     bool pinches = false;
     if (lies_flat) {
       std::map<std::array<int, 2>, int> after;
@@ -373,14 +405,15 @@ TetSplitResult tet_split(const occ::Solid& solid, const TetSplitOptions& options
   // Until none is left: leaving one out can expose a neighbour that is a cap in turn.
   std::size_t caps = 0;
   for (std::size_t removed = 1; removed > 0;) {
-    removed = remove_caps(tets, tm.points, facet_face, edge_face);
+    removed = remove_caps(tets, tm.points, solid, facet_face, edge_face);
     caps += removed;
   }
   if (caps > 0)
     r.diagnostics.push_back(core::make_info(
         "caps_removed", std::to_string(caps) +
                             " tetrahedra lying flat on the boundary (two or three of their "
-                            "faces on it, with outward normals within 40 degrees) were left "
+                            "faces on it, with outward normals within 40 degrees, or two on "
+                            "one curved face whose crease the CAD bends open) were left "
                             "out; the surface is followed by their neighbours."));
   r.tetrahedra = tets.size();
   const detail::TetSplitNodes split = detail::split_tetrahedra(r.mesh, tets);

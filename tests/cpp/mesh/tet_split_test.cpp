@@ -9,6 +9,7 @@
 #include "occ/primitives.h"
 #include "occ/shape_io.h"
 #include "quality/check_mesh.h"
+#include "smooth/smooth_mesh.h"
 
 namespace vorohex::mesh {
 namespace {
@@ -107,6 +108,26 @@ TEST(TetSplit, APinchedEdgeIsFilledSoTheBoundaryCloses) {
   EXPECT_EQ(check.open_boundary_edges, 0u);
   EXPECT_EQ(check.non_manifold_quads, 0u);
   EXPECT_EQ(check.folded_quads, 0u);
+}
+
+// HexMe i14: CGAL left a tetrahedron with two boundary faces on one cylinder, 61 degrees
+// apart (i17: 41). Placed on the CAD, the crease between them flattened and the hex at its
+// midpoint inverted, which no smoothing move on the cylinder can undo. Such caps are left
+// out: after smoothing every hex has a positive scaled Jacobian and the mesh is valid.
+TEST(TetSplit, CapsOnOneCurvedFaceAreLeftOutSoSmoothingEndsValid) {
+  const occ::ReadResult in = occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/i14o_s7.step");
+  ASSERT_TRUE(in.ok()) << "HexMe model i14 not found in " << VOROHEX_HEXME_DIR;
+  TetSplitOptions opt;
+  opt.size = in.solid->diagonal() / 20;
+  TetSplitResult r = tet_split(*in.solid, opt);
+  ASSERT_TRUE(r.ok);
+  const smooth::SmoothResult s = smooth::smooth_mesh(r.mesh, *in.solid, {});
+  EXPECT_EQ(s.inverted_after, 0u);
+  EXPECT_GT(s.min_after, 0.0);
+  const quality::CheckReport check = quality::check_mesh(r.mesh, in.solid.get(), {});
+  EXPECT_TRUE(check.valid);
+  EXPECT_EQ(check.open_boundary_edges, 0u);
+  EXPECT_GT(check.scaled_jacobian.min, 0.0);
 }
 
 TEST(TetSplit, ACancelledRunEndsWithoutAMesh) {
