@@ -9,7 +9,6 @@ import shutil
 import subprocess
 import sys
 import tempfile
-import time
 import unittest
 
 import numpy as np
@@ -337,12 +336,10 @@ class MeshCommand(unittest.TestCase):
         path = os.path.join(DATA, "engraved_box.step")
         out = os.path.join(self.dir, "engraved.vtu")
         rep = os.path.join(self.dir, "engraved.json")
-        t0 = time.monotonic()
+        # (Its time is measured in bench/results/parts.md, not asserted here.)
         code, stdout, stderr = run("mesh", path, "-o", out, "--size", "0.5", "--schemes", "grid",
                                    "--no-decompose", "--report", rep, "--quiet")
-        seconds = time.monotonic() - t0
         self.assertEqual(code, 0, stdout + stderr)
-        self.assertLess(seconds, 10)
         with open(rep) as f:
             r = json.load(f)
         self.assertTrue(r["check"]["valid"])

@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <chrono>
 #include <set>
 #include <string>
 
@@ -95,14 +94,12 @@ TEST(Composites, PartWithoutSmallFeaturesHasNone) {
 // absorbed into one composite with the top face and reported with the largest deviation.
 TEST(Composites, EngravedTextMeshesValidWithTheDeviationReported) {
   const occ::Solid part = engraved_box();
-  const auto t0 = std::chrono::steady_clock::now();
+  // (Its time is measured in bench/results/parts.md, not asserted here.)
   pipeline::MeshOptions po;
   po.size = 0.5;
   po.schemes = {"grid"};
   po.decompose = false;
   const pipeline::MeshResult r = pipeline::generate_mesh(part, po);
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   for (const core::Diagnostic& d : r.diagnostics) {
     if (d.severity == core::Severity::error) ADD_FAILURE() << core::format(d);
     EXPECT_NE(d.code, "features_not_captured") << core::format(d);
@@ -110,7 +107,6 @@ TEST(Composites, EngravedTextMeshesValidWithTheDeviationReported) {
   EXPECT_TRUE(r.ok);
   EXPECT_TRUE(r.check.valid);
   EXPECT_GT(r.check.scaled_jacobian.min, 0.3);
-  EXPECT_LT(seconds, 10.0);
   ASSERT_EQ(r.absorbed.composites.size(), 1u);
   const grid::Composite& c = r.absorbed.composites[0];
   EXPECT_EQ(c.host, top_face(part, 2));

@@ -3,7 +3,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <set>
 #include <string>
@@ -297,20 +296,17 @@ TEST(GridMesh, EngravingIsAbsorbedAndTheMeshValid) {
     part = testing::cut(part, occ::make_prism(o, 0.05));
   }
   ASSERT_GT(part.num_faces(), 30);
-  const auto t0 = std::chrono::steady_clock::now();
+  // (Its time is measured in bench/results/parts.md, not asserted here.)
   pipeline::MeshOptions po;
   po.size = 0.5;
   po.schemes = {"grid"};
   po.decompose = false;
   const pipeline::MeshResult r = pipeline::generate_mesh(part, po);
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   for (const core::Diagnostic& d : r.diagnostics)
     if (d.severity == core::Severity::error) ADD_FAILURE() << core::format(d);
   EXPECT_TRUE(r.ok);
   EXPECT_TRUE(r.check.valid);
   EXPECT_GT(r.check.scaled_jacobian.min, 0.2);
-  EXPECT_LT(seconds, 10.0);
   const core::Diagnostic* absorbed = nullptr;
   for (const core::Diagnostic& d : r.diagnostics)
     if (d.code == "features_absorbed") absorbed = &d;
