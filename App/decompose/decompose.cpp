@@ -574,9 +574,9 @@ void judge_glued(DecompositionResult& r) {
 // neighbouring pair. A union is kept only if no decomposition face becomes invalid: a
 // union whose face is partly a model face and partly the interface to a neighbour would
 // leave a T-shaped, non-conforming interface (the thick L's corner with one leg), and only
-// if, glued to the others, it is still a sweep and no more sub-volumes lack a scheme than
-// before (the L with a hole in each leg: its corner and one leg make a sweep alone, but the
-// other leg's interface splits its end face). Repeats
+// if, glued to its neighbours, it still has a scheme and so does every neighbour that has
+// one alone (the L with a hole in each leg: its corner and one leg make a sweep alone, but
+// the other leg's interface splits its end face). Repeats
 // until nothing qualifies. A rejected group is not fused again (its solids are unchanged),
 // and the pass stops at the time limit: each try is an OCCT fuse.
 void merge_pass(const occ::Solid& solid, const VoronoiGraph& g, double tol, double time_limit,
@@ -661,8 +661,6 @@ void merge_pass(const occ::Solid& solid, const VoronoiGraph& g, double tol, doub
                                                        [&](int k) { return k < j; })));
       std::sort(neighbours.begin(), neighbours.end());
       neighbours.erase(std::unique(neighbours.begin(), neighbours.end()), neighbours.end());
-      for (std::size_t i = 0; i < trial.sub_volumes.size(); ++i)
-        type_sub_volume(g, trial, int(i), trial.sub_volumes[i]);
       if (!union_meshable_glued(trial, group[0], neighbours)) {
         rejected.insert(key);
         continue;

@@ -48,6 +48,7 @@ struct Part {
   std::vector<int> whole_edge;               // by part edge id
   bool is_block() const { return !block[0].empty(); }
   bool has_scheme() const { return is_block() || sweep.source.valid(); }
+  const char* scheme() const { return is_block() ? "map" : "sweep"; }
 };
 
 // The interval problem over the curves of `pieces` (one per non-degenerated edge).
@@ -209,7 +210,7 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
           core::make_error("no_scheme", no_scheme_message(p, k, n), {sub_volume_name(k)}));
       return result;
     }
-    result.stats.schemes.push_back(p.is_block() ? "map" : "sweep");
+    result.stats.schemes.push_back(p.scheme());
     auto shared = [&](core::FaceId f) {
       return std::find(p.shared_faces.begin(), p.shared_faces.end(), f.value()) !=
              p.shared_faces.end();
@@ -336,7 +337,7 @@ SubVolumePlan plan_sub_volumes(const occ::Solid& pieces) {
   for (int k = 0; k < n; ++k) {
     const Part p = plan_part(pieces, k);
     if (p.has_scheme()) {
-      plan.schemes.push_back(p.is_block() ? "map" : "sweep");
+      plan.schemes.push_back(p.scheme());
       plan.reasons.emplace_back();
       continue;
     }

@@ -305,6 +305,13 @@ std::vector<LatticePoint> graded_lattice(const Vec2& anchor, const Vec2& u, cons
   return out;
 }
 
+double worst_quad(const QuadMesh2d& m) {
+  double lo = 1;
+  for (const auto& q : m.quads)
+    lo = std::min(lo, quad_quality(m.points[q[0]], m.points[q[1]], m.points[q[2]], m.points[q[3]]));
+  return lo;
+}
+
 // How the coarse boundary (every other node of each loop) is chosen.
 enum class Coarse {
   sharpest,   // the parity holding the most turn: corners stay corners
@@ -489,19 +496,8 @@ QuadMesh2d lattice_mesh_by(const std::vector<std::vector<Vec2>>& loops, double s
   }
 
   Smoother(out.points, out.quads, nb).run(smoothing_passes);
-  for (const auto& q : out.quads)
-    if (quad_quality(out.points[q[0]], out.points[q[1]], out.points[q[2]], out.points[q[3]]) <= 0) {
-      out.error = "a quad is inverted after smoothing";
-      break;
-    }
+  if (worst_quad(out) <= 0) out.error = "a quad is inverted after smoothing";
   return out;
-}
-
-double worst_quad(const QuadMesh2d& m) {
-  double lo = 1;
-  for (const auto& q : m.quads)
-    lo = std::min(lo, quad_quality(m.points[q[0]], m.points[q[1]], m.points[q[2]], m.points[q[3]]));
-  return lo;
 }
 
 // The lattice mesh with the coarse boundary at the parities of least turning midpoints;

@@ -56,6 +56,17 @@ void expect_valid(const occ::Solid& solid, const grid::GridResult& r) {
   EXPECT_GE(r.stats.min_sj, r.stats.min_sj_before_optimisation);
 }
 
+// The grid mesh of s at its size, with no error and valid (expect_valid).
+grid::GridResult mesh_valid(const Named& s) {
+  grid::GridOptions o;
+  o.size = s.size;
+  grid::GridResult r = grid::grid_mesh(s.solid, o);
+  for (const core::Diagnostic& d : r.diagnostics)
+    if (d.severity == core::Severity::error) ADD_FAILURE() << core::format(d);
+  expect_valid(s.solid, r);
+  return r;
+}
+
 TEST(GridFrame, AxesFollowTheLargestPlanarFaces) {
   // A box turned by 30 degrees about z: the grid's axes are its face normals, and its faces
   // are grid planes (so the box is a tensor grid of exact cells).
@@ -128,12 +139,7 @@ TEST(GridMesh, ValidOnMachinedAndCurvedSolids) {
   }
   for (const Named& s : solids) {
     SCOPED_TRACE(s.name);
-    grid::GridOptions o;
-    o.size = s.size;
-    const grid::GridResult r = grid::grid_mesh(s.solid, o);
-    for (const core::Diagnostic& d : r.diagnostics)
-      if (d.severity == core::Severity::error) ADD_FAILURE() << core::format(d);
-    expect_valid(s.solid, r);
+    const grid::GridResult r = mesh_valid(s);
     EXPECT_EQ(r.stats.vertices_captured, r.stats.vertices);
     EXPECT_EQ(r.stats.edges_captured, r.stats.edges);
     EXPECT_EQ(r.stats.faces_captured, r.stats.faces);
@@ -181,8 +187,12 @@ TEST(GridMesh, AnInvalidResultIsNeverASuccess) {
     po.decompose = false;
     const pipeline::MeshResult p = pipeline::generate_mesh(s.solid, po);
     EXPECT_EQ(p.stats.scheme, "grid");
-    if (p.ok) EXPECT_TRUE(p.check.valid);
-    if (!p.check.valid) EXPECT_FALSE(p.ok);
+    if (p.ok) {
+      EXPECT_TRUE(p.check.valid);
+    }
+    if (!p.check.valid) {
+      EXPECT_FALSE(p.ok);
+    }
   }
 }
 
@@ -202,12 +212,7 @@ TEST(GridMesh, NodesHeldAtAFaceBoundaryCrossItWhileUntangling) {
   solids.push_back({"pyramid pit", pit.clone(), pit.diagonal() / 15});
   for (const Named& s : solids) {
     SCOPED_TRACE(s.name);
-    grid::GridOptions o;
-    o.size = s.size;
-    const grid::GridResult r = grid::grid_mesh(s.solid, o);
-    for (const core::Diagnostic& d : r.diagnostics)
-      if (d.severity == core::Severity::error) ADD_FAILURE() << core::format(d);
-    expect_valid(s.solid, r);
+    const grid::GridResult r = mesh_valid(s);
     for (double sj : quality::scaled_jacobians(r.mesh)) ASSERT_GT(sj, 0.0);
     const quality::CheckReport c = quality::check_mesh(r.mesh, &s.solid);
     EXPECT_LT(c.max_boundary_distance_rel, 1e-7);
