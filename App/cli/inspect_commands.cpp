@@ -11,7 +11,10 @@
 #include "cli/commands.h"
 #include "decompose/decompose.h"
 #include "decompose/decomposition_io.h"
+#include "decompose/plane_cuts.h"
+#include "mesh/mesh_sub_volumes.h"
 #include "occ/shape_io.h"
+#include "occ/split_solid.h"
 #include "voronoi/graph_io.h"
 #include "voronoi/voronoi_graph.h"
 
@@ -33,9 +36,13 @@ const char* const kVoronoiUsage =
 
 const char* const kDecomposeUsage =
     "usage: vorohex decompose IN -o PARTS.brep [--report DECOMPOSITION.json] [--vtp FACES.vtp]\n"
-    "                         [--sharp-angle DEG] [--no-merge] [graph options]\n"
+    "                         [--sharp-angle DEG] [--no-merge] [--plane-cuts] [graph options]\n"
     "  IN    a solid as STEP, BREP or IGES\n"
     "  -o    the sub-volumes as solids in one BREP compound (open it in FreeCAD)\n"
+    "  --plane-cuts           the mesher's second way instead of the Voronoi graph: exact\n"
+    "                         cuts along the planes and cylinders of the faces at concave\n"
+    "                         edges, neighbours merged while the union has a scheme; the\n"
+    "                         pieces are written also when one has no scheme (exit 1)\n"
     "  --report FILE          edge types, vertex rules, decomposition faces, sub-volumes\n"
     "                         with type (Vs/Ve), scheme and reason, counts before/after merging\n"
     "  --vtp FILE             the decomposition faces as VTK PolyData for ParaView\n"
@@ -157,6 +164,41 @@ int run_voronoi(const std::vector<std::string>& args) {
   return kExitOk;
 }
 
+// vorohex decompose --plane-cuts: the pieces, each with the scheme it gets once glued to the
+// others (or why it has none).
+int run_plane_cuts(const std::string& input, const std::string& brep_path) {
+  occ::ReadResult read = occ::read_solid(input);
+  print_problems(read.diagnostics);
+  if (!read.ok()) return kExitBadInput;
+  const decompose::PlaneCutResult cut = decompose::cut_at_concave_edges(*read.solid);
+  if (cut.pieces.empty()) {
+    std::cerr << "vorohex: the plane cuts failed: " << cut.why_not << "\n";
+    return kExitInvalid;
+  }
+  std::vector<const occ::Solid*> pieces;
+  for (const occ::Solid& s : cut.pieces) pieces.push_back(&s);
+  std::string error;
+  if (!occ::write_compound_brep(pieces, brep_path, &error)) {
+    std::cerr << "vorohex: " << error << "\n";
+    return kExitBadInput;
+  }
+  std::cout << "plane cuts of " << input << ": " << cut.planes << " planes, " << cut.cylinders
+            << " cylinders, " << cut.pieces_before_merge << " pieces, " << cut.pieces.size()
+            << " after merging\n";
+  const occ::ReadResult glued = occ::glue_solids(pieces, "The pieces");
+  if (glued.ok()) {
+    const mesh::SubVolumePlan plan = mesh::plan_sub_volumes(*glued.solid);
+    for (std::size_t i = 0; i < plan.schemes.size(); ++i)
+      std::cout << "  piece " << i + 1 << ": "
+                << (plan.schemes[i].empty() ? plan.reasons[i] : plan.schemes[i]) << "\n";
+  } else {
+    print_problems(glued.diagnostics);
+  }
+  std::cout << "wrote " << brep_path << "\n";
+  if (!cut.ok) std::cerr << "vorohex: the plane cuts failed: " << cut.why_not << "\n";
+  return cut.ok ? kExitOk : kExitInvalid;
+}
+
 int run_decompose(const std::vector<std::string>& args) {
   std::string input, brep_path, json_path, vtp_path;
   voronoi::VoronoiOptions graph_options;
@@ -171,8 +213,16 @@ int run_decompose(const std::vector<std::string>& args) {
     return parse_number(s, &options.sharp_angle);
   };
   t.flags["--no-merge"] = [&] { options.merge = false; };
+  bool plane_cuts = false;
+  t.flags["--plane-cuts"] = [&] { plane_cuts = true; };
   if (std::string e = parse(args, t, &input); !e.empty()) return usage_error(e, kDecomposeUsage);
   if (brep_path.empty()) return usage_error("missing -o PARTS.brep", kDecomposeUsage);
+  if (plane_cuts) {
+    if (!json_path.empty() || !vtp_path.empty())
+      return usage_error("--report and --vtp describe the Voronoi decomposition, not --plane-cuts",
+                         kDecomposeUsage);
+    return run_plane_cuts(input, brep_path);
+  }
   if (std::string why = graph_options.validate(); !why.empty())
     return usage_error(why, kDecomposeUsage);
   if (std::string why = options.validate(); !why.empty()) return usage_error(why, kDecomposeUsage);

@@ -523,13 +523,14 @@ int invalid_faces(const DecompositionResult& r) {
 // No value when the pieces do not glue.
 std::optional<mesh::SubVolumePlan> glued_plan(const DecompositionResult& r,
                                               const std::vector<int>& which) {
-  if (which.size() == 1) return mesh::plan_sub_volumes(*r.sub_volumes[which[0]].solid);
+  // Without multisweeps: the decomposition's own schemes are map, sweep and midpoint.
+  if (which.size() == 1) return mesh::plan_sub_volumes(*r.sub_volumes[which[0]].solid, false);
   std::vector<const occ::Solid*> solids;
   for (int i : which) solids.push_back(r.sub_volumes[i].solid.get());
   try {
     const occ::ReadResult glued = occ::glue_solids(solids, "The sub-volumes");
     if (!glued.ok() || glued.solid->num_solids() != int(solids.size())) return std::nullopt;
-    return mesh::plan_sub_volumes(*glued.solid);
+    return mesh::plan_sub_volumes(*glued.solid, false);
   } catch (const std::exception&) {
     return std::nullopt;
   }

@@ -8,6 +8,8 @@
 
 #include "core/option_checks.h"
 #include "mesh/map_block.h"
+#include "mesh/mesh_sub_volumes.h"
+#include "mesh/multisweep.h"
 #include "mesh/sweep.h"
 #include "occ/shape_io.h"
 #include "occ/split_solid.h"
@@ -31,17 +33,29 @@ struct Plane {
   double offset = 0;  // normal . x = offset
 };
 
-bool meshable(const occ::Solid& s) {
-  return mesh::map_block_applicable(s).ok || mesh::sweep_applicable(s).ok;
+// A block, a sweep or (`multisweep`) a prismatic part: what mesh::mesh_sub_volumes meshes.
+bool meshable(const occ::Solid& s, bool multisweep) {
+  return mesh::map_block_applicable(s).ok || mesh::sweep_applicable(s).ok ||
+         (multisweep && mesh::multisweep_applicable(s).ok);
 }
 
-// Each part of the glued pieces a block or a sweep (gluing imprints a neighbour's edges).
-bool all_meshable(const std::vector<const occ::Solid*>& pieces) {
+// Each part of the glued pieces a block, a sweep or prismatic (gluing imprints a
+// neighbour's edges); `why` (when given) names the first that is none.
+bool all_meshable(const std::vector<const occ::Solid*>& pieces, bool multisweep,
+                  std::string* why = nullptr) {
   const occ::ReadResult r = occ::glue_solids(pieces, "The plane cut");
-  if (!r.ok()) return false;
-  for (int k = 0; k < r.solid->num_solids(); ++k)
-    if (!meshable(r.solid->part(k))) return false;
-  return true;
+  if (!r.ok()) {
+    if (why) *why = r.diagnostics.empty() ? "they do not glue" : r.diagnostics[0].message;
+    return false;
+  }
+  if (!why) {
+    for (int k = 0; k < r.solid->num_solids(); ++k)
+      if (!meshable(r.solid->part(k), multisweep)) return false;
+    return true;
+  }
+  const mesh::SubVolumePlan plan = mesh::plan_sub_volumes(*r.solid, multisweep);
+  *why = plan.why_not;
+  return plan.ok;
 }
 
 // The same cylinder (axis line and radius within `tol`).
@@ -175,14 +189,15 @@ PlaneCutResult cut_at_concave_edges(const occ::Solid& solid, const PlaneCutOptio
     for (const occ::Solid& s : v) out.push_back(&s);
     return out;
   };
-  if (!all_meshable(pointers(pieces))) {
-    r.why_not =
-        "the surfaces of its concave edges leave a piece that is neither a block nor "
-        "a sweep";
+  std::string why;
+  if (!all_meshable(pointers(pieces), options.multisweep, &why)) {
+    r.why_not = "the surfaces of its concave edges cut it into " + std::to_string(pieces.size()) +
+                " pieces: " + why;
+    r.pieces = std::move(pieces);
     return r;
   }
   progress.report("plane_cuts", 0.5);
-  // Merge neighbours while the union is a block or a sweep and all pieces stay so once
+  // Merge neighbours while the union is a block, a sweep or prismatic and all pieces stay so once
   // glued (a union must not leave a T-junction on a neighbour's face).
   for (bool merged = true; merged && pieces.size() > 1 && seconds() < options.time_limit;) {
     merged = false;
@@ -191,12 +206,12 @@ PlaneCutResult cut_at_concave_edges(const occ::Solid& solid, const PlaneCutOptio
         if (seconds() >= options.time_limit || progress.cancelled()) break;
         if (!boxes_touch(pieces[a], pieces[b])) continue;
         std::unique_ptr<occ::Solid> u = occ::fuse_solids(pieces[a], pieces[b]);
-        if (!u || !meshable(*u)) continue;
+        if (!u || !meshable(*u, options.multisweep)) continue;
         std::vector<occ::Solid> next;
         for (std::size_t k = 0; k < pieces.size(); ++k)
           if (k != a && k != b) next.push_back(pieces[k].clone());
         next.push_back(std::move(*u));
-        if (!all_meshable(pointers(next))) continue;
+        if (!all_meshable(pointers(next), options.multisweep)) continue;
         pieces = std::move(next);
         merged = true;
       }

@@ -21,13 +21,16 @@ struct PlaneCutOptions {
   int max_planes = 16;     // more distinct cut surfaces than this: not attempted (>= 1)
   int max_pieces = 60;     // more pieces after cutting: not attempted (>= 2)
   double time_limit = 30;  // seconds for the whole (> 0); OCCT splits stop at it
+  bool multisweep = true;  // pieces may be prismatic (multisweeps), not only blocks and sweeps
   void validate() const;   // throws std::invalid_argument naming the bad field
 };
 
 struct PlaneCutResult {
-  std::vector<occ::Solid> pieces;  // each a block or a sweep once glued to the others
-  int planes = 0;                  // distinct cut planes used
-  int cylinders = 0;               // distinct cut cylinders used
+  // Each a block, a sweep or prismatic once glued to the others; when not ok but the solid
+  // was cut: the pieces as cut, for inspection (vorohex decompose --plane-cuts).
+  std::vector<occ::Solid> pieces;
+  int planes = 0;     // distinct cut planes used
+  int cylinders = 0;  // distinct cut cylinders used
   int pieces_before_merge = 0;
   bool ok = false;
   std::string why_not;  // when not ok: a sentence fragment

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <stdexcept>
+#include <string>
 
 #include "core/option_checks.h"
 #include "mesh/detail/grid_face.h"
@@ -27,6 +29,14 @@ void FaceSetOptions::validate() const {
   core::require_at_least("FaceSetOptions.smoothing_passes", smoothing_passes, 0);
   core::require_positive("FaceSetOptions.interval_time_limit", interval_time_limit);
   for (int n : fixed_counts) core::require_at_least("FaceSetOptions.fixed_counts", n, 0);
+  for (const auto& p : given_edge_points)
+    if (p.size() == 1)
+      throw std::invalid_argument("FaceSetOptions.given_edge_points: an edge of one node");
+  for (const FixedSum& f : fixed_sums) {
+    core::require_at_least("FaceSetOptions.fixed_sums.count", f.count, 1);
+    if (f.edges.empty())
+      throw std::invalid_argument("FaceSetOptions.fixed_sums: a sum without edges");
+  }
 }
 
 std::size_t FaceSetMesh::num_quads() const {
@@ -39,31 +49,61 @@ namespace {
 
 enum class Scheme { map, submap, quad };
 
-// Whether a face is a mapped face: one wire of four edges turning by 45 to 135 degrees at
-// each corner (about the face normal), so that the transfinite grid stays fair.
-bool mappable(const core::MeshDomain& s, FaceId f) {
+// A mapped face's logical sides: one wire whose vertices turn by 45 to 135 degrees (about the
+// face normal) at exactly four corners and by less than 15 degrees elsewhere (a vertex a
+// neighbour's edge ends at, on a straight or smooth side), so that the transfinite grid stays
+// fair. Per wire edge its side 0..3, counted from the first corner at or after the wire's
+// start (`first`: the index of the edge that starts there); empty when not mappable.
+struct MappedSides {
+  std::vector<int> side;  // per wire edge
+  int first = 0;
+  bool ok() const { return !side.empty(); }
+};
+
+MappedSides mapped_sides(const core::MeshDomain& s, FaceId f) {
+  MappedSides out;
   const auto wires = s.face_wires(f);
-  if (wires.size() != 1 || wires[0].size() != 4) return false;
+  if (wires.size() != 1 || wires[0].size() < 4) return out;
   const auto& w = wires[0];
+  const std::size_t n = w.size();
   const double kPi = 3.14159265358979323846;
-  for (std::size_t k = 0; k < 4; ++k) {
-    const OrientedEdge &a = w[k], &b = w[(k + 1) % 4];
-    if (s.edge_is_degenerated(a.edge) || s.edge_is_degenerated(b.edge)) return false;
+  std::vector<bool> corner(n, false);  // at the start of edge k
+  int corners = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const OrientedEdge &a = w[(k + n - 1) % n], &b = w[k];
+    if (s.edge_is_degenerated(a.edge) || s.edge_is_degenerated(b.edge)) return out;
     std::vector<Vec3> pa = s.edge_points_by_length(a.edge, 16);
     std::vector<Vec3> pb = s.edge_points_by_length(b.edge, 16);
     if (!a.forward) std::reverse(pa.begin(), pa.end());
     if (!b.forward) std::reverse(pb.begin(), pb.end());
     const Vec3 t0 = (pa[pa.size() - 1] - pa[pa.size() - 2]).normalized();
     const Vec3 t1 = (pb[1] - pb[0]).normalized();
-    const Vec3 n = s.face_normal(f, pb[0]);
-    const double turn = std::atan2(t0.cross(t1).dot(n), t0.dot(t1));
-    if (turn < kPi / 4 || turn > 3 * kPi / 4) return false;
+    const Vec3 nrm = s.face_normal(f, pb[0]);
+    const double turn = std::atan2(t0.cross(t1).dot(nrm), t0.dot(t1));
+    if (turn >= kPi / 4 && turn <= 3 * kPi / 4) {
+      corner[k] = true;
+      ++corners;
+    } else if (std::abs(turn) > kPi / 12) {
+      return out;
+    }
   }
-  return true;
+  if (corners != 4) return out;
+  int first = 0;
+  while (!corner[first]) ++first;
+  out.first = first;
+  out.side.assign(n, 0);
+  int side = -1;
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t k = (first + i) % n;
+    if (corner[k]) ++side;
+    out.side[k] = side;
+  }
+  return out;
 }
 
 struct Plan {
   std::vector<Scheme> scheme;           // per face id
+  std::vector<MappedSides> sides;       // per face id, when mapped
   std::vector<SubmapStructure> submap;  // per face id, when submapped
 };
 
@@ -88,16 +128,37 @@ IntervalProblem problem_for(const core::MeshDomain& s, const Plan& plan, const F
   p.fixed.assign(s.num_edges(), 0);
   for (EdgeId e : s.edges())
     if (e.value() < int(o.fixed_counts.size())) p.fixed[e.value() - 1] = o.fixed_counts[e.value()];
+  for (EdgeId e : s.edges())
+    if (e.value() < int(o.given_edge_points.size()) && !o.given_edge_points[e.value()].empty())
+      p.fixed[e.value() - 1] = int(o.given_edge_points[e.value()].size()) - 1;
+  // A fixed sum: a curve of the chain's length fixed to the count, equal to the chain.
+  for (const FaceSetOptions::FixedSum& f : o.fixed_sums) {
+    std::vector<int> chain;
+    double length = 0;
+    std::string names;
+    for (int e : f.edges) {
+      if (e < 1 || e > s.num_edges())
+        throw std::invalid_argument("FaceSetOptions.fixed_sums: no edge " + std::to_string(e));
+      chain.push_back(e - 1);
+      length += s.edge_length(EdgeId(e));
+      names += (names.empty() ? "" : "+") + core::entity_name(EdgeId(e));
+    }
+    const int k = p.add_curve(std::max(length, 1e-300), names);
+    p.fixed.push_back(f.count);
+    p.equal.push_back({chain, {k}, names + ": " + std::to_string(f.count) + " segments in all"});
+  }
   for (FaceId f : s.faces()) {
     const auto wires = s.face_wires(f);
     const std::string name = core::entity_name(f);
     switch (plan.scheme[f.value()]) {
       case Scheme::map: {
         const auto& w = wires[0];
+        const MappedSides& ms = plan.sides[f.value()];
+        std::array<std::vector<int>, 4> side;
+        for (std::size_t k = 0; k < w.size(); ++k)
+          side[ms.side[k]].push_back(w[k].edge.value() - 1);
         for (int k = 0; k < 2; ++k)
-          p.equal.push_back({{w[k].edge.value() - 1},
-                             {w[k + 2].edge.value() - 1},
-                             name + ": opposite sides of a mapped face"});
+          p.equal.push_back({side[k], side[k + 2], name + ": opposite sides of a mapped face"});
         break;
       }
       case Scheme::submap: {
@@ -146,8 +207,10 @@ FaceSetMesh mesh_face_set(const core::MeshDomain& s, const FaceSetOptions& optio
   Plan plan;
   plan.scheme.assign(nf + 1, Scheme::quad);
   plan.submap.assign(nf + 1, {});
+  plan.sides.assign(nf + 1, {});
   for (FaceId f : s.faces()) {
-    if (mappable(s, f)) {
+    plan.sides[f.value()] = mapped_sides(s, f);
+    if (plan.sides[f.value()].ok()) {
       plan.scheme[f.value()] = Scheme::map;
     } else {
       plan.submap[f.value()] = submap_structure(s, f);
@@ -191,8 +254,11 @@ FaceSetMesh mesh_face_set(const core::MeshDomain& s, const FaceSetOptions& optio
     }
     out.edge_nodes.assign(ne + 1, {});
     for (EdgeId e : s.edges()) {
+      const bool given = e.value() < int(options.given_edge_points.size()) &&
+                         !options.given_edge_points[e.value()].empty();
       const std::vector<Vec3> p =
-          detail::edge_points(s, e, out.edge_counts[e.value()], options.size_field);
+          given ? options.given_edge_points[e.value()]
+                : detail::edge_points(s, e, out.edge_counts[e.value()], options.size_field);
       auto& ids = out.edge_nodes[e.value()];
       ids.push_back(vertex_node[s.edge_first_vertex(e).value()]);
       for (std::size_t i = 1; i + 1 < p.size(); ++i) {
@@ -227,7 +293,16 @@ FaceSetMesh mesh_face_set(const core::MeshDomain& s, const FaceSetOptions& optio
       QuadFaceMesh m;
       const Scheme scheme = plan.scheme[f.value()];
       if (scheme == Scheme::map) {
-        m = detail::grid_face(s, f, loops[0], counts[0][0], counts[0][1]);
+        // The loop from the first corner on; the sides' counts.
+        const MappedSides& ms = plan.sides[f.value()];
+        std::size_t start = 0;
+        for (int k = 0; k < ms.first; ++k) start += std::size_t(counts[0][k]);
+        std::rotate(loops[0].begin(), loops[0].begin() + long(start), loops[0].end());
+        std::rotate(ids.begin(), ids.begin() + long(start), ids.end());
+        int n[2] = {0, 0};
+        for (std::size_t k = 0; k < ms.side.size(); ++k)
+          if (ms.side[k] < 2) n[ms.side[k]] += counts[0][k];
+        m = detail::grid_face(s, f, loops[0], n[0], n[1]);
       } else if (scheme == Scheme::submap) {
         m = submap_face(s, f, loops, counts, plan.submap[f.value()]);
       } else {

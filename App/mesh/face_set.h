@@ -27,6 +27,16 @@ struct FaceSetOptions {
   double interval_time_limit = 20;  // seconds for the integer program (> 0)
   // Per edge id (entry 0 unused; 0 or missing: free): counts the edges must have.
   std::vector<int> fixed_counts;
+  // Chains of edges whose counts must sum to a given count (a neighbour's edge that the
+  // set's edges split: a multisweep's arrangement under a sub-volume's shared edge).
+  struct FixedSum {
+    std::vector<int> edges;  // edge ids
+    int count = 0;           // >= 1
+  };
+  std::vector<FixedSum> fixed_sums;
+  // Per edge id (entry 0 unused; empty or missing: free): the edge's nodes, first to last
+  // vertex, as a neighbour placed them (the count is theirs, their positions are kept).
+  std::vector<std::vector<core::Vec3>> given_edge_points;
   // Local sizes (null or uniform: `size` everywhere): edge counts, edge nodes and quad
   // faces follow them. Not owned.
   const core::SizeField* size_field = nullptr;

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <future>
 #include <map>
+#include <memory>
 #include <sstream>
 #include <thread>
 
@@ -13,8 +14,10 @@
 #include "mesh/detail/sizing.h"
 #include "mesh/interval_assignment.h"
 #include "mesh/map_block.h"
+#include "mesh/multisweep.h"
 #include "mesh/submap_face.h"
 #include "mesh/sweep.h"
+#include "occ/prismatic.h"
 
 namespace vorohex::mesh {
 
@@ -41,14 +44,19 @@ std::string sub_volume_name(int k) {
 
 // One sub-volume: its solid, its scheme's structure, and its edge ids in `pieces`.
 struct Part {
+  explicit Part(occ::Solid s) : solid(std::move(s)) {}
   occ::Solid solid;
-  std::array<std::vector<EdgeId>, 3> block;  // non-empty: mapped block
-  SweepStructure sweep;                      // else: sweep
-  std::vector<int> shared_faces;             // part face ids shared with a neighbour
-  std::vector<int> whole_edge;               // by part edge id
+  std::array<std::vector<EdgeId>, 3> block;                  // non-empty: mapped block
+  SweepStructure sweep;                                      // else: sweep
+  bool multisweep = false;                                   // else: a multisweep (prismatic part)
+  std::shared_ptr<const occ::PrismaticStructure> prismatic;  // its structure
+  std::vector<bool> shared_edge;  // by part edge id: a neighbour has it too
+  std::vector<int> shared_faces;  // part face ids shared with a neighbour
+  std::vector<int> whole_edge;    // by part edge id
   bool is_block() const { return !block[0].empty(); }
-  bool has_scheme() const { return is_block() || sweep.source.valid(); }
-  const char* scheme() const { return is_block() ? "map" : "sweep"; }
+  bool is_sweep() const { return !is_block() && sweep.source.valid(); }
+  bool has_scheme() const { return is_block() || sweep.source.valid() || multisweep; }
+  const char* scheme() const { return is_block() ? "map" : is_sweep() ? "sweep" : "multisweep"; }
 };
 
 // The interval problem over the curves of `pieces` (one per non-degenerated edge).
@@ -68,10 +76,57 @@ int curve(Curves& c, const occ::Solid& pieces, int whole_edge, const SubVolumeMe
   return k;
 }
 
+// What a multisweep asks of the counts of its edges: an edge at one height has the counts
+// of the cross-section's edges under it, each even (regions meshed with quads need even
+// edges; mapped ones accept them), an edge along the axis the layers of the slabs it spans
+// (a curve per cross-section edge and per slab). The regions' own constraints stay inside
+// the multisweep: it is meshed with the counts of its shared edges given (mesh_part).
+void add_multisweep_constraints(Curves& c, const occ::Solid& pieces, const Part& part,
+                                const std::string& who, const SubVolumeMeshOptions& o) {
+  const occ::Solid& s = part.solid;
+  const occ::PrismaticStructure& ps = *part.prismatic;
+  std::map<int, int> arrangement_curve, slab_curve;
+  auto arrangement = [&](int a) {
+    auto [it, added] = arrangement_curve.emplace(a, -1);
+    if (added) {
+      it->second = c.problem.add_curve(ps.arrangement->edge_length(EdgeId(a)),
+                                       who + " cross-section edge " + std::to_string(a));
+      c.problem.even.push_back({{it->second}, who + " (multisweep): its cross-section's quads"});
+    }
+    return it->second;
+  };
+  auto slab = [&](int l) {
+    auto [it, added] = slab_curve.emplace(l, -1);
+    if (added)
+      it->second = c.problem.add_curve(ps.levels[l + 1] - ps.levels[l],
+                                       who + " slab " + std::to_string(l + 1));
+    return it->second;
+  };
+  for (EdgeId e : s.edges()) {
+    const occ::EdgeInStructure where = occ::edge_in_structure(s, ps, e);
+    std::vector<int> under;
+    for (int a : where.arrangement_edges) under.push_back(arrangement(a));
+    for (int l : where.slabs) under.push_back(slab(l));
+    if (under.empty()) continue;
+    c.problem.equal.push_back({{curve(c, pieces, part.whole_edge[e.value()], o)},
+                               under,
+                               who + " (multisweep): " + core::entity_name(e) +
+                                   (where.slabs.empty() ? ", the cross-section's edges under it"
+                                                        : ", the layers of the slabs it spans")});
+  }
+}
+
+// `preferences`: whole circles on unstructured sweep sources get a multiple of 4 segments,
+// at least 8, as a lone sweep gives them (a round hole of 6 segments folds quads near it);
+// dropped when they make the counts infeasible.
 void add_constraints(Curves& c, const occ::Solid& pieces, const Part& part, int k,
-                     const SubVolumeMeshOptions& o) {
+                     const SubVolumeMeshOptions& o, bool preferences) {
   auto cv = [&](EdgeId e) { return curve(c, pieces, part.whole_edge[e.value()], o); };
   const std::string who = sub_volume_name(k);
+  if (part.multisweep) {
+    add_multisweep_constraints(c, pieces, part, who, o);
+    return;
+  }
   if (part.is_block()) {
     static const char* axis[3] = {"first", "second", "third"};
     for (int d = 0; d < 3; ++d)
@@ -122,6 +177,15 @@ void add_constraints(Curves& c, const occ::Solid& pieces, const Part& part, int 
       c.problem.even.push_back({{cv(st.first)},
                                 who + " (sweep): " + core::entity_name(st.first) +
                                     " on its source " + core::entity_name(s.source)});
+      const bool circle =
+          part.solid.edge_first_vertex(st.first) == part.solid.edge_last_vertex(st.first) &&
+          part.solid.curve_info(st.first).kind == core::CurveKind::circle;
+      if (preferences && circle) {
+        const std::string why =
+            who + " (sweep): " + core::entity_name(st.first) + ", a whole circle on its source,";
+        c.problem.even.push_back({{cv(st.first)}, why + " in a multiple of 4 segments", 4});
+        c.problem.at_least.push_back({{cv(st.first)}, 8, why + " in at least 8 segments"});
+      }
     }
     c.problem.at_least.push_back({loop, s.loops.size() == 1 ? 4 : 6,
                                   who + " (sweep): loop " + std::to_string(l + 1) +
@@ -132,8 +196,8 @@ void add_constraints(Curves& c, const occ::Solid& pieces, const Part& part, int 
 // Sub-volume k of `pieces` with its scheme once glued: a mapped block, else a sweep whose
 // source and target avoid the faces it shares with a neighbour where possible (neither:
 // has_scheme() is false).
-Part plan_part(const occ::Solid& pieces, int k) {
-  Part p{pieces.part(k), {}, {}, {}, {}};
+Part plan_part(const occ::Solid& pieces, int k, bool multisweep) {
+  Part p(pieces.part(k));
   p.whole_edge = pieces.part_ids(p.solid, 1);
   p.block = map_block_edge_groups(p.solid);
   if (p.is_block()) return p;
@@ -145,14 +209,51 @@ Part plan_part(const occ::Solid& pieces, int k) {
     if (whole_face[f] > 0 && pieces.face_is_interface(core::FaceId(whole_face[f])))
       p.shared_faces.push_back(int(f));
   p.sweep = sweep_structure(p.solid, p.shared_faces);
+  if (multisweep && !p.sweep.source.valid()) {
+    p.prismatic = std::make_shared<occ::PrismaticStructure>(occ::prismatic_structure(p.solid));
+    p.multisweep = p.prismatic->ok;
+  }
   return p;
 }
 
 std::string no_scheme_message(const Part& p, int k, int n) {
   const Applicability map = map_block_applicable(p.solid);
   const SweepApplicability sw = sweep_applicable(p.solid);
+  const std::string prismatic = p.prismatic ? p.prismatic->reason : "not tried";
   return sub_volume_name(k) + " of " + std::to_string(n) + " is neither a mapped block (" +
-         map.reason + ") nor a sweep (" + sw.reason + ") once glued to its neighbours.";
+         map.reason + "), a sweep (" + sw.reason + ") nor prismatic (" + prismatic +
+         ") once glued to its neighbours.";
+}
+
+// The nodes of a part's mesh on its edge e, first to last vertex (by their distance along
+// the edge); empty for a closed or degenerated edge.
+std::vector<core::Vec3> nodes_on_edge(const core::HexMesh& mesh, const occ::Solid& solid,
+                                      EdgeId e) {
+  std::vector<core::Vec3> out;
+  const core::VertexId v0 = solid.edge_first_vertex(e), v1 = solid.edge_last_vertex(e);
+  if (solid.edge_is_degenerated(e) || v0 == v1) return out;
+  const std::vector<core::Vec3> line = solid.edge_points_by_length(e, 256);
+  std::vector<std::pair<double, core::Vec3>> along;
+  for (std::size_t i = 0; i < mesh.num_nodes(); ++i) {
+    const core::NodeClass c = mesh.node_classes()[i];
+    const bool on = (c.dim == 1 && c.id == e.value()) ||
+                    (c.dim == 0 && (c.id == v0.value() || c.id == v1.value()));
+    if (!on) continue;
+    const core::Vec3& x = mesh.points()[i];
+    double best = 1e300, t = 0;
+    for (std::size_t k = 0; k + 1 < line.size(); ++k) {
+      const core::Vec3 d = line[k + 1] - line[k];
+      const double s =
+          std::clamp((x - line[k]).dot(d) / std::max(d.squaredNorm(), 1e-300), 0.0, 1.0);
+      const double dist = (line[k] + s * d - x).squaredNorm();
+      if (dist < best) best = dist, t = double(k) + s;
+    }
+    along.emplace_back(t, x);
+  }
+  std::sort(along.begin(), along.end(),
+            [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (const auto& [t, x] : along) out.push_back(x);
+  return out;
 }
 
 // Meshes one part with the assigned counts (by its own edge ids).
@@ -162,10 +263,28 @@ struct PartMesh {
   std::vector<core::Diagnostic> diagnostics;
 };
 
+// `edge_nodes` (multisweeps): per part edge id, the nodes a neighbour meshed before it
+// placed there (empty: none yet).
 PartMesh mesh_part(const Part& part, const std::vector<int>& counts,
-                   const SubVolumeMeshOptions& options, const core::Progress& progress) {
+                   const SubVolumeMeshOptions& options, const core::Progress& progress,
+                   const std::vector<std::vector<core::Vec3>>& edge_nodes = {}) {
   PartMesh out;
-  if (part.is_block()) {
+  if (part.multisweep) {
+    // Only the counts of shared edges are given: its cross-section chooses the others.
+    MultisweepOptions o;
+    o.edge_nodes = edge_nodes;
+    o.size = options.size;
+    o.max_intervals = options.max_intervals;
+    o.smoothing_passes = options.smoothing_passes;
+    o.size_field = options.size_field;
+    o.edge_intervals.assign(counts.size(), 0);
+    for (std::size_t e = 1; e < counts.size(); ++e)
+      if (part.shared_edge[e]) o.edge_intervals[e] = counts[e];
+    MultisweepResult r = multisweep(part.solid, o, progress);
+    out.ok = r.ok;
+    out.mesh = std::move(r.mesh);
+    out.diagnostics = std::move(r.diagnostics);
+  } else if (part.is_block()) {
     MapBlockOptions o;
     o.size = options.size;
     o.max_intervals = options.max_intervals;
@@ -204,7 +323,7 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
   std::vector<Part> parts;
   parts.reserve(n);
   for (int k = 0; k < n; ++k) {
-    Part p = plan_part(pieces, k);
+    Part p = plan_part(pieces, k, options.multisweep);
     if (!p.has_scheme()) {
       result.diagnostics.push_back(
           core::make_error("no_scheme", no_scheme_message(p, k, n), {sub_volume_name(k)}));
@@ -215,23 +334,43 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
       return std::find(p.shared_faces.begin(), p.shared_faces.end(), f.value()) !=
              p.shared_faces.end();
     };
-    const bool own_ends = !p.is_block() && !shared(p.sweep.source) && !shared(p.sweep.target);
+    const bool own_ends = p.multisweep
+                              ? p.shared_faces.empty()
+                              : p.is_sweep() && !shared(p.sweep.source) && !shared(p.sweep.target);
     result.stats.types.push_back(own_ends ? "Vs" : "Ve");
     parts.push_back(std::move(p));
   }
 
-  // One interval assignment for all of them.
+  // Edges a neighbour has too (their counts are given to a multisweep).
+  {
+    std::map<int, int> parts_of_edge;
+    for (const Part& p : parts)
+      for (std::size_t e = 1; e < p.whole_edge.size(); ++e) ++parts_of_edge[p.whole_edge[e]];
+    for (Part& p : parts) {
+      p.shared_edge.assign(p.whole_edge.size(), false);
+      for (std::size_t e = 1; e < p.whole_edge.size(); ++e)
+        p.shared_edge[e] = parts_of_edge[p.whole_edge[e]] > 1;
+    }
+  }
+
   const auto t0 = std::chrono::steady_clock::now();
-  Curves curves;
-  for (int k = 0; k < n; ++k) add_constraints(curves, pieces, parts[k], k, options);
-  result.stats.curves = int(curves.problem.lengths.size());
-  result.stats.constraints = int(curves.problem.equal.size() + curves.problem.even.size() +
-                                 curves.problem.at_least.size());
+  // One interval assignment for all of them (without the preferences if they make it
+  // infeasible).
   IntervalOptions io;
   io.size = options.size;
   io.max_intervals = options.max_intervals;
   io.time_limit = options.interval_time_limit;
-  IntervalResult assigned = assign_intervals(curves.problem, io);
+  Curves curves;
+  IntervalResult assigned;
+  for (bool preferences : {true, false}) {
+    curves = Curves();
+    for (int k = 0; k < n; ++k) add_constraints(curves, pieces, parts[k], k, options, preferences);
+    assigned = assign_intervals(curves.problem, io);
+    if (assigned.ok()) break;
+  }
+  result.stats.curves = int(curves.problem.lengths.size());
+  result.stats.constraints = int(curves.problem.equal.size() + curves.problem.even.size() +
+                                 curves.problem.at_least.size());
   result.stats.seconds_intervals = seconds_since(t0);
   result.diagnostics.insert(result.diagnostics.end(), assigned.diagnostics.begin(),
                             assigned.diagnostics.end());
@@ -249,7 +388,16 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
       const auto it = curves.of_edge.find(p.whole_edge[e]);
       if (it != curves.of_edge.end()) counts[k][e] = assigned.intervals[it->second];
     }
-    if (p.is_block()) {
+    if (p.multisweep) {
+      MultisweepOptions o;
+      o.size = options.size;
+      o.smoothing_passes = 0;
+      o.size_field = options.size_field;
+      o.edge_intervals.assign(counts[k].size(), 0);
+      for (std::size_t e = 1; e < counts[k].size(); ++e)
+        if (p.shared_edge[e]) o.edge_intervals[e] = counts[k][e];
+      predicted += multisweep_evaluate(p.solid, o).hexes;
+    } else if (p.is_block()) {
       predicted += std::size_t(counts[k][p.block[0][0].value()]) *
                    counts[k][p.block[1][0].value()] * counts[k][p.block[2][0].value()];
     } else {
@@ -276,6 +424,48 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
   std::atomic<bool> stop{false};
   const core::Progress worker_progress([](std::string_view, double) {}, &stop);
   std::vector<PartMesh> meshed(n);
+  // Multisweeps first, one after the other: each takes the nodes the ones before it placed
+  // on the edges they share (a cross-section splits an edge where a neighbour's does not);
+  // those that split shared edges most go first.
+  {
+    auto splits = [&](const Part& p) {
+      int k = 0;
+      for (EdgeId e : p.solid.edges()) {
+        if (!p.shared_edge[e.value()]) continue;
+        const occ::EdgeInStructure w = occ::edge_in_structure(p.solid, *p.prismatic, e);
+        k += w.arrangement_edges.size() > 1 || w.slabs.size() > 1;
+      }
+      return k;
+    };
+    std::vector<std::pair<int, int>> order;  // (-splits, part)
+    for (int k = 0; k < n; ++k)
+      if (parts[k].multisweep) order.emplace_back(-splits(parts[k]), k);
+    std::sort(order.begin(), order.end());
+    std::map<int, std::vector<core::Vec3>> placed;  // whole edge id -> nodes
+    for (const auto& [ignored, k] : order) {
+      const Part& p = parts[k];
+      std::vector<std::vector<core::Vec3>> given(p.whole_edge.size());
+      for (std::size_t e = 1; e < p.whole_edge.size(); ++e) {
+        const auto it = placed.find(p.whole_edge[e]);
+        if (it == placed.end()) continue;
+        given[e] = it->second;
+        const core::Vec3 first = p.solid.vertex_point(p.solid.edge_first_vertex(EdgeId(int(e))));
+        if ((given[e].front() - first).norm() > (given[e].back() - first).norm())
+          std::reverse(given[e].begin(), given[e].end());
+      }
+      try {
+        meshed[k] = mesh_part(p, counts[k], options, progress, given);
+      } catch (const std::exception& e) {
+        meshed[k].diagnostics.push_back(core::make_error("geometry_error", e.what()));
+      }
+      if (!meshed[k].ok) break;  // reported at the join
+      for (std::size_t e = 1; e < p.whole_edge.size(); ++e)
+        if (p.shared_edge[e] && !placed.count(p.whole_edge[e])) {
+          std::vector<core::Vec3> nodes = nodes_on_edge(meshed[k].mesh, p.solid, EdgeId(int(e)));
+          if (nodes.size() >= 2) placed.emplace(p.whole_edge[e], std::move(nodes));
+        }
+    }
+  }
   std::atomic<int> next{0};
   const int threads = std::max(
       1, std::min(n, options.threads > 0 ? options.threads
@@ -283,6 +473,7 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
   auto work = [&] {
     for (int k; (k = next.fetch_add(1)) < n;) {
       if (stop.load()) break;
+      if (parts[k].multisweep) continue;  // meshed above
       try {
         meshed[k] = mesh_part(parts[k], counts[k], options, worker_progress);
       } catch (const std::exception& e) {
@@ -330,12 +521,12 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
   return result;
 }
 
-SubVolumePlan plan_sub_volumes(const occ::Solid& pieces) {
+SubVolumePlan plan_sub_volumes(const occ::Solid& pieces, bool multisweep) {
   SubVolumePlan plan;
   const int n = pieces.num_solids();
   plan.ok = n > 0;
   for (int k = 0; k < n; ++k) {
-    const Part p = plan_part(pieces, k);
+    const Part p = plan_part(pieces, k, multisweep);
     if (p.has_scheme()) {
       plan.schemes.push_back(p.scheme());
       plan.reasons.emplace_back();

@@ -1,10 +1,15 @@
 // Meshing several sub-volumes into one conforming mesh (paper §5.1): the sub-volumes are
 // glued at their common faces (occ::glue_solids), each is given its scheme (a mapped block,
-// else a one-to-one sweep), one interval assignment over every curve of all of them makes
-// the counts agree where they meet, each sub-volume is meshed with those counts (in
-// parallel), and the meshes are joined with nodes on common entities merged. Faces two
-// sub-volumes share are meshed as mapped faces by both (the same transfinite nodes from the
-// same edge nodes); a sweep's source of four sides is a mapped grid for that reason.
+// else a one-to-one sweep, else a multisweep of a prismatic part), one interval assignment
+// over every curve of all of them makes the counts agree where they meet, each sub-volume is
+// meshed with those counts (in parallel), and the meshes are joined with nodes on common
+// entities merged. Faces two sub-volumes share are meshed as mapped faces by both (the same
+// transfinite nodes from the same edge nodes); a sweep's source of four sides is a mapped
+// grid for that reason. Multisweeps are meshed first, one after the other, each meeting the
+// counts of the ones before it on the edges they share, and their counts are fixed in the
+// assignment of the others; where a multisweep's face mesh differs from its neighbour's (a
+// shared cap it meshes with unstructured quads, an edge its cross-section splits), nothing
+// is merged there and the validity check names the face.
 #pragma once
 
 #include <cstddef>
@@ -26,6 +31,7 @@ struct SubVolumeMeshOptions {
   double interval_time_limit = 20;   // seconds for the integer program (> 0)
   std::size_t max_hexes = 50000000;  // more is refused before meshing (>= 1)
   int threads = 0;                   // sub-volumes meshed at once (0: the machine's cores)
+  bool multisweep = true;            // a sub-volume may be a multisweep (else blocks, sweeps)
   // Local sizes (null or uniform: `size` everywhere): the interval assignment's targets and
   // every piece's edge nodes and sweep sources follow them. Not owned.
   const core::SizeField* size_field = nullptr;
@@ -33,10 +39,10 @@ struct SubVolumeMeshOptions {
 };
 
 struct SubVolumeMeshStats {
-  std::vector<std::string> schemes;  // per sub-volume: "map" or "sweep"
+  std::vector<std::string> schemes;  // per sub-volume: "map", "sweep" or "multisweep"
   // Per sub-volume: "Vs" when swept between two faces of the whole (not shared with a
   // neighbour: the paper's volumes around an f_s face), else "Ve" (blocks, and sweeps from
-  // or to a cut face).
+  // or to a cut face; multisweeps that share a face).
   std::vector<std::string> types;
   int curves = 0;  // curves in the interval assignment
   int constraints = 0;
@@ -53,12 +59,13 @@ struct SubVolumeMeshResult {
 };
 
 // `pieces`: glued sub-volumes (Solid::num_solids() parts). Errors: no_scheme (a sub-volume
-// neither a block nor a sweep, named), intervals_infeasible, too_many_hexes, cancelled, and
-// the schemes' own errors prefixed with the sub-volume.
+// neither a block, a sweep nor prismatic, named), intervals_infeasible, too_many_hexes, cancelled,
+// and the schemes' own errors prefixed with the sub-volume.
 SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMeshOptions& options,
                                      const core::Progress& progress = {});
 
-// The scheme mesh_sub_volumes gives each sub-volume of `pieces` ("map" or "sweep"; empty
+// The scheme mesh_sub_volumes gives each sub-volume of `pieces` ("map", "sweep" or
+// "multisweep"; empty
 // for one that has none), without meshing: what a decomposition's merge pass asks of a
 // union once glued to its neighbours. `why_not` names the first sub-volume without one.
 struct SubVolumePlan {
@@ -67,6 +74,6 @@ struct SubVolumePlan {
   std::vector<std::string> reasons;  // per sub-volume: why it has none (empty when it has one)
   std::string why_not;
 };
-SubVolumePlan plan_sub_volumes(const occ::Solid& pieces);
+SubVolumePlan plan_sub_volumes(const occ::Solid& pieces, bool multisweep = true);
 
 }  // namespace vorohex::mesh

@@ -23,6 +23,7 @@ void MultisweepOptions::validate() const {
   core::require_positive("MultisweepOptions.size", size);
   core::require_at_least("MultisweepOptions.max_intervals", max_intervals, 1);
   core::require_at_least("MultisweepOptions.smoothing_passes", smoothing_passes, 0);
+  for (int n : edge_intervals) core::require_at_least("MultisweepOptions.edge_intervals", n, 0);
 }
 
 namespace {
@@ -39,6 +40,144 @@ struct Plan {
   std::vector<core::Diagnostic> diagnostics;
 };
 
+// Given counts on the solid's edges, as the arrangement's edges and the slabs' layers must
+// have them: an edge at one height covers the arrangement edges under it (their counts sum to
+// its count), an edge along the axis spans slabs (their layers sum to its count). False with
+// why when an edge is neither, or the layers cannot be met.
+struct FixedCounts {
+  std::vector<FaceSetOptions::FixedSum> sums;  // on arrangement edge ids
+  std::vector<int> layers;                     // per slab, 0: free
+  std::vector<std::vector<Vec3>> points;       // per arrangement edge id: given nodes
+  std::vector<std::vector<double>> heights;    // per slab: given layer heights (both levels)
+};
+
+// Given nodes of edge e: the arrangement edges under it and the slabs it spans take them.
+bool given_nodes(const core::MeshDomain& solid, const occ::PrismaticStructure& s, core::EdgeId e,
+                 const std::vector<Vec3>& nodes, const occ::EdgeInStructure& where,
+                 FixedCounts& out, std::string& why) {
+  const occ::Solid& arr = *s.arrangement;
+  const double tol = std::max(1e-6 * solid.diagonal(), 10 * solid.tolerance());
+  const std::string who = "the nodes given on " + core::entity_name(e);
+  for (int a : where.arrangement_edges) {
+    const core::EdgeId ae(a);
+    const Vec3 a0 = arr.vertex_point(arr.edge_first_vertex(ae));
+    const Vec3 a1 = arr.vertex_point(arr.edge_last_vertex(ae));
+    // The nodes moved to the arrangement's plane; the run between a's two vertices.
+    std::vector<Vec3> flat;
+    for (const Vec3& q : nodes) flat.push_back(q + (s.height(a0) - s.height(q)) * s.axis);
+    int i0 = -1, i1 = -1;
+    for (int i = 0; i < int(flat.size()); ++i) {
+      if ((flat[i] - a0).norm() <= tol) i0 = i;
+      if ((flat[i] - a1).norm() <= tol) i1 = i;
+    }
+    if (i0 < 0 || i1 < 0 || i0 == i1) {
+      why = who + " miss a vertex of the cross-section under it";
+      return false;
+    }
+    std::vector<Vec3> run;
+    for (int i = i0;; i += i1 > i0 ? 1 : -1) {
+      run.push_back(flat[i]);
+      if (i == i1) break;
+    }
+    run.front() = a0, run.back() = a1;
+    if (!out.points[a].empty() && out.points[a].size() != run.size()) {
+      why = who + " differ from those given on another edge over the same cross-section edge";
+      return false;
+    }
+    out.points[a] = std::move(run);
+  }
+  for (int l : where.slabs) {
+    std::vector<double> h;
+    for (const Vec3& q : nodes) {
+      const double z = s.height(q);
+      if (z >= s.levels[l] - tol && z <= s.levels[l + 1] + tol) h.push_back(z);
+    }
+    std::sort(h.begin(), h.end());
+    if (h.size() < 2 || std::abs(h.front() - s.levels[l]) > tol ||
+        std::abs(h.back() - s.levels[l + 1]) > tol) {
+      why = who + " miss a level of the slabs it spans";
+      return false;
+    }
+    h.front() = s.levels[l], h.back() = s.levels[l + 1];
+    if (!out.heights[l].empty()) {
+      bool same = out.heights[l].size() == h.size();
+      for (std::size_t i = 0; same && i < h.size(); ++i)
+        same = std::abs(out.heights[l][i] - h[i]) <= tol;
+      if (!same) {
+        why = who + " give the layers of a slab other heights than another edge's";
+        return false;
+      }
+    }
+    out.layers[l] = int(h.size()) - 1;
+    out.heights[l] = std::move(h);
+  }
+  return true;
+}
+
+bool fixed_counts(const core::MeshDomain& solid, const occ::PrismaticStructure& s,
+                  const MultisweepOptions& options, FixedCounts& out, std::string& why) {
+  const std::vector<int>& given = options.edge_intervals;
+  out.layers.assign(s.levels.size() - 1, 0);
+  out.heights.assign(s.levels.size() - 1, {});
+  out.points.assign(s.arrangement->num_edges() + 1, {});
+  std::vector<std::pair<std::vector<int>, int>> spans;  // slabs of an axial edge, its count
+  for (core::EdgeId e : solid.edges()) {
+    const bool has_nodes =
+        e.value() < int(options.edge_nodes.size()) && options.edge_nodes[e.value()].size() >= 2;
+    if (has_nodes && !solid.edge_is_degenerated(e) &&
+        solid.edge_first_vertex(e) != solid.edge_last_vertex(e)) {
+      if (!given_nodes(solid, s, e, options.edge_nodes[e.value()],
+                       occ::edge_in_structure(solid, s, e), out, why))
+        return false;
+      continue;
+    }
+    const int n = e.value() < int(given.size()) ? given[e.value()] : 0;
+    if (n <= 0 || solid.edge_is_degenerated(e)) continue;
+    occ::EdgeInStructure where = occ::edge_in_structure(solid, s, e);
+    if (!where.arrangement_edges.empty()) {
+      out.sums.push_back({std::move(where.arrangement_edges), n});
+    } else if (!where.slabs.empty()) {
+      spans.emplace_back(std::move(where.slabs), n);
+    } else {
+      why = core::entity_name(e) + " lies neither over the cross-section nor along the axis";
+      return false;
+    }
+  }
+  // Single slabs first, then each longer span shares what is left by thickness.
+  std::stable_sort(spans.begin(), spans.end(),
+                   [](const auto& a, const auto& b) { return a.first.size() < b.first.size(); });
+  for (const auto& [span, n] : spans) {
+    int left = n;
+    double free_thickness = 0;
+    std::vector<int> open;
+    for (int l : span) {
+      if (out.layers[l] > 0) {
+        left -= out.layers[l];
+      } else {
+        open.push_back(l);
+        free_thickness += s.levels[l + 1] - s.levels[l];
+      }
+    }
+    if (left < int(open.size()) || (open.empty() && left != 0)) {
+      why = "the given counts ask " + std::to_string(n) + " layers of slabs that already have " +
+            std::to_string(n - left);
+      return false;
+    }
+    for (std::size_t i = 0; i < open.size(); ++i) {
+      const int l = open[i];
+      const int k = i + 1 == open.size()
+                        ? left
+                        : std::max(1, int(std::lround(left * (s.levels[l + 1] - s.levels[l]) /
+                                                      std::max(free_thickness, 1e-300))));
+      const int k_ok = std::min(k, left - int(open.size() - i - 1));
+      out.layers[l] = k_ok;
+      left -= k_ok;
+      free_thickness -= s.levels[l + 1] - s.levels[l];
+    }
+  }
+  return true;
+}
+
 Plan plan(const core::MeshDomain& solid, const MultisweepOptions& options,
           const core::Progress& progress) {
   options.validate();
@@ -50,7 +189,16 @@ Plan plan(const core::MeshDomain& solid, const MultisweepOptions& options,
     return p;
   }
   const occ::PrismaticStructure& s = p.structure;
+  FixedCounts fixed;
+  std::string why;
+  if (!fixed_counts(solid, s, options, fixed, why)) {
+    p.diagnostics.push_back(core::make_error(
+        "intervals_infeasible", "The multisweep cannot meet the given counts: " + why + "."));
+    return p;
+  }
   FaceSetOptions fo;
+  fo.fixed_sums = fixed.sums;
+  fo.given_edge_points = fixed.points;
   fo.size = options.size;
   fo.max_intervals = options.max_intervals;
   fo.smoothing_passes = options.smoothing_passes;
@@ -86,7 +234,8 @@ Plan plan(const core::MeshDomain& solid, const MultisweepOptions& options,
         const double n = options.size_field->segments_along({lo, lo + 0.5 * (hi - lo), hi});
         if (n > want) want = n, column = lo;
       }
-    const double k = std::max(1.0, std::round(want));
+    const double k =
+        fixed.layers[l] > 0 ? double(fixed.layers[l]) : std::max(1.0, std::round(want));
     if (k > options.max_intervals) {
       std::ostringstream m;
       m << "A slab " << t << " thick at size " << options.size << " needs " << k
@@ -95,6 +244,12 @@ Plan plan(const core::MeshDomain& solid, const MultisweepOptions& options,
       return p;
     }
     p.layers.push_back(int(k));
+    if (!fixed.heights[l].empty()) {  // a neighbour's nodes on an edge along the axis
+      for (std::size_t i = 1; i < fixed.heights[l].size(); ++i)
+        p.heights.push_back(fixed.heights[l][i]);
+      p.level_z.push_back(int(p.heights.size()) - 1);
+      continue;
+    }
     const std::vector<double> w =
         detail::graded_parameters(column, column + t * s.axis, int(k), options.size_field);
     for (int i = 1; i <= int(k); ++i)

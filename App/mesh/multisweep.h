@@ -25,6 +25,16 @@ struct MultisweepOptions {
   double size = 1.0;           // target edge length, model units (> 0)
   int max_intervals = 100000;  // per edge and per slab (> 0)
   int smoothing_passes = 30;   // of regions meshed by the general quad mesher (>= 0)
+  // Counts some of the solid's edges must have (per edge id, entry 0 unused; 0 or missing:
+  // free), e.g. where a neighbouring sub-volume has already placed its nodes: an edge at one
+  // height fixes the regions' edges under it, an edge along the axis the layers of the
+  // slabs it spans. Counts that cannot be met give intervals_infeasible.
+  std::vector<int> edge_intervals;
+  // Nodes some of the solid's open edges must have (per edge id, first to last vertex;
+  // empty or missing: free), where a neighbour placed them: the regions' edges under an edge
+  // at one height and the layers of the slabs an edge along the axis spans take them (a
+  // vertex of the cross-section or a level that is not one of them: intervals_infeasible).
+  std::vector<std::vector<core::Vec3>> edge_nodes;
   // Local sizes (null or uniform: `size` everywhere): the cross-section is graded where any
   // slab asks, each slab's layers follow its finest column. Not owned.
   const core::SizeField* size_field = nullptr;

@@ -419,4 +419,30 @@ PrismaticStructure prismatic_structure(const core::MeshDomain& solid, const Vec3
   return best;
 }
 
+EdgeInStructure edge_in_structure(const core::MeshDomain& solid, const PrismaticStructure& s,
+                                  EdgeId e) {
+  EdgeInStructure out;
+  if (!s.ok || solid.edge_is_degenerated(e)) return out;
+  const double tol = std::max(1e-6 * solid.diagonal(), 10 * solid.tolerance());
+  double lo = 1e300, hi = -1e300;
+  for (const Vec3& q : solid.edge_points_by_length(e, 8)) {
+    lo = std::min(lo, s.height(q));
+    hi = std::max(hi, s.height(q));
+  }
+  if (hi - lo <= tol) {
+    // The arrangement edges whose middles, lifted to the edge's height, lie on it (the
+    // overlay's edges never overlap an edge in part).
+    for (EdgeId a : s.arrangement->edges()) {
+      const Vec3 m = s.arrangement->edge_points_by_length(a, 2)[1];
+      const Vec3 lifted = m + (lo - s.height(m)) * s.axis;
+      if ((solid.project_to_edge(e, lifted) - lifted).norm() <= tol)
+        out.arrangement_edges.push_back(a.value());
+    }
+    return out;
+  }
+  for (std::size_t l = 0; l + 1 < s.levels.size(); ++l)
+    if (s.levels[l] >= lo - tol && s.levels[l + 1] <= hi + tol) out.slabs.push_back(int(l));
+  return out;
+}
+
 }  // namespace vorohex::occ

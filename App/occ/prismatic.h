@@ -46,4 +46,15 @@ struct PrismaticStructure {
 PrismaticStructure prismatic_structure(const core::MeshDomain& solid,
                                        const Vec3& axis = Vec3::Zero());
 
+// Where an edge of the solid lies in the structure: an edge at one height over arrangement
+// edges (their ids; their counts sum to the edge's), or an edge along the axis over slabs
+// (their indices; their layers sum to its count). Neither (empty) for a degenerated edge or
+// one that is not part of the structure.
+struct EdgeInStructure {
+  std::vector<int> arrangement_edges;
+  std::vector<int> slabs;
+};
+EdgeInStructure edge_in_structure(const core::MeshDomain& solid, const PrismaticStructure& s,
+                                  EdgeId e);
+
 }  // namespace vorohex::occ

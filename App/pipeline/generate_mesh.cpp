@@ -333,6 +333,11 @@ std::string joined_schemes(const std::vector<std::string>& schemes) {
 // meshed into one conforming mesh, which is put back onto the solid's own topology. True
 // when result.mesh holds it; else false with `why_not` (a sentence fragment), or a
 // `cancelled` error when the user stopped it.
+bool mesh_pieces(const occ::Solid& solid, const detail::IsolatedDecomposition& d,
+                 const MeshOptions& options, const core::SizeField& sizes,
+                 const core::Progress& progress, std::chrono::steady_clock::time_point t0,
+                 MeshResult& result, std::string& why_not);
+
 bool mesh_decomposed(const occ::Solid& solid, const MeshOptions& options,
                      const core::SizeField& sizes, const core::Progress& progress,
                      MeshResult& result, std::string& why_not) {
@@ -346,10 +351,36 @@ bool mesh_decomposed(const occ::Solid& solid, const MeshOptions& options,
     why_not = d.why_not;
     return false;
   }
+  if (mesh_pieces(solid, d, options, sizes, progress, t0, result, why_not)) return true;
+  if (d.method != "voronoi" || progress.cancelled()) return false;
+  // The Voronoi sub-volumes did not mesh together: the exact cuts at the concave edges,
+  // within what is left of the decomposition's time.
+  MeshOptions rest = options;
+  rest.decomposition_time_limit = std::max(5.0, options.decomposition_time_limit - d.seconds);
+  const detail::IsolatedDecomposition cuts =
+      detail::decompose_isolated(solid, rest, progress, /*plane_cuts_only=*/true);
+  if (cuts.cancelled) {
+    result.diagnostics.push_back(core::make_error("cancelled", "Meshing was cancelled."));
+    return false;
+  }
+  std::string why_cuts;
+  if (cuts.pieces && mesh_pieces(solid, cuts, options, sizes, progress, t0, result, why_cuts))
+    return true;
+  why_not += "; cutting along the faces at its concave edges did not help either (" +
+             (cuts.pieces ? why_cuts : cuts.why_not) + ")";
+  return false;
+}
+
+bool mesh_pieces(const occ::Solid& solid, const detail::IsolatedDecomposition& d,
+                 const MeshOptions& options, const core::SizeField& sizes,
+                 const core::Progress& progress, std::chrono::steady_clock::time_point t0,
+                 MeshResult& result, std::string& why_not) {
   mesh::SubVolumeMeshOptions o;
   o.size = sizes.global();
   o.size_field = &sizes;
   o.max_hexes = options.max_hexes;
+  o.multisweep = std::find(options.schemes.begin(), options.schemes.end(), "multisweep") !=
+                 options.schemes.end();
   mesh::SubVolumeMeshResult m = mesh::mesh_sub_volumes(*d.pieces, o, progress);
   const int n = d.pieces->num_solids();
   if (!m.ok) {
@@ -402,7 +433,11 @@ bool mesh_decomposed(const occ::Solid& solid, const MeshOptions& options,
     << n << " sub-volumes (" << d.before_merge << " before merging; ";
   bool first = true;
   for (const auto& [name, k] : count)
-    s << (first ? "" : ", ") << k << " " << (name == "map" ? "mapped" : "swept"), first = false;
+    s << (first ? "" : ", ") << k << " "
+      << (name == "map"          ? "mapped"
+          : name == "multisweep" ? "multiswept"
+                                 : "swept"),
+        first = false;
   s << "), meshed with one interval assignment over " << m.stats.curves << " curves and "
     << m.stats.constraints << " constraints, joined (" << m.stats.nodes_merged << " nodes merged); "
     << restored.interior << " nodes on the cuts are inside the solid again. Decomposition "
@@ -517,6 +552,9 @@ MeshResult generate_parts(const occ::Solid& whole, const MeshOptions& options,
     o.size = size;
     o.size_field = &sizes;
     o.max_hexes = options.max_hexes;
+    // Blocks and sweeps only: a multisweep's face mesh may differ from its neighbour's (an
+    // edge its cross-section splits), and the solids on their own below are the way then.
+    o.multisweep = false;
     mesh::SubVolumeMeshResult m = mesh::mesh_sub_volumes(whole, o, progress);
     if (m.ok) {
       result.mesh = std::move(m.mesh);

@@ -718,6 +718,35 @@ class InspectCommands(unittest.TestCase):
         self.assertEqual(code, 0, stdout + stderr)
         self.assertIn("1 after", stdout)  # the whole L is one sweep along its depth
 
+    def test_decompose_plane_cuts_shows_the_pieces_the_mesher_uses(self):
+        # A plate with bolt holes and a lug with a cross hole, built with Part booleans as a
+        # FreeCAD user builds it: the mesher's exact cuts at its concave edges, written.
+        sys.path.append("/usr/lib/freecad-python3/lib")
+        import FreeCAD
+        import Part
+        V = FreeCAD.Vector
+        plate = Part.makeBox(100, 60, 10)
+        for x, y in [(10, 10), (10, 50), (70, 10), (70, 50)]:
+            plate = plate.cut(Part.makeCylinder(4, 10, V(x, y, 0), V(0, 0, 1)))
+        lug = Part.makeBox(12, 30, 40, V(85, 15, 10)).cut(
+            Part.makeCylinder(6, 12, V(85, 30, 35), V(1, 0, 0)))
+        solid = plate.fuse(lug).removeSplitter()
+        step = os.path.join(self.dir, "plate_lug.step")
+        solid.exportStep(step)
+        parts = os.path.join(self.dir, "cuts.brep")
+        code, stdout, stderr = run("decompose", step, "-o", parts, "--plane-cuts")
+        self.assertEqual(code, 0, stdout + stderr)
+        self.assertIn("2 after merging", stdout)
+        self.assertEqual(stdout.count(": multisweep"), 2, stdout)
+        compound = Part.read(parts)
+        self.assertEqual(len(compound.Solids), 2)
+        self.assertAlmostEqual(sum(s.Volume for s in compound.Solids) / solid.Volume, 1, places=9)
+        # The Voronoi decomposition's report and faces are not those of the cuts.
+        code, _, stderr = run("decompose", step, "-o", parts, "--plane-cuts", "--report",
+                              os.path.join(self.dir, "d.json"))
+        self.assertEqual(code, 2)
+        self.assertIn("--plane-cuts", stderr)
+
     def test_failed_decomposition_still_writes_its_report(self):
         # HexMe's notch: the split loses 1.3e-9 of the volume (over the 1e-9 allowed), so the
         # decomposition fails; the report says why, and no sub-volumes are written.

@@ -62,20 +62,26 @@ std::string voronoi_decomposition(const occ::Solid& solid, const MeshOptions& me
 }
 
 // Runs in the child: the Voronoi decomposition, else exact plane cuts at concave edges.
-std::string decompose_to_text(const occ::Solid& solid, const MeshOptions& mesh_options) {
+std::string decompose_to_text(const occ::Solid& solid, const MeshOptions& mesh_options,
+                              bool plane_cuts_only) {
   const auto t0 = std::chrono::steady_clock::now();
   const double time_limit = mesh_options.decomposition_time_limit;
   std::string why;
-  try {
-    return voronoi_decomposition(solid, mesh_options);
-  } catch (const std::exception& e) {
-    why = e.what();
+  if (!plane_cuts_only) {
+    try {
+      return voronoi_decomposition(solid, mesh_options);
+    } catch (const std::exception& e) {
+      why = e.what();
+    }
   }
   decompose::PlaneCutOptions options;
+  options.multisweep = std::find(mesh_options.schemes.begin(), mesh_options.schemes.end(),
+                                 "multisweep") != mesh_options.schemes.end();
   options.time_limit = std::max(
       1.0,
       time_limit - std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   const decompose::PlaneCutResult cut = decompose::cut_at_concave_edges(solid, options);
+  if (!cut.ok && plane_cuts_only) throw std::runtime_error(cut.why_not);
   if (!cut.ok)
     throw std::runtime_error(why + "; cutting along the faces at its concave edges " +
                              "did not help either (" + cut.why_not + ")");
@@ -87,14 +93,15 @@ std::string decompose_to_text(const occ::Solid& solid, const MeshOptions& mesh_o
 }  // namespace
 
 IsolatedDecomposition decompose_isolated(const occ::Solid& solid, const MeshOptions& options,
-                                         const core::Progress& progress) {
+                                         const core::Progress& progress, bool plane_cuts_only) {
   const double time_limit = options.decomposition_time_limit;
   IsolatedDecomposition out;
   const auto t0 = std::chrono::steady_clock::now();
   core::IsolatedCallOptions io;
   io.stage = "decompose";
-  const core::IsolatedResult run = core::isolated_call(
-      [&] { return decompose_to_text(solid, options); }, progress.with_time_limit(time_limit), io);
+  const core::IsolatedResult run =
+      core::isolated_call([&] { return decompose_to_text(solid, options, plane_cuts_only); },
+                          progress.with_time_limit(time_limit), io);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   switch (run.status) {
     case core::IsolatedResult::Status::ok:

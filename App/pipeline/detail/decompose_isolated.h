@@ -26,8 +26,10 @@ struct IsolatedDecomposition {
 };
 
 // Uses options.graph, sharp_angle and decomposition_time_limit (seconds the child may
-// take before it is stopped).
+// take before it is stopped). `plane_cuts_only`: no Voronoi decomposition (the pipeline's
+// second try, when the Voronoi sub-volumes did not mesh together).
 IsolatedDecomposition decompose_isolated(const occ::Solid& solid, const MeshOptions& options,
-                                         const core::Progress& progress);
+                                         const core::Progress& progress,
+                                         bool plane_cuts_only = false);
 
 }  // namespace vorohex::pipeline::detail

@@ -14,6 +14,13 @@
 namespace vorohex::decompose {
 namespace {
 
+// Cuts into blocks and sweeps only (as without the multisweep scheme).
+PlaneCutOptions blocks_and_sweeps() {
+  PlaneCutOptions o;
+  o.multisweep = false;
+  return o;
+}
+
 // The pieces are disjoint, fill the solid, and each is a block or a sweep once glued to the
 // others (no T-junction on a neighbour's face).
 void expect_valid(const occ::Solid& solid, const PlaneCutResult& r) {
@@ -33,7 +40,7 @@ void expect_valid(const occ::Solid& solid, const PlaneCutResult& r) {
 
 TEST(PlaneCuts, PostOnPlateIsCutUnderThePostAndMergedBack) {
   const occ::Solid s = testing::make_post_on_plate();
-  const PlaneCutResult r = cut_at_concave_edges(s);
+  const PlaneCutResult r = cut_at_concave_edges(s, blocks_and_sweeps());
   expect_valid(s, r);
   // Planes z = 1, x = 1, y = 1 cut it into the post and four plate blocks; merging leaves
   // pieces that are blocks or sweeps once glued (the post alone over its plate block, ...).
@@ -45,7 +52,7 @@ TEST(PlaneCuts, PostOnPlateIsCutUnderThePostAndMergedBack) {
 
 TEST(PlaneCuts, CutCubeGivesBlocks) {
   const occ::Solid s = testing::make_cut_cube();
-  const PlaneCutResult r = cut_at_concave_edges(s);
+  const PlaneCutResult r = cut_at_concave_edges(s, blocks_and_sweeps());
   expect_valid(s, r);
   EXPECT_EQ(r.planes, 3);
   EXPECT_EQ(r.pieces_before_merge, 7);  // the seven unit cubes
@@ -78,7 +85,7 @@ TEST(PlaneCuts, NothingToCutOrNoExactSurfaceIsSaid) {
 // cut cylinder and the post's face agree, so no circle is split twice).
 TEST(PlaneCuts, RoundPostOnPlateIsCutAroundAndUnderThePost) {
   const occ::Solid post = testing::make_round_post_on_plate();
-  const PlaneCutResult r = cut_at_concave_edges(post);
+  const PlaneCutResult r = cut_at_concave_edges(post, blocks_and_sweeps());
   expect_valid(post, r);
   EXPECT_EQ(r.planes, 1);
   EXPECT_EQ(r.cylinders, 1);
@@ -88,7 +95,7 @@ TEST(PlaneCuts, RoundPostOnPlateIsCutAroundAndUnderThePost) {
   std::unique_ptr<occ::Solid> corner =
       occ::fuse_solids(occ::make_box(4, 4, 1), occ::make_cylinder(1, 3));
   ASSERT_TRUE(corner);
-  const PlaneCutResult c = cut_at_concave_edges(*corner);
+  const PlaneCutResult c = cut_at_concave_edges(*corner, blocks_and_sweeps());
   expect_valid(*corner, c);
   EXPECT_EQ(c.cylinders, 1);
 }

@@ -107,7 +107,9 @@ TEST(MeshSubVolumes, DecomposedSolidsGiveOneConformingValidMesh) {
 
 // The plan judges each piece glued to the others: a plate with a hole is a sweep alone, but
 // not once an upright standing on it splits its top face (the merged corner and base of an
-// L bracket); the upright, whose foot is a four-sided linking face, still is.
+// L bracket); the upright, whose foot is a four-sided linking face, still is. Without the
+// multisweep the plate has no scheme; with it (the default) the plate is a multisweep and
+// the two are meshed into one conforming mesh.
 TEST(MeshSubVolumes, ThePlanJudgesPiecesGluedToTheirNeighbours) {
   const std::unique_ptr<occ::Solid> base =
       occ::cut_solids(occ::make_box(40, 30, 5), occ::make_cylinder(4, 20, {22, 15, -5}, {0, 0, 1}));
@@ -117,7 +119,7 @@ TEST(MeshSubVolumes, ThePlanJudgesPiecesGluedToTheirNeighbours) {
   EXPECT_TRUE(sweep_applicable(*base).ok);
   occ::ReadResult glued = occ::glue_solids({base.get(), upright.get()}, "The pieces");
   ASSERT_TRUE(glued.ok()) << messages(glued.diagnostics);
-  const SubVolumePlan plan = plan_sub_volumes(*glued.solid);
+  const SubVolumePlan plan = plan_sub_volumes(*glued.solid, /*multisweep=*/false);
   EXPECT_FALSE(plan.ok);
   ASSERT_EQ(plan.schemes.size(), 2u);
   ASSERT_EQ(plan.reasons.size(), 2u);
@@ -129,10 +131,30 @@ TEST(MeshSubVolumes, ThePlanJudgesPiecesGluedToTheirNeighbours) {
   EXPECT_EQ(plan.schemes[1 - b], "sweep");
   EXPECT_EQ(plan.reasons[1 - b], "");
   // mesh_sub_volumes refuses it with the same reason.
-  const SubVolumeMeshResult r = mesh_sub_volumes(*glued.solid, SubVolumeMeshOptions{});
+  SubVolumeMeshOptions without;
+  without.multisweep = false;
+  const SubVolumeMeshResult r = mesh_sub_volumes(*glued.solid, without);
   EXPECT_FALSE(r.ok);
   ASSERT_FALSE(r.diagnostics.empty());
   EXPECT_EQ(r.diagnostics.back().code, "no_scheme");
+
+  // With the multisweep: the plate is one, meshed first; the upright's sweep meets its
+  // counts on the shared edges, and the meshes conform on the foot.
+  const SubVolumePlan with = plan_sub_volumes(*glued.solid);
+  EXPECT_TRUE(with.ok) << with.why_not;
+  ASSERT_EQ(with.schemes.size(), 2u);
+  EXPECT_EQ(with.schemes[b], "multisweep");
+  EXPECT_EQ(with.schemes[1 - b], "sweep");
+  SubVolumeMeshOptions o;
+  o.size = 2.5;
+  const SubVolumeMeshResult m = mesh_sub_volumes(*glued.solid, o);
+  ASSERT_TRUE(m.ok) << messages(m.diagnostics);
+  EXPECT_EQ(m.stats.schemes[b], "multisweep");
+  const quality::CheckReport check = quality::check_mesh(m.mesh, glued.solid.get());
+  EXPECT_TRUE(check.valid) << messages(check.diagnostics);
+  EXPECT_EQ(check.non_manifold_quads, 0u);
+  EXPECT_EQ(check.open_boundary_edges, 0u);
+  EXPECT_GE(check.scaled_jacobian.min, 0.3);
 }
 
 }  // namespace

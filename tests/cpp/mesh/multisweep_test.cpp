@@ -55,7 +55,9 @@ void expect_valid_multisweep(const Named& part, double size) {
   EXPECT_EQ(c.folded_quads, 0u);
   EXPECT_EQ(c.open_boundary_edges, 0u);
   EXPECT_LE(c.max_boundary_distance_rel, 1e-6);
-  if (part.planar) EXPECT_NEAR(c.mesh_volume, part.solid.volume(), 1e-9 * part.solid.volume());
+  if (part.planar) {
+    EXPECT_NEAR(c.mesh_volume, part.solid.volume(), 1e-9 * part.solid.volume());
+  }
 }
 
 TEST(Multisweep, MachinedPartsAreValidBeforeSmoothing) {
@@ -83,7 +85,9 @@ TEST(Multisweep, MachinedPartsMeshStructuredAbove03) {
       ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
       EXPECT_EQ(r.stats.scheme, "multisweep");
       EXPECT_GE(r.check.scaled_jacobian.min, 0.3);
-      if (part.planar) EXPECT_GE(r.check.scaled_jacobian.mean, 0.85);
+      if (part.planar) {
+        EXPECT_GE(r.check.scaled_jacobian.mean, 0.85);
+      }
       EXPECT_GE(r.check.scaled_jacobian.min, r.stats.min_sj_before_smoothing);
     }
   }

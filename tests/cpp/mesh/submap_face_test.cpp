@@ -180,8 +180,9 @@ TEST(SubmapFace, CurvedLShapedFace) {
   EXPECT_EQ(m.face_schemes[outer.value()], "submap");
   EXPECT_GT(m.min_quality, 0.5);
   for (std::size_t n = 0; n < m.points.size(); ++n)
-    if (m.on[n].dim == 2 && m.on[n].id == outer.value())
+    if (m.on[n].dim == 2 && m.on[n].id == outer.value()) {
       EXPECT_NEAR(std::hypot(m.points[n].x(), m.points[n].y()), 3, 1e-9);
+    }
 }
 
 // A face that is not submappable says which vertex and which angle.
