@@ -83,6 +83,21 @@ def build_parts(work):
         box(24, 30, 6, (13, 0, 14)))
     parts["tube with a cross hole"] = cyl(10, 50, (0, 0, 0)).cut(cyl(7, 50, (0, 0, 0))).cut(
         cyl(3, 30, (-15, 0, 25), (1, 0, 0)))
+    # Parts prismatic along two axes (a feature across the main body's axis).
+    plate = box(100, 60, 10)
+    for x, y in [(10, 10), (10, 50), (70, 10), (70, 50)]:
+        plate = plate.cut(cyl(4, 10, (x, y, 0)))
+    parts["mounting plate with a lug, cross hole"] = plate.fuse(
+        box(12, 30, 40, (85, 15, 10)).cut(cyl(6, 12, (85, 30, 35), (1, 0, 0))))
+    base = box(100, 40, 10).cut(cyl(5, 10, (15, 20, 0))).cut(cyl(5, 10, (85, 20, 0)))
+    parts["plate with a rib, hole along the rib"] = base.fuse(
+        box(40, 16, 30, (30, 12, 10)).cut(cyl(5, 40, (30, 20, 25), (1, 0, 0))))
+    angle = box(80, 50, 8).cut(cyl(5, 8, (20, 30, 0))).cut(cyl(5, 8, (60, 30, 0)))
+    wall = box(80, 8, 50, (0, 0, 8)).cut(cyl(5, 8, (20, 0, 35), (0, 1, 0))).cut(
+        cyl(5, 8, (60, 0, 35), (0, 1, 0)))
+    parts["angle bracket, two holes in each leg"] = angle.fuse(wall)
+    parts["block with a boss, cross hole"] = box(80, 40, 30).cut(
+        cyl(6, 40, (40, 0, 15), (0, 1, 0))).fuse(cyl(10, 15, (20, 20, 30)))
     out = []
     for k, (name, shape) in enumerate(parts.items()):
         solid = refined(shape)

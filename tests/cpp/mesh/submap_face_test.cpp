@@ -136,6 +136,22 @@ TEST(SubmapFace, FacesWithRectangularHoles) {
   EXPECT_EQ(m.quads[top.value()].size(), 32u * 16u - 2u * 64u);
 }
 
+// A rectangle with a vertex on one side (where a neighbour's edge ends: a lug's foot on a
+// plate) is a mapped face whose side is a chain of two edges: the transfinite grid, whose
+// nodes a neighbour meshing the same wall as a tensor product also has.
+TEST(FaceSet, ARectangleWithAVertexOnASideIsMappedWithChainedSides) {
+  const occ::Solid prism = occ::make_prism({{0, 0}, {4, 0}, {4, 2}, {1, 2}, {0, 2}}, 1);
+  const core::FaceId top = top_face(prism);
+  FaceSetOptions o;
+  o.size = 0.5;
+  const FaceSetMesh m = mesh_face_set(prism, o);
+  ASSERT_TRUE(m.ok) << (m.diagnostics.empty() ? "" : core::format(m.diagnostics[0]));
+  EXPECT_EQ(m.face_schemes[top.value()], "map");
+  // 8 x 4 cells of 0.5: the chain 1 + 3 long takes 2 + 6 segments, the grid is square.
+  EXPECT_EQ(m.quads[top.value()].size(), 32u);
+  EXPECT_NEAR(m.min_quality, 1.0, 1e-9);
+}
+
 // A Reversal vertex: the tip of a thin wedge-shaped slit into a square (interior angle
 // about 354 degrees); the lattice splits along the slit and the mesh stays positive.
 TEST(SubmapFace, ReversalVertexAtTheTipOfASlit) {
