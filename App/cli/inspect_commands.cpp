@@ -189,10 +189,12 @@ int run_plane_cuts(const std::string& input, const std::string& brep_path) {
   if (glued.ok()) {
     const mesh::SubVolumePlan plan = mesh::plan_sub_volumes(*glued.solid);
     for (std::size_t i = 0; i < plan.schemes.size(); ++i)
-      std::cout << "  piece " << i + 1 << ": "
-                << (plan.schemes[i].empty() ? plan.reasons[i] : plan.schemes[i]) << "\n";
+      std::cout << "  piece " << i + 1 << " (volume " << cut.pieces[i].volume()
+                << "): " << (plan.schemes[i].empty() ? plan.reasons[i] : plan.schemes[i]) << "\n";
   } else {
     print_problems(glued.diagnostics);
+    for (std::size_t i = 0; i < cut.pieces.size(); ++i)
+      std::cout << "  piece " << i + 1 << " (volume " << cut.pieces[i].volume() << ")\n";
   }
   std::cout << "wrote " << brep_path << "\n";
   if (!cut.ok) std::cerr << "vorohex: the plane cuts failed: " << cut.why_not << "\n";

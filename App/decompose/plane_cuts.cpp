@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <sstream>
 
 #include "core/option_checks.h"
 #include "mesh/map_block.h"
@@ -27,6 +28,10 @@ void PlaneCutOptions::validate() const {
 }
 
 namespace {
+
+// Relative difference allowed between the pieces' volume sum and the solid's: the cuts are
+// exact surfaces, so only the volume integration's error (1e-11 relative each) remains.
+const double kVolumeTolerance = 1e-6;
 
 struct Plane {
   Vec3 normal;        // unit
@@ -136,6 +141,30 @@ std::vector<Vec3> covering_square(const occ::Solid& s, const Plane& pl) {
   return {c - h * u - h * v, c + h * u - h * v, c + h * u + h * v, c - h * u + h * v};
 }
 
+// The cut's own check: every piece has volume, and they fill the solid (OCCT's split of a
+// cylinder against a nearly coincident face, or a union of such pieces, can leave one turned
+// inside out). False with why.
+bool volumes_fill(const std::vector<occ::Solid>& pieces, double whole, std::string& why) {
+  double sum = 0;
+  for (std::size_t k = 0; k < pieces.size(); ++k) {
+    const double v = pieces[k].volume();
+    if (!(v > 0)) {
+      std::ostringstream m;
+      m << "OCCT's cut along the surfaces of its concave edges left piece " << k + 1
+        << " with volume " << v;
+      why = m.str();
+      return false;
+    }
+    sum += v;
+  }
+  if (std::abs(sum - whole) <= kVolumeTolerance * whole) return true;
+  std::ostringstream m;
+  m << "OCCT's cut along the surfaces of its concave edges left pieces whose volumes sum to " << sum
+    << ", not the solid's " << whole;
+  why = m.str();
+  return false;
+}
+
 bool boxes_touch(const occ::Solid& a, const occ::Solid& b) {
   const core::BoundingBox p = a.bounding_box(), q = b.bounding_box();
   const double tol = 1e-6 * std::max(p.diagonal(), q.diagonal());
@@ -184,6 +213,8 @@ PlaneCutResult cut_at_concave_edges(const occ::Solid& solid, const PlaneCutOptio
     return r;
   }
   std::vector<occ::Solid> pieces = std::move(split.pieces);
+  const double whole = solid.volume();
+  if (!volumes_fill(pieces, whole, r.why_not)) return r;
   auto pointers = [](const std::vector<occ::Solid>& v) {
     std::vector<const occ::Solid*> out;
     for (const occ::Solid& s : v) out.push_back(&s);
@@ -206,7 +237,11 @@ PlaneCutResult cut_at_concave_edges(const occ::Solid& solid, const PlaneCutOptio
         if (seconds() >= options.time_limit || progress.cancelled()) break;
         if (!boxes_touch(pieces[a], pieces[b])) continue;
         std::unique_ptr<occ::Solid> u = occ::fuse_solids(pieces[a], pieces[b]);
-        if (!u || !meshable(*u, options.multisweep)) continue;
+        if (!u) continue;
+        // A union OCCT turned inside out, or that lost volume, is no union.
+        const double both = pieces[a].volume() + pieces[b].volume(), uv = u->volume();
+        if (!(uv > 0) || std::abs(uv - both) > kVolumeTolerance * both) continue;
+        if (!meshable(*u, options.multisweep)) continue;
         std::vector<occ::Solid> next;
         for (std::size_t k = 0; k < pieces.size(); ++k)
           if (k != a && k != b) next.push_back(pieces[k].clone());
@@ -217,6 +252,7 @@ PlaneCutResult cut_at_concave_edges(const occ::Solid& solid, const PlaneCutOptio
       }
   }
   progress.report("plane_cuts", 1.0);
+  if (!volumes_fill(pieces, whole, r.why_not)) return r;
   r.pieces = std::move(pieces);
   r.ok = r.pieces.size() >= 2;
   if (!r.ok) r.why_not = "its cuts merge back into one piece";
