@@ -42,7 +42,8 @@ const char* const kDecomposeUsage =
     "  --plane-cuts           the mesher's second way instead of the Voronoi graph: exact\n"
     "                         cuts along the planes and cylinders of the faces at concave\n"
     "                         edges, neighbours merged while the union has a scheme; the\n"
-    "                         pieces are written also when one has no scheme (exit 1)\n"
+    "                         pieces are written also when one has no scheme (exit 1);\n"
+    "                         with it, only -o (the options below are the Voronoi one's)\n"
     "  --report FILE          edge types, vertex rules, decomposition faces, sub-volumes\n"
     "                         with type (Vs/Ve), scheme and reason, counts before/after merging\n"
     "  --vtp FILE             the decomposition faces as VTK PolyData for ParaView\n"
@@ -172,7 +173,8 @@ int run_plane_cuts(const std::string& input, const std::string& brep_path) {
   if (!read.ok()) return kExitBadInput;
   const decompose::PlaneCutResult cut = decompose::cut_at_concave_edges(*read.solid);
   if (cut.pieces.empty()) {
-    std::cerr << "vorohex: the plane cuts failed: " << cut.why_not << "\n";
+    std::cerr << "vorohex: the plane cuts of " << input << " failed: " << cut.why_not
+              << " (nothing written)\n";
     return kExitInvalid;
   }
   std::vector<const occ::Solid*> pieces;
@@ -182,9 +184,12 @@ int run_plane_cuts(const std::string& input, const std::string& brep_path) {
     std::cerr << "vorohex: " << error << "\n";
     return kExitBadInput;
   }
-  std::cout << "plane cuts of " << input << ": " << cut.planes << " planes, " << cut.cylinders
-            << " cylinders, " << cut.pieces_before_merge << " pieces, " << cut.pieces.size()
-            << " after merging\n";
+  auto count = [](int n, const char* what) {
+    return std::to_string(n) + " " + what + (n == 1 ? "" : "s");
+  };
+  std::cout << "plane cuts of " << input << ": " << count(cut.planes, "plane") << ", "
+            << count(cut.cylinders, "cylinder") << ", " << count(cut.pieces_before_merge, "piece")
+            << ", " << cut.pieces.size() << " after merging\n";
   const occ::ReadResult glued = occ::glue_solids(pieces, "The pieces");
   if (glued.ok()) {
     const mesh::SubVolumePlan plan = mesh::plan_sub_volumes(*glued.solid);
@@ -215,13 +220,28 @@ int run_decompose(const std::vector<std::string>& args) {
     return parse_number(s, &options.sharp_angle);
   };
   t.flags["--no-merge"] = [&] { options.merge = false; };
+  // Every option but -o is the Voronoi decomposition's: noted, to refuse it with --plane-cuts.
+  std::string voronoi_option;
+  for (auto& [name, handler] : t.values)
+    if (name != "-o" && name != "--output")
+      handler = [&, name = name, inner = handler](const std::string& v) {
+        voronoi_option = name;
+        return inner(v);
+      };
+  for (auto& [name, handler] : t.flags)
+    handler = [&, name = name, inner = handler] {
+      voronoi_option = name;
+      inner();
+    };
   bool plane_cuts = false;
   t.flags["--plane-cuts"] = [&] { plane_cuts = true; };
   if (std::string e = parse(args, t, &input); !e.empty()) return usage_error(e, kDecomposeUsage);
   if (brep_path.empty()) return usage_error("missing -o PARTS.brep", kDecomposeUsage);
   if (plane_cuts) {
-    if (!json_path.empty() || !vtp_path.empty())
-      return usage_error("--report and --vtp describe the Voronoi decomposition, not --plane-cuts",
+    if (!voronoi_option.empty())
+      return usage_error(voronoi_option +
+                             " is an option of the Voronoi decomposition; --plane-cuts takes "
+                             "only -o",
                          kDecomposeUsage);
     return run_plane_cuts(input, brep_path);
   }

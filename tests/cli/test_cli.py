@@ -746,6 +746,10 @@ class InspectCommands(unittest.TestCase):
                               os.path.join(self.dir, "d.json"))
         self.assertEqual(code, 2)
         self.assertIn("--plane-cuts", stderr)
+        for option in (["--no-merge"], ["--sharp-angle", "30"], ["--eps", "0.02"]):
+            code, _, stderr = run("decompose", step, "-o", parts, "--plane-cuts", *option)
+            self.assertEqual(code, 2, option)
+            self.assertIn(option[0] + " is an option of the Voronoi decomposition", stderr)
 
     def test_failed_decomposition_still_writes_its_report(self):
         # HexMe's notch: the split loses 1.3e-9 of the volume (over the 1e-9 allowed), so the
