@@ -143,11 +143,14 @@ std::vector<Vec3> covering_square(const occ::Solid& s, const Plane& pl) {
 
 // The cut's own check: every piece has volume, and they fill the solid (OCCT's split of a
 // cylinder against a nearly coincident face, or a union of such pieces, can leave one turned
-// inside out). False with why.
-bool volumes_fill(const std::vector<occ::Solid>& pieces, double whole, std::string& why) {
+// inside out). False with why; `volumes` gets each piece's.
+bool volumes_fill(const std::vector<occ::Solid>& pieces, double whole, std::vector<double>& volumes,
+                  std::string& why) {
   double sum = 0;
+  volumes.clear();
   for (std::size_t k = 0; k < pieces.size(); ++k) {
     const double v = pieces[k].volume();
+    volumes.push_back(v);
     if (!(v > 0)) {
       std::ostringstream m;
       m << "OCCT's cut along the surfaces of its concave edges left piece " << k + 1
@@ -214,7 +217,8 @@ PlaneCutResult cut_at_concave_edges(const occ::Solid& solid, const PlaneCutOptio
   }
   std::vector<occ::Solid> pieces = std::move(split.pieces);
   const double whole = solid.volume();
-  if (!volumes_fill(pieces, whole, r.why_not)) return r;
+  std::vector<double> volume;  // per piece (an adaptive integration each: computed once)
+  if (!volumes_fill(pieces, whole, volume, r.why_not)) return r;
   auto pointers = [](const std::vector<occ::Solid>& v) {
     std::vector<const occ::Solid*> out;
     for (const occ::Solid& s : v) out.push_back(&s);
@@ -239,20 +243,23 @@ PlaneCutResult cut_at_concave_edges(const occ::Solid& solid, const PlaneCutOptio
         std::unique_ptr<occ::Solid> u = occ::fuse_solids(pieces[a], pieces[b]);
         if (!u) continue;
         // A union OCCT turned inside out, or that lost volume, is no union.
-        const double both = pieces[a].volume() + pieces[b].volume(), uv = u->volume();
+        const double both = volume[a] + volume[b], uv = u->volume();
         if (!(uv > 0) || std::abs(uv - both) > kVolumeTolerance * both) continue;
         if (!meshable(*u, options.multisweep)) continue;
         std::vector<occ::Solid> next;
+        std::vector<double> next_volume;
         for (std::size_t k = 0; k < pieces.size(); ++k)
-          if (k != a && k != b) next.push_back(pieces[k].clone());
+          if (k != a && k != b) next.push_back(pieces[k].clone()), next_volume.push_back(volume[k]);
         next.push_back(std::move(*u));
+        next_volume.push_back(uv);
         if (!all_meshable(pointers(next), options.multisweep)) continue;
         pieces = std::move(next);
+        volume = std::move(next_volume);
         merged = true;
       }
   }
   progress.report("plane_cuts", 1.0);
-  if (!volumes_fill(pieces, whole, r.why_not)) return r;
+  if (!volumes_fill(pieces, whole, volume, r.why_not)) return r;
   r.pieces = std::move(pieces);
   r.ok = r.pieces.size() >= 2;
   if (!r.ok) r.why_not = "its cuts merge back into one piece";
