@@ -20,6 +20,7 @@
 #include <GC_MakeArcOfCircle.hxx>
 #include <GProp_GProps.hxx>
 #include <STEPControl_Writer.hxx>
+#include <ShapeCustom.hxx>
 #include <ShapeFix_Face.hxx>
 #include <Standard_Failure.hxx>
 #include <TopExp_Explorer.hxx>
@@ -229,7 +230,11 @@ bool write_fixture(Fixture kind, const std::string& path) {
     const TopoDS_Solid box = BRepPrimAPI_MakeBox(1, 1, 1).Solid();
     BRep_Builder b;
     TopoDS_Shape shape;
-    if (kind == Fixture::bad_tolerance_box) {
+    if (kind == Fixture::revolved_cylinder) {
+      shape = ShapeCustom::ConvertToRevolution(BRepPrimAPI_MakeCylinder(2, 5).Solid());
+    } else if (kind == Fixture::revolved_cone) {
+      shape = ShapeCustom::ConvertToRevolution(BRepPrimAPI_MakeCone(3, 1, 4).Solid());
+    } else if (kind == Fixture::bad_tolerance_box) {
       TopExp_Explorer ex(box, TopAbs_VERTEX);
       const TopoDS_Vertex v = TopoDS::Vertex(ex.Current());
       const gp_Pnt p = BRep_Tool::Pnt(v);

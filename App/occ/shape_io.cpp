@@ -45,6 +45,7 @@
 #include <unordered_set>
 
 #include "core/isolated_call.h"
+#include "occ/detail/elementary_surfaces.h"
 #include "occ/solid_impl.h"
 
 namespace vorohex::occ {
@@ -186,6 +187,34 @@ TopoDS_Solid repaired(const TopoDS_Solid& solid, double time_limit, std::string&
   return TopoDS_Solid();
 }
 
+// Turned faces stored as surfaces of revolution of a line get the cylinder or cone they
+// are (occ/detail/elementary_surfaces.h). The result is kept only when it is valid with the
+// same faces, edges, vertices and volume; else the solid stays as read.
+TopoDS_Solid with_elementary_surfaces(const TopoDS_Solid& solid, const std::string& where,
+                                      ReadResult& r) {
+  const detail::ElementaryResult e = detail::elementary_surfaces(solid);
+  if (e.converted == 0) return solid;
+  try {
+    for (TopAbs_ShapeEnum kind : {TopAbs_FACE, TopAbs_EDGE, TopAbs_VERTEX}) {
+      TopTools_IndexedMapOfShape a, b;
+      TopExp::MapShapes(solid, kind, a);
+      TopExp::MapShapes(e.solid, kind, b);
+      if (a.Extent() != b.Extent()) return solid;
+    }
+    const double v0 = signed_volume(solid), v1 = signed_volume(e.solid);
+    if (!(std::abs(v1 - v0) <= 1e-7 * std::abs(v0)) || !BRepCheck_Analyzer(e.solid).IsValid())
+      return solid;
+  } catch (const Standard_Failure&) {
+    return solid;
+  }
+  r.diagnostics.push_back(make_info(
+      "elementary_surfaces",
+      where + " stores " + plural(e.converted, "face") +
+          " as surfaces of revolution of a line; they were given the cylinders and cones they "
+          "are (same points, same parametrisation) and are meshed as such."));
+  return e.solid;
+}
+
 // Validity of one solid: OCCT's check (with ShapeFix healing when it fails), outward
 // orientation, faces. Null (with an error in r) when it cannot be used.
 TopoDS_Solid checked_solid(TopoDS_Solid solid, const std::string& where, const ReadOptions& options,
@@ -219,7 +248,7 @@ TopoDS_Solid checked_solid(TopoDS_Solid solid, const std::string& where, const R
     r.diagnostics.push_back(make_error("no_solid", where + " holds an empty solid."));
     return TopoDS_Solid();
   }
-  return solid;
+  return with_elementary_surfaces(solid, where, r);
 }
 
 // Where glued solids touch without a common face: an edge (vertex) whose solids are not

@@ -18,6 +18,10 @@ enum class Fixture {
   self_intersecting_prism,  // a bow-tie outline (its edges cross at (1, 0.5)) extruded by 1
   edge_touching_boxes,      // unit boxes at the origin and at (1, 1, 0): one common edge
   vertex_touching_boxes,    // unit boxes at the origin and at (1, 1, 1): one common vertex
+  // Turned faces stored as surfaces of revolution of a line (OCCT's
+  // ShapeCustom::ConvertToRevolution), as some CAD systems export them:
+  revolved_cylinder,  // a cylinder of radius 2 and height 5 on the z axis
+  revolved_cone,      // a cone frustum, radii 3 (z = 0) and 1 (z = 4), on the z axis
 };
 
 // Writes the fixture; the format comes from the extension (.brep/.brp or .step/.stp).

@@ -2,14 +2,17 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
 #include <utility>
 
+#include "fixtures/diagnostics.h"
 #include "occ/detail/fixtures.h"
 #include "occ/primitives.h"
+#include "occ/split_solid.h"
 
 namespace vorohex::occ {
 namespace {
@@ -291,4 +294,45 @@ TEST(ReadSolid, HexMeModelsReadAsSolids) {
 }
 
 }  // namespace
+// Turned faces stored as surfaces of revolution of a line get the cylinder or cone they are
+// when read (elementary_surfaces), with the same points: the volume, each face's area and
+// the order of the faces stay; the cylinder is then one the cuts at concave edges can follow.
+TEST(ReadSolid, SurfacesOfRevolutionOfALineAreReadAsCylindersAndCones) {
+  const std::string dir = ::testing::TempDir();
+  struct Case {
+    detail::Fixture kind;
+    const char* file;
+    double volume, lateral_area;
+  };
+  const double slant = std::sqrt(4.0 + 16.0);
+  for (const Case& c : {Case{detail::Fixture::revolved_cylinder, "revolved_cylinder.brep",
+                             M_PI * 4 * 5, 2 * M_PI * 2 * 5},
+                        Case{detail::Fixture::revolved_cone, "revolved_cone.brep",
+                             M_PI * 4 / 3 * (9 + 3 + 1), M_PI * (3 + 1) * slant}}) {
+    SCOPED_TRACE(c.file);
+    const std::string path = dir + "/" + c.file;
+    ASSERT_TRUE(detail::write_fixture(c.kind, path));
+    const ReadResult r = read_solid(path);
+    ASSERT_TRUE(r.ok());
+    const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "elementary_surfaces");
+    ASSERT_NE(d, nullptr);
+    EXPECT_NE(d->message.find("1 face "), std::string::npos) << d->message;
+    EXPECT_NEAR(r.solid->volume(), c.volume, 1e-9 * c.volume);
+    ASSERT_EQ(r.solid->num_faces(), 3);
+    // Face1 is the lateral face (OCCT's primitives and ConvertToRevolution keep the order).
+    EXPECT_NEAR(r.solid->area(core::FaceId(1)), c.lateral_area, 1e-6 * c.lateral_area);
+    CutCylinder cyl;
+    EXPECT_EQ(face_cylinder(*r.solid, core::FaceId(1), &cyl),
+              c.kind == detail::Fixture::revolved_cylinder);
+    if (c.kind == detail::Fixture::revolved_cylinder) {
+      EXPECT_NEAR(cyl.radius, 2, 1e-12);
+      EXPECT_NEAR(std::abs(cyl.axis.z()), 1, 1e-12);
+    }
+    EXPECT_EQ(r.solid->surface_info(core::FaceId(1)).kind,
+              c.kind == detail::Fixture::revolved_cylinder ? core::SurfaceKind::cylinder
+                                                           : core::SurfaceKind::cone);
+    std::remove(path.c_str());
+  }
+}
+
 }  // namespace vorohex::occ
