@@ -327,7 +327,8 @@ MapBlockResult map_block(const core::MeshDomain& solid, const MapBlockOptions& o
       const auto o = others(d);
       for (int m = 0; m < 4; ++m) {
         const BlockEdge& e = b.edges[d][m];
-        std::vector<Vec3> pts = detail::edge_points(solid, e.id, n[d], options.size_field);
+        std::vector<Vec3> pts =
+            detail::edge_points(solid, e.id, n[d], options.size_field, options.edge_nodes);
         if (!e.forward) std::reverse(pts.begin(), pts.end());
         const std::int64_t base =
             (m & 1) * n[o[0]] * stride[o[0]] + (m >> 1) * n[o[1]] * stride[o[1]];

@@ -26,6 +26,9 @@ struct MapBlockOptions {
   // Local sizes (null or uniform: `size` everywhere): each direction takes the finest count
   // its four edges ask for, and the edge nodes follow the field. Not owned.
   const core::SizeField* size_field = nullptr;
+  // Per edge id: nodes a neighbouring sub-volume already placed on it (first to last
+  // vertex), taken instead of the edge's own spacing when their number fits its count.
+  std::vector<std::vector<core::Vec3>> edge_nodes;
   void validate() const;  // throws std::invalid_argument naming the bad field
 };
 

@@ -263,8 +263,8 @@ struct PartMesh {
   std::vector<core::Diagnostic> diagnostics;
 };
 
-// `edge_nodes` (multisweeps): per part edge id, the nodes a neighbour meshed before it
-// placed there (empty: none yet).
+// `edge_nodes`: per part edge id, the nodes a neighbour meshed before it placed there
+// (empty: none yet).
 PartMesh mesh_part(const Part& part, const std::vector<int>& counts,
                    const SubVolumeMeshOptions& options, const core::Progress& progress,
                    const std::vector<std::vector<core::Vec3>>& edge_nodes = {}) {
@@ -290,6 +290,7 @@ PartMesh mesh_part(const Part& part, const std::vector<int>& counts,
     o.max_intervals = options.max_intervals;
     o.edge_intervals = counts;
     o.size_field = options.size_field;
+    o.edge_nodes = edge_nodes;
     MapBlockResult r = map_block(part.solid, o, progress);
     out.ok = r.ok;
     out.mesh = std::move(r.mesh);
@@ -302,6 +303,7 @@ PartMesh mesh_part(const Part& part, const std::vector<int>& counts,
     o.edge_intervals = counts;
     o.avoid_sources = part.shared_faces;
     o.size_field = options.size_field;
+    o.edge_nodes = edge_nodes;
     SweepResult r = sweep(part.solid, o, progress);
     out.ok = r.ok;
     out.mesh = std::move(r.mesh);
@@ -426,7 +428,21 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
   std::vector<PartMesh> meshed(n);
   // Multisweeps first, one after the other: each takes the nodes the ones before it placed
   // on the edges they share (a cross-section splits an edge where a neighbour's does not);
-  // those that split shared edges most go first.
+  // those that split shared edges most go first. Blocks and sweeps then take the nodes the
+  // multisweeps placed on the edges they share with them.
+  std::map<int, std::vector<core::Vec3>> placed;  // whole edge id -> nodes
+  auto given_to = [&](const Part& p) {
+    std::vector<std::vector<core::Vec3>> given(p.whole_edge.size());
+    for (std::size_t e = 1; e < p.whole_edge.size(); ++e) {
+      const auto it = placed.find(p.whole_edge[e]);
+      if (it == placed.end()) continue;
+      given[e] = it->second;
+      const core::Vec3 first = p.solid.vertex_point(p.solid.edge_first_vertex(EdgeId(int(e))));
+      if ((given[e].front() - first).norm() > (given[e].back() - first).norm())
+        std::reverse(given[e].begin(), given[e].end());
+    }
+    return given;
+  };
   {
     auto splits = [&](const Part& p) {
       int k = 0;
@@ -441,20 +457,10 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
     for (int k = 0; k < n; ++k)
       if (parts[k].multisweep) order.emplace_back(-splits(parts[k]), k);
     std::sort(order.begin(), order.end());
-    std::map<int, std::vector<core::Vec3>> placed;  // whole edge id -> nodes
     for (const auto& [ignored, k] : order) {
       const Part& p = parts[k];
-      std::vector<std::vector<core::Vec3>> given(p.whole_edge.size());
-      for (std::size_t e = 1; e < p.whole_edge.size(); ++e) {
-        const auto it = placed.find(p.whole_edge[e]);
-        if (it == placed.end()) continue;
-        given[e] = it->second;
-        const core::Vec3 first = p.solid.vertex_point(p.solid.edge_first_vertex(EdgeId(int(e))));
-        if ((given[e].front() - first).norm() > (given[e].back() - first).norm())
-          std::reverse(given[e].begin(), given[e].end());
-      }
       try {
-        meshed[k] = mesh_part(p, counts[k], options, progress, given);
+        meshed[k] = mesh_part(p, counts[k], options, progress, given_to(p));
       } catch (const std::exception& e) {
         meshed[k].diagnostics.push_back(core::make_error("geometry_error", e.what()));
       }
@@ -466,6 +472,9 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
         }
     }
   }
+  std::vector<std::vector<std::vector<core::Vec3>>> given(n);
+  for (int k = 0; k < n; ++k)
+    if (!parts[k].multisweep && !placed.empty()) given[k] = given_to(parts[k]);
   std::atomic<int> next{0};
   const int threads = std::max(
       1, std::min(n, options.threads > 0 ? options.threads
@@ -475,7 +484,7 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
       if (stop.load()) break;
       if (parts[k].multisweep) continue;  // meshed above
       try {
-        meshed[k] = mesh_part(parts[k], counts[k], options, worker_progress);
+        meshed[k] = mesh_part(parts[k], counts[k], options, worker_progress, given[k]);
       } catch (const std::exception& e) {
         meshed[k].diagnostics.push_back(core::make_error("geometry_error", e.what()));
       }

@@ -195,9 +195,9 @@ std::string choose(const Solid& s, Topology& best, const std::vector<int>& avoid
   return "no two faces are joined by four-sided linking faces (" + first_reason + ")";
 }
 
-std::vector<Vec3> read_edge(const Solid& s, const Directed& d, int n,
-                            const core::SizeField* field) {
-  auto pts = detail::edge_points(s, d.edge, n, field);
+std::vector<Vec3> read_edge(const Solid& s, const Directed& d, int n, const core::SizeField* field,
+                            const std::vector<std::vector<Vec3>>& given = {}) {
+  auto pts = detail::edge_points(s, d.edge, n, field, given);
   if (!d.forward) std::reverse(pts.begin(), pts.end());
   return pts;
 }
@@ -294,7 +294,8 @@ Plan plan_given(const Solid& solid, const SweepOptions& options, Plan p) {
     p.counts.push_back(counts);
     std::vector<Vec3> nodes;
     for (std::size_t e = 0; e < loop.size(); ++e) {
-      auto pts = read_edge(solid, loop[e].source, counts[e], options.size_field);
+      auto pts =
+          read_edge(solid, loop[e].source, counts[e], options.size_field, options.edge_nodes);
       nodes.insert(nodes.end(), pts.begin(), pts.end() - 1);
     }
     p.source_loops.push_back(std::move(nodes));
@@ -364,8 +365,8 @@ Plan plan(const Solid& solid, const SweepOptions& options) {
         if (assigned.ok()) {
           std::vector<Vec3> nodes;
           for (std::size_t e = 0; e < t.loops[0].size(); ++e) {
-            auto pts =
-                read_edge(solid, t.loops[0][e].source, assigned.intervals[e], options.size_field);
+            auto pts = read_edge(solid, t.loops[0][e].source, assigned.intervals[e],
+                                 options.size_field, options.edge_nodes);
             nodes.insert(nodes.end(), pts.begin(), pts.end() - 1);
           }
           QuadFaceMesh lattice = submap_face(solid, t.source, nodes, assigned.intervals, dirs);
@@ -412,7 +413,8 @@ Plan plan(const Solid& solid, const SweepOptions& options) {
       p.counts.push_back(counts);
       std::vector<Vec3> nodes;
       for (std::size_t e = 0; e < loop.size(); ++e) {
-        auto pts = detail::edge_points(solid, loop[e].source.edge, counts[e], options.size_field);
+        auto pts = detail::edge_points(solid, loop[e].source.edge, counts[e], options.size_field,
+                                       options.edge_nodes);
         if (!loop[e].source.forward) std::reverse(pts.begin(), pts.end());
         nodes.insert(nodes.end(), pts.begin(), pts.end() - 1);
       }
@@ -574,9 +576,11 @@ SweepResult sweep(const core::MeshDomain& solid, const SweepOptions& options,
         const Link& link = t.loops[l][e];
         const int n = p.counts[l][e];
         const core::SizeField* f = options.size_field;
-        const auto rs = read_edge(solid, link.source, n, f),
-                   rt = read_edge(solid, link.target, n, f);
-        const auto c0 = read_edge(solid, link.col0, K, f), c1 = read_edge(solid, link.col1, K, f);
+        const auto& g = options.edge_nodes;
+        const auto rs = read_edge(solid, link.source, n, f, g),
+                   rt = read_edge(solid, link.target, n, f, g);
+        const auto c0 = read_edge(solid, link.col0, K, f, g),
+                   c1 = read_edge(solid, link.col1, K, f, g);
         const bool curved = !solid.face_is_planar(link.face);
         for (int m = 0; m < n; ++m) {
           const double s = double(m) / n;

@@ -36,6 +36,9 @@ struct SweepOptions {
   // Local sizes (null or uniform: `size` everywhere): edge counts and node spacing follow
   // them, and the layers take the finest count any linking edge asks for. Not owned.
   const core::SizeField* size_field = nullptr;
+  // Per edge id: nodes a neighbouring sub-volume already placed on it (first to last
+  // vertex), taken instead of the edge's own spacing when their number fits its count.
+  std::vector<std::vector<core::Vec3>> edge_nodes;
   void validate() const;  // throws std::invalid_argument naming the bad field
 };
 

@@ -63,9 +63,21 @@ RestoreStats restore_topology(core::HexMesh& mesh, const occ::Solid& pieces,
     const core::NodeId n(static_cast<std::int32_t>(i));
     const NodeClass c = mesh.node_class(n);
     if (c.is_interior()) continue;
-    const NodeClass r = c.dim == 0   ? vertex_class[c.id]
-                        : c.dim == 1 ? edge_class[c.id]
-                                     : face_class[c.id];
+    NodeClass r = c.dim == 0   ? vertex_class[c.id]
+                  : c.dim == 1 ? edge_class[c.id]
+                               : face_class[c.id];
+    // A face of the pieces can span several original faces: coplanar faces that the
+    // union of two pieces made one (HexMe i06: Face29 and Face30, both on x = -41). A
+    // node off the face its piece's face was given goes to the original entity it lies on.
+    if (r.dim == 2 && original.distance_to_face(FaceId(r.id), mesh.point(n)) > tolerance) {
+      const core::Vec3 p = mesh.point(n);
+      const EdgeId near = original.nearest_edge(p);
+      if (near.valid() && original.distance_to_edge(near, p) <= tolerance)
+        r = NodeClass::on(near);
+      else
+        r = NodeClass::on(original.nearest_face(p));
+      ++stats.reclassified;
+    }
     mesh.set_node_class(n, r);
     if (r.is_interior())
       ++stats.interior;

@@ -14,6 +14,7 @@ namespace vorohex::smooth {
 struct RestoreStats {
   std::size_t interior = 0;  // nodes that were on a decomposition entity, now interior
   std::size_t on_faces = 0, on_edges = 0, on_vertices = 0;  // boundary nodes after restoring
+  std::size_t reclassified = 0;  // nodes off the original face of their piece's face, moved
 };
 
 // `mesh` is classified on `pieces` (glued sub-volumes of `original`, occ::glue_solids);

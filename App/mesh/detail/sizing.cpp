@@ -85,4 +85,12 @@ std::vector<double> graded_parameters(const Vec3& a, const Vec3& b, int n,
   return t;
 }
 
+std::vector<Vec3> edge_points(const core::MeshDomain& s, core::EdgeId e, int n,
+                              const core::SizeField* field,
+                              const std::vector<std::vector<Vec3>>& given) {
+  const std::size_t k = std::size_t(e.value());
+  if (k < given.size() && n >= 0 && given[k].size() == std::size_t(n) + 1) return given[k];
+  return edge_points(s, e, n, field);
+}
+
 }  // namespace vorohex::mesh::detail

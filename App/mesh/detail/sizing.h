@@ -20,6 +20,11 @@ double edge_segments(const core::MeshDomain& s, core::EdgeId e, double size,
 // equal shares of the integral of ds / h.
 std::vector<core::Vec3> edge_points(const core::MeshDomain& s, core::EdgeId e, int n,
                                     const core::SizeField* field);
+// The same, unless `given` holds n + 1 nodes for e (per edge id, first to last vertex: the
+// nodes a neighbouring sub-volume placed on the edge they share); then those.
+std::vector<core::Vec3> edge_points(const core::MeshDomain& s, core::EdgeId e, int n,
+                                    const core::SizeField* field,
+                                    const std::vector<std::vector<core::Vec3>>& given);
 
 // The same along a polyline (a straight segment, a sweep's linking path): n+1 points at equal
 // shares of ds / h, interpolated on the polyline (end points kept).

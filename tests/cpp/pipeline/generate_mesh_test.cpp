@@ -191,6 +191,35 @@ TEST(GenerateMesh, APlateWithALugIsCutIntoTwoMultisweeps) {
             0);
 }
 
+// HexMe i06 (a base on two feet, its turned faces stored as surfaces of revolution): its
+// cylinders are recognised when it is read (elementary_surfaces), so the cuts at its concave
+// edges can follow them; the pieces are a sweep and two multisweeps. The multisweeps split
+// edges they share with the sweep (a foot's outline on the base's underside), so the sweep
+// takes the nodes they placed there; and the union of two pieces makes one face of two
+// coplanar model faces (Face29, Face30), whose nodes go back to the face they lie on. Before:
+// the grid (min 0.246) or the tet split (0.09), the sub-volumes not conforming.
+TEST(GenerateMesh, HexMeI06IsASweepAndMultisweepsThatConform) {
+  const occ::ReadResult in = occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/i06o_m6.step");
+  ASSERT_TRUE(in.ok());
+  EXPECT_NE(testing::find_diagnostic(in.diagnostics, "elementary_surfaces"), nullptr);
+  MeshOptions opt;
+  opt.fallback = false;
+  const MeshResult r = generate_mesh(*in.solid, opt);
+  ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
+  EXPECT_EQ(std::count(r.stats.sub_volume_schemes.begin(), r.stats.sub_volume_schemes.end(),
+                       std::string("multisweep")),
+            2);
+  EXPECT_EQ(std::count(r.stats.sub_volume_schemes.begin(), r.stats.sub_volume_schemes.end(),
+                       std::string("sweep")),
+            1);
+  EXPECT_TRUE(r.check.valid);
+  EXPECT_GE(r.check.scaled_jacobian.min, 0.3);
+  EXPECT_EQ(r.check.open_boundary_edges, 0u);
+  EXPECT_EQ(r.check.boundary_quads + 2 * r.check.interior_quads, 6 * r.mesh.num_hexes());
+  EXPECT_LE(r.check.max_boundary_distance_rel, 1e-6);
+  EXPECT_LE(std::abs(r.check.mesh_volume - in.solid->volume()), r.check.volume_allowance);
+}
+
 // A round post on a plate and HexMe s11 (a cylinder on a cube), without the multisweep:
 // cut along the plate's plane and the post's cylinder extended through it, three sweeps
 // meshed as one (s11 was the fallback's, min scaled Jacobian 0.062 before smoothing).
