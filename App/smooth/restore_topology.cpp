@@ -18,6 +18,21 @@ RestoreStats restore_topology(core::HexMesh& mesh, const occ::Solid& pieces,
   for (const occ::FaceSample& s : occ::sample_faces(pieces))
     if (!pieces.face_is_interface(s.face))
       face_class[s.face.value()] = NodeClass::on(original.nearest_face(s.point));
+  // A face of the pieces can span several original faces: coplanar faces that the union of
+  // two pieces made one (HexMe i06: Face29 and Face30, both on x = -41). Such a face has
+  // points of its boundary off the original face it was given; only its nodes are looked
+  // at one by one below.
+  std::vector<char> spans(pieces.num_faces() + 1, 0);
+  for (FaceId f : pieces.faces()) {
+    const NodeClass c = face_class[f.value()];
+    if (c.is_interior()) continue;
+    for (const auto& wire : pieces.face_wires(f))
+      for (const core::OrientedEdge& oe : wire) {
+        if (spans[f.value()] || pieces.edge_is_degenerated(oe.edge)) continue;
+        for (const core::Vec3& p : pieces.edge_points_by_length(oe.edge, 4))
+          if (original.distance_to_face(FaceId(c.id), p) > tolerance) spans[f.value()] = 1;
+      }
+  }
 
   // Edges: along an original edge (two inner points on it), else in the original face of a
   // boundary face it bounds (all such faces lie on one original face, or the edge would be
@@ -66,10 +81,10 @@ RestoreStats restore_topology(core::HexMesh& mesh, const occ::Solid& pieces,
     NodeClass r = c.dim == 0   ? vertex_class[c.id]
                   : c.dim == 1 ? edge_class[c.id]
                                : face_class[c.id];
-    // A face of the pieces can span several original faces: coplanar faces that the
-    // union of two pieces made one (HexMe i06: Face29 and Face30, both on x = -41). A
-    // node off the face its piece's face was given goes to the original entity it lies on.
-    if (r.dim == 2 && original.distance_to_face(FaceId(r.id), mesh.point(n)) > tolerance) {
+    // A node of a face spanning several original faces, off the one the face was given,
+    // goes to the original entity it lies on.
+    if (c.dim == 2 && r.dim == 2 && spans[c.id] &&
+        original.distance_to_face(FaceId(r.id), mesh.point(n)) > tolerance) {
       const core::Vec3 p = mesh.point(n);
       const EdgeId near = original.nearest_edge(p);
       if (near.valid() && original.distance_to_edge(near, p) <= tolerance)

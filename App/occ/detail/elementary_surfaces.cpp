@@ -11,10 +11,7 @@
 #include <Geom_Surface.hxx>
 #include <Geom_SurfaceOfRevolution.hxx>
 #include <Standard_Failure.hxx>
-#include <TopExp.hxx>
 #include <TopExp_Explorer.hxx>
-#include <TopTools_DataMapOfShapeShape.hxx>
-#include <TopTools_IndexedMapOfShape.hxx>
 #include <TopoDS.hxx>
 #include <gp_Ax3.hxx>
 #include <gp_Lin.hxx>
@@ -43,9 +40,9 @@ Handle(Geom_Surface) same_surface(const Handle(Geom_SurfaceOfRevolution) & rev) 
   const gp_Vec from_axis(axis.Location(), l0);
   const gp_Pnt foot = axis.Location().Translated(from_axis.Dot(a) * a);
   gp_Vec radial(foot, l0);
-  double r = radial.Magnitude();
+  const double r = radial.Magnitude();
   const double sa = d.Dot(a);
-  gp_Vec db = d - sa * a;  // the line's radial component
+  const gp_Vec db = d - sa * a;  // the line's radial component
   // In a plane through the axis: the radial parts of l0 and d are parallel.
   if (r > 1e-12 && db.Magnitude() > 1e-12 &&
       radial.Crossed(db).Magnitude() > 1e-9 * r * db.Magnitude())
@@ -62,7 +59,7 @@ Handle(Geom_Surface) same_surface(const Handle(Geom_SurfaceOfRevolution) & rev) 
   if (std::abs(b) <= 1e-12) return new Geom_CylindricalSurface(frame, r);
   if (std::abs(sa) <= 1e-9) return nullptr;  // a plane (or a ring): not by angle and radius
   const double angle = std::atan2(b, std::abs(sa));
-  if (std::abs(angle) >= M_PI / 2 - 1e-9 || r < 0) return nullptr;
+  if (std::abs(angle) >= M_PI / 2 - 1e-9) return nullptr;
   return new Geom_ConicalSurface(frame, angle, r);
 }
 
