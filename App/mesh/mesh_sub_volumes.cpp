@@ -144,11 +144,22 @@ void add_constraints(Curves& c, const occ::Solid& pieces, const Part& part, int 
     c.problem.equal.push_back(
         {{cv(s.linking[0])}, {cv(s.linking[i])}, who + " (sweep): its layers"});
   for (const auto& loop : s.loops)
-    for (const auto& [src, tgt] : loop)
+    for (const auto& [src, tgt] : loop) {
+      std::vector<int> across;
+      std::string names;
+      for (EdgeId t : tgt) {
+        across.push_back(cv(t));
+        names += (names.empty() ? "" : " + ") + core::entity_name(t);
+      }
       c.problem.equal.push_back({{cv(src)},
-                                 {cv(tgt)},
-                                 who + " (sweep): " + core::entity_name(src) + " and " +
-                                     core::entity_name(tgt) + " across a linking face"});
+                                 across,
+                                 who + " (sweep): " + core::entity_name(src) + " and " + names +
+                                     " across a linking face"});
+      if (tgt.size() > 1)  // each edge of a chain at least one interval
+        for (int a : across)
+          c.problem.at_least.push_back(
+              {{a}, 1, who + " (sweep): " + names + ", a chain of target edges"});
+    }
   const bool grid = s.loops.size() == 1 && s.loops[0].size() == 4;
   if (grid) {
     // A four-sided source is a mapped grid (conforming with neighbours mapping it).

@@ -46,14 +46,21 @@ struct Directed {
 
 // The linking face of one source edge. m runs along the source edge in the source loop's
 // direction, from its start vertex b (m = 0) to its end vertex a; k runs source -> target.
+// The target side is a chain of edges meeting at side vertices (a straight or smooth
+// continuation, about 180 degrees on the linking face): a neighbour glued to the target
+// imprints its own vertices there (a seam placed elsewhere, a T-junction).
 struct Link {
   FaceId face;
-  Directed source;  // as the source loop reads it
-  Directed target;  // read from b' (above b) to a'
-  Directed col0;    // linking edge at b, read source -> target
-  Directed col1;    // linking edge at a, read source -> target
+  Directed source;               // as the source loop reads it
+  std::vector<Directed> target;  // read from b' (above b) to a', one edge or a chain
+  Directed col0;                 // linking edge at b, read source -> target
+  Directed col1;                 // linking edge at a, read source -> target
   VertexId b, b_target;
 };
+
+// Largest turn, in degrees, between consecutive edges of a target chain at their common
+// vertex (the direction of the chain changes less than this: a side vertex).
+const double kSideTurn = 30;
 
 struct Topology {
   FaceId source, target;
@@ -73,6 +80,20 @@ VertexId start_of(const Solid& s, const OrientedEdge& e) {
 }
 VertexId end_of(const Solid& s, const OrientedEdge& e) {
   return e.forward ? s.edge_last_vertex(e.edge) : s.edge_first_vertex(e.edge);
+}
+
+// The turn (degrees) from edge a to edge b at the vertex where a ends and b starts, both as
+// a wire reads them: the angle between a's direction arriving there and b's leaving it.
+double chain_turn(const Solid& s, const OrientedEdge& a, const OrientedEdge& b) {
+  auto ends = [&](const OrientedEdge& e) {
+    std::vector<Vec3> p = s.edge_points_by_length(e.edge, 16);
+    if (!e.forward) std::reverse(p.begin(), p.end());
+    return p;
+  };
+  const std::vector<Vec3> pa = ends(a), pb = ends(b);
+  const Vec3 ta = pa[pa.size() - 1] - pa[pa.size() - 2], tb = pb[1] - pb[0];
+  const double c = ta.normalized().dot(tb.normalized());
+  return std::acos(std::clamp(c, -1.0, 1.0)) * 180 / M_PI;
 }
 
 // The sweep structure with `S` as source, or the reason why there is none.
@@ -102,29 +123,43 @@ std::string find_topology(const Solid& s, FaceId S, Topology& topo) {
       if (!linking_faces.insert(L.value()).second)
         return name(L) + " touches " + name(S) + " along more than one edge";
       const auto lw = s.face_wires(L);
-      if (lw.size() != 1 || lw[0].size() != 4)
+      const int nq = lw.empty() ? 0 : int(lw[0].size());
+      if (lw.size() != 1 || nq < 4)
         return name(L) + " is not four-sided (" + std::to_string(lw.size()) + " wires, " +
-               std::to_string(lw[0].size()) + " edges)";
+               std::to_string(nq) + " edges)";
       const auto& q = lw[0];
       int i = -1;
-      for (int c = 0; c < 4; ++c)
+      for (int c = 0; c < nq; ++c)
         if (q[c].edge == oe.edge) i = c;
-      const OrientedEdge &up = q[(i + 1) % 4], &opp = q[(i + 2) % 4], &down = q[(i + 3) % 4];
-      if (source_edges.count(up.edge.value()) || source_edges.count(down.edge.value()) ||
-          source_edges.count(opp.edge.value()))
-        return name(L) + " has more than one edge on " + name(S);
-      FaceId other;
-      for (FaceId f : s.edge_faces(opp.edge))
-        if (f != L) other = f;
-      if (!other.valid() || other == S) return name(opp.edge) + " does not reach a target face";
-      if (!T.valid()) T = other;
-      if (other != T)
-        return "the edges opposite " + name(S) + " lie on " + name(T) + " and " + name(other);
-      target_edges.insert(opp.edge.value());
+      if (i < 0) return name(L) + " has an inconsistent wire";
+      const OrientedEdge &up = q[(i + 1) % nq], &down = q[(i + nq - 1) % nq];
+      // Between the linking edges: the target side, one edge or a chain of side vertices.
+      std::vector<OrientedEdge> opp;
+      for (int c = 2; c < nq - 1; ++c) opp.push_back(q[(i + c) % nq]);
+      for (std::size_t c = 1; c < opp.size(); ++c)
+        if (chain_turn(s, opp[c - 1], opp[c]) > kSideTurn)
+          return name(L) + " is not four-sided (1 wires, " + std::to_string(nq) + " edges; " +
+                 name(opp[c - 1].edge) + " and " + name(opp[c].edge) + " meet at a corner)";
+      bool on_source = source_edges.count(up.edge.value()) || source_edges.count(down.edge.value());
+      for (const OrientedEdge& o : opp) on_source = on_source || source_edges.count(o.edge.value());
+      if (on_source) return name(L) + " has more than one edge on " + name(S);
+      for (const OrientedEdge& o : opp) {
+        FaceId other;
+        for (FaceId f : s.edge_faces(o.edge))
+          if (f != L) other = f;
+        if (!other.valid() || other == S) return name(o.edge) + " does not reach a target face";
+        if (!T.valid()) T = other;
+        if (other != T)
+          return "the edges opposite " + name(S) + " lie on " + name(T) + " and " + name(other);
+        target_edges.insert(o.edge.value());
+      }
+      for (std::size_t c = 1; c < opp.size(); ++c)
+        if (source_vertices.count(start_of(s, opp[c]).value()))
+          return name(S) + " and " + name(T) + " share a vertex";
       Link link;
       link.face = L;
       link.source = {oe.edge, oe.forward};
-      link.target = {opp.edge, opp.forward};
+      for (const OrientedEdge& o : opp) link.target.push_back({o.edge, o.forward});
       link.col0 = {up.edge, up.forward};
       link.col1 = {down.edge, !down.forward};
       link.b = start_of(s, oe);
@@ -202,6 +237,62 @@ std::vector<Vec3> read_edge(const Solid& s, const Directed& d, int n, const core
   return pts;
 }
 
+// Intervals of each edge of a target chain for `n` along the source edge: the given counts
+// (edge_intervals), or n split in proportion to each edge's own count at the size (each at
+// least 1; largest remainders first). Empty when n is less than the chain's edges.
+std::vector<int> chain_counts(const Solid& s, const std::vector<Directed>& chain, int n,
+                              const SweepOptions& o) {
+  if (chain.size() == 1) return {n};
+  if (n < int(chain.size())) return {};
+  std::vector<int> out;
+  if (!o.edge_intervals.empty()) {
+    for (const Directed& d : chain)
+      out.push_back(d.edge.value() < int(o.edge_intervals.size()) ? o.edge_intervals[d.edge.value()]
+                                                                  : 0);
+    return out;
+  }
+  std::vector<double> want;
+  double total = 0;
+  for (const Directed& d : chain) {
+    want.push_back(std::max(1e-9, detail::edge_segments(s, d.edge, o.size, o.size_field)));
+    total += want.back();
+  }
+  std::vector<std::pair<double, std::size_t>> rest;
+  int used = 0;
+  for (std::size_t c = 0; c < chain.size(); ++c) {
+    const double x = 1 + (n - int(chain.size())) * want[c] / total;
+    out.push_back(int(std::floor(x)));
+    used += out.back();
+    rest.push_back({x - std::floor(x), c});
+  }
+  std::sort(rest.begin(), rest.end(),
+            [](const auto& a, const auto& b) { return a.first > b.first; });
+  for (std::size_t r = 0; used < n; ++r, ++used) ++out[rest[r % rest.size()].second];
+  return out;
+}
+
+// The nodes along a target chain (n + 1 points, its vertices among them) and, per node, the
+// entity it lies on (the inner vertices of the chain, else the edge).
+std::vector<Vec3> read_chain(const Solid& s, const std::vector<Directed>& chain,
+                             const std::vector<int>& counts, const core::SizeField* field,
+                             const std::vector<std::vector<Vec3>>& given,
+                             std::vector<NodeClass>* classes = nullptr) {
+  std::vector<Vec3> out;
+  if (classes) classes->clear();
+  for (std::size_t c = 0; c < chain.size(); ++c) {
+    const auto pts = read_edge(s, chain[c], counts[c], field, given);
+    const Directed& d = chain[c];
+    const VertexId first = d.forward ? s.edge_first_vertex(d.edge) : s.edge_last_vertex(d.edge);
+    for (std::size_t m = c == 0 ? 0 : 1; m < pts.size(); ++m) {
+      out.push_back(pts[m]);
+      if (classes) classes->push_back(NodeClass::on(d.edge));
+    }
+    // The vertex where this edge starts ends the previous one: a node of its own.
+    if (classes && c > 0) (*classes)[out.size() - pts.size()] = NodeClass::on(first);
+  }
+  return out;
+}
+
 struct Plan {
   bool ok = false;
   Topology topo;
@@ -270,11 +361,21 @@ Plan plan_given(const Solid& solid, const SweepOptions& options, Plan p) {
     int total = 0;
     for (const Link& l : loop) {
       const int n = given(l.source.edge);
-      if (n < 1 || n > options.max_intervals || given(l.target.edge) != n)
+      int across = 0;
+      bool missing = false;
+      std::string targets;
+      std::vector<std::string> names{name(l.source.edge)};
+      for (const Directed& d : l.target) {
+        across += std::max(0, given(d.edge));
+        targets += (targets.empty() ? "" : " + ") + name(d.edge);
+        names.push_back(name(d.edge));
+        missing = missing || given(d.edge) < 1;
+      }
+      if (n < 1 || n > options.max_intervals || missing || across != n)
         return refuse(name(l.source.edge) + " has " + std::to_string(n) + " intervals and " +
-                          name(l.target.edge) + " across " + name(l.face) + " " +
-                          std::to_string(given(l.target.edge)),
-                      {name(l.source.edge), name(l.target.edge)});
+                          targets + " across " + name(l.face) + " " +
+                          std::to_string(std::max(0, across)),
+                      names);
       counts.push_back(n);
       total += n;
     }
@@ -397,6 +498,8 @@ Plan plan(const Solid& solid, const SweepOptions& options) {
         if (solid.edge_first_vertex(l.source.edge) == solid.edge_last_vertex(l.source.edge) &&
             solid.curve_info(l.source.edge).kind == core::CurveKind::circle)
           n = std::max(8.0, 4 * std::ceil(want / 4));
+        // A chain of target edges: at least one interval each.
+        while (n < double(l.target.size())) n += 2;
         if (n > options.max_intervals) return too_many(len, n, {name(l.source.edge)});
         counts.push_back(int(n));
         lengths.push_back(len);
@@ -420,6 +523,16 @@ Plan plan(const Solid& solid, const SweepOptions& options) {
       }
       p.source_loops.push_back(std::move(nodes));
     }
+    for (std::size_t l = 0; l < t.loops.size(); ++l)
+      for (std::size_t e = 0; e < t.loops[l].size(); ++e)
+        if (chain_counts(solid, t.loops[l][e].target, p.counts[l][e], options).empty()) {
+          p.diagnostics.push_back(core::make_error(
+              "too_few_intervals",
+              name(t.loops[l][e].source.edge) + " has " + std::to_string(p.counts[l][e]) +
+                  " intervals, fewer than the edges across " + name(t.loops[l][e].face),
+              {name(t.loops[l][e].source.edge)}));
+          return p;
+        }
     if (p.submap.empty() && !mesh_source_unstructured(solid, options, p)) return p;
     const double nodes = double(p.source_mesh.points.size()) * (p.layers + 1);
     if (nodes > double(std::numeric_limits<std::int32_t>::max())) {
@@ -517,7 +630,9 @@ SweepStructure sweep_structure(const core::MeshDomain& solid,
   for (const auto& loop : t.loops) {
     out.loops.emplace_back();
     for (const Link& l : loop) {
-      out.loops.back().emplace_back(l.source.edge, l.target.edge);
+      std::vector<EdgeId> across;
+      for (const Directed& d : l.target) across.push_back(d.edge);
+      out.loops.back().emplace_back(l.source.edge, std::move(across));
       for (const Directed& c : {l.col0, l.col1})
         if (seen.insert(c.edge.value()).second) out.linking.push_back(c.edge);
     }
@@ -577,8 +692,12 @@ SweepResult sweep(const core::MeshDomain& solid, const SweepOptions& options,
         const int n = p.counts[l][e];
         const core::SizeField* f = options.size_field;
         const auto& g = options.edge_nodes;
+        const std::vector<int> sub = chain_counts(solid, link.target, n, options);
+        if (sub.empty())
+          throw std::runtime_error(name(link.face) + ": too few intervals for its target edges");
+        std::vector<NodeClass> ct;
         const auto rs = read_edge(solid, link.source, n, f, g),
-                   rt = read_edge(solid, link.target, n, f, g);
+                   rt = read_chain(solid, link.target, sub, f, g, &ct);
         const auto c0 = read_edge(solid, link.col0, K, f, g),
                    c1 = read_edge(solid, link.col1, K, f, g);
         const bool curved = !solid.face_is_planar(link.face);
@@ -594,7 +713,7 @@ SweepResult sweep(const core::MeshDomain& solid, const SweepOptions& options,
               c = m == 0 ? NodeClass::on(link.b) : NodeClass::on(link.source.edge);
             } else if (k == K) {
               q = rt[m];
-              c = m == 0 ? NodeClass::on(link.b_target) : NodeClass::on(link.target.edge);
+              c = m == 0 ? NodeClass::on(link.b_target) : ct[m];
             } else if (m == 0) {
               q = c0[k];
               c = NodeClass::on(link.col0.edge);

@@ -1,10 +1,12 @@
 // One-to-one sweeping: a solid with a source face (planar or curved, with holes), a target
-// face, and linking faces that each have one wire of four edges (one on the source, one on
-// the target, two linking edges). The source is meshed by quad_face, the target by the same
-// topology mapped (least-squares affine map of the boundary loops, projected), the linking
-// faces by transfinite interpolation (projected when curved), and the inner layers by the
-// blend of the source- and target-based least-squares affine maps onto each layer's
-// boundary (tolerates twist and taper).
+// face, and linking faces that each have one wire of four sides (one edge on the source, a
+// chain of edges on the target that meet at side vertices, where the chain turns by less
+// than 30 degrees: a neighbour's vertex imprinted there, and two linking edges). The
+// source is meshed by quad_face, the target by the same topology mapped (least-squares
+// affine map of the boundary loops, projected), the linking faces by transfinite
+// interpolation (projected when curved), and the inner layers by the blend of the source-
+// and target-based least-squares affine maps onto each layer's boundary (tolerates twist
+// and taper).
 #pragma once
 
 #include <string>
@@ -57,9 +59,10 @@ SweepApplicability sweep_applicable(const core::MeshDomain& solid);
 // sweep_applicable refuses.
 struct SweepStructure {
   core::FaceId source, target;
-  // Per source loop, per edge in loop order: the source edge and the target edge across
-  // its linking face.
-  std::vector<std::vector<std::pair<core::EdgeId, core::EdgeId>>> loops;
+  // Per source loop, per edge in loop order: the source edge and the target edges across
+  // its linking face (one, or a chain meeting at side vertices: their intervals sum to the
+  // source edge's).
+  std::vector<std::vector<std::pair<core::EdgeId, std::vector<core::EdgeId>>>> loops;
   std::vector<core::EdgeId> linking;  // every linking edge (all have the layer count)
 };
 // `avoid_sources`: face ids not to take as the source while another pair exists (faces

@@ -157,5 +157,38 @@ TEST(MeshSubVolumes, ThePlanJudgesPiecesGluedToTheirNeighbours) {
   EXPECT_GE(check.scaled_jacobian.min, 0.3);
 }
 
+// Two coaxial cylinders stacked, their seams on opposite sides: gluing imprints each seam's
+// vertex on the other's circle, so each lateral face has five edges, its far circle a chain
+// of two arcs meeting at a side vertex. Each is still a sweep towards the shared disc (the
+// chain's intervals sum to the circle's), and the meshes conform there.
+TEST(MeshSubVolumes, ASweepTakesATargetSplitByItsNeighbour) {
+  const occ::Solid lower = occ::make_cylinder(2, 3, {0, 0, 0}, {0, 0, 1});
+  const occ::Solid upper = occ::make_cylinder(2, 3, {0, 0, 6}, {0, 0, -1});
+  occ::ReadResult glued = occ::glue_solids({&lower, &upper}, "The pieces");
+  ASSERT_TRUE(glued.ok()) << messages(glued.diagnostics);
+  int five = 0;  // lateral faces whose wire has a chain of two arcs
+  for (int k = 0; k < 2; ++k) {
+    const occ::Solid& part = glued.solid->part(k);
+    for (core::FaceId f : part.faces()) {
+      const auto w = part.face_wires(f);
+      five += w.size() == 1 && w[0].size() == 5;
+    }
+  }
+  ASSERT_EQ(five, 2) << "the seams must not meet for this case";
+  const SubVolumePlan plan = plan_sub_volumes(*glued.solid, /*multisweep=*/false);
+  ASSERT_TRUE(plan.ok) << plan.why_not;
+  EXPECT_EQ(plan.schemes, (std::vector<std::string>{"sweep", "sweep"}));
+  SubVolumeMeshOptions o;
+  o.size = 0.8;
+  o.multisweep = false;
+  const SubVolumeMeshResult m = mesh_sub_volumes(*glued.solid, o);
+  ASSERT_TRUE(m.ok) << messages(m.diagnostics);
+  const quality::CheckReport check = quality::check_mesh(m.mesh, glued.solid.get());
+  EXPECT_TRUE(check.valid) << messages(check.diagnostics);
+  EXPECT_EQ(check.non_manifold_quads, 0u);
+  EXPECT_EQ(check.open_boundary_edges, 0u);
+  EXPECT_GE(check.scaled_jacobian.min, 0.3);
+}
+
 }  // namespace
 }  // namespace vorohex::mesh

@@ -205,7 +205,7 @@ TEST(SweepGivenIntervals, UsesThemAndRefusesCountsThatDoNotFit) {
   for (core::EdgeId e : s.linking) o.edge_intervals[e.value()] = 3;
   for (const auto& [src, tgt] : s.loops[0]) {
     const int n = 2 * int(std::lround(l.edge_length(src) / 0.5));
-    o.edge_intervals[src.value()] = o.edge_intervals[tgt.value()] = n;
+    o.edge_intervals[src.value()] = o.edge_intervals[tgt.at(0).value()] = n;
   }
   const SweepResult r = sweep(l, o);
   ASSERT_TRUE(r.ok);
@@ -219,13 +219,13 @@ TEST(SweepGivenIntervals, UsesThemAndRefusesCountsThatDoNotFit) {
   ASSERT_FALSE(rb.diagnostics.empty());
   EXPECT_EQ(rb.diagnostics[0].code, "intervals_mismatch");
   bad = o;
-  bad.edge_intervals[s.loops[0][0].second.value()] += 2;  // target edge differs from source
+  bad.edge_intervals[s.loops[0][0].second.at(0).value()] += 2;  // target edge differs from source
   rb = sweep(l, bad);
   EXPECT_FALSE(rb.ok);
   EXPECT_EQ(rb.diagnostics[0].code, "intervals_mismatch");
   bad = o;
   bad.edge_intervals[s.loops[0][0].first.value()] += 1;  // odd source loop
-  bad.edge_intervals[s.loops[0][0].second.value()] += 1;
+  bad.edge_intervals[s.loops[0][0].second.at(0).value()] += 1;
   rb = sweep(l, bad);
   EXPECT_FALSE(rb.ok);
   EXPECT_EQ(rb.diagnostics[0].code, "intervals_mismatch");
