@@ -205,8 +205,9 @@ void add_constraints(Curves& c, const occ::Solid& pieces, const Part& part, int 
 }
 
 // Sub-volume k of `pieces` with its scheme once glued: a mapped block, else a sweep whose
-// source and target avoid the faces it shares with a neighbour where possible (neither:
-// has_scheme() is false).
+// source and target avoid the faces it shares with a neighbour where possible, else (or
+// instead of a sweep with chains of target edges) a multisweep (none: has_scheme() is
+// false).
 Part plan_part(const occ::Solid& pieces, int k, bool multisweep) {
   Part p(pieces.part(k));
   p.whole_edge = pieces.part_ids(p.solid, 1);
@@ -220,9 +221,15 @@ Part plan_part(const occ::Solid& pieces, int k, bool multisweep) {
     if (whole_face[f] > 0 && pieces.face_is_interface(core::FaceId(whole_face[f])))
       p.shared_faces.push_back(int(f));
   p.sweep = sweep_structure(p.solid, p.shared_faces);
-  if (multisweep && !p.sweep.source.valid()) {
+  // A sweep whose target sides are chains (a neighbour's vertices imprinted there) is a
+  // weaker structure than a prismatic part: the multisweep takes such a part when it can.
+  bool chains = false;
+  for (const auto& loop : p.sweep.loops)
+    for (const auto& st : loop) chains = chains || st.second.size() > 1;
+  if (multisweep && (!p.sweep.source.valid() || chains)) {
     p.prismatic = std::make_shared<occ::PrismaticStructure>(occ::prismatic_structure(p.solid));
     p.multisweep = p.prismatic->ok;
+    if (p.multisweep) p.sweep = SweepStructure();
   }
   return p;
 }
