@@ -6,6 +6,7 @@
 #include <future>
 #include <map>
 #include <memory>
+#include <set>
 #include <sstream>
 #include <thread>
 
@@ -18,6 +19,7 @@
 #include "mesh/submap_face.h"
 #include "mesh/sweep.h"
 #include "occ/prismatic.h"
+#include "smooth/smooth_mesh.h"
 
 namespace vorohex::mesh {
 
@@ -323,6 +325,20 @@ PartMesh mesh_part(const Part& part, const std::vector<int>& counts,
     o.size_field = options.size_field;
     o.edge_nodes = edge_nodes;
     SweepResult r = sweep(part.solid, o, progress);
+    // Folded layers: untangled with the nodes on the faces shared with a neighbour kept
+    // (both meshes of a shared face must stay the same).
+    if (!r.ok && r.folded > 0 && !progress.cancelled()) {
+      std::set<int> faces(part.shared_faces.begin(), part.shared_faces.end()), edges;
+      for (int f : part.shared_faces)
+        for (const auto& wire : part.solid.face_wires(core::FaceId(f)))
+          for (const core::OrientedEdge& oe : wire) edges.insert(oe.edge.value());
+      std::vector<char> fixed(r.mesh.num_nodes(), 0);
+      for (std::size_t i = 0; i < fixed.size(); ++i) {
+        const core::NodeClass c = r.mesh.node_classes()[i];
+        fixed[i] = (c.dim == 2 && faces.count(c.id)) || (c.dim == 1 && edges.count(c.id));
+      }
+      if (smooth::untangle_folded(r.mesh, part.solid, fixed, progress)) accept_untangled(r);
+    }
     out.ok = r.ok;
     out.mesh = std::move(r.mesh);
     out.diagnostics = std::move(r.diagnostics);

@@ -823,6 +823,7 @@ SweepResult sweep(const core::MeshDomain& solid, const SweepOptions& options,
     }
     folded += bad;
   }
+  result.folded = folded;
   if (folded > 0) {
     result.diagnostics.push_back(core::make_error("inverted_elements",
                                                   std::to_string(folded) +
@@ -835,6 +836,18 @@ SweepResult sweep(const core::MeshDomain& solid, const SweepOptions& options,
   }
   result.ok = true;
   return result;
+}
+
+void accept_untangled(SweepResult& r) {
+  for (core::Diagnostic& d : r.diagnostics)
+    if (d.code == "inverted_elements" && d.severity == core::Severity::error) {
+      d = core::make_warning(
+          "sweep_untangled",
+          std::to_string(r.folded) + " swept hexahedra folded (the layers fold between " +
+              name(r.source) + " and " + name(r.target) + "); the smoothing untangled them.",
+          d.entities);
+    }
+  r.ok = true;
 }
 
 }  // namespace vorohex::mesh

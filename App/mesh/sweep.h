@@ -82,11 +82,18 @@ struct SweepResult {
   core::FaceId source, target;
   int layers = 0;
   double source_min_quality = 0, source_mean_quality = 0;  // 2-D quad scaled Jacobian
+  // Hexes with a non-positive corner Jacobian (the layers fold: not ok, error
+  // inverted_elements); the folded mesh is kept, for a caller that untangles it.
+  std::size_t folded = 0;
   bool ok = false;
   std::vector<core::Diagnostic> diagnostics;
 };
 
 SweepResult sweep(const core::MeshDomain& solid, const SweepOptions& options,
                   const core::Progress& progress = {});
+
+// After a caller untangled a folded sweep's mesh (smooth::untangle_folded): ok, the fold
+// said as a warning (sweep_untangled) instead of the error.
+void accept_untangled(SweepResult& r);
 
 }  // namespace vorohex::mesh

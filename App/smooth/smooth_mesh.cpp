@@ -158,7 +158,8 @@ class Smoother {
     return n;
   }
 
-  // Vertex nodes, nodes without neighbours and nodes naming no entity of the solid stay put.
+  // Vertex nodes, nodes without neighbours, nodes naming no entity of the solid and the
+  // nodes the options fix stay put.
   void classify_movable() {
     const std::size_t nn = mesh_.num_nodes();
     movable_.assign(nn, 0);
@@ -174,7 +175,8 @@ class Smoother {
         ++num_bad;
       }
       movable_[n] = known && c.dim != 0 && topology_.neighbours.size(n) > 0 &&
-                    topology_.node_hexes.size(n) > 0;
+                    topology_.node_hexes.size(n) > 0 &&
+                    !(n < options_.fixed.size() && options_.fixed[n]);
       if (!movable_[n]) ++result_.fixed_nodes;
     }
     if (num_bad > 0) {
@@ -702,6 +704,14 @@ class Smoother {
 };
 
 }  // namespace
+
+bool untangle_folded(core::HexMesh& mesh, const occ::Solid& solid, const std::vector<char>& fixed,
+                     const core::Progress& progress, double min_quality) {
+  SmoothOptions o;
+  o.fixed = fixed;
+  const SmoothResult r = smooth_mesh(mesh, solid, o, progress);
+  return r.status == SmoothStatus::ok && r.inverted_after == 0 && r.min_after >= min_quality;
+}
 
 void SmoothOptions::validate() const {
   auto fail = [](const std::string& field, const std::string& rule, double value) {

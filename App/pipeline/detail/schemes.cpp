@@ -11,6 +11,7 @@
 #include "mesh/multisweep.h"
 #include "mesh/revolve.h"
 #include "mesh/sweep.h"
+#include "smooth/smooth_mesh.h"
 
 namespace vorohex::pipeline::detail {
 namespace {
@@ -64,6 +65,9 @@ class SweepScheme : public Scheme {
     o.size = size.global();
     o.size_field = &size;
     mesh::SweepResult r = mesh::sweep(solid, o, progress);
+    if (!r.ok && r.folded > 0 && !progress.cancelled() &&
+        smooth::untangle_folded(r.mesh, solid, {}, progress))
+      mesh::accept_untangled(r);
     SchemeMesh m;
     m.ok = r.ok;
     m.intervals = {0, 0, r.layers};
