@@ -52,9 +52,11 @@ struct Part {
   SweepStructure sweep;                                      // else: sweep
   bool multisweep = false;                                   // else: a multisweep (prismatic part)
   std::shared_ptr<const occ::PrismaticStructure> prismatic;  // its structure
-  std::vector<bool> shared_edge;  // by part edge id: a neighbour has it too
-  std::vector<int> shared_faces;  // part face ids shared with a neighbour
-  std::vector<int> whole_edge;    // by part edge id
+  std::vector<bool> shared_edge;   // by part edge id: a neighbour has it too
+  std::vector<int> shared_faces;   // part face ids shared with a neighbour
+  std::vector<int> avoid_sources;  // part face ids its sweep avoids as source
+  std::vector<int> whole_face;     // by part face id
+  std::vector<int> whole_edge;     // by part edge id
   bool is_block() const { return !block[0].empty(); }
   bool is_sweep() const { return !is_block() && sweep.source.valid(); }
   bool has_scheme() const { return is_block() || sweep.source.valid() || multisweep; }
@@ -222,7 +224,9 @@ Part plan_part(const occ::Solid& pieces, int k, bool multisweep) {
   for (std::size_t f = 1; f < whole_face.size(); ++f)
     if (whole_face[f] > 0 && pieces.face_is_interface(core::FaceId(whole_face[f])))
       p.shared_faces.push_back(int(f));
-  p.sweep = sweep_structure(p.solid, p.shared_faces);
+  p.whole_face = whole_face;
+  p.avoid_sources = p.shared_faces;
+  p.sweep = sweep_structure(p.solid, p.avoid_sources);
   // A sweep whose target sides are chains (a neighbour's vertices imprinted there) is a
   // weaker structure than a prismatic part: the multisweep takes such a part when it can.
   bool chains = false;
@@ -321,7 +325,7 @@ PartMesh mesh_part(const Part& part, const std::vector<int>& counts,
     o.max_intervals = options.max_intervals;
     o.smoothing_passes = options.smoothing_passes;
     o.edge_intervals = counts;
-    o.avoid_sources = part.shared_faces;
+    o.avoid_sources = part.avoid_sources;
     o.size_field = options.size_field;
     o.edge_nodes = edge_nodes;
     SweepResult r = sweep(part.solid, o, progress);
@@ -375,6 +379,29 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
                               : p.is_sweep() && !shared(p.sweep.source) && !shared(p.sweep.target);
     result.stats.types.push_back(own_ends ? "Vs" : "Ve");
     parts.push_back(std::move(p));
+  }
+  // Two sweeps meeting at a face mesh it alike only when both take it as source (each
+  // meshes its source; a target gets the projection of the far end). Where one has that
+  // face as its source although it avoids shared faces (its other end cannot be a source),
+  // the neighbour takes it as its source too, when it can.
+  for (int k = 0; k < n; ++k) {
+    const Part& a = parts[k];
+    if (!a.is_sweep()) continue;
+    const int face = a.whole_face[a.sweep.source.value()];
+    if (std::find(a.shared_faces.begin(), a.shared_faces.end(), a.sweep.source.value()) ==
+        a.shared_faces.end())
+      continue;
+    for (int j = 0; j < n; ++j) {
+      Part& b = parts[j];
+      if (j == k || !b.is_sweep() || b.whole_face[b.sweep.target.value()] != face) continue;
+      std::vector<int> avoid;  // every face but the shared one
+      for (core::FaceId f : b.solid.faces())
+        if (f != b.sweep.target) avoid.push_back(f.value());
+      const SweepStructure flipped = sweep_structure(b.solid, avoid);
+      if (flipped.source != b.sweep.target) continue;
+      b.sweep = flipped;
+      b.avoid_sources = avoid;
+    }
   }
 
   // Edges a neighbour has too (their counts are given to a multisweep).

@@ -220,6 +220,31 @@ TEST(GenerateMesh, HexMeI06IsASweepAndMultisweepsThatConform) {
   EXPECT_LE(std::abs(r.check.mesh_volume - in.solid->volume()), r.check.volume_allowance);
 }
 
+// HexMe i10, a plate with a slanted end and a hole drilled 40 degrees off its normal: cut
+// at its concave edges into a block, two sweeps and a block. The piece with the hole's
+// lower part sweeps from the face it shares with the wedge above (its other end's outline
+// of the hole is two arcs, a chain, which cannot be a source); the wedge then takes
+// that face as its source too, so both mesh it alike (as its target it got the projection
+// of its far end, and folded). Before: the grid, min 0.25.
+TEST(GenerateMesh, HexMeI10IsBlocksAndSweepsThatShareTheirSource) {
+  const occ::ReadResult in = occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/i10o_simp.step");
+  ASSERT_TRUE(in.ok());
+  MeshOptions opt;
+  opt.fallback = false;
+  const MeshResult r = generate_mesh(*in.solid, opt);
+  ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
+  EXPECT_EQ(r.stats.scheme, "map+sweep");
+  EXPECT_EQ(std::count(r.stats.sub_volume_schemes.begin(), r.stats.sub_volume_schemes.end(),
+                       std::string("sweep")),
+            2);
+  EXPECT_TRUE(r.check.valid);
+  EXPECT_GE(r.check.scaled_jacobian.min, 0.3);
+  EXPECT_EQ(r.check.open_boundary_edges, 0u);
+  EXPECT_EQ(r.check.boundary_quads + 2 * r.check.interior_quads, 6 * r.mesh.num_hexes());
+  EXPECT_LE(r.check.max_boundary_distance_rel, 1e-6);
+  EXPECT_LE(std::abs(r.check.mesh_volume - in.solid->volume()), r.check.volume_allowance);
+}
+
 // A round post on a plate and HexMe s11 (a cylinder on a cube), without the multisweep:
 // cut along the plate's plane and the post's cylinder extended through it, three sweeps
 // meshed as one (s11 was the fallback's, min scaled Jacobian 0.062 before smoothing).
