@@ -198,6 +198,16 @@ TEST(GenerateMesh, APlateWithALugIsCutIntoTwoMultisweeps) {
 // takes the nodes they placed there; and the union of two pieces makes one face of two
 // coplanar model faces (Face29, Face30), whose nodes go back to the face they lie on. Before:
 // the grid (min 0.246) or the tet split (0.09), the sub-volumes not conforming.
+// Valid, closed, conforming, on the CAD, with the solid's volume and min SJ >= 0.3.
+void expect_valid_on_cad(const MeshResult& r, const occ::Solid& solid) {
+  EXPECT_TRUE(r.check.valid);
+  EXPECT_GE(r.check.scaled_jacobian.min, 0.3);
+  EXPECT_EQ(r.check.open_boundary_edges, 0u);
+  EXPECT_EQ(r.check.boundary_quads + 2 * r.check.interior_quads, 6 * r.mesh.num_hexes());
+  EXPECT_LE(r.check.max_boundary_distance_rel, 1e-6);
+  EXPECT_LE(std::abs(r.check.mesh_volume - solid.volume()), r.check.volume_allowance);
+}
+
 TEST(GenerateMesh, HexMeI06IsASweepAndMultisweepsThatConform) {
   const occ::ReadResult in = occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/i06o_m6.step");
   ASSERT_TRUE(in.ok());
@@ -212,12 +222,7 @@ TEST(GenerateMesh, HexMeI06IsASweepAndMultisweepsThatConform) {
   EXPECT_EQ(std::count(r.stats.sub_volume_schemes.begin(), r.stats.sub_volume_schemes.end(),
                        std::string("sweep")),
             1);
-  EXPECT_TRUE(r.check.valid);
-  EXPECT_GE(r.check.scaled_jacobian.min, 0.3);
-  EXPECT_EQ(r.check.open_boundary_edges, 0u);
-  EXPECT_EQ(r.check.boundary_quads + 2 * r.check.interior_quads, 6 * r.mesh.num_hexes());
-  EXPECT_LE(r.check.max_boundary_distance_rel, 1e-6);
-  EXPECT_LE(std::abs(r.check.mesh_volume - in.solid->volume()), r.check.volume_allowance);
+  expect_valid_on_cad(r, *in.solid);
 }
 
 // HexMe i10, a plate with a slanted end and a hole drilled 40 degrees off its normal: cut
@@ -237,12 +242,7 @@ TEST(GenerateMesh, HexMeI10IsBlocksAndSweepsThatShareTheirSource) {
   EXPECT_EQ(std::count(r.stats.sub_volume_schemes.begin(), r.stats.sub_volume_schemes.end(),
                        std::string("sweep")),
             2);
-  EXPECT_TRUE(r.check.valid);
-  EXPECT_GE(r.check.scaled_jacobian.min, 0.3);
-  EXPECT_EQ(r.check.open_boundary_edges, 0u);
-  EXPECT_EQ(r.check.boundary_quads + 2 * r.check.interior_quads, 6 * r.mesh.num_hexes());
-  EXPECT_LE(r.check.max_boundary_distance_rel, 1e-6);
-  EXPECT_LE(std::abs(r.check.mesh_volume - in.solid->volume()), r.check.volume_allowance);
+  expect_valid_on_cad(r, *in.solid);
 }
 
 // A round post on a plate and HexMe s11 (a cylinder on a cube), without the multisweep:
