@@ -341,7 +341,8 @@ PartMesh mesh_part(const Part& part, const std::vector<int>& counts,
         const core::NodeClass c = r.mesh.node_classes()[i];
         fixed[i] = (c.dim == 2 && faces.count(c.id)) || (c.dim == 1 && edges.count(c.id));
       }
-      if (smooth::untangle_folded(r.mesh, part.solid, fixed, progress)) accept_untangled(r);
+      if (smooth::untangle_folded(r.mesh, part.solid, fixed, options.size_field, progress))
+        accept_untangled(r);
     }
     out.ok = r.ok;
     out.mesh = std::move(r.mesh);

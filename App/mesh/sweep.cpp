@@ -276,19 +276,20 @@ std::vector<int> chain_counts(const Solid& s, const std::vector<Directed>& chain
 std::vector<Vec3> read_chain(const Solid& s, const std::vector<Directed>& chain,
                              const std::vector<int>& counts, const core::SizeField* field,
                              const std::vector<std::vector<Vec3>>& given,
-                             std::vector<NodeClass>* classes = nullptr) {
+                             std::vector<NodeClass>& classes) {
   std::vector<Vec3> out;
-  if (classes) classes->clear();
+  classes.clear();
   for (std::size_t c = 0; c < chain.size(); ++c) {
-    const auto pts = read_edge(s, chain[c], counts[c], field, given);
     const Directed& d = chain[c];
-    const VertexId first = d.forward ? s.edge_first_vertex(d.edge) : s.edge_last_vertex(d.edge);
+    const auto pts = read_edge(s, d, counts[c], field, given);
+    // The vertex where this edge starts ends the previous one: a node of its own.
+    if (c > 0)
+      classes.back() =
+          NodeClass::on(d.forward ? s.edge_first_vertex(d.edge) : s.edge_last_vertex(d.edge));
     for (std::size_t m = c == 0 ? 0 : 1; m < pts.size(); ++m) {
       out.push_back(pts[m]);
-      if (classes) classes->push_back(NodeClass::on(d.edge));
+      classes.push_back(NodeClass::on(d.edge));
     }
-    // The vertex where this edge starts ends the previous one: a node of its own.
-    if (classes && c > 0) (*classes)[out.size() - pts.size()] = NodeClass::on(first);
   }
   return out;
 }
@@ -302,11 +303,34 @@ struct Plan {
   std::array<int, 2> grid{0, 0};
   // Source (and target) submapped: the direction of each source edge (empty otherwise).
   std::vector<int> submap;
-  std::vector<std::vector<int>> counts;         // intervals per source loop edge
+  std::vector<std::vector<int>> counts;  // intervals per source loop edge
+  // Per source loop edge: the intervals of each target edge across (one, or a chain's).
+  std::vector<std::vector<std::vector<int>>> target_counts;
   std::vector<std::vector<Vec3>> source_loops;  // source boundary nodes per loop
   QuadFaceMesh source_mesh;
   std::vector<core::Diagnostic> diagnostics;
 };
+
+// Each target chain's intervals for its source edge's count (Plan::target_counts); false
+// with the diagnostic when a count is less than the edges across it.
+bool set_target_counts(const Solid& solid, const SweepOptions& options, Plan& p) {
+  const Topology& t = p.topo;
+  p.target_counts.assign(t.loops.size(), {});
+  for (std::size_t l = 0; l < t.loops.size(); ++l)
+    for (std::size_t e = 0; e < t.loops[l].size(); ++e) {
+      const Link& link = t.loops[l][e];
+      p.target_counts[l].push_back(chain_counts(solid, link.target, p.counts[l][e], options));
+      if (p.target_counts[l].back().empty()) {
+        p.diagnostics.push_back(
+            core::make_error("too_few_intervals",
+                             name(link.source.edge) + " has " + std::to_string(p.counts[l][e]) +
+                                 " intervals, fewer than the edges across " + name(link.face),
+                             {name(link.source.edge)}));
+        return false;
+      }
+    }
+  return true;
+}
 
 // The source by the general quad mesher (any face, holes included); false with its
 // diagnostics when it fails.
@@ -401,6 +425,7 @@ Plan plan_given(const Solid& solid, const SweepOptions& options, Plan p) {
     }
     p.source_loops.push_back(std::move(nodes));
   }
+  if (!set_target_counts(solid, options, p)) return p;
   if (p.grid[0] > 0) {
     p.source_mesh = detail::grid_face(solid, t.source, p.source_loops[0], p.grid[0], p.grid[1]);
   } else if (!p.submap.empty()) {
@@ -523,16 +548,7 @@ Plan plan(const Solid& solid, const SweepOptions& options) {
       }
       p.source_loops.push_back(std::move(nodes));
     }
-    for (std::size_t l = 0; l < t.loops.size(); ++l)
-      for (std::size_t e = 0; e < t.loops[l].size(); ++e)
-        if (chain_counts(solid, t.loops[l][e].target, p.counts[l][e], options).empty()) {
-          p.diagnostics.push_back(core::make_error(
-              "too_few_intervals",
-              name(t.loops[l][e].source.edge) + " has " + std::to_string(p.counts[l][e]) +
-                  " intervals, fewer than the edges across " + name(t.loops[l][e].face),
-              {name(t.loops[l][e].source.edge)}));
-          return p;
-        }
+    if (!set_target_counts(solid, options, p)) return p;
     if (p.submap.empty() && !mesh_source_unstructured(solid, options, p)) return p;
     const double nodes = double(p.source_mesh.points.size()) * (p.layers + 1);
     if (nodes > double(std::numeric_limits<std::int32_t>::max())) {
@@ -692,12 +708,9 @@ SweepResult sweep(const core::MeshDomain& solid, const SweepOptions& options,
         const int n = p.counts[l][e];
         const core::SizeField* f = options.size_field;
         const auto& g = options.edge_nodes;
-        const std::vector<int> sub = chain_counts(solid, link.target, n, options);
-        if (sub.empty())
-          throw std::runtime_error(name(link.face) + ": too few intervals for its target edges");
         std::vector<NodeClass> ct;
         const auto rs = read_edge(solid, link.source, n, f, g),
-                   rt = read_chain(solid, link.target, sub, f, g, &ct);
+                   rt = read_chain(solid, link.target, p.target_counts[l][e], f, g, ct);
         const auto c0 = read_edge(solid, link.col0, K, f, g),
                    c1 = read_edge(solid, link.col1, K, f, g);
         const bool curved = !solid.face_is_planar(link.face);

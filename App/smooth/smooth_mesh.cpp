@@ -706,9 +706,11 @@ class Smoother {
 }  // namespace
 
 bool untangle_folded(core::HexMesh& mesh, const occ::Solid& solid, const std::vector<char>& fixed,
-                     const core::Progress& progress, double min_quality) {
+                     const core::SizeField* size_field, const core::Progress& progress,
+                     double min_quality) {
   SmoothOptions o;
   o.fixed = fixed;
+  o.size_field = size_field;
   const SmoothResult r = smooth_mesh(mesh, solid, o, progress);
   return r.status == SmoothStatus::ok && r.inverted_after == 0 && r.min_after >= min_quality;
 }

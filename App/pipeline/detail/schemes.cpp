@@ -66,7 +66,7 @@ class SweepScheme : public Scheme {
     o.size_field = &size;
     mesh::SweepResult r = mesh::sweep(solid, o, progress);
     if (!r.ok && r.folded > 0 && !progress.cancelled() &&
-        smooth::untangle_folded(r.mesh, solid, {}, progress))
+        smooth::untangle_folded(r.mesh, solid, {}, &size, progress))
       mesh::accept_untangled(r);
     SchemeMesh m;
     m.ok = r.ok;

@@ -147,7 +147,7 @@ TEST(SmoothMesh, FixedNodesStayWhereTheyAre) {
   ASSERT_GT(count_inverted(m), 10u);
   const std::vector<Vec3> before = m.points();
   HexMesh copy = m;
-  EXPECT_TRUE(untangle_folded(copy, box, fixed, {}, 0.05));
+  EXPECT_TRUE(untangle_folded(copy, box, fixed, nullptr, {}, 0.05));
   std::size_t moved = 0;
   for (std::size_t i = 0; i < m.num_nodes(); ++i) {
     if (fixed[i]) EXPECT_EQ(copy.points()[i], before[i]) << "node " << i;
@@ -157,7 +157,7 @@ TEST(SmoothMesh, FixedNodesStayWhereTheyAre) {
   EXPECT_EQ(count_inverted(copy), 0u);
   // A floor the result does not reach: untangled, but refused.
   HexMesh again = m;
-  EXPECT_FALSE(untangle_folded(again, box, fixed, {}, 0.99));
+  EXPECT_FALSE(untangle_folded(again, box, fixed, nullptr, {}, 0.99));
 }
 
 // Badly tangled input that a few untangling passes cannot fully clear: the inverted count
