@@ -68,10 +68,19 @@ def report_text(mw):
 
 
 def button(mw, which):
-    for box in mw.findChildren(QtGui.QDialogButtonBox):
-        b = box.button(which)
-        if b is not None and b.isVisible():
-            return b
+    """The visible button of the task panel. PySide2 may hand back a stale wrapper for a
+    closed panel's button (its C++ object deleted, its address reused): skip those, and
+    look again once Qt has processed its pending deletions."""
+    for attempt in range(5):
+        for box in mw.findChildren(QtGui.QDialogButtonBox):
+            try:
+                b = box.button(which)
+                if b is not None and b.isVisible():
+                    return b
+            except RuntimeError:  # "Internal C++ object ... already deleted"
+                continue
+        QtCore.QCoreApplication.sendPostedEvents(None, QtCore.QEvent.DeferredDelete)
+        pump(0.2)
     return None
 
 
