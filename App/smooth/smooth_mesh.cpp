@@ -682,6 +682,61 @@ class Smoother {
       commit(n, y, trial);
       return true;
     }
+    return shortfall_step(n, x, m0, mean_edge);
+  }
+
+  // How far the frames of node n's hexes fall short of the target with n at x: the sum over
+  // the incident hexes' nine frames (centre and corners) of max(0, target - value)^2.
+  double shortfall(std::size_t n, const Vec3& x) const {
+    const auto& pts = mesh_.points();
+    const double t = options_.quality_target;
+    double sum = 0;
+    for (std::int64_t k = topology_.node_hexes.begin(n); k < topology_.node_hexes.end(n); ++k) {
+      const std::int32_t item = topology_.node_hexes.items[k];
+      const auto& hex = mesh_.hexes()[item / 8];
+      std::array<Vec3, 8> p;
+      for (int i = 0; i < 8; ++i) p[i] = pts[hex[i]];
+      p[item % 8] = x;
+      for (double v : detail::hex_frame_jacobians(p))
+        if (v < t) sum += (t - v) * (t - v);
+    }
+    return sum;
+  }
+
+  // A max-min move that ties: where node n's worst hex is worst at a frame node n is not in
+  // (the far corner of a swept column: two layers' nodes, each alone, cannot raise it), a
+  // move that lowers no incident hex below the local minimum m0 and reduces the shortfall
+  // of the frames it does change is taken; the other layer's node then raises the hex.
+  bool shortfall_step(std::size_t n, const Vec3& x, double m0, double mean_edge) {
+    const double s0 = shortfall(n, x);
+    if (!(s0 > 0)) return false;
+    const double h = 1e-5 * mean_edge;
+    Vec3 g;
+    for (int i = 0; i < 3; ++i) {
+      Vec3 e = Vec3::Zero();
+      e[i] = h;
+      g[i] = (shortfall(n, x - e) - shortfall(n, x + e)) / (2 * h);  // descent
+    }
+    if (!g.allFinite()) return false;
+    Vec3 d = feasible_direction(n, x, g);
+    const double norm = d.norm();
+    if (!(norm > 0) || !std::isfinite(norm)) return false;
+    d /= norm;
+    double step = 0.2 * mean_edge;
+    std::vector<double>& trial = trial_sj_;
+    for (int tries = 0; tries < 12; ++tries, step *= 0.5) {
+      Vec3 y;
+      if (!constrained_move(n, x, step * d, y)) continue;
+      trial.clear();
+      double m1 = std::numeric_limits<double>::infinity();
+      for (std::int64_t k = topology_.node_hexes.begin(n); k < topology_.node_hexes.end(n); ++k) {
+        trial.push_back(hex_sj(topology_.node_hexes.items[k], y));
+        m1 = std::min(m1, trial.back());
+      }
+      if (!(m1 >= m0) || !(shortfall(n, y) < s0 * (1 - 1e-6))) continue;
+      commit(n, y, trial);
+      return true;
+    }
     return false;
   }
 

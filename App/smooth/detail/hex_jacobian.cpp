@@ -42,7 +42,8 @@ constexpr double kCollapsedRatio2 = 1e-30;
 
 }  // namespace
 
-double hex_scaled_jacobian(const std::array<Vec3, 8>& p) {
+std::array<double, 9> hex_frame_jacobians(const std::array<Vec3, 8>& p) {
+  std::array<double, 9> out{};
   Vec3 e[12];
   double len2[12];
   double max_len2 = 0;
@@ -56,23 +57,28 @@ double hex_scaled_jacobian(const std::array<Vec3, 8>& p) {
                         (p[4] - p[0]) + (p[5] - p[1]) + (p[6] - p[2]) + (p[7] - p[3])};
   const double axis2[3] = {axes[0].squaredNorm(), axes[1].squaredNorm(), axes[2].squaredNorm()};
   for (double a : axis2) max_len2 = std::max(max_len2, a);
-  if (!(max_len2 > 0) || !std::isfinite(max_len2)) return 0;
+  if (!(max_len2 > 0) || !std::isfinite(max_len2)) return out;
   const double tiny = kCollapsedRatio2 * max_len2;
   for (double l : len2)
-    if (!(l > tiny)) return 0;
+    if (!(l > tiny)) return out;
   for (double l : axis2)
-    if (!(l > tiny)) return 0;
+    if (!(l > tiny)) return out;
 
-  double m = axes[0].dot(axes[1].cross(axes[2])) / std::sqrt(axis2[0] * axis2[1] * axis2[2]);
+  out[0] = axes[0].dot(axes[1].cross(axes[2])) / std::sqrt(axis2[0] * axis2[1] * axis2[2]);
   for (int c = 0; c < 8; ++c) {
     const int* ed = kFrame.edge[c];
     const bool* rev = kFrame.reversed[c];
     // Negation is exact, so flipping signs afterwards equals using the reversed vectors.
     double det = e[ed[0]].dot(e[ed[1]].cross(e[ed[2]]));
     if ((rev[0] != rev[1]) != rev[2]) det = -det;  // an odd number of reversed vectors
-    m = std::min(m, det / std::sqrt(len2[ed[0]] * len2[ed[1]] * len2[ed[2]]));
+    out[c + 1] = det / std::sqrt(len2[ed[0]] * len2[ed[1]] * len2[ed[2]]);
   }
-  return std::clamp(m, -1.0, 1.0);
+  return out;
+}
+
+double hex_scaled_jacobian(const std::array<Vec3, 8>& p) {
+  const std::array<double, 9> v = hex_frame_jacobians(p);
+  return std::clamp(*std::min_element(v.begin(), v.end()), -1.0, 1.0);
 }
 
 }  // namespace vorohex::smooth::detail

@@ -11,4 +11,8 @@ namespace vorohex::smooth::detail {
 
 double hex_scaled_jacobian(const std::array<core::Vec3, 8>& corners);
 
+// The nine values whose minimum hex_scaled_jacobian is: the centre frame's, then each
+// corner's (normalised determinants, unclamped). A collapsed hex gives nine zeros.
+std::array<double, 9> hex_frame_jacobians(const std::array<core::Vec3, 8>& corners);
+
 }  // namespace vorohex::smooth::detail

@@ -245,6 +245,27 @@ TEST(GenerateMesh, HexMeI10IsBlocksAndSweepsThatShareTheirSource) {
   expect_valid_on_cad(r, *in.solid);
 }
 
+// The engraved box (tests/data/engraved_box.step: "ABC" cut 0.05 deep into a 10 x 5 x 2
+// box) at size 0.5 is a multisweep. Its worst hexes are columns through the layers under a
+// thin quad of the source mesh, equally bad at their bottom and top corners: one node alone
+// cannot raise such a hex, so the smoothing's max-min left it at 0.248. It now also takes
+// moves that keep the local minimum and reduce how far the frames they change fall short
+// of the target; the other layer's node then raises the hex.
+TEST(GenerateMesh, SweptColumnsAreRaisedLayerByLayer) {
+  const occ::ReadResult in =
+      occ::read_solid(std::string(VOROHEX_SOURCE_DIR) + "/tests/data/engraved_box.step");
+  ASSERT_TRUE(in.ok());
+  MeshOptions opt;
+  opt.size = 0.5;
+  opt.fallback = false;
+  const MeshResult r = generate_mesh(*in.solid, opt);
+  ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
+  EXPECT_EQ(r.stats.scheme, "multisweep");
+  EXPECT_LT(r.stats.min_sj_before_smoothing, 0.3);
+  expect_valid_on_cad(r, *in.solid);
+  EXPECT_GE(r.check.scaled_jacobian.min, 0.4);
+}
+
 // A round post on a plate and HexMe s11 (a cylinder on a cube), without the multisweep:
 // cut along the plate's plane and the post's cylinder extended through it, three sweeps
 // meshed as one (s11 was the fallback's, min scaled Jacobian 0.062 before smoothing).
