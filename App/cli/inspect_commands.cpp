@@ -12,7 +12,6 @@
 #include "decompose/decompose.h"
 #include "decompose/decomposition_io.h"
 #include "decompose/plane_cuts.h"
-#include "mesh/mesh_sub_volumes.h"
 #include "occ/shape_io.h"
 #include "occ/split_solid.h"
 #include "voronoi/graph_io.h"
@@ -190,16 +189,13 @@ int run_plane_cuts(const std::string& input, const std::string& brep_path) {
   std::cout << "plane cuts of " << input << ": " << count(cut.planes, "plane") << ", "
             << count(cut.cylinders, "cylinder") << ", " << count(cut.pieces_before_merge, "piece")
             << ", " << cut.pieces.size() << " after merging\n";
-  const occ::ReadResult glued = occ::glue_solids(pieces, "The pieces");
-  if (glued.ok()) {
-    const mesh::SubVolumePlan plan = mesh::plan_sub_volumes(*glued.solid);
-    for (std::size_t i = 0; i < plan.schemes.size(); ++i)
-      std::cout << "  piece " << i + 1 << " (volume " << cut.pieces[i].volume()
-                << "): " << (plan.schemes[i].empty() ? plan.reasons[i] : plan.schemes[i]) << "\n";
-  } else {
-    print_problems(glued.diagnostics);
-    for (std::size_t i = 0; i < cut.pieces.size(); ++i)
-      std::cout << "  piece " << i + 1 << " (volume " << cut.pieces[i].volume() << ")\n";
+  const decompose::PlaneCutSchemes schemes = decompose::plane_cut_schemes(cut);
+  if (!schemes.glue_error.empty()) std::cerr << "vorohex: " << schemes.glue_error << "\n";
+  for (std::size_t i = 0; i < cut.pieces.size(); ++i) {
+    std::cout << "  piece " << i + 1 << " (volume " << cut.pieces[i].volume() << ")";
+    if (schemes.glue_error.empty())
+      std::cout << ": " << (schemes.schemes[i].empty() ? schemes.reasons[i] : schemes.schemes[i]);
+    std::cout << "\n";
   }
   std::cout << "wrote " << brep_path << "\n";
   if (!cut.ok) std::cerr << "vorohex: the plane cuts failed: " << cut.why_not << "\n";

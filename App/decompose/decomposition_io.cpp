@@ -5,6 +5,8 @@
 #include <set>
 #include <sstream>
 
+#include "mesh/mesh_sub_volumes.h"
+#include "occ/shape_io.h"
 #include "occ/split_solid.h"
 
 namespace vorohex::decompose {
@@ -180,6 +182,64 @@ bool write_decomposition(const DecompositionResult& r, const std::string& brep_p
     }
   }
   return true;
+}
+
+PlaneCutSchemes plane_cut_schemes(const PlaneCutResult& cut) {
+  PlaneCutSchemes out;
+  out.schemes.assign(cut.pieces.size(), "");
+  out.reasons.assign(cut.pieces.size(), "");
+  if (cut.pieces.empty()) return out;
+  std::vector<const occ::Solid*> pieces;
+  for (const occ::Solid& s : cut.pieces) pieces.push_back(&s);
+  const occ::ReadResult glued = occ::glue_solids(pieces, "The pieces");
+  if (!glued.ok()) {
+    for (const core::Diagnostic& d : glued.diagnostics)
+      if (d.severity == core::Severity::error) {
+        out.glue_error = d.message;
+        break;
+      }
+    if (out.glue_error.empty()) out.glue_error = "the pieces could not be glued";
+    return out;
+  }
+  const mesh::SubVolumePlan plan = mesh::plan_sub_volumes(*glued.solid);
+  for (std::size_t i = 0; i < plan.schemes.size() && i < out.schemes.size(); ++i) {
+    out.schemes[i] = plan.schemes[i];
+    out.reasons[i] = plan.reasons[i];
+  }
+  return out;
+}
+
+std::string plane_cuts_json(const PlaneCutResult& cut, const PlaneCutSchemes& schemes) {
+  using nlohmann::json;
+  json j;
+  j["method"] = "plane-cuts";
+  j["status"] = cut.ok ? "ok" : "failed";
+  j["counts"] = {{"planes", cut.planes},
+                 {"cylinders", cut.cylinders},
+                 {"sub_volumes_before_merge", cut.pieces_before_merge},
+                 {"sub_volumes", cut.pieces.size()}};
+  j["sub_volumes"] = json::array();
+  for (std::size_t i = 0; i < cut.pieces.size(); ++i) {
+    const std::string scheme = i < schemes.schemes.size() ? schemes.schemes[i] : "";
+    std::string reason = i < schemes.reasons.size() ? schemes.reasons[i] : "";
+    if (scheme.empty() && reason.empty()) reason = schemes.glue_error;
+    j["sub_volumes"].push_back({{"id", i},
+                                {"scheme", scheme.empty() ? "none" : scheme},
+                                {"reason", reason},
+                                {"volume", cut.pieces[i].volume()}});
+  }
+  j["decomposition_faces"] = json::array();
+  j["diagnostics"] = json::array();
+  if (!cut.ok)
+    j["diagnostics"].push_back({{"severity", "error"},
+                                {"code", "plane_cuts_failed"},
+                                {"message", "The plane cuts failed: " + cut.why_not + "."},
+                                {"entities", json::array()}});
+  if (!schemes.glue_error.empty())
+    j["diagnostics"].push_back(
+        {{"severity", "warning"}, {"code", "pieces_not_glued"}, {"message", schemes.glue_error},
+         {"entities", json::array()}});
+  return j.dump(2);
 }
 
 }  // namespace vorohex::decompose

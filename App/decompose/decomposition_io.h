@@ -23,6 +23,7 @@
 #include <string>
 
 #include "decompose/decompose.h"
+#include "decompose/plane_cuts.h"
 
 namespace vorohex::decompose {
 
@@ -41,5 +42,22 @@ std::string decomposition_vtp(const DecompositionResult& result);
 bool write_decomposition(const DecompositionResult& result, const std::string& brep_path,
                          const std::string& json_path, std::string* error,
                          const std::string& vtp_path = "");
+
+// The plane cuts' pieces (plane_cuts.h), each with the scheme it gets once glued to the
+// others, or why it has none; when the pieces cannot be glued, `glue_error` says why and
+// no piece has a scheme.
+struct PlaneCutSchemes {
+  std::vector<std::string> schemes;  // per piece ("" when none)
+  std::vector<std::string> reasons;  // per piece: why it has none
+  std::string glue_error;
+};
+PlaneCutSchemes plane_cut_schemes(const PlaneCutResult& cut);
+
+// The plane cuts as JSON text, in the layout above where it applies:
+//   {"method": "plane-cuts", "status": "ok"|"failed",
+//    "counts": {"planes": n, "cylinders": n, "sub_volumes_before_merge": n, "sub_volumes": n},
+//    "sub_volumes": [{"id": i, "scheme": "sweep"|...|"none", "reason": "...", "volume": v}],
+//    "decomposition_faces": [], "diagnostics": [{"code": "plane_cuts_failed", "message": ...}]}
+std::string plane_cuts_json(const PlaneCutResult& cut, const PlaneCutSchemes& schemes);
 
 }  // namespace vorohex::decompose

@@ -733,7 +733,7 @@ class Decomposition:
     "sub_volumes", "edges", "area", "min_angle" (degrees, its smallest angle with a
     neighbouring face), "voronoi_elements", "governors"); diagnostics: list of dicts;
     shapes: the sub-volumes as Part.Solid, in the order of sub_volumes (empty when the
-    decomposition failed).
+    decomposition failed). method: "voronoi" or "plane-cuts" (see decompose).
     """
 
     def __init__(self, data, shapes):
@@ -744,6 +744,7 @@ class Decomposition:
         self.faces = data.get("decomposition_faces", [])
         self.diagnostics = data.get("diagnostics", [])
         self.shapes = shapes
+        self.method = data.get("method", "voronoi")
 
     ok = property(lambda self: self.status != "failed",
                   doc="False when the solid could not be cut (see diagnostics)")
@@ -756,14 +757,43 @@ class Decomposition:
 
 
 def decompose(shape, sharp_angle=None, merge=True, vtp=None, eps=None, delta=None,
-              max_depth=None, linear_tolerance=None, progress=None):
+              max_depth=None, linear_tolerance=None, progress=None, method="voronoi"):
     """Cuts the one solid in `shape` into sweepable and mappable sub-volumes along its
     embedded Voronoi graph (vorohex decompose). sharp_angle: degrees in (0, 180] below
     which a dihedral counts as sharp (default 60); merge: unite neighbours whose union is
     a sweep; vtp: a path to write the decomposition faces to (VTK PolyData); the graph
     options are those of voronoi_graph; progress as for voronoi_graph. Returns a
-    Decomposition."""
+    Decomposition.
+
+    method="plane-cuts": the mesher's other way (vorohex decompose --plane-cuts): exact
+    cuts along the planes and cylinders of the faces at concave edges, through the whole
+    solid, then pieces merged while their union keeps a scheme. Each sub-volume has "id",
+    "scheme" (the scheme it gets once glued to the others, "none" with a "reason") and
+    "volume"; counts has "planes", "cylinders", "sub_volumes_before_merge" and
+    "sub_volumes"; shapes holds the pieces, also the pieces as cut when the cuts failed
+    (status "failed", the reason in diagnostics). It takes none of the Voronoi options."""
     import tempfile
+    if method not in ("voronoi", "plane-cuts"):
+        raise ValueError("VoroHex: option 'method' must be 'voronoi' or 'plane-cuts', got "
+                         "{!r}".format(method))
+    if method == "plane-cuts":
+        given = dict(sharp_angle=sharp_angle, vtp=vtp, eps=eps, delta=delta,
+                     max_depth=max_depth, linear_tolerance=linear_tolerance)
+        named = sorted(k for k, v in given.items() if v is not None)
+        if merge is not True:
+            named.append("merge")
+        if named:
+            raise ValueError("VoroHex: option '{}' is an option of the Voronoi decomposition; "
+                             "method='plane-cuts' takes none".format(named[0]))
+        solid = _read_solid(check_shape(shape))
+        with tempfile.TemporaryDirectory(prefix="vorohex-") as tmp:
+            brep = os.path.join(tmp, "pieces.brep")
+            text = _core.plane_cuts_json(solid, brep, progress)
+            shapes = []
+            if os.path.exists(brep):
+                import Part
+                shapes = list(Part.read(brep).Solids)
+        return Decomposition(json.loads(text), shapes)
     if not isinstance(merge, bool):
         raise TypeError("VoroHex: option 'merge' must be True or False, got {!r}".format(merge))
     angle = 60.0 if sharp_angle is None else _number("sharp_angle", sharp_angle)

@@ -20,6 +20,7 @@
 #include "decompose/decomposition_io.h"
 #include "io/mesh_io.h"
 #include "occ/shape_io.h"
+#include "occ/split_solid.h"
 #include "pipeline/generate_mesh.h"
 #include "quality/check_mesh.h"
 #include "quality/scaled_jacobian.h"
@@ -505,6 +506,25 @@ std::string decomposition_json(SolidPtr solid, const voronoi::VoronoiOptions& gr
       progress, "decomposition");
 }
 
+// The mesher's exact plane cuts at concave edges (decompose/plane_cuts.h) as JSON text
+// (decomposition_io.h), each piece with the scheme it gets; writes the pieces as a BREP
+// compound where a path is given (also when the cuts failed: the pieces as cut).
+std::string plane_cuts_json(SolidPtr solid, const std::string& brep_path, py::object progress) {
+  if (!solid) throw std::invalid_argument("no solid given");
+  return run_isolated(
+      [&] {
+        const decompose::PlaneCutResult cut = decompose::cut_at_concave_edges(*solid);
+        if (!brep_path.empty() && !cut.pieces.empty()) {
+          std::vector<const occ::Solid*> pieces;
+          for (const occ::Solid& s : cut.pieces) pieces.push_back(&s);
+          std::string error;
+          if (!occ::write_compound_brep(pieces, brep_path, &error)) throw std::runtime_error(error);
+        }
+        return decompose::plane_cuts_json(cut, decompose::plane_cut_schemes(cut));
+      },
+      progress, "plane cuts");
+}
+
 quality::CheckReport check(const core::HexMesh& mesh, SolidPtr solid, double volume_rel_tol,
                            double distance_rel_tol) {
   quality::CheckOptions o;
@@ -541,6 +561,10 @@ PYBIND11_MODULE(_VoroHexCore, m) {
         py::arg("vtp_path") = "", py::arg("progress") = py::none(),
         "the decomposition of a solid as JSON text; writes the sub-volumes (BREP) and the "
         "decomposition faces (VTP) where paths are given");
+  m.def("plane_cuts_json", &plane_cuts_json, py::arg("solid"), py::arg("brep_path") = "",
+        py::arg("progress") = py::none(),
+        "the exact plane cuts at a solid's concave edges as JSON text, each piece with its "
+        "scheme; writes the pieces (BREP) where a path is given");
   m.def("check_mesh", &check, py::arg("mesh"), py::arg("solid") = nullptr,
         py::arg("volume_rel_tol") = quality::CheckOptions{}.volume_rel_tol,
         py::arg("distance_rel_tol") = quality::CheckOptions{}.distance_rel_tol);

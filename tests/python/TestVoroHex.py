@@ -199,6 +199,34 @@ class TestVoroHexApi(unittest.TestCase):
         with self.assertRaisesRegex(TypeError, "merge"):
             VoroHex.decompose(solid, merge="yes")
 
+    def test_plane_cuts_decomposition(self):
+        # The mesher's other decomposition, from Python: a round post on a plate is cut
+        # around and under the post (one cylinder, one plane: three pieces), and the pieces
+        # under and beside the post merge again into the plate's multisweep.
+        plate = Part.makeBox(60, 40, 10)
+        post = Part.makeCylinder(8, 20, FreeCAD.Vector(30, 20, 10))
+        solid = plate.fuse(post).removeSplitter()
+        d = VoroHex.decompose(solid, method="plane-cuts")
+        self.assertTrue(d.ok, d.diagnostics)
+        self.assertEqual(d.method, "plane-cuts")
+        self.assertEqual(d.counts["planes"], 1)
+        self.assertEqual(d.counts["cylinders"], 1)
+        self.assertEqual(d.counts["sub_volumes_before_merge"], 3)
+        self.assertEqual(sorted(sv["scheme"] for sv in d.sub_volumes), ["multisweep", "sweep"])
+        self.assertEqual(len(d.shapes), 2)
+        self.assertAlmostEqual(sum(s.Volume for s in d.shapes), solid.Volume, places=6)
+        for sv, shape in zip(d.sub_volumes, d.shapes):
+            self.assertAlmostEqual(sv["volume"], shape.Volume, places=6)
+        # No concave edge: a clear failure, nothing to show.
+        sphere = VoroHex.decompose(Part.makeSphere(5), method="plane-cuts")
+        self.assertFalse(sphere.ok)
+        self.assertEqual(sphere.shapes, [])
+        self.assertIn("no concave edge", sphere.diagnostics[0]["message"])
+        with self.assertRaisesRegex(ValueError, "'sharp_angle' is an option of the Voronoi"):
+            VoroHex.decompose(solid, method="plane-cuts", sharp_angle=30)
+        with self.assertRaisesRegex(ValueError, "'method' must be"):
+            VoroHex.decompose(solid, method="planes")
+
     def test_graph_and_decomposition_report_progress_and_can_be_cancelled(self):
         # Both run in a child process: heartbeats reach the callback, False stops it.
         fig6 = figure6_shape()
