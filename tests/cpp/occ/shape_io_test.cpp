@@ -152,6 +152,22 @@ TEST(ReadSolid, OverlappingSolidsAreRefused) {
   EXPECT_NE(d.message.find("overlap"), std::string::npos);
 }
 
+// A solid inside another: the general fuse gives as many solids (the inner one and the
+// outer with a cavity), so only the volume shows the overlap. The volumes are compared to
+// the integration's error plus a skin of the modelling tolerance over the faces (about
+// 1e-6 here), far below the inner box's volume.
+TEST(GlueSolids, ASolidInsideAnotherIsRefusedByItsVolume) {
+  const Solid outer = make_box(10, 10, 10);
+  const Solid inner = make_box(1, 1, 1, core::Vec3(4, 4, 4));
+  const auto d = only_error(glue_solids({&outer, &inner}, "The pieces"));
+  EXPECT_EQ(d.code, "overlapping_solids");
+  EXPECT_NE(d.message.find("general fuse has 2 solids"), std::string::npos) << d.message;
+  // Touching, not overlapping: glued.
+  const Solid beside = make_box(1, 1, 1, core::Vec3(10, 4, 4));
+  const ReadResult glued = glue_solids({&outer, &beside}, "The pieces");
+  EXPECT_TRUE(glued.ok());
+}
+
 // Solids touching along an edge or at a vertex only: one mesh of them would not be a
 // manifold there, so the input is refused naming where they touch.
 TEST(ReadSolid, SolidsTouchingAlongAnEdgeOrAtAVertexAreNonManifold) {
