@@ -682,14 +682,16 @@ class Smoother {
       commit(n, y, trial);
       return true;
     }
-    return shortfall_step(n, x, m0, mean_edge);
+    return shortfall_step(n, x, mean_edge);
   }
 
-  // How far the frames of node n's hexes fall short of the target with n at x: the sum over
-  // the incident hexes' nine frames (centre and corners) of max(0, target - value)^2.
+  // How far the frames of node n's hexes fall short of a perfect cube with n at x: the sum
+  // over the incident hexes' nine frames (centre and corners) of (1 - value)^2. The worst
+  // frames weigh most; the good ones count too, so that a tying move does not trade them
+  // away (counting only the frames below the target, the round post on a plate lost 0.01
+  // of its mean).
   double shortfall(std::size_t n, const Vec3& x) const {
     const auto& pts = mesh_.points();
-    const double t = options_.quality_target;
     double sum = 0;
     for (std::int64_t k = topology_.node_hexes.begin(n); k < topology_.node_hexes.end(n); ++k) {
       const std::int32_t item = topology_.node_hexes.items[k];
@@ -697,17 +699,17 @@ class Smoother {
       std::array<Vec3, 8> p;
       for (int i = 0; i < 8; ++i) p[i] = pts[hex[i]];
       p[item % 8] = x;
-      for (double v : detail::hex_frame_jacobians(p))
-        if (v < t) sum += (t - v) * (t - v);
+      for (double v : detail::hex_frame_jacobians(p)) sum += (1 - v) * (1 - v);
     }
     return sum;
   }
 
   // A max-min move that ties: where node n's worst hex is worst at a frame node n is not in
   // (the far corner of a swept column: two layers' nodes, each alone, cannot raise it), a
-  // move that lowers no incident hex below the local minimum m0 and reduces the shortfall
-  // of the frames it does change is taken; the other layer's node then raises the hex.
-  bool shortfall_step(std::size_t n, const Vec3& x, double m0, double mean_edge) {
+  // move that lowers no incident hex below min(its value, the target) and reduces the
+  // shortfall of the frames it does change is taken; the other layer's node then raises
+  // the hex.
+  bool shortfall_step(std::size_t n, const Vec3& x, double mean_edge) {
     const double s0 = shortfall(n, x);
     if (!(s0 > 0)) return false;
     const double h = 1e-5 * mean_edge;
@@ -728,12 +730,13 @@ class Smoother {
       Vec3 y;
       if (!constrained_move(n, x, step * d, y)) continue;
       trial.clear();
-      double m1 = std::numeric_limits<double>::infinity();
+      bool worse = false;  // an incident hex below min(its value, the target)
       for (std::int64_t k = topology_.node_hexes.begin(n); k < topology_.node_hexes.end(n); ++k) {
-        trial.push_back(hex_sj(topology_.node_hexes.items[k], y));
-        m1 = std::min(m1, trial.back());
+        const std::int32_t item = topology_.node_hexes.items[k];
+        trial.push_back(hex_sj(item, y));
+        worse |= !(trial.back() >= std::min(sj_[item / 8], options_.quality_target));
       }
-      if (!(m1 >= m0) || !(shortfall(n, y) < s0 * (1 - 1e-6))) continue;
+      if (worse || !(shortfall(n, y) < s0 * (1 - 1e-6))) continue;
       commit(n, y, trial);
       return true;
     }
