@@ -88,7 +88,7 @@ class Smoother {
     const auto t1 = std::chrono::steady_clock::now();
     if (!cancelled()) optimisation_phase(true);
     if (!cancelled()) optimisation_phase(false);
-    if (!cancelled() && maxmin_phase() > 0 && !cancelled())
+    if (!cancelled() && maxmin_phase(false) > 0 && !cancelled())
       optimisation_phase(false);  // what max-min traded, where it can
     // The optimisation and max-min moved the neighbours of what is still inverted: the
     // untangling may now get further (a few rounds, while the count of inverted falls).
@@ -98,6 +98,14 @@ class Smoother {
       const int now = count_inverted();
       if (now >= left) break;
       left = now;
+    }
+    // Last, max-min with tying moves (shortfall_step), from where the phases above left the
+    // mesh, so the minimum ends at least where they took it; then the Laplacian (guarded as
+    // always) and the optimisation win back the mean the ties traded.
+    if (!cancelled() && count_inverted() == 0 && maxmin_phase(true) > 0 && !cancelled()) {
+      laplacian_phase();
+      if (!cancelled()) optimisation_phase(false);
+      if (!cancelled()) maxmin_phase(false);
     }
     result_.seconds_optimisation = seconds_since(t1);
 
@@ -596,7 +604,7 @@ class Smoother {
   // Returns the number of moves made. Each pass takes the 200 worst hexes (the minimum is
   // the aim; 2000 cost HexMe i08, 189,000 hexes, minutes); passes stop once three in a row
   // raised the smallest positive scaled Jacobian by less than 1e-4.
-  std::size_t maxmin_phase() {
+  std::size_t maxmin_phase(bool ties) {
     const int passes = 3 * options_.optimisation_passes;
     const std::size_t nh = mesh_.num_hexes();
     std::vector<char> seen(mesh_.num_nodes(), 0);
@@ -626,7 +634,7 @@ class Smoother {
       std::size_t moves = 0;
       for (std::int32_t node : nodes) {
         seen[node] = 0;
-        for (int step = 0; step < 8 && maxmin_step(node); ++step) ++moves;
+        for (int step = 0; step < 8 && maxmin_step(node, ties); ++step) ++moves;
       }
       result_.optimisation_moves += moves;
       total += moves;
@@ -636,7 +644,7 @@ class Smoother {
   }
 
   // One max-min move of node n; true if the smallest incident scaled Jacobian rose.
-  bool maxmin_step(std::size_t n) {
+  bool maxmin_step(std::size_t n, bool ties) {
     const Vec3 x = mesh_.points()[n];
     double m0 = std::numeric_limits<double>::infinity();
     for (std::int64_t k = topology_.node_hexes.begin(n); k < topology_.node_hexes.end(n); ++k)
@@ -682,36 +690,45 @@ class Smoother {
       commit(n, y, trial);
       return true;
     }
-    return shortfall_step(n, x, mean_edge);
+    return ties && shortfall_step(n, x, mean_edge);
   }
 
-  // How far the frames of node n's hexes fall short of a perfect cube with n at x: the sum
-  // over the incident hexes' nine frames (centre and corners) of (1 - value)^2. The worst
-  // frames weigh most; the good ones count too, so that a tying move does not trade them
-  // away (counting only the frames below the target, the round post on a plate lost 0.01
-  // of its mean).
-  double shortfall(std::size_t n, const Vec3& x) const {
+  // The frames (centre and corners) of node n's hexes with n at x, hex by hex.
+  void incident_frames(std::size_t n, const Vec3& x, std::vector<double>& out) const {
     const auto& pts = mesh_.points();
-    double sum = 0;
+    out.clear();
     for (std::int64_t k = topology_.node_hexes.begin(n); k < topology_.node_hexes.end(n); ++k) {
       const std::int32_t item = topology_.node_hexes.items[k];
       const auto& hex = mesh_.hexes()[item / 8];
       std::array<Vec3, 8> p;
       for (int i = 0; i < 8; ++i) p[i] = pts[hex[i]];
       p[item % 8] = x;
-      for (double v : detail::hex_frame_jacobians(p)) sum += (1 - v) * (1 - v);
+      const std::array<double, 9> v = detail::hex_frame_jacobians(p);
+      out.insert(out.end(), v.begin(), v.end());
     }
+  }
+
+  // How far the frames of node n's hexes fall short of the target with n at x: the sum over
+  // the incident hexes' nine frames of max(0, target - value)^2.
+  double shortfall(std::size_t n, const Vec3& x) {
+    incident_frames(n, x, frames_);
+    const double t = options_.quality_target;
+    double sum = 0;
+    for (double v : frames_)
+      if (v < t) sum += (t - v) * (t - v);
     return sum;
   }
 
-  // A max-min move that ties: where node n's worst hex is worst at a frame node n is not in
-  // (the far corner of a swept column: two layers' nodes, each alone, cannot raise it), a
-  // move that lowers no incident hex below min(its value, the target) and reduces the
-  // shortfall of the frames it does change is taken; the other layer's node then raises
-  // the hex.
+  // A max-min move that ties, for a node that cannot raise its worst hex alone (a swept
+  // column under a thin source quad is worst at its bottom and its top corner alike): a move
+  // that keeps every incident frame at or above min(its value, the target) and reduces the
+  // shortfall. The other layer's node then raises the hex. Frame by frame, not hex by hex:
+  // a frame of the worst hex that is not its minimum may not sink to it (HexMe n02's worst
+  // hex ended with its minimum at several frames, and no node could raise it any more).
   bool shortfall_step(std::size_t n, const Vec3& x, double mean_edge) {
     const double s0 = shortfall(n, x);
     if (!(s0 > 0)) return false;
+    frames_before_ = frames_;
     const double h = 1e-5 * mean_edge;
     Vec3 g;
     for (int i = 0; i < 3; ++i) {
@@ -729,14 +746,19 @@ class Smoother {
     for (int tries = 0; tries < 12; ++tries, step *= 0.5) {
       Vec3 y;
       if (!constrained_move(n, x, step * d, y)) continue;
-      trial.clear();
-      bool worse = false;  // an incident hex below min(its value, the target)
-      for (std::int64_t k = topology_.node_hexes.begin(n); k < topology_.node_hexes.end(n); ++k) {
-        const std::int32_t item = topology_.node_hexes.items[k];
-        trial.push_back(hex_sj(item, y));
-        worse |= !(trial.back() >= std::min(sj_[item / 8], options_.quality_target));
+      incident_frames(n, y, frames_trial_);
+      bool worse = false;
+      double s1 = 0;
+      for (std::size_t i = 0; i < frames_trial_.size() && !worse; ++i) {
+        const double v = frames_trial_[i];
+        worse = !(v >= std::min(frames_before_[i], options_.quality_target));
+        if (v < options_.quality_target)
+          s1 += (options_.quality_target - v) * (options_.quality_target - v);
       }
-      if (worse || !(shortfall(n, y) < s0 * (1 - 1e-6))) continue;
+      if (worse || !(s1 < s0 * (1 - 1e-6))) continue;
+      trial.clear();
+      for (std::int64_t k = topology_.node_hexes.begin(n); k < topology_.node_hexes.end(n); ++k)
+        trial.push_back(hex_sj(topology_.node_hexes.items[k], y));
       commit(n, y, trial);
       return true;
     }
@@ -753,8 +775,9 @@ class Smoother {
   std::vector<double> sj_;         // current scaled Jacobian per hex
   std::vector<double> node_size_;  // per node: the local size (empty: uniform)
   std::vector<double> trial_sj_;   // incident values of the last serial acceptable() call
-  std::vector<std::vector<std::int32_t>> colour_classes_;  // interior nodes by colour
-  std::vector<std::int32_t> serial_nodes_;                 // boundary and uncoloured nodes
+  std::vector<double> frames_, frames_before_, frames_trial_;  // shortfall_step's frames
+  std::vector<std::vector<std::int32_t>> colour_classes_;      // interior nodes by colour
+  std::vector<std::int32_t> serial_nodes_;                     // boundary and uncoloured nodes
   std::vector<IncidentHex> incident_;
   std::vector<std::pair<int, int>> face_pairs_;  // faces sharing an edge, (lower, higher)
   double floor_ = 0;

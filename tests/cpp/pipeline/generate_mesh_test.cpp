@@ -248,9 +248,10 @@ TEST(GenerateMesh, HexMeI10IsBlocksAndSweepsThatShareTheirSource) {
 // The engraved box (tests/data/engraved_box.step: "ABC" cut 0.05 deep into a 10 x 5 x 2
 // box) at size 0.5 is a multisweep. Its worst hexes are columns through the layers under a
 // thin quad of the source mesh, equally bad at their bottom and top corners: one node alone
-// cannot raise such a hex, so the smoothing's max-min left it at 0.248. It now also takes
-// moves that keep the local minimum and reduce how far the frames they change fall short
-// of the target; the other layer's node then raises the hex.
+// cannot raise such a hex, so the smoothing's max-min left it at 0.248. Its last phase
+// now also takes moves that tie (no frame of the node's hexes below min(its value, the
+// target)) and reduce how far those frames fall short of the target; the other layer's
+// node then raises the hex.
 TEST(GenerateMesh, SweptColumnsAreRaisedLayerByLayer) {
   const occ::ReadResult in =
       occ::read_solid(std::string(VOROHEX_SOURCE_DIR) + "/tests/data/engraved_box.step");
