@@ -236,9 +236,10 @@ std::string plane_cuts_json(const PlaneCutResult& cut, const PlaneCutSchemes& sc
                                 {"message", "The plane cuts failed: " + cut.why_not + "."},
                                 {"entities", json::array()}});
   if (!schemes.glue_error.empty())
-    j["diagnostics"].push_back(
-        {{"severity", "warning"}, {"code", "pieces_not_glued"}, {"message", schemes.glue_error},
-         {"entities", json::array()}});
+    j["diagnostics"].push_back({{"severity", "warning"},
+                                {"code", "pieces_not_glued"},
+                                {"message", schemes.glue_error},
+                                {"entities", json::array()}});
   return j.dump(2);
 }
 
