@@ -696,25 +696,16 @@ class Smoother {
       }
       if (gi.allFinite()) g += gi;
     }
-    Vec3 d = feasible_direction(n, x, g);
-    const double norm = d.norm();
-    if (!(norm > 0) || !std::isfinite(norm)) return false;
-    d /= norm;
-    double step = 0.2 * mean_edge;
-    std::vector<double>& trial = trial_sj_;
-    for (int tries = 0; tries < 12; ++tries, step *= 0.5) {
-      Vec3 y;
-      if (!constrained_move(n, x, step * d, y)) continue;
-      trial.clear();
+    // No ascent direction on its entity: nothing to try, not even a tie (as measured in
+    // bench/results/hexme.md; ties there too are untried).
+    const double room = feasible_direction(n, x, g).norm();
+    if (!(room > 0) || !std::isfinite(room)) return false;
+    const bool rose = search_along(n, x, g, mean_edge, [&](const Vec3&) {
       double m1 = std::numeric_limits<double>::infinity();
-      for (std::int64_t k = topology_.node_hexes.begin(n); k < topology_.node_hexes.end(n); ++k) {
-        trial.push_back(hex_sj(topology_.node_hexes.items[k], y));
-        m1 = std::min(m1, trial.back());
-      }
-      if (!(m1 > m0 + 1e-6)) continue;
-      commit(n, y, trial);
-      return true;
-    }
+      for (double v : trial_sj_) m1 = std::min(m1, v);
+      return m1 > m0 + 1e-6;
+    });
+    if (rose) return true;
     return ties && shortfall_step(n, x, mean_edge);
   }
 
@@ -759,25 +750,36 @@ class Smoother {
       g[i] = (shortfall(n, x - e) - shortfall(n, x + e)) / (2 * h);  // descent
     }
     if (!g.allFinite()) return false;
+    const bool tied = search_along(n, x, g, mean_edge, [&](const Vec3& y) {
+      std::size_t i = 0;  // no incident hex below min(its value, the target)
+      for (std::int64_t k = topology_.node_hexes.begin(n); k < topology_.node_hexes.end(n); ++k)
+        if (!(trial_sj_[i++] >=
+              std::min(sj_[topology_.node_hexes.items[k] / 8], options_.quality_target)))
+          return false;
+      return shortfall(n, y) < s0 * (1 - 1e-6);
+    });
+    if (tied) tied_.push_back(static_cast<std::int32_t>(n));
+    return tied;
+  }
+
+  // Backtracking along the feasible part of direction g from node n's position x: steps of
+  // 0.2, 0.1, ... x mean_edge (12 tries); at each the incident hexes' values go to
+  // trial_sj_ and `accept(y)` decides; the first accepted position is committed.
+  template <class Accept>
+  bool search_along(std::size_t n, const Vec3& x, const Vec3& g, double mean_edge, Accept accept) {
     Vec3 d = feasible_direction(n, x, g);
     const double norm = d.norm();
     if (!(norm > 0) || !std::isfinite(norm)) return false;
     d /= norm;
     double step = 0.2 * mean_edge;
-    std::vector<double>& trial = trial_sj_;
     for (int tries = 0; tries < 12; ++tries, step *= 0.5) {
       Vec3 y;
       if (!constrained_move(n, x, step * d, y)) continue;
-      trial.clear();
-      bool worse = false;  // an incident hex below min(its value, the target)
-      for (std::int64_t k = topology_.node_hexes.begin(n); k < topology_.node_hexes.end(n); ++k) {
-        const std::int32_t item = topology_.node_hexes.items[k];
-        trial.push_back(hex_sj(item, y));
-        worse |= !(trial.back() >= std::min(sj_[item / 8], options_.quality_target));
-      }
-      if (worse || !(shortfall(n, y) < s0 * (1 - 1e-6))) continue;
-      commit(n, y, trial);
-      tied_.push_back(static_cast<std::int32_t>(n));
+      trial_sj_.clear();
+      for (std::int64_t k = topology_.node_hexes.begin(n); k < topology_.node_hexes.end(n); ++k)
+        trial_sj_.push_back(hex_sj(topology_.node_hexes.items[k], y));
+      if (!accept(y)) continue;
+      commit(n, y, trial_sj_);
       return true;
     }
     return false;
