@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -710,9 +711,9 @@ class Smoother {
     }
     // No ascent direction on its entity: nothing to try, not even a tie (as measured in
     // bench/results/hexme.md; ties there too are untried).
-    const double room = feasible_direction(n, x, g).norm();
-    if (!(room > 0) || !std::isfinite(room)) return false;
-    const bool rose = search_along(n, x, g, mean_edge, [&](const Vec3&) {
+    const std::optional<Vec3> up = unit_feasible(n, x, g);
+    if (!up) return false;
+    const bool rose = search_along(n, x, *up, mean_edge, [&](const Vec3&) {
       double m1 = std::numeric_limits<double>::infinity();
       for (double v : trial_sj_) m1 = std::min(m1, v);
       return m1 > m0 + 1e-6;
@@ -761,8 +762,9 @@ class Smoother {
       e[i] = h;
       g[i] = (shortfall(n, x - e) - shortfall(n, x + e)) / (2 * h);  // descent
     }
-    if (!g.allFinite()) return false;
-    const bool tied = search_along(n, x, g, mean_edge, [&](const Vec3& y) {
+    const std::optional<Vec3> down = unit_feasible(n, x, g);
+    if (!down) return false;
+    const bool tied = search_along(n, x, *down, mean_edge, [&](const Vec3& y) {
       std::size_t i = 0;  // no incident hex below min(its value, the target)
       for (std::int64_t k = topology_.node_hexes.begin(n); k < topology_.node_hexes.end(n); ++k)
         if (!(trial_sj_[i++] >=
@@ -774,15 +776,19 @@ class Smoother {
     return tied;
   }
 
-  // Backtracking along the feasible part of direction g from node n's position x: steps of
-  // 0.2, 0.1, ... x mean_edge (12 tries); at each the incident hexes' values go to
-  // trial_sj_ and `accept(y)` decides; the first accepted position is committed.
-  template <class Accept>
-  bool search_along(std::size_t n, const Vec3& x, const Vec3& g, double mean_edge, Accept accept) {
-    Vec3 d = feasible_direction(n, x, g);
+  // The unit direction along the feasible part of g at node n's position x, if there is one.
+  std::optional<Vec3> unit_feasible(std::size_t n, const Vec3& x, const Vec3& g) const {
+    const Vec3 d = feasible_direction(n, x, g);
     const double norm = d.norm();
-    if (!(norm > 0) || !std::isfinite(norm)) return false;
-    d /= norm;
+    if (!(norm > 0) || !std::isfinite(norm)) return std::nullopt;
+    return Vec3(d / norm);
+  }
+
+  // Backtracking along the unit direction d from node n's position x: steps of 0.2, 0.1, ...
+  // x mean_edge (12 tries); at each the incident hexes' values go to trial_sj_ and
+  // `accept(y)` decides; the first accepted position is committed.
+  template <class Accept>
+  bool search_along(std::size_t n, const Vec3& x, const Vec3& d, double mean_edge, Accept accept) {
     double step = 0.2 * mean_edge;
     for (int tries = 0; tries < 12; ++tries, step *= 0.5) {
       Vec3 y;
