@@ -36,6 +36,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "core/isolated_call.h"
 #include "occ/solid_impl.h"
 
 namespace vorohex::occ {
@@ -123,6 +124,53 @@ TopoDS_Shape unified(const TopoDS_Shape& s) {
   return unify.Shape();
 }
 
+// Each solid unified, in order (a solid may become several). OCCT's unification takes no
+// progress indicator and can loop without end: HexMe i02's plane cuts leave a piece (planes
+// and cylinders crossing, B-spline intersection edges) on which ShapeUpgrade_UnifySameDomain
+// still ran after 12 min, with every face kept or none. So with a time limit (`seconds` > 0)
+// it runs in a child process, stopped at the limit. "" when done, else why not.
+std::string unified_within(const std::vector<TopoDS_Solid>& solids, double seconds,
+                           std::vector<TopoDS_Solid>& out) {
+  auto unify_all = [&solids] {
+    BRep_Builder b;
+    TopoDS_Compound c;
+    b.MakeCompound(c);
+    for (const TopoDS_Solid& s : solids) {
+      const TopoDS_Shape u = unified(s);
+      for (TopExp_Explorer ex(u, TopAbs_SOLID); ex.More(); ex.Next()) b.Add(c, ex.Current());
+    }
+    return c;
+  };
+  auto solids_of = [&out](const TopoDS_Shape& c) {
+    out.clear();
+    for (TopExp_Explorer ex(c, TopAbs_SOLID); ex.More(); ex.Next())
+      out.push_back(TopoDS::Solid(ex.Current()));
+  };
+  if (seconds <= 0) {
+    solids_of(unify_all());
+    return "";
+  }
+  const core::IsolatedResult run = core::isolated_call(
+      [&] {
+        std::ostringstream text;
+        BRepTools::Write(unify_all(), text);
+        return text.str();
+      },
+      core::Progress().with_time_limit(seconds));
+  if (run.status == core::IsolatedResult::Status::cancelled)
+    return "OCCT did not merge the faces of the split's pieces within the time limit";
+  if (!run.ok())
+    return "OCCT failed merging the faces of the split's pieces" +
+           (run.message.empty() ? std::string() : " (" + run.message + ")");
+  std::istringstream in(run.data);
+  TopoDS_Shape c;
+  BRep_Builder b;
+  BRepTools::Read(c, in, b);
+  if (c.IsNull()) return "the split's pieces did not come back from merging their faces";
+  solids_of(c);
+  return "";
+}
+
 }  // namespace
 
 SplitResult split_solid(const Solid& solid, const std::vector<std::vector<Vec3>>& tools,
@@ -150,6 +198,7 @@ bool face_cylinder(const Solid& solid, FaceId f, CutCylinder* cylinder) {
 SplitResult split_solid(const Solid& solid, const std::vector<std::vector<Vec3>>& tools,
                         const std::vector<CutCylinder>& cylinders, double tolerance,
                         double time_limit) {
+  const auto t0 = std::chrono::steady_clock::now();
   SplitResult out;
   try {
     TopTools_ListOfShape args, tool_list;
@@ -189,13 +238,21 @@ SplitResult split_solid(const Solid& solid, const std::vector<std::vector<Vec3>>
       }
       result = splitter.Shape();
     }
-    for (TopExp_Explorer ex(result, TopAbs_SOLID); ex.More(); ex.Next()) {
-      TopoDS_Solid s =
-          without_internal_faces(TopoDS::Solid(ex.Current()), &out.dropped_internal_faces);
-      const TopoDS_Shape u = unified(s);
-      for (TopExp_Explorer ey(u, TopAbs_SOLID); ey.More(); ey.Next())
-        out.pieces.push_back(make_solid(TopoDS::Solid(ey.Current())));
+    std::vector<TopoDS_Solid> cut;
+    for (TopExp_Explorer ex(result, TopAbs_SOLID); ex.More(); ex.Next())
+      cut.push_back(
+          without_internal_faces(TopoDS::Solid(ex.Current()), &out.dropped_internal_faces));
+    const double left =
+        time_limit - std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::vector<TopoDS_Solid> pieces;
+    const std::string why = unified_within(cut, time_limit > 0 ? std::max(1.0, left) : 0, pieces);
+    if (!why.empty()) {
+      out.timed_out = why.find("time limit") != std::string::npos;
+      out.diagnostics.push_back(
+          core::make_error(out.timed_out ? "split_timeout" : "split_failed", why));
+      return out;
     }
+    for (const TopoDS_Solid& piece : pieces) out.pieces.push_back(make_solid(piece));
     out.ok = !out.pieces.empty();
     if (!out.ok)
       out.diagnostics.push_back(core::make_error("split_empty", "The split gave no solid"));
