@@ -91,7 +91,15 @@ bool concave_surfaces(const occ::Solid& s, std::vector<Plane>& planes,
     if (s.distance_to_face(faces[0], m + eps * d1) > s.distance_to_face(faces[0], m - eps * d1))
       d1 = -d1;
     if (d1.dot(n2) <= std::sin(M_PI / 180)) continue;  // convex or smooth
+    // A concave edge needs one cut, along either face: a face neither planar nor cylindrical
+    // (a cone, a torus, a B-spline) is left out when the other face gives one.
+    auto cuttable = [&](FaceId f) {
+      occ::CutCylinder unused;
+      return s.face_is_planar(f) || occ::face_cylinder(s, f, &unused);
+    };
+    const bool either = cuttable(faces[0]) || cuttable(faces[1]);
     for (FaceId f : faces) {
+      if (either && !cuttable(f)) continue;
       occ::CutCylinder cyl;
       if (!s.face_is_planar(f) && occ::face_cylinder(s, f, &cyl)) {
         // Along the whole solid: the axial range of the bounding box's corners.
@@ -112,8 +120,9 @@ bool concave_surfaces(const occ::Solid& s, std::vector<Plane>& planes,
         continue;
       }
       if (!s.face_is_planar(f)) {
-        why = "its concave " + core::entity_name(e) + " borders the curved " +
-              core::entity_name(f) + " (neither a plane nor a cylinder to cut along)";
+        why = "its concave " + core::entity_name(e) + " lies between the curved " +
+              core::entity_name(faces[0]) + " and " + core::entity_name(faces[1]) +
+              " (neither a plane nor a cylinder to cut along)";
         return false;
       }
       const Vec3 n = s.face_normal(f, m);
@@ -162,6 +171,7 @@ bool volumes_fill(const std::vector<occ::Solid>& pieces, double whole, std::vect
   }
   if (std::abs(sum - whole) <= kVolumeTolerance * whole) return true;
   std::ostringstream m;
+  m.precision(10);
   m << "OCCT's cut along the surfaces of its concave edges left pieces whose volumes sum to " << sum
     << ", not the solid's " << whole;
   why = m.str();
@@ -204,6 +214,11 @@ PlaneCutResult cut_at_concave_edges(const occ::Solid& solid, const PlaneCutOptio
       occ::split_solid(solid, tools, cylinders, 1e-6 * solid.diagonal(), options.time_limit);
   if (!split.ok) {
     r.why_not = "OCCT could not cut it along the surfaces of its concave edges";
+    if (!split.diagnostics.empty()) {
+      std::string m = split.diagnostics.front().message;
+      if (!m.empty() && m.back() == '.') m.pop_back();
+      r.why_not += " (" + m + ")";
+    }
     return r;
   }
   r.planes = int(planes.size());

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <memory>
 
 #include "fixtures/solids.h"
@@ -69,14 +70,24 @@ TEST(PlaneCuts, NothingToCutOrNoExactSurfaceIsSaid) {
   PlaneCutOptions bad;
   bad.max_planes = 0;
   EXPECT_THROW(cut_at_concave_edges(occ::make_box(2, 1, 1), bad), std::invalid_argument);
-  // HexMe s05: a cube with a sphere on a face; its concave edge borders the sphere, which
-  // has no plane or cylinder to extend.
+  // A cone through a torus's tube: its concave edges lie between the two, and neither has a
+  // plane or a cylinder to extend.
+  std::unique_ptr<occ::Solid> pin =
+      occ::fuse_solids(occ::make_torus(2, 0.7, core::Vec3(0, 0, 0), core::Vec3(0, 0, 1)),
+                       occ::make_cone(0.5, 0.3, 3, core::Vec3(2, 0, -1.5), core::Vec3(0, 0, 1)));
+  ASSERT_TRUE(pin);
+  const PlaneCutResult r = cut_at_concave_edges(*pin);
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(r.why_not.find("neither a plane nor a cylinder"), std::string::npos) << r.why_not;
+  // HexMe s05: a cube with a sphere on a face; its concave edge lies between the sphere and
+  // the cube's face, whose plane cuts the sphere's cap off - which no scheme meshes.
   const occ::ReadResult in =
       occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/s05o_cube_sphere.step");
   ASSERT_TRUE(in.ok()) << "HexMe model s05 not found in " << VOROHEX_HEXME_DIR;
-  const PlaneCutResult r = cut_at_concave_edges(*in.solid);
-  EXPECT_FALSE(r.ok);
-  EXPECT_NE(r.why_not.find("neither a plane nor a cylinder"), std::string::npos) << r.why_not;
+  const PlaneCutResult cap = cut_at_concave_edges(*in.solid);
+  EXPECT_FALSE(cap.ok);
+  EXPECT_EQ(cap.planes, 1);
+  EXPECT_NE(cap.why_not.find("is a sphere"), std::string::npos) << cap.why_not;
 }
 
 // A round post standing on a plate (a cylinder fused onto a box): the plate's plane at the
@@ -98,6 +109,40 @@ TEST(PlaneCuts, RoundPostOnPlateIsCutAroundAndUnderThePost) {
   const PlaneCutResult c = cut_at_concave_edges(*corner, blocks_and_sweeps());
   expect_valid(*corner, c);
   EXPECT_EQ(c.cylinders, 1);
+}
+
+// A concave edge needs one cut: where one of its faces is a cone (a conical boss on a plate),
+// the cut follows the other, the plate's plane, which leaves the boss a frustum above it.
+TEST(PlaneCuts, AConeAtAConcaveEdgeIsLeftToThePlaneBesideIt) {
+  std::unique_ptr<occ::Solid> boss =
+      occ::fuse_solids(occ::make_box(4, 4, 1),
+                       occ::make_cone(1.2, 0.6, 2, core::Vec3(2, 2, 1), core::Vec3(0, 0, 1)));
+  ASSERT_TRUE(boss);
+  const PlaneCutResult r = cut_at_concave_edges(*boss);
+  ASSERT_TRUE(r.ok) << r.why_not;
+  EXPECT_EQ(r.planes, 1);
+  EXPECT_EQ(r.cylinders, 0);
+  double volume = 0;
+  for (const occ::Solid& p : r.pieces) volume += p.volume();
+  EXPECT_NEAR(volume, boss->volume(), 1e-9 * boss->volume());
+}
+
+// OCCT's merging of the faces a cut leaves on one surface takes no progress indicator and,
+// on one piece of HexMe i02's cuts (planes and cylinders crossing), never ends. The cut
+// still ends at its time limit, with the reason, rather than hanging.
+TEST(PlaneCuts, TheCutEndsAtItsTimeLimitEvenWhereOcctDoesNot) {
+  const occ::ReadResult in = occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/i02o_m2.step");
+  ASSERT_TRUE(in.ok()) << "HexMe model i02 not found in " << VOROHEX_HEXME_DIR;
+  PlaneCutOptions o;
+  o.time_limit = 5;
+  const auto t0 = std::chrono::steady_clock::now();
+  const PlaneCutResult r = cut_at_concave_edges(*in.solid, o);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  // A bound on a hang, not a timing: the limit, plus the volume checks after the split.
+  EXPECT_LT(seconds, 4 * o.time_limit);
+  if (!r.ok) EXPECT_FALSE(r.why_not.empty());
+  if (!r.ok) EXPECT_EQ(r.why_not.find("neither a plane nor a cylinder"), std::string::npos);
 }
 
 }  // namespace
