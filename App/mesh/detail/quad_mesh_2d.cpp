@@ -341,9 +341,40 @@ QuadMesh2d lattice_mesh_by(const std::vector<std::vector<Vec2>>& loops, double s
   for (const auto& loop : loops) out.points.insert(out.points.end(), loop.begin(), loop.end());
   const int nb = int(out.points.size());
   if (loops.size() == 1 && nb == 4) {
-    out.quads.push_back({0, 1, 2, 3});
-    if (quad_quality(out.points[0], out.points[1], out.points[2], out.points[3]) <= 0)
-      out.error = "the four boundary nodes do not make a valid quad";
+    const std::vector<Vec2>& b = out.points;
+    if (quad_quality(b[0], b[1], b[2], b[3]) > 0) {
+      out.quads.push_back({0, 1, 2, 3});
+      return out;
+    }
+    // Four nodes with a straight (or reflex) angle at one: a triangle with one edge of two
+    // intervals, as a small sub-volume's end gets. A pillow: an inner quad, its corners
+    // halfway from the centre to the boundary nodes, and a quad between each boundary edge
+    // and the inner quad's edge facing it. The inner corner facing the straight angle goes
+    // farther out (else the inner quad has the straight angle too).
+    const Vec2 centre = 0.25 * (b[0] + b[1] + b[2] + b[3]);
+    int flat = 0;  // the node with the largest interior angle (counter-clockwise loop)
+    double widest = -1e300;
+    for (int k = 0; k < 4; ++k) {
+      const Vec2 in = b[k] - b[(k + 3) % 4], out_ = b[(k + 1) % 4] - b[k];
+      const double turn = std::atan2(in.x() * out_.y() - in.y() * out_.x(), in.dot(out_));
+      if (-turn > widest) widest = -turn, flat = k;  // interior angle = pi - turn
+    }
+    for (const double t : {0.75, 0.85, 0.65, 0.95}) {
+      out.points.resize(4);
+      out.quads.clear();
+      for (int k = 0; k < 4; ++k)
+        out.points.push_back(centre + (k == flat ? t : 0.5) * (out.points[k] - centre));
+      for (int k = 0; k < 4; ++k) out.quads.push_back({k, (k + 1) % 4, 4 + (k + 1) % 4, 4 + k});
+      out.quads.push_back({4, 5, 6, 7});
+      bool valid = true;
+      for (const auto& q : out.quads)
+        valid = valid && quad_quality(out.points[q[0]], out.points[q[1]], out.points[q[2]],
+                                      out.points[q[3]]) > 0;
+      if (valid) return out;
+    }
+    out.points.resize(4);
+    out.quads.clear();
+    out.error = "the four boundary nodes do not make a valid quad, nor a pillowed one";
     return out;
   }
 

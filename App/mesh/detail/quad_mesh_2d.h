@@ -32,7 +32,8 @@ struct QuadMesh2d {
 
 // loops: closed cycles of boundary nodes (first not repeated), the domain on their left
 // (outer counter-clockwise, holes clockwise). Each loop needs an even number of nodes, at
-// least 6, except a domain of one loop with 4 nodes (one quad). size: target edge length;
+// least 6, except a domain of one loop with 4 nodes (one quad; five, pillowed, where one of
+// the four has a straight angle). size: target edge length;
 // size_at, when given, a smaller local size: the lattice becomes a balanced quadtree whose
 // cells follow it (a graded mesh).
 QuadMesh2d quad_mesh_2d(const std::vector<std::vector<Vec2>>& loops, double size,

@@ -208,6 +208,14 @@ TEST(QuadMesh2d, SmallFacesAndRefusals) {
   const auto h = detail::quad_mesh_2d(hexagon, 1, 10);
   check_2d(hexagon, h, 0.5);
   EXPECT_EQ(h.quads.size(), 3u);
+  // Four nodes with a straight angle (a triangle whose long edge has two intervals, the end
+  // of a small piece of HexMe i22's cuts): five quads, a pillow around an inner quad.
+  const std::vector<std::vector<Vec2>> triangle = {{{52.5, 10}, {60, 7.5}, {67.5, 10}, {60, 10}}};
+  const auto t = detail::quad_mesh_2d(triangle, 7.5, 10);
+  check_2d(triangle, t, 0.05);
+  EXPECT_EQ(t.quads.size(), 5u);
+  const auto crossed = detail::quad_mesh_2d({{{0, 0}, {1, 1}, {1, 0}, {0, 1}}}, 1, 10);
+  EXPECT_NE(crossed.error, "");
   // Odd loops and self-intersecting boundaries are refused with a reason.
   EXPECT_NE(detail::quad_mesh_2d({circle_nodes({0, 0}, 1, 7, true)}, 0.5, 10).error, "");
   const std::vector<Vec2> bow = {{0, 0}, {1, 0}, {2, 1},  {2, 0},
