@@ -352,22 +352,23 @@ bool mesh_decomposed(const occ::Solid& solid, const MeshOptions& options,
     return false;
   }
   if (mesh_pieces(solid, d, options, sizes, progress, t0, result, why_not)) return true;
-  if (d.method != "voronoi" || progress.cancelled()) return false;
-  // The Voronoi sub-volumes did not mesh together: the exact cuts at the concave edges,
-  // within what is left of the decomposition's time.
+  if (d.method != "plane cuts" || progress.cancelled()) return false;
+  // The exact cuts' sub-volumes did not mesh together: the Voronoi decomposition, within
+  // what is left of the decomposition's time.
   MeshOptions rest = options;
   rest.decomposition_time_limit = std::max(5.0, options.decomposition_time_limit - d.seconds);
-  const detail::IsolatedDecomposition cuts =
-      detail::decompose_isolated(solid, rest, progress, /*plane_cuts_only=*/true);
-  if (cuts.cancelled) {
+  const detail::IsolatedDecomposition voronoi =
+      detail::decompose_isolated(solid, rest, progress, detail::DecompositionMethods::voronoi);
+  if (voronoi.cancelled) {
     result.diagnostics.push_back(core::make_error("cancelled", "Meshing was cancelled."));
     return false;
   }
-  std::string why_cuts;
-  if (cuts.pieces && mesh_pieces(solid, cuts, options, sizes, progress, t0, result, why_cuts))
+  std::string why_voronoi;
+  if (voronoi.pieces &&
+      mesh_pieces(solid, voronoi, options, sizes, progress, t0, result, why_voronoi))
     return true;
-  why_not += "; cutting along the faces at its concave edges did not help either (" +
-             (cuts.pieces ? why_cuts : cuts.why_not) + ")";
+  why_not += "; the Voronoi decomposition did not help either (" +
+             (voronoi.pieces ? why_voronoi : voronoi.why_not) + ")";
   return false;
 }
 

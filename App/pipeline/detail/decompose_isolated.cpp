@@ -25,12 +25,14 @@ std::string to_text(int before_merge, const char* method,
 }
 
 // Runs in the child: the Voronoi decomposition, or throws with the reason.
-std::string voronoi_decomposition(const occ::Solid& solid, const MeshOptions& mesh_options) {
+// `seconds`: what is left of the decomposition's time.
+std::string voronoi_decomposition(const occ::Solid& solid, const MeshOptions& mesh_options,
+                                  double seconds) {
   const voronoi::VoronoiResult graph = voronoi::compute_voronoi_graph(solid, mesh_options.graph);
   if (!graph.ok()) throw std::runtime_error("its Voronoi graph could not be computed");
   decompose::DecomposeOptions options;
   options.sharp_angle = mesh_options.sharp_angle;
-  options.split_time_limit = std::min(30.0, mesh_options.decomposition_time_limit);
+  options.split_time_limit = std::max(1.0, std::min(30.0, seconds));
   const decompose::DecompositionResult d = decompose::decompose(solid, graph, options);
   if (!d.ok()) {
     for (const core::Diagnostic& diag : d.diagnostics)
@@ -61,46 +63,53 @@ std::string voronoi_decomposition(const occ::Solid& solid, const MeshOptions& me
   return to_text(d.stats.sub_volumes_before_merge, "voronoi", solids);
 }
 
-// Runs in the child: the Voronoi decomposition, else exact plane cuts at concave edges.
+// Runs in the child: exact cuts at the concave edges (with at most half the time), else the
+// Voronoi decomposition; or only one of them.
 std::string decompose_to_text(const occ::Solid& solid, const MeshOptions& mesh_options,
-                              bool plane_cuts_only) {
+                              DecompositionMethods methods) {
   const auto t0 = std::chrono::steady_clock::now();
   const double time_limit = mesh_options.decomposition_time_limit;
   std::string why;
-  if (!plane_cuts_only) {
-    try {
-      return voronoi_decomposition(solid, mesh_options);
-    } catch (const std::exception& e) {
-      why = e.what();
+  if (methods != DecompositionMethods::voronoi) {
+    decompose::PlaneCutOptions options;
+    options.multisweep = std::find(mesh_options.schemes.begin(), mesh_options.schemes.end(),
+                                   "multisweep") != mesh_options.schemes.end();
+    options.time_limit =
+        methods == DecompositionMethods::plane_cuts ? time_limit : std::max(1.0, 0.5 * time_limit);
+    const decompose::PlaneCutResult cut = decompose::cut_at_concave_edges(solid, options);
+    if (cut.ok) {
+      std::vector<const occ::Solid*> solids;
+      for (const occ::Solid& s : cut.pieces) solids.push_back(&s);
+      return to_text(cut.pieces_before_merge, "plane cuts", solids);
     }
+    if (methods == DecompositionMethods::plane_cuts) throw std::runtime_error(cut.why_not);
+    why =
+        "cutting along the faces at its concave edges did not give sub-volumes that all have "
+        "a scheme (" +
+        cut.why_not + ")";
   }
-  decompose::PlaneCutOptions options;
-  options.multisweep = std::find(mesh_options.schemes.begin(), mesh_options.schemes.end(),
-                                 "multisweep") != mesh_options.schemes.end();
-  options.time_limit = std::max(
-      1.0,
-      time_limit - std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-  const decompose::PlaneCutResult cut = decompose::cut_at_concave_edges(solid, options);
-  if (!cut.ok && plane_cuts_only) throw std::runtime_error(cut.why_not);
-  if (!cut.ok)
-    throw std::runtime_error(why + "; cutting along the faces at its concave edges " +
-                             "did not help either (" + cut.why_not + ")");
-  std::vector<const occ::Solid*> solids;
-  for (const occ::Solid& s : cut.pieces) solids.push_back(&s);
-  return to_text(cut.pieces_before_merge, "plane cuts", solids);
+  const double elapsed =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  try {
+    return voronoi_decomposition(solid, mesh_options, time_limit - elapsed);
+  } catch (const std::exception& e) {
+    if (why.empty()) throw;
+    throw std::runtime_error(why + "; " + e.what());
+  }
 }
 
 }  // namespace
 
 IsolatedDecomposition decompose_isolated(const occ::Solid& solid, const MeshOptions& options,
-                                         const core::Progress& progress, bool plane_cuts_only) {
+                                         const core::Progress& progress,
+                                         DecompositionMethods methods) {
   const double time_limit = options.decomposition_time_limit;
   IsolatedDecomposition out;
   const auto t0 = std::chrono::steady_clock::now();
   core::IsolatedCallOptions io;
   io.stage = "decompose";
   const core::IsolatedResult run =
-      core::isolated_call([&] { return decompose_to_text(solid, options, plane_cuts_only); },
+      core::isolated_call([&] { return decompose_to_text(solid, options, methods); },
                           progress.with_time_limit(time_limit), io);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   switch (run.status) {

@@ -1,6 +1,6 @@
-// The decomposition as the mesh pipeline uses it: Voronoi graph and decomposition (with
-// merging) of a solid that no single scheme meshes, else exact plane cuts at its concave
-// edges (decompose/plane_cuts.h), in a child process with a time limit
+// The decomposition as the mesh pipeline uses it, for a solid that no single scheme meshes:
+// exact cuts at its concave edges (decompose/plane_cuts.h), else the Voronoi graph and
+// decomposition (with merging), in a child process with a time limit
 // (core/isolated_call.h), since both can take minutes or much memory on complex parts
 // (HexMe's i-series): the pipeline then falls back instead of waiting. What comes back is
 // the sub-volumes glued at their common faces, when there are at least two and each has a
@@ -25,11 +25,21 @@ struct IsolatedDecomposition {
   double seconds = 0;
 };
 
+// Which decompositions to try. The exact cuts come first: on HexMe every model meshed as
+// several sub-volumes was cut that way (i06, i10), and they fail within a second where a
+// concave edge has no plane or cylinder to cut along, so the Voronoi decomposition keeps
+// its time there.
+enum class DecompositionMethods {
+  plane_cuts_then_voronoi,  // the cuts (with at most half the time), else the Voronoi one
+  plane_cuts,               // only the cuts
+  voronoi,                  // only the Voronoi decomposition (the pipeline's second try,
+                            // when the cuts' sub-volumes did not mesh together)
+};
+
 // Uses options.graph, sharp_angle and decomposition_time_limit (seconds the child may
-// take before it is stopped). `plane_cuts_only`: no Voronoi decomposition (the pipeline's
-// second try, when the Voronoi sub-volumes did not mesh together).
-IsolatedDecomposition decompose_isolated(const occ::Solid& solid, const MeshOptions& options,
-                                         const core::Progress& progress,
-                                         bool plane_cuts_only = false);
+// take before it is stopped).
+IsolatedDecomposition decompose_isolated(
+    const occ::Solid& solid, const MeshOptions& options, const core::Progress& progress,
+    DecompositionMethods methods = DecompositionMethods::plane_cuts_then_voronoi);
 
 }  // namespace vorohex::pipeline::detail
