@@ -13,6 +13,9 @@
 #include <cerrno>
 #define VOROHEX_HAVE_FORK 1
 #endif
+#ifdef __linux__
+#include <sys/prctl.h>
+#endif
 
 namespace vorohex::core {
 
@@ -45,7 +48,16 @@ bool write_all(int fd, const char* p, std::size_t n) {
 }
 
 // In the child: no return, no destructors of the parent's objects, no atexit handlers.
-[[noreturn]] void child(int fd, const std::function<std::string()>& work) {
+// A child that calls isolated_call itself (the decomposition's split stops OCCT's face
+// merging that way) dies with its parent: a parent killed at its time limit or on cancel
+// leaves no grandchild running on.
+[[noreturn]] void child(int fd, const std::function<std::string()>& work, pid_t parent) {
+#ifdef __linux__
+  ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+  if (::getppid() != parent) ::_exit(4);  // the parent died before prctl took effect
+#else
+  (void)parent;
+#endif
   std::string out;
   try {
     out = kResult + work();
@@ -90,6 +102,7 @@ IsolatedResult isolated_call(const std::function<std::string()>& work, const Pro
   if (!options.isolate) return run_here(work);
   int fds[2];
   if (::pipe(fds) != 0) return run_here(work);
+  const pid_t parent = ::getpid();
   const pid_t pid = ::fork();
   if (pid < 0) {
     ::close(fds[0]);
@@ -98,7 +111,7 @@ IsolatedResult isolated_call(const std::function<std::string()>& work, const Pro
   }
   if (pid == 0) {
     ::close(fds[0]);
-    child(fds[1], work);
+    child(fds[1], work, parent);
   }
   ::close(fds[1]);
 

@@ -3,11 +3,17 @@
 #include <atomic>
 #include <chrono>
 #include <csignal>
+#include <cstdio>
+#include <fstream>
 #include <stdexcept>
 #include <string>
 #include <thread>
 
 #include "core/isolated_call.h"
+
+#ifdef __linux__
+#include <unistd.h>
+#endif
 
 namespace vorohex::core {
 namespace {
@@ -89,6 +95,46 @@ TEST(IsolatedCall, ATimeLimitStopsTheChild) {
   EXPECT_EQ(r.status, IsolatedResult::Status::cancelled);
   EXPECT_EQ(r.message, "the time limit was reached");
 }
+
+#ifdef __linux__
+// Whether a process is gone (or a zombie, killed but not yet reaped by whoever adopted it).
+bool gone(int pid) {
+  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+  std::string line;
+  if (!std::getline(stat, line)) return true;
+  const std::size_t close = line.rfind(')');
+  return close != std::string::npos && close + 2 < line.size() && line[close + 2] == 'Z';
+}
+
+// A child that runs an isolated call of its own (the decomposition's split does) and is
+// killed at its time limit takes its own child with it: no grandchild runs on.
+TEST(IsolatedCall, AGrandchildDiesWithTheChildThatStartedIt) {
+  const std::string pid_file = ::testing::TempDir() + "/vorohex_grandchild.pid";
+  std::remove(pid_file.c_str());
+  const IsolatedResult r = isolated_call(
+      [&] {
+        isolated_call([&] {
+          std::ofstream(pid_file) << ::getpid() << "\n";
+          std::this_thread::sleep_for(std::chrono::minutes(10));
+          return std::string("too late");
+        });
+        return std::string("too late");
+      },
+      Progress().with_time_limit(1.0));
+  EXPECT_EQ(r.status, IsolatedResult::Status::cancelled);
+  int pid = 0;
+  std::ifstream(pid_file) >> pid;
+  ASSERT_GT(pid, 0) << "the grandchild did not start";
+  bool dead = false;
+  for (int k = 0; k < 50 && !dead; ++k) {
+    dead = gone(pid);
+    if (!dead) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  EXPECT_TRUE(dead) << "grandchild " << pid << " still runs";
+  if (!dead) ::kill(pid, SIGKILL);
+  std::remove(pid_file.c_str());
+}
+#endif
 
 TEST(IsolatedCall, RunsInTheCallerWhenAskedTo) {
   int touched = 0;
