@@ -91,41 +91,43 @@ bool concave_surfaces(const occ::Solid& s, std::vector<Plane>& planes,
     if (s.distance_to_face(faces[0], m + eps * d1) > s.distance_to_face(faces[0], m - eps * d1))
       d1 = -d1;
     if (d1.dot(n2) <= std::sin(M_PI / 180)) continue;  // convex or smooth
-    // A concave edge needs one cut, along either face: a face neither planar nor cylindrical
-    // (a cone, a torus, a B-spline) is left out when the other face gives one.
-    auto cuttable = [&](FaceId f) {
-      occ::CutCylinder unused;
-      return s.face_is_planar(f) || occ::face_cylinder(s, f, &unused);
-    };
-    const bool either = cuttable(faces[0]) || cuttable(faces[1]);
-    for (FaceId f : faces) {
-      if (either && !cuttable(f)) continue;
-      occ::CutCylinder cyl;
-      if (!s.face_is_planar(f) && occ::face_cylinder(s, f, &cyl)) {
+    // What each face gives to cut along: its plane, or its cylinder. A concave edge needs
+    // one cut, so a face of another kind (a cone, a torus, a B-spline) is left out when the
+    // other face gives one.
+    bool planar[2], round[2];
+    occ::CutCylinder cyl[2];
+    for (int k = 0; k < 2; ++k) {
+      planar[k] = s.face_is_planar(faces[k]);
+      round[k] = !planar[k] && occ::face_cylinder(s, faces[k], &cyl[k]);
+    }
+    if (!planar[0] && !round[0] && !planar[1] && !round[1]) {
+      why = "its concave " + core::entity_name(e) + " lies between the curved " +
+            core::entity_name(faces[0]) + " and " + core::entity_name(faces[1]) +
+            " (neither a plane nor a cylinder to cut along)";
+      return false;
+    }
+    for (int k = 0; k < 2; ++k) {
+      if (round[k]) {
         // Along the whole solid: the axial range of the bounding box's corners.
         const core::BoundingBox box = s.bounding_box();
         double lo = 0, hi = 0;
-        for (int k = 0; k < 8; ++k) {
-          const Vec3 c((k & 1) ? box.max.x() : box.min.x(), (k & 2) ? box.max.y() : box.min.y(),
-                       (k & 4) ? box.max.z() : box.min.z());
-          const double t = (c - cyl.origin).dot(cyl.axis);
-          lo = k ? std::min(lo, t) : t;
-          hi = k ? std::max(hi, t) : t;
+        for (int c = 0; c < 8; ++c) {
+          const Vec3 corner((c & 1) ? box.max.x() : box.min.x(),
+                            (c & 2) ? box.max.y() : box.min.y(),
+                            (c & 4) ? box.max.z() : box.min.z());
+          const double t = (corner - cyl[k].origin).dot(cyl[k].axis);
+          lo = c ? std::min(lo, t) : t;
+          hi = c ? std::max(hi, t) : t;
         }
-        cyl.from = lo - 0.1 * diag;
-        cyl.to = hi + 0.1 * diag;
+        cyl[k].from = lo - 0.1 * diag;
+        cyl[k].to = hi + 0.1 * diag;
         bool known = false;
-        for (const occ::CutCylinder& c : cylinders) known = known || same_cylinder(c, cyl, tol);
-        if (!known) cylinders.push_back(cyl);
+        for (const occ::CutCylinder& c : cylinders) known = known || same_cylinder(c, cyl[k], tol);
+        if (!known) cylinders.push_back(cyl[k]);
         continue;
       }
-      if (!s.face_is_planar(f)) {
-        why = "its concave " + core::entity_name(e) + " lies between the curved " +
-              core::entity_name(faces[0]) + " and " + core::entity_name(faces[1]) +
-              " (neither a plane nor a cylinder to cut along)";
-        return false;
-      }
-      const Vec3 n = s.face_normal(f, m);
+      if (!planar[k]) continue;
+      const Vec3 n = s.face_normal(faces[k], m);
       Plane pl{n, n.dot(m)};
       if (pl.normal.x() + 1e-12 * pl.normal.y() + 1e-24 * pl.normal.z() < 0)
         pl.normal = -pl.normal, pl.offset = -pl.offset;

@@ -128,9 +128,9 @@ TopoDS_Shape unified(const TopoDS_Shape& s) {
 // progress indicator and can loop without end: HexMe i02's plane cuts leave a piece (planes
 // and cylinders crossing, B-spline intersection edges) on which ShapeUpgrade_UnifySameDomain
 // still ran after 12 min, with every face kept or none. So with a time limit (`seconds` > 0)
-// it runs in a child process, stopped at the limit. "" when done, else why not.
+// it runs in a child process, stopped at the limit (`timed_out`). "" when done, else why not.
 std::string unified_within(const std::vector<TopoDS_Solid>& solids, double seconds,
-                           std::vector<TopoDS_Solid>& out) {
+                           std::vector<TopoDS_Solid>& out, bool& timed_out) {
   auto unify_all = [&solids] {
     BRep_Builder b;
     TopoDS_Compound c;
@@ -157,8 +157,8 @@ std::string unified_within(const std::vector<TopoDS_Solid>& solids, double secon
         return text.str();
       },
       core::Progress().with_time_limit(seconds));
-  if (run.status == core::IsolatedResult::Status::cancelled)
-    return "OCCT did not merge the faces of the split's pieces within the time limit";
+  timed_out = run.status == core::IsolatedResult::Status::cancelled;
+  if (timed_out) return "OCCT did not merge the faces of the split's pieces within the time limit";
   if (!run.ok())
     return "OCCT failed merging the faces of the split's pieces" +
            (run.message.empty() ? std::string() : " (" + run.message + ")");
@@ -245,9 +245,9 @@ SplitResult split_solid(const Solid& solid, const std::vector<std::vector<Vec3>>
     const double left =
         time_limit - std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::vector<TopoDS_Solid> pieces;
-    const std::string why = unified_within(cut, time_limit > 0 ? std::max(1.0, left) : 0, pieces);
+    const std::string why =
+        unified_within(cut, time_limit > 0 ? std::max(1.0, left) : 0, pieces, out.timed_out);
     if (!why.empty()) {
-      out.timed_out = why.find("time limit") != std::string::npos;
       out.diagnostics.push_back(
           core::make_error(out.timed_out ? "split_timeout" : "split_failed", why));
       return out;

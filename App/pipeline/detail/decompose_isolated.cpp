@@ -64,7 +64,7 @@ std::string voronoi_decomposition(const occ::Solid& solid, const MeshOptions& me
 }
 
 // Runs in the child: exact cuts at the concave edges (with at most half the time), else the
-// Voronoi decomposition; or only one of them.
+// Voronoi decomposition; or only the latter.
 std::string decompose_to_text(const occ::Solid& solid, const MeshOptions& mesh_options,
                               DecompositionMethods methods) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -74,15 +74,13 @@ std::string decompose_to_text(const occ::Solid& solid, const MeshOptions& mesh_o
     decompose::PlaneCutOptions options;
     options.multisweep = std::find(mesh_options.schemes.begin(), mesh_options.schemes.end(),
                                    "multisweep") != mesh_options.schemes.end();
-    options.time_limit =
-        methods == DecompositionMethods::plane_cuts ? time_limit : std::max(1.0, 0.5 * time_limit);
+    options.time_limit = std::max(1.0, 0.5 * time_limit);
     const decompose::PlaneCutResult cut = decompose::cut_at_concave_edges(solid, options);
     if (cut.ok) {
       std::vector<const occ::Solid*> solids;
       for (const occ::Solid& s : cut.pieces) solids.push_back(&s);
       return to_text(cut.pieces_before_merge, "plane cuts", solids);
     }
-    if (methods == DecompositionMethods::plane_cuts) throw std::runtime_error(cut.why_not);
     why =
         "cutting along the faces at its concave edges did not give sub-volumes that all have "
         "a scheme (" +

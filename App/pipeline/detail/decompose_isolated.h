@@ -31,7 +31,6 @@ struct IsolatedDecomposition {
 // its time there.
 enum class DecompositionMethods {
   plane_cuts_then_voronoi,  // the cuts (with at most half the time), else the Voronoi one
-  plane_cuts,               // only the cuts
   voronoi,                  // only the Voronoi decomposition (the pipeline's second try,
                             // when the cuts' sub-volumes did not mesh together)
 };
