@@ -5,6 +5,7 @@
 #include <BRepAlgoAPI_Cut.hxx>
 #include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepAlgoAPI_Splitter.hxx>
+#include <BRepBuilderAPI_Copy.hxx>
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepBuilderAPI_MakePolygon.hxx>
@@ -122,6 +123,15 @@ TopoDS_Shape unified(const TopoDS_Shape& s) {
   ShapeUpgrade_UnifySameDomain unify(s, true, true, true);
   unify.Build();
   return unify.Shape();
+}
+
+// A Boolean's result, unified on a copy: the result shares the sub-shapes the operation
+// left as they were with its arguments, and the unification changes sub-shapes in place (a
+// fuse of two plane-cut pieces of HexMe i22 turned an argument of volume 28.3 into one of
+// -3244).
+TopoDS_Shape unified_copy(const TopoDS_Shape& s) {
+  BRepBuilderAPI_Copy copy(s, false, false);  // new sub-shapes, the same geometry
+  return unified(copy.Shape());
 }
 
 // Each solid unified, in order (a solid may become several). OCCT's unification takes no
@@ -319,11 +329,30 @@ std::vector<FaceSample> sample_faces(const Solid& solid) {
   return out;
 }
 
+namespace {
+
+// A Boolean operation of a and b that leaves both as they were: by default OCCT's Booleans
+// may change their arguments' sub-shapes in place (tolerances), and the pieces of a split
+// share their common edges and vertices with their neighbours.
+template <class Operation>
+bool run_boolean(Operation& op, const Solid& a, const Solid& b) {
+  TopTools_ListOfShape arguments, tools;
+  arguments.Append(a.impl().solid);
+  tools.Append(b.impl().solid);
+  op.SetArguments(arguments);
+  op.SetTools(tools);
+  op.SetNonDestructive(true);
+  op.Build();
+  return op.IsDone() && !op.HasErrors();
+}
+
+}  // namespace
+
 std::unique_ptr<Solid> fuse_solids(const Solid& a, const Solid& b) {
   try {
-    BRepAlgoAPI_Fuse fuse(a.impl().solid, b.impl().solid);
-    if (!fuse.IsDone()) return nullptr;
-    const TopoDS_Shape u = unified(fuse.Shape());
+    BRepAlgoAPI_Fuse fuse;
+    if (!run_boolean(fuse, a, b)) return nullptr;
+    const TopoDS_Shape u = unified_copy(fuse.Shape());
     TopoDS_Solid only;
     int n = 0;
     for (TopExp_Explorer ex(u, TopAbs_SOLID); ex.More(); ex.Next(), ++n)
@@ -337,9 +366,9 @@ std::unique_ptr<Solid> fuse_solids(const Solid& a, const Solid& b) {
 
 std::unique_ptr<Solid> cut_solids(const Solid& a, const Solid& b) {
   try {
-    BRepAlgoAPI_Cut cut(a.impl().solid, b.impl().solid);
-    if (!cut.IsDone()) return nullptr;
-    const TopoDS_Shape u = unified(cut.Shape());
+    BRepAlgoAPI_Cut cut;
+    if (!run_boolean(cut, a, b)) return nullptr;
+    const TopoDS_Shape u = unified_copy(cut.Shape());
     TopoDS_Solid only;
     int n = 0;
     for (TopExp_Explorer ex(u, TopAbs_SOLID); ex.More(); ex.Next(), ++n)
@@ -353,8 +382,8 @@ std::unique_ptr<Solid> cut_solids(const Solid& a, const Solid& b) {
 
 double common_volume(const Solid& a, const Solid& b) {
   try {
-    BRepAlgoAPI_Common common(a.impl().solid, b.impl().solid);
-    if (!common.IsDone()) return -1;
+    BRepAlgoAPI_Common common;
+    if (!run_boolean(common, a, b)) return -1;
     GProp_GProps props;
     BRepGProp::VolumeProperties(common.Shape(), props, 1e-11);  // as Solid::volume
     return std::abs(props.Mass());
