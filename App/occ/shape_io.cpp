@@ -337,13 +337,15 @@ std::vector<std::string> touching_without_face(const std::vector<TopoDS_Solid>& 
 // Several solids glued into one compound: OCCT's general fuse makes faces the solids have in
 // common (touching boxes, fragments) one shared face. Overlapping solids are refused: their
 // common volume would be meshed twice.
-ReadResult glue(const std::vector<TopoDS_Solid>& solids, const std::string& where, ReadResult r) {
+ReadResult glue(const std::vector<TopoDS_Solid>& solids, const std::string& where, ReadResult r,
+                const GlueOptions& options = {}) {
   // Overlap shows as a glued volume below the sum of the solids' volumes. What the volumes
   // may differ by without any: the integration's estimated error, and a skin of the
   // modelling tolerance over every face (the fuse moves faces by up to that: HexMe i20's 45
   // plane-cut pieces, 2.6e-9 of the volume, 1e-3 in a skin allowance of 0.04).
   double volume = 0, error = 0;
   for (const TopoDS_Solid& s : solids) {
+    if (!options.check_overlap) break;
     double e = 0;
     volume += accurate_volume(s, e);
     GProp_GProps area;
@@ -357,6 +359,7 @@ ReadResult glue(const std::vector<TopoDS_Solid>& solids, const std::string& wher
     for (const TopoDS_Solid& s : solids) args.Append(s);
     fuse.SetArguments(args);
     fuse.SetRunParallel(false);
+    fuse.SetNonDestructive(true);  // the solids may share sub-shapes with others (split pieces)
     fuse.Build();
     if (fuse.IsDone() && !fuse.HasErrors()) glued = fuse.Shape();
   } catch (const Standard_Failure&) {
@@ -373,12 +376,14 @@ ReadResult glue(const std::vector<TopoDS_Solid>& solids, const std::string& wher
   double glued_volume = 0;
   for (TopExp_Explorer ex(glued, TopAbs_SOLID); ex.More(); ex.Next()) {
     parts.push_back(TopoDS::Solid(ex.Current()));
+    if (!options.check_overlap) continue;
     double e = 0;
     glued_volume += accurate_volume(parts.back(), e);
     error += e;
   }
   if (parts.size() != solids.size() ||
-      std::abs(glued_volume - volume) > 1e-9 * std::abs(volume) + error) {
+      (options.check_overlap &&
+       std::abs(glued_volume - volume) > 1e-9 * std::abs(volume) + error)) {
     r.diagnostics.push_back(make_error(
         "overlapping_solids", where + " holds " + plural(int(solids.size()), "solid") +
                                   " that overlap (their general fuse has " +
@@ -390,7 +395,8 @@ ReadResult glue(const std::vector<TopoDS_Solid>& solids, const std::string& wher
   TopoDS_Compound compound;
   b.MakeCompound(compound);
   for (const TopoDS_Solid& s : parts) b.Add(compound, s);
-  const std::vector<std::string> pinched = touching_without_face(parts, compound);
+  const std::vector<std::string> pinched =
+      options.check_manifold ? touching_without_face(parts, compound) : std::vector<std::string>();
   if (!pinched.empty()) {
     r.diagnostics.push_back(make_error(
         "non_manifold",
@@ -842,12 +848,13 @@ ReadResult read_solid_from_brep_string(const std::string& brep, const ReadOption
   return r;
 }
 
-ReadResult glue_solids(const std::vector<const Solid*>& solids, const std::string& where) {
+ReadResult glue_solids(const std::vector<const Solid*>& solids, const std::string& where,
+                       const GlueOptions& options) {
   std::vector<TopoDS_Solid> shapes;
   for (const Solid* s : solids)
     for (const TopoDS_Solid& part : s->impl().parts) shapes.push_back(part);
   try {
-    return glue(shapes, where, ReadResult());
+    return glue(shapes, where, ReadResult(), options);
   } catch (const Standard_Failure& e) {
     ReadResult r;
     r.diagnostics.push_back(make_error(

@@ -40,7 +40,16 @@ ReadResult read_solid_from_brep_string(const std::string& brep, const ReadOption
 // Glues solids (e.g. the sub-volumes of a decomposition) at the faces they have in common,
 // as ReadOptions::several_solids does: one Solid whose parts share those faces, or errors
 // (overlapping_solids, non_manifold, invalid_shape). `where` starts the messages.
-ReadResult glue_solids(const std::vector<const Solid*>& solids, const std::string& where);
+struct GlueOptions {
+  // Their volumes must add up to the glued volume (they share none): overlapping_solids.
+  bool check_overlap = true;
+  // None touches another only along an edge or at a vertex: non_manifold. Off for a
+  // neighbourhood cut out of pieces that are checked as a whole elsewhere (the solids that
+  // join two such neighbours by faces may be outside it).
+  bool check_manifold = true;
+};
+ReadResult glue_solids(const std::vector<const Solid*>& solids, const std::string& where,
+                       const GlueOptions& options = {});
 
 // Writes a solid; format from the extension (.step/.stp or .brep). Returns false and
 // fills error on failure.
