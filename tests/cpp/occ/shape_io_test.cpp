@@ -168,6 +168,26 @@ TEST(GlueSolids, ASolidInsideAnotherIsRefusedByItsVolume) {
   EXPECT_TRUE(glued.ok());
 }
 
+// Two boxes touching along an edge: refused by default (non_manifold); glued when the
+// manifold check is off, as the plane cuts do for a neighbourhood of their pieces (the pieces
+// that join the two by faces lie outside it). The overlap check can be skipped likewise; an
+// overlap the fuse itself shows (more solids than given) is still refused.
+TEST(GlueSolids, TheManifoldAndOverlapChecksCanBeLeftOut) {
+  const Solid a = make_box(1, 1, 1);
+  const Solid b = make_box(1, 1, 1, core::Vec3(1, 1, 0));
+  EXPECT_EQ(only_error(glue_solids({&a, &b}, "The pieces")).code, "non_manifold");
+  GlueOptions o;
+  o.check_manifold = false;
+  const ReadResult glued = glue_solids({&a, &b}, "The pieces", o);
+  ASSERT_TRUE(glued.ok());
+  EXPECT_EQ(glued.solid->num_solids(), 2);
+  o.check_overlap = false;
+  const Solid outer = make_box(10, 10, 10);
+  const Solid crossing = make_box(2, 2, 2, core::Vec3(9, 4, 4));
+  EXPECT_EQ(only_error(glue_solids({&outer, &crossing}, "The pieces", o)).code,
+            "overlapping_solids");
+}
+
 // Solids touching along an edge or at a vertex only: one mesh of them would not be a
 // manifold there, so the input is refused naming where they touch.
 TEST(ReadSolid, SolidsTouchingAlongAnEdgeOrAtAVertexAreNonManifold) {
