@@ -722,7 +722,14 @@ MeshResult generate(const occ::Solid& solid, const MeshOptions& options,
     MeshResult second;
     second.stats.size_used = size;  // the tet split meshes at the global size
     const auto t0 = std::chrono::steady_clock::now();
-    if (fallback(solid, tet, size, "The grid mesher's mesh is invalid.", budget, t0, second))
+    // Why the fallback was needed (no scheme, the decomposition's failure) stays in its
+    // message: the grid's fallback warning is not part of the second result.
+    std::string why;
+    for (const core::Diagnostic& d : result.diagnostics)
+      if (d.code == "fallback") why = d.message.substr(0, d.message.find(" Meshed by the grid"));
+    if (fallback(solid, tet, size,
+                 (why.empty() ? "" : why + " ") + "The grid mesher's mesh is invalid.", budget, t0,
+                 second))
       finish(second, solid, tet, budget, sizes);
     std::string grid_errors;
     for (const core::Diagnostic& d : result.diagnostics)
