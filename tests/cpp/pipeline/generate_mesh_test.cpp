@@ -492,6 +492,14 @@ TEST(GenerateMesh, AnInvalidGridMeshGivesTheTetSplitASecondChance) {
   ASSERT_NE(d, nullptr);
   EXPECT_EQ(d->severity, core::Severity::warning);
   EXPECT_NE(d->message.find("inverted_elements"), std::string::npos) << d->message;
+  // The fallback warning still says why no structured scheme applied (and that
+  // decomposition was off), not only that the grid's mesh was invalid.
+  const core::Diagnostic* why = testing::find_diagnostic(r.diagnostics, "fallback");
+  ASSERT_NE(why, nullptr);
+  EXPECT_NE(why->message.find("Not a block"), std::string::npos) << why->message;
+  EXPECT_NE(why->message.find("decomposition is off"), std::string::npos) << why->message;
+  EXPECT_NE(why->message.find("The grid mesher's mesh is invalid"), std::string::npos)
+      << why->message;
 
   opt.schemes = {"grid"};  // the grid as a scheme: its own result, no second chance
   const MeshResult grid = generate_mesh(pit, opt);
