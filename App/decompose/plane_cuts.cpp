@@ -363,7 +363,10 @@ PlaneCutResult cut_at_concave_edges(const occ::Solid& solid, const PlaneCutOptio
       for (std::size_t b = a + 1; b < pieces.size() && !merged; ++b) {
         if (seconds() >= options.time_limit || progress.cancelled()) break;
         if (!touch[a][b]) continue;
-        std::unique_ptr<occ::Solid> u = occ::fuse_solids(pieces[a], pieces[b]);
+        // OCCT's face unification in the fuse can run without end (HexMe i15's cuts, with
+        // the caps raised): it gets the time left.
+        std::unique_ptr<occ::Solid> u =
+            occ::fuse_solids(pieces[a], pieces[b], std::max(0.5, options.time_limit - seconds()));
         if (!u) continue;
         // A union OCCT turned inside out, or that lost volume, is no union.
         const double both = volume[a] + volume[b], uv = u->volume();

@@ -125,15 +125,6 @@ TopoDS_Shape unified(const TopoDS_Shape& s) {
   return unify.Shape();
 }
 
-// A Boolean's result, unified on a copy: the result shares the sub-shapes the operation
-// left as they were with its arguments, and the unification changes sub-shapes in place (a
-// fuse of two plane-cut pieces of HexMe i22 turned an argument of volume 28.3 into one of
-// -3244).
-TopoDS_Shape unified_copy(const TopoDS_Shape& s) {
-  BRepBuilderAPI_Copy copy(s, false, false);  // new sub-shapes, the same geometry
-  return unified(copy.Shape());
-}
-
 // Each solid unified, in order (a solid may become several). OCCT's unification takes no
 // progress indicator and can loop without end: HexMe i02's plane cuts leave a piece (planes
 // and cylinders crossing, B-spline intersection edges) on which ShapeUpgrade_UnifySameDomain
@@ -331,14 +322,17 @@ std::vector<FaceSample> sample_faces(const Solid& solid) {
 
 namespace {
 
-// A Boolean operation of a and b that leaves both as they were: by default OCCT's Booleans
-// may change their arguments' sub-shapes in place (tolerances), and the pieces of a split
-// share their common edges and vertices with their neighbours.
+// A Boolean operation of a and b, on copies of their sub-shapes (the geometry shared). The
+// pieces of a split share their common edges and vertices with their neighbours, a result
+// shares the sub-shapes the operation left as they were with its arguments, and OCCT's
+// unification of the result changes sub-shapes in place: a fuse of two plane-cut pieces of
+// HexMe i22 turned a third piece of volume 28.3 into one of -3244. (Unifying a copy of the
+// result instead made the unification run without end on some unions of HexMe i01 and i15.)
 template <class Operation>
 bool run_boolean(Operation& op, const Solid& a, const Solid& b) {
   TopTools_ListOfShape arguments, tools;
-  arguments.Append(a.impl().solid);
-  tools.Append(b.impl().solid);
+  arguments.Append(BRepBuilderAPI_Copy(a.impl().solid, false, false).Shape());
+  tools.Append(BRepBuilderAPI_Copy(b.impl().solid, false, false).Shape());
   op.SetArguments(arguments);
   op.SetTools(tools);
   op.SetNonDestructive(true);
@@ -348,17 +342,17 @@ bool run_boolean(Operation& op, const Solid& a, const Solid& b) {
 
 }  // namespace
 
-std::unique_ptr<Solid> fuse_solids(const Solid& a, const Solid& b) {
+std::unique_ptr<Solid> fuse_solids(const Solid& a, const Solid& b, double time_limit) {
   try {
     BRepAlgoAPI_Fuse fuse;
     if (!run_boolean(fuse, a, b)) return nullptr;
-    const TopoDS_Shape u = unified_copy(fuse.Shape());
-    TopoDS_Solid only;
-    int n = 0;
-    for (TopExp_Explorer ex(u, TopAbs_SOLID); ex.More(); ex.Next(), ++n)
-      only = TopoDS::Solid(ex.Current());
-    if (n != 1) return nullptr;
-    return std::make_unique<Solid>(make_solid(only));
+    std::vector<TopoDS_Solid> fused, u;
+    for (TopExp_Explorer ex(fuse.Shape(), TopAbs_SOLID); ex.More(); ex.Next())
+      fused.push_back(TopoDS::Solid(ex.Current()));
+    if (fused.size() != 1) return nullptr;  // apart, or touching along an edge
+    bool timed_out = false;
+    if (!unified_within(fused, time_limit, u, timed_out).empty() || u.size() != 1) return nullptr;
+    return std::make_unique<Solid>(make_solid(u[0]));
   } catch (const Standard_Failure&) {
     return nullptr;
   }
@@ -368,7 +362,7 @@ std::unique_ptr<Solid> cut_solids(const Solid& a, const Solid& b) {
   try {
     BRepAlgoAPI_Cut cut;
     if (!run_boolean(cut, a, b)) return nullptr;
-    const TopoDS_Shape u = unified_copy(cut.Shape());
+    const TopoDS_Shape u = unified(cut.Shape());
     TopoDS_Solid only;
     int n = 0;
     for (TopExp_Explorer ex(u, TopAbs_SOLID); ex.More(); ex.Next(), ++n)

@@ -63,7 +63,9 @@ struct FaceSample {
 std::vector<FaceSample> sample_faces(const Solid& solid);
 
 // The union of two solids as one solid with unified faces, or null if it is not one solid.
-std::unique_ptr<Solid> fuse_solids(const Solid& a, const Solid& b);
+// `time_limit` (seconds, > 0): the unification, which takes no progress indicator and can
+// run without end, runs in a child process stopped at the limit (then null); 0: in this one.
+std::unique_ptr<Solid> fuse_solids(const Solid& a, const Solid& b, double time_limit = 0);
 
 // The difference a - b as one solid with unified faces, or null if it is not one solid.
 std::unique_ptr<Solid> cut_solids(const Solid& a, const Solid& b);

@@ -180,5 +180,28 @@ TEST(PlaneCuts, FusingTwoPiecesLeavesTheOthersAsTheyWere) {
   EXPECT_EQ(fused, 40);
 }
 
+// HexMe i15 (the caps raised: 69 pieces): OCCT's face unification of one union in the
+// merging ran without end (this test still ran after 150 s). It now runs in a child process
+// with the time left, so the merging ends at its limit with what it merged. (At a limit of
+// 8 s the merging ended before that union, with or without the child process.)
+TEST(PlaneCuts, TheMergingEndsAtItsTimeLimitEvenWhereOcctDoesNot) {
+  const occ::ReadResult in = occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/i15o_s8.step");
+  ASSERT_TRUE(in.ok()) << "HexMe model i15 not found in " << VOROHEX_HEXME_DIR;
+  PlaneCutOptions o;
+  o.max_planes = 48;
+  o.max_pieces = 400;
+  o.time_limit = 30;
+  const auto t0 = std::chrono::steady_clock::now();
+  const PlaneCutResult r = cut_at_concave_edges(*in.solid, o);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  // A bound on a hang, not a timing: the limit, plus the checks after the merging.
+  EXPECT_LT(seconds, 4 * o.time_limit);
+  EXPECT_EQ(r.pieces_before_merge, 69);
+  if (!r.ok) EXPECT_FALSE(r.why_not.empty());
+  std::printf("[plane_cuts] HexMe i15: %d pieces, %zu after merging for %.1f s (limit %g s)\n",
+              r.pieces_before_merge, r.pieces.size(), seconds, o.time_limit);
+}
+
 }  // namespace
 }  // namespace vorohex::decompose
