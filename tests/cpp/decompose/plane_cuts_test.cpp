@@ -129,6 +129,25 @@ TEST(PlaneCuts, AConeAtAConcaveEdgeIsLeftToThePlaneBesideIt) {
   EXPECT_NEAR(volume, boss->volume(), 1e-9 * boss->volume());
 }
 
+// The caps of 16 surfaces and 60 pieces raised (HexMe i15: 69 pieces, i22: 80).
+PlaneCutOptions raised_caps(double time_limit) {
+  PlaneCutOptions o;
+  o.max_planes = 48;
+  o.max_pieces = 400;
+  o.time_limit = time_limit;
+  return o;
+}
+
+// The cut, and how long it took: a bound on a hang, not a timing (the limit, plus the
+// checks after the split and the merging).
+PlaneCutResult bounded_cut(const occ::Solid& solid, const PlaneCutOptions& o, double& seconds) {
+  const auto t0 = std::chrono::steady_clock::now();
+  PlaneCutResult r = cut_at_concave_edges(solid, o);
+  seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  EXPECT_LT(seconds, 4 * o.time_limit);
+  return r;
+}
+
 // OCCT's merging of the faces a cut leaves on one surface takes no progress indicator and,
 // on one piece of HexMe i02's cuts (planes and cylinders crossing), never ends. The cut
 // still ends at its time limit, with the reason, rather than hanging.
@@ -137,12 +156,8 @@ TEST(PlaneCuts, TheCutEndsAtItsTimeLimitEvenWhereOcctDoesNot) {
   ASSERT_TRUE(in.ok()) << "HexMe model i02 not found in " << VOROHEX_HEXME_DIR;
   PlaneCutOptions o;
   o.time_limit = 5;
-  const auto t0 = std::chrono::steady_clock::now();
-  const PlaneCutResult r = cut_at_concave_edges(*in.solid, o);
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  // A bound on a hang, not a timing: the limit, plus the volume checks after the split.
-  EXPECT_LT(seconds, 4 * o.time_limit);
+  double seconds = 0;
+  const PlaneCutResult r = bounded_cut(*in.solid, o, seconds);
   if (!r.ok) EXPECT_FALSE(r.why_not.empty());
   if (!r.ok) EXPECT_EQ(r.why_not.find("neither a plane nor a cylinder"), std::string::npos);
 }
@@ -156,10 +171,7 @@ TEST(PlaneCuts, TheCutEndsAtItsTimeLimitEvenWhereOcctDoesNot) {
 TEST(PlaneCuts, FusingTwoPiecesLeavesTheOthersAsTheyWere) {
   const occ::ReadResult in = occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/i22o_s27.step");
   ASSERT_TRUE(in.ok()) << "HexMe model i22 not found in " << VOROHEX_HEXME_DIR;
-  PlaneCutOptions o;
-  o.max_planes = 48;
-  o.max_pieces = 400;
-  o.time_limit = 3;  // the split, and hardly any merging
+  const PlaneCutOptions o = raised_caps(3);  // the split, and hardly any merging
   const PlaneCutResult r = cut_at_concave_edges(*in.solid, o);
   ASSERT_TRUE(r.ok) << r.why_not;
   EXPECT_EQ(r.pieces_before_merge, 80);
@@ -187,16 +199,9 @@ TEST(PlaneCuts, FusingTwoPiecesLeavesTheOthersAsTheyWere) {
 TEST(PlaneCuts, TheMergingEndsAtItsTimeLimitEvenWhereOcctDoesNot) {
   const occ::ReadResult in = occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/i15o_s8.step");
   ASSERT_TRUE(in.ok()) << "HexMe model i15 not found in " << VOROHEX_HEXME_DIR;
-  PlaneCutOptions o;
-  o.max_planes = 48;
-  o.max_pieces = 400;
-  o.time_limit = 30;
-  const auto t0 = std::chrono::steady_clock::now();
-  const PlaneCutResult r = cut_at_concave_edges(*in.solid, o);
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  // A bound on a hang, not a timing: the limit, plus the checks after the merging.
-  EXPECT_LT(seconds, 4 * o.time_limit);
+  const PlaneCutOptions o = raised_caps(30);
+  double seconds = 0;
+  const PlaneCutResult r = bounded_cut(*in.solid, o, seconds);
   EXPECT_EQ(r.pieces_before_merge, 69);
   if (!r.ok) EXPECT_FALSE(r.why_not.empty());
   std::printf("[plane_cuts] HexMe i15: %d pieces, %zu after merging for %.1f s (limit %g s)\n",
