@@ -630,9 +630,16 @@ void merge_pass(const occ::Solid& solid, const VoronoiGraph& g, double tol, doub
       if (int(group.size()) == n) {
         u = std::make_unique<occ::Solid>(solid.clone());
       } else {
-        u = occ::fuse_solids(*r.sub_volumes[group[0]].solid, *r.sub_volumes[group[1]].solid);
+        // OCCT's face unification in a fuse can run without end: with a limit, it gets
+        // the time left (occ::fuse_solids).
+        auto left = [&] {
+          const double spent = std::chrono::duration<double>(Clock::now() - start).count();
+          return time_limit > 0 ? std::max(0.5, time_limit - spent) : 0.0;
+        };
+        u = occ::fuse_solids(*r.sub_volumes[group[0]].solid, *r.sub_volumes[group[1]].solid,
+                             left());
         for (std::size_t k = 2; u && k < group.size(); ++k)
-          u = occ::fuse_solids(*u, *r.sub_volumes[group[k]].solid);
+          u = occ::fuse_solids(*u, *r.sub_volumes[group[k]].solid, left());
       }
       if (!u || !mesh::sweep_applicable(*u).ok) {
         rejected.insert(key);
