@@ -6,6 +6,7 @@
 #include <cmath>
 #include <map>
 #include <memory>
+#include <set>
 #include <sstream>
 
 #include "core/option_checks.h"
@@ -181,8 +182,7 @@ bool volumes_fill(const std::vector<occ::Solid>& pieces, double whole, std::vect
   return false;
 }
 
-bool boxes_touch(const occ::Solid& a, const occ::Solid& b) {
-  const core::BoundingBox p = a.bounding_box(), q = b.bounding_box();
+bool boxes_touch(const core::BoundingBox& p, const core::BoundingBox& q) {
   const double tol = 1e-6 * std::max(p.diagonal(), q.diagonal());
   for (int i = 0; i < 3; ++i)
     if (p.min[i] > q.max[i] + tol || q.min[i] > p.max[i] + tol) return false;
@@ -197,12 +197,19 @@ bool same_box(const core::BoundingBox& p, const core::BoundingBox& q) {
   return true;
 }
 
-// The index in `pieces` of the one whose box `part` has; -1 when none or several.
-int piece_of(const occ::Solid& part, const std::vector<const occ::Solid*>& pieces) {
+// The bounding box of each solid (OCCT's optimal box walks the geometry: computed once).
+std::vector<core::BoundingBox> boxes_of(const std::vector<const occ::Solid*>& solids) {
+  std::vector<core::BoundingBox> out;
+  for (const occ::Solid* s : solids) out.push_back(s->bounding_box());
+  return out;
+}
+
+// The index in `boxes` of the piece whose box `part` has; -1 when none or several.
+int piece_of(const occ::Solid& part, const std::vector<core::BoundingBox>& boxes) {
   const core::BoundingBox box = part.bounding_box();
   int found = -1;
-  for (std::size_t g = 0; g < pieces.size(); ++g)
-    if (same_box(box, pieces[g]->bounding_box())) {
+  for (std::size_t g = 0; g < boxes.size(); ++g)
+    if (same_box(box, boxes[g])) {
       if (found >= 0) return -1;
       found = int(g);
     }
@@ -216,12 +223,13 @@ Touching touching(const std::vector<const occ::Solid*>& pieces) {
   const std::size_t n = pieces.size();
   Touching t(n, std::vector<char>(n, 0));
   std::vector<char> known(n, 0);
+  const std::vector<core::BoundingBox> boxes = boxes_of(pieces);
   const occ::ReadResult r = occ::glue_solids(pieces, "The plane cut");
   if (r.ok()) {
     std::map<int, std::vector<std::size_t>> at_vertex;
     for (int k = 0; k < r.solid->num_solids(); ++k) {
       const occ::Solid part = r.solid->part(k);
-      const int p = piece_of(part, pieces);
+      const int p = piece_of(part, boxes);
       if (p < 0) continue;
       known[p] = 1;
       const std::vector<int> ids = r.solid->part_ids(part, 0);
@@ -235,7 +243,7 @@ Touching touching(const std::vector<const occ::Solid*>& pieces) {
   }
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = 0; j < n; ++j)
-      if (i != j && (!known[i] || !known[j]) && boxes_touch(*pieces[i], *pieces[j]))
+      if (i != j && (!known[i] || !known[j]) && boxes_touch(boxes[i], boxes[j]))
         t[i][j] = t[j][i] = 1;
   return t;
 }
@@ -269,11 +277,12 @@ bool merge_keeps_meshable(const std::vector<occ::Solid>& pieces, const Touching&
   go.check_manifold = false;  // pieces joined by faces outside the neighbourhood
   const occ::ReadResult r = occ::glue_solids(glued, "The plane cut", go);
   if (!r.ok()) return false;
+  const std::vector<core::BoundingBox> boxes = boxes_of(glued);
   // One of the outer ring needs no check (the merge does not change what touches it); a
   // part told by no box, or by several, is checked.
   for (int k = 0; k < r.solid->num_solids(); ++k) {
     const occ::Solid part = r.solid->part(k);
-    const int p = piece_of(part, glued);
+    const int p = piece_of(part, boxes);
     if (p >= int(checked)) continue;
     if (!meshable(part, multisweep)) return false;
   }
@@ -357,30 +366,44 @@ PlaneCutResult cut_at_concave_edges(const occ::Solid& solid, const PlaneCutOptio
   // Merge neighbours while the union is a block, a sweep or prismatic and all pieces stay so once
   // glued (a union must not leave a T-junction on a neighbour's face).
   Touching touch = touching(pointers(pieces));
+  // Pairs whose union is no block, sweep or prismatic part (or no union) stay so: they are
+  // not fused again after each merge (ids: a merged piece gets a new one).
+  std::vector<int> id(pieces.size());
+  for (std::size_t k = 0; k < id.size(); ++k) id[k] = int(k);
+  int next_id = int(id.size());
+  std::set<std::pair<int, int>> no_union;
   for (bool merged = true; merged && pieces.size() > 1 && seconds() < options.time_limit;) {
     merged = false;
     for (std::size_t a = 0; a < pieces.size() && !merged; ++a)
       for (std::size_t b = a + 1; b < pieces.size() && !merged; ++b) {
         if (seconds() >= options.time_limit || progress.cancelled()) break;
-        if (!touch[a][b]) continue;
+        if (!touch[a][b] || no_union.count({id[a], id[b]})) continue;
         // OCCT's face unification in the fuse can run without end (HexMe i15's cuts, with
         // the caps raised): it gets the time left.
         std::unique_ptr<occ::Solid> u =
             occ::fuse_solids(pieces[a], pieces[b], std::max(0.5, options.time_limit - seconds()));
-        if (!u) continue;
         // A union OCCT turned inside out, or that lost volume, is no union.
-        const double both = volume[a] + volume[b], uv = u->volume();
-        if (!(uv > 0) || std::abs(uv - both) > kVolumeTolerance * both) continue;
-        if (!meshable(*u, options.multisweep)) continue;
+        const double both = volume[a] + volume[b], uv = u ? u->volume() : 0;
+        if (!u || !(uv > 0) || std::abs(uv - both) > kVolumeTolerance * both ||
+            !meshable(*u, options.multisweep)) {
+          if (seconds() < options.time_limit) no_union.insert({id[a], id[b]});  // not cut short
+          continue;
+        }
+        // Whether the neighbours stay meshable can change with later merges: not remembered.
         if (!merge_keeps_meshable(pieces, touch, a, b, *u, options.multisweep)) continue;
         std::vector<occ::Solid> next;
         std::vector<double> next_volume;
+        std::vector<int> next_ids;
         for (std::size_t k = 0; k < pieces.size(); ++k)
-          if (k != a && k != b) next.push_back(pieces[k].clone()), next_volume.push_back(volume[k]);
+          if (k != a && k != b)
+            next.push_back(std::move(pieces[k])), next_volume.push_back(volume[k]),
+                next_ids.push_back(id[k]);
         next.push_back(std::move(*u));
         next_volume.push_back(uv);
+        next_ids.push_back(next_id++);
         pieces = std::move(next);
         volume = std::move(next_volume);
+        id = std::move(next_ids);
         touch = merged_touching(touch, a, b);
         merged = true;
       }
