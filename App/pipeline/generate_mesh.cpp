@@ -183,6 +183,10 @@ bool has_diagnostic(const std::vector<core::Diagnostic>& ds, const std::string& 
   return false;
 }
 
+// Where the grid fallback's warning turns from why to what (the tet split's second chance
+// keeps the why).
+const std::string kMeshedByTheGrid = " Meshed by the grid mesher instead";
+
 // No structured scheme: the grid mesher (or, on request, tetrahedra split into
 // hexahedra), said so in a warning.
 bool fallback(const occ::Solid& solid, const MeshOptions& options, double size,
@@ -203,9 +207,9 @@ bool fallback(const occ::Solid& solid, const MeshOptions& options, double size,
     result.mesh = std::move(g.mesh);
     result.absorbed = std::move(g.absorbed);
     result.diagnostics.push_back(core::make_warning(
-        "fallback", why + " Meshed by the grid mesher instead (core grid, one pillow layer to "
-                          "the CAD, features captured); expect poorer elements at the boundary "
-                          "than a structured mesh."));
+        "fallback", why + kMeshedByTheGrid +
+                        " (core grid, one pillow layer to the CAD, features captured); expect "
+                        "poorer elements at the boundary than a structured mesh."));
     return true;
   }
   result.stats.scheme = "tet-split";
@@ -726,7 +730,7 @@ MeshResult generate(const occ::Solid& solid, const MeshOptions& options,
     // message: the grid's fallback warning is not part of the second result.
     std::string why;
     for (const core::Diagnostic& d : result.diagnostics)
-      if (d.code == "fallback") why = d.message.substr(0, d.message.find(" Meshed by the grid"));
+      if (d.code == "fallback") why = d.message.substr(0, d.message.find(kMeshedByTheGrid));
     if (fallback(solid, tet, size,
                  (why.empty() ? "" : why + " ") + "The grid mesher's mesh is invalid.", budget, t0,
                  second))
