@@ -6,6 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/face_cusp.h"
 #include "core/option_checks.h"
 #include "mesh/detail/quad_mesh_2d.h"
 #include "mesh/detail/sizing.h"
@@ -53,6 +54,14 @@ double loops_area(const std::vector<std::vector<Vec2>>& loops) {
 // counter-clockwise from its lowest node. Two congruent faces facing opposite ways (the two
 // ends of a post and of the column under it, swept onto the face they share) then get the
 // same quads, so their projections onto a shared face coincide.
+// The quad mesher's error, with where the face comes to a point when it does: the cause
+// of such a failure (a boundary that crosses itself at the point, or a folded quad there).
+std::string with_cusp(const core::MeshDomain& solid, core::FaceId face, const std::string& error) {
+  const std::string cusp = core::face_cusp(solid, face);
+  if (cusp.empty()) return error;
+  return error + " (it comes to a point: " + cusp + "; no quad there has a positive angle)";
+}
+
 QuadFaceMesh planar_quad_face(const core::MeshDomain& solid, core::FaceId face,
                               const std::vector<std::vector<Vec3>>& loops,
                               const QuadFaceOptions& options, const std::string& name) {
@@ -121,7 +130,8 @@ QuadFaceMesh planar_quad_face(const core::MeshDomain& solid, core::FaceId face,
                                                     options.ring_layers, size_at);
   if (!m.error.empty()) {
     out.diagnostics.push_back(core::make_error(
-        "quad_face_failed", "Quad meshing of " + name + " failed: " + m.error + ".", {name}));
+        "quad_face_failed",
+        "Quad meshing of " + name + " failed: " + with_cusp(solid, face, m.error) + ".", {name}));
     return out;
   }
   for (const auto& loop : loops) out.points.insert(out.points.end(), loop.begin(), loop.end());
@@ -180,7 +190,7 @@ QuadFaceMesh quad_face(const core::MeshDomain& solid, core::FaceId face,
       };
     const detail::QuadMesh2d m = detail::quad_mesh_2d(
         loops2, options.size, options.smoothing_passes, options.ring_layers, size_at);
-    if (!m.error.empty()) return fail(m.error);
+    if (!m.error.empty()) return fail(with_cusp(solid, face, m.error));
 
     for (const auto& loop : loops) out.points.insert(out.points.end(), loop.begin(), loop.end());
     out.num_boundary = out.points.size();

@@ -1,0 +1,23 @@
+// Corners where a face comes to a point: its two edges at a vertex leave in the same
+// direction with the face between them (an interior angle near 0: a plate's outline tangent
+// to a hole cut out of it, a crescent between two tangent circles). No quad at such a
+// corner has a positive angle, so no scheme that keeps the corner as a node meshes the face
+// well. The quad mesher's failures name such a corner (mesh/quad_face.cpp). The schemes'
+// planners do not refuse such faces: the plane cuts' first pieces have them (HexMe i06: the
+// region between a fillet and the two planes it joins), and merging takes them away.
+#pragma once
+
+#include <string>
+
+#include "core/mesh_domain.h"
+
+namespace vorohex::core {
+
+// The first such corner of face f ("Vertex3 of Face2, where Edge4 and Edge7 meet
+// tangentially"), empty if none. `degrees`: the largest angle counted as a point.
+std::string face_cusp(const MeshDomain& domain, FaceId f, double degrees = 2);
+
+// The first such corner of any face of the domain, empty if none.
+std::string first_cusp(const MeshDomain& domain, double degrees = 2);
+
+}  // namespace vorohex::core
