@@ -143,6 +143,32 @@ TEST(QuadMesh2d, AHoleOfFewUnequalSegmentsNearTheOutlineKeepsGoodQuads) {
     }
 }
 
+// A bore 1.6 from a reflex corner, at a size three times that gap (HexMe i22's cap region,
+// where the plane cuts' pieces merge into multisweeps): the lattice at the size, and shifted
+// by half a cell, folds a quad at the corner whichever nodes are coarse; a lattice at a
+// smaller size inside (the boundary nodes kept) fits the gap. Before: folded at both sizes
+// (-0.05, 0); now 0.29 and 0.63.
+TEST(QuadMesh2d, ABoreNearAReflexCornerGetsAFinerLatticeInside) {
+  // Counter-clockwise: steps on the right, the corner at (70, 30), a round left end (half a
+  // circle of radius 20 about the bore's centre), nodes 5 apart.
+  const std::vector<Vec2> steps = {{60, 0},   {70, 0},   {70, 5},  {90, 5},  {90, 10},
+                                   {100, 10}, {100, 30}, {70, 30}, {70, 40}, {60, 40}};
+  std::vector<Vec2> outer;
+  for (std::size_t i = 0; i + 1 < steps.size(); ++i) {
+    const int n = std::max(1, int(std::lround((steps[i + 1] - steps[i]).norm() / 5)));
+    for (int k = 0; k < n; ++k) outer.push_back(steps[i] + (steps[i + 1] - steps[i]) * k / n);
+  }
+  for (int k = 0; k < 12; ++k) {
+    const double a = M_PI / 2 + M_PI * k / 12;
+    outer.push_back(Vec2(60 + 20 * std::cos(a), 20 + 20 * std::sin(a)));
+  }
+  for (const double size : {5.0, 5.62}) {
+    SCOPED_TRACE("size " + std::to_string(size));
+    const std::vector<std::vector<Vec2>> loops = {outer, circle_nodes({60, 20}, 12.5, 12, false)};
+    check_2d(loops, detail::quad_mesh_2d(loops, size, 30, 0), 0.25);
+  }
+}
+
 // Rings (an O-grid) around a round hole: the nodes next to the hole lie on one circle
 // (the first ring is an exact offset of the hole), a second ring follows it, and the quads
 // stay good; with no rings the lattice reaches the hole and those nodes are scattered.
