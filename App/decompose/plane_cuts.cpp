@@ -355,6 +355,19 @@ PlaneCutResult cut_at_concave_edges(const occ::Solid& solid, const PlaneCutOptio
     for (const occ::Solid& s : v) out.push_back(&s);
     return out;
   };
+  // Gluing many pieces is slow (HexMe i23's 89: 43 s); past kGlueFirst pieces, each must
+  // have a scheme on its own before they are glued (gluing imprints edges on a piece, which
+  // seldom gives it a scheme it had not).
+  constexpr std::size_t kGlueFirst = 60;
+  if (pieces.size() > kGlueFirst)
+    for (std::size_t k = 0; k < pieces.size(); ++k)
+      if (!meshable(pieces[k], options.multisweep)) {
+        r.why_not = "the surfaces of its concave edges cut it into " +
+                    std::to_string(pieces.size()) + " pieces, and piece " + std::to_string(k + 1) +
+                    " is neither a block, a sweep nor prismatic on its own";
+        r.pieces = std::move(pieces);
+        return r;
+      }
   std::string why;
   if (!all_meshable(pointers(pieces), options.multisweep, &why)) {
     r.why_not = "the surfaces of its concave edges cut it into " + std::to_string(pieces.size()) +

@@ -19,7 +19,7 @@ namespace vorohex::decompose {
 
 struct PlaneCutOptions {
   int max_planes = 16;     // more distinct cut surfaces than this: not attempted (>= 1)
-  int max_pieces = 60;     // more pieces after cutting: not attempted (>= 2)
+  int max_pieces = 100;    // more pieces after cutting: not attempted (>= 2)
   double time_limit = 30;  // seconds for the whole (> 0); OCCT splits stop at it
   bool multisweep = true;  // pieces may be prismatic (multisweeps), not only blocks and sweeps
   void validate() const;   // throws std::invalid_argument naming the bad field

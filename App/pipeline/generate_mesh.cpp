@@ -333,6 +333,25 @@ std::string joined_schemes(const std::vector<std::string>& schemes) {
   return out;
 }
 
+// Nodes of the mesh's boundary (faces of exactly one hexahedron) that restore_topology made
+// interior: they lie on a cut, so the sub-volumes' meshes leave a gap inside the solid there
+// (the join check, made against the pieces, sees the cut as boundary and passes it).
+std::size_t boundary_nodes_inside(const core::HexMesh& mesh) {
+  std::map<std::array<std::int32_t, 4>, int> uses;
+  for (const core::HexNodes& h : mesh.hexes())
+    for (const auto& f : core::kHexFaces) {
+      std::array<std::int32_t, 4> q{h[f[0]], h[f[1]], h[f[2]], h[f[3]]};
+      std::sort(q.begin(), q.end());
+      ++uses[q];
+    }
+  std::vector<char> inside(mesh.num_nodes(), 0);
+  for (const auto& [q, n] : uses)
+    if (n == 1)
+      for (std::int32_t v : q)
+        if (mesh.node_class(core::NodeId(v)).dim == 3) inside[std::size_t(v)] = 1;
+  return std::size_t(std::count(inside.begin(), inside.end(), 1));
+}
+
 // A solid no single scheme meshes: decomposed into sub-volumes (in a child process), those
 // meshed into one conforming mesh, which is put back onto the solid's own topology. True
 // when result.mesh holds it; else false with `why_not` (a sentence fragment), or a
@@ -424,6 +443,11 @@ bool mesh_pieces(const occ::Solid& solid, const detail::IsolatedDecomposition& d
   const double tolerance = std::max(1e-9 * solid.diagonal(), solid.tolerance());
   const smooth::RestoreStats restored =
       smooth::restore_topology(m.mesh, *d.pieces, solid, tolerance);
+  if (const std::size_t gap = boundary_nodes_inside(m.mesh); gap > 0) {
+    why_not = "the meshes of its " + std::to_string(n) + " sub-volumes leave a gap inside it (" +
+              std::to_string(gap) + " nodes of the mesh's boundary lie on the cuts)";
+    return false;
+  }
   result.mesh = std::move(m.mesh);
   std::map<std::string, int> count;
   for (const std::string& s : m.stats.schemes) ++count[s];

@@ -11,6 +11,17 @@ using core::FaceId;
 using core::NodeClass;
 using core::VertexId;
 
+namespace {
+
+// Distance from p to the original entity of a (non-interior) class.
+double distance_to(const occ::Solid& original, NodeClass c, const core::Vec3& p) {
+  return c.dim == 0   ? original.distance_to_vertex(VertexId(c.id), p)
+         : c.dim == 1 ? original.distance_to_edge(EdgeId(c.id), p)
+                      : original.distance_to_face(FaceId(c.id), p);
+}
+
+}  // namespace
+
 RestoreStats restore_topology(core::HexMesh& mesh, const occ::Solid& pieces,
                               const occ::Solid& original, double tolerance) {
   // Faces: a shared (decomposition) face is inside; any other lies on an original face.
@@ -52,6 +63,18 @@ RestoreStats restore_topology(core::HexMesh& mesh, const occ::Solid& pieces,
       edge_class[e.value()] = NodeClass::on(near);
   }
 
+  // An edge of the pieces can span several original entities too: a hole's circle that the
+  // union of two pieces made one edge lies on the original's two half circles (HexMe i22's
+  // bore, with the plane cuts' caps raised), so its class (the face of one half) holds only
+  // half of it; its nodes too are looked at one by one below.
+  std::vector<char> edge_spans(pieces.num_edges() + 1, 0);
+  for (EdgeId e : pieces.edges()) {
+    const NodeClass c = edge_class[e.value()];
+    if (c.is_interior() || pieces.edge_is_degenerated(e)) continue;
+    for (const core::Vec3& p : pieces.edge_points_by_length(e, 4))
+      if (distance_to(original, c, p) > tolerance) edge_spans[e.value()] = 1;
+  }
+
   // Vertices: an original vertex, else the class of a boundary edge through it (an
   // original edge first), else inside.
   std::vector<NodeClass> vertex_class(pieces.num_vertices() + 1, NodeClass::interior());
@@ -81,10 +104,13 @@ RestoreStats restore_topology(core::HexMesh& mesh, const occ::Solid& pieces,
     NodeClass r = c.dim == 0   ? vertex_class[c.id]
                   : c.dim == 1 ? edge_class[c.id]
                                : face_class[c.id];
-    // A node of a face spanning several original faces, off the one the face was given,
-    // goes to the original entity it lies on.
-    if (c.dim == 2 && r.dim == 2 && spans[c.id] &&
-        original.distance_to_face(FaceId(r.id), mesh.point(n)) > tolerance) {
+    // A node of a face or an edge spanning several original entities, or of a vertex that
+    // is none of the original's, off the one it was given, goes to the original entity it
+    // lies on.
+    const bool spanning = c.dim == 2   ? r.dim == 2 && spans[c.id]
+                          : c.dim == 1 ? edge_spans[c.id] != 0
+                                       : r.dim != 0;
+    if (!r.is_interior() && spanning && distance_to(original, r, mesh.point(n)) > tolerance) {
       const core::Vec3 p = mesh.point(n);
       const EdgeId near = original.nearest_edge(p);
       if (near.valid() && original.distance_to_edge(near, p) <= tolerance)

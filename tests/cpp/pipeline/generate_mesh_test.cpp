@@ -247,13 +247,37 @@ TEST(GenerateMesh, HexMeI10IsBlocksAndSweepsThatShareTheirSource) {
   expect_valid_on_cad(r, *in.solid);
 }
 
+// HexMe i22, a bracket whose cuts at its concave edges give 80 pieces (more than the
+// cap of 60 before), merged into four multisweeps. It also needed a cap region with a bore
+// 1.6 from a reflex corner quad-meshed (QuadMesh2d.ABoreNearAReflexCorner...), and the
+// nodes on the bore's circle, one edge of the merged pieces over two half circles of the
+// part, put back on the half each lies on (they went onto the face of the other half, up
+// to 16.6 off it). Before: the tetrahedral fallback, min SJ 0.001, in about 60 s.
+TEST(GenerateMesh, HexMeI22IsFourMultisweeps) {
+  const occ::ReadResult in = occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/i22o_s27.step");
+  ASSERT_TRUE(in.ok());
+  MeshOptions opt;
+  opt.fallback = false;
+  // The cuts and their merging take about 22 s of the 30 s they get; under a loaded
+  // machine (the test suite runs two at a time) that is not always enough.
+  opt.decomposition_time_limit = 240;
+  const MeshResult r = generate_mesh(*in.solid, opt);
+  ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
+  EXPECT_EQ(r.stats.scheme, "multisweep");
+  EXPECT_EQ(r.stats.sub_volumes, 4);
+  EXPECT_GE(r.check.scaled_jacobian.min, 0.3);
+  expect_valid_on_cad(r, *in.solid);
+}
+
 // The engraved box (tests/data/engraved_box.step: "ABC" cut 0.05 deep into a 10 x 5 x 2
 // box) at size 0.5 is a multisweep. Its worst hexes are columns through the layers under a
 // thin quad of the source mesh, equally bad at their bottom and top corners: one node alone
 // cannot raise such a hex, so the smoothing's max-min left it at 0.248. Its last phase
 // now also takes moves that tie (no frame of the node's hexes below min(its value, the
 // target)) and reduce how far those frames fall short of the target; the other layer's
-// node then raises the hex.
+// node then raises the hex. Since the quad mesher also tries finer lattices inside a region
+// whose quads stay poorer than 0.3, the source's thin quad is gone (0.445 before smoothing,
+// at every size from 0.3 to 0.7): the smoothing still raises the columns, to 0.5.
 TEST(GenerateMesh, SweptColumnsAreRaisedLayerByLayer) {
   const occ::ReadResult in =
       occ::read_solid(std::string(VOROHEX_SOURCE_DIR) + "/tests/data/engraved_box.step");
@@ -264,9 +288,9 @@ TEST(GenerateMesh, SweptColumnsAreRaisedLayerByLayer) {
   const MeshResult r = generate_mesh(*in.solid, opt);
   ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
   EXPECT_EQ(r.stats.scheme, "multisweep");
-  EXPECT_LT(r.stats.min_sj_before_smoothing, 0.3);
   expect_valid_on_cad(r, *in.solid);
-  EXPECT_GE(r.check.scaled_jacobian.min, 0.4);
+  EXPECT_GE(r.check.scaled_jacobian.min, 0.45);
+  EXPECT_GT(r.check.scaled_jacobian.min, r.stats.min_sj_before_smoothing + 0.03);
 }
 
 // A round post on a plate and HexMe s11 (a cylinder on a cube), without the multisweep:
