@@ -374,21 +374,32 @@ ReadResult glue(const std::vector<TopoDS_Solid>& solids, const std::string& wher
   }
   std::vector<TopoDS_Solid> parts;
   double glued_volume = 0;
+  int inside_out = 0;  // parts the fuse turned inside out (negative volume)
   for (TopExp_Explorer ex(glued, TopAbs_SOLID); ex.More(); ex.Next()) {
     parts.push_back(TopoDS::Solid(ex.Current()));
     if (!options.check_overlap) continue;
     double e = 0;
-    glued_volume += accurate_volume(parts.back(), e);
+    const double v = accurate_volume(parts.back(), e);
+    glued_volume += v;
     error += e;
+    if (v < 0) ++inside_out;
   }
-  if (parts.size() != solids.size() ||
-      (options.check_overlap &&
-       std::abs(glued_volume - volume) > 1e-9 * std::abs(volume) + error)) {
-    r.diagnostics.push_back(make_error(
-        "overlapping_solids", where + " holds " + plural(int(solids.size()), "solid") +
-                                  " that overlap (their general fuse has " +
-                                  plural(int(parts.size()), "solid") +
-                                  "); solids may touch at common faces but not share volume."));
+  const bool lost_volume =
+      options.check_overlap && std::abs(glued_volume - volume) > 1e-9 * std::abs(volume) + error;
+  if (parts.size() != solids.size() || lost_volume) {
+    std::ostringstream why;
+    why << where << " holds " << plural(int(solids.size()), "solid");
+    if (parts.size() != solids.size())
+      why << " that overlap (their general fuse has " << plural(int(parts.size()), "solid")
+          << "); solids may touch at common faces but not share volume.";
+    else if (inside_out > 0)
+      why << " that OCCT's general fuse could not glue: it turned " << inside_out << " of them "
+          << "inside out (glued, their volume is " << glued_volume << " instead of " << volume
+          << ").";
+    else
+      why << " that overlap (glued, their volume is " << glued_volume << " instead of " << volume
+          << "); solids may touch at common faces but not share volume.";
+    r.diagnostics.push_back(make_error("overlapping_solids", why.str()));
     return r;
   }
   BRep_Builder b;
