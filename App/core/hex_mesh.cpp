@@ -1,6 +1,8 @@
 #include "core/hex_mesh.h"
 
+#include <algorithm>
 #include <limits>
+#include <map>
 
 namespace vorohex::core {
 
@@ -86,6 +88,21 @@ BoundingBox HexMesh::bounding_box() const {
     b.max = b.max.cwiseMax(p);
   }
   return b;
+}
+
+std::vector<char> boundary_nodes(const HexMesh& mesh) {
+  std::map<std::array<std::int32_t, 4>, int> uses;
+  for (const HexNodes& h : mesh.hexes())
+    for (const auto& f : kHexFaces) {
+      std::array<std::int32_t, 4> q{h[f[0]], h[f[1]], h[f[2]], h[f[3]]};
+      std::sort(q.begin(), q.end());
+      ++uses[q];
+    }
+  std::vector<char> out(mesh.num_nodes(), 0);
+  for (const auto& [q, n] : uses)
+    if (n == 1)
+      for (std::int32_t v : q) out[std::size_t(v)] = 1;
+  return out;
 }
 
 }  // namespace vorohex::core

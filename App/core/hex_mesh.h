@@ -87,4 +87,7 @@ extern const std::array<std::array<int, 4>, 6> kHexFaces;
 // The twelve edges of a VTK hexahedron as corner pairs, in the order of MidEdgeNodes.
 extern const std::array<std::array<int, 2>, 12> kHexEdges;
 
+// Per node: 1 if it is a corner of a boundary quad (a face of exactly one hexahedron).
+std::vector<char> boundary_nodes(const HexMesh& mesh);
+
 }  // namespace vorohex::core

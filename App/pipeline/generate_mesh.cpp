@@ -333,23 +333,15 @@ std::string joined_schemes(const std::vector<std::string>& schemes) {
   return out;
 }
 
-// Nodes of the mesh's boundary (faces of exactly one hexahedron) that restore_topology made
-// interior: they lie on a cut, so the sub-volumes' meshes leave a gap inside the solid there
-// (the join check, made against the pieces, sees the cut as boundary and passes it).
+// Nodes of the mesh's boundary that restore_topology made interior: they lie on a cut, so
+// the sub-volumes' meshes leave a gap inside the solid there (the join check, made against
+// the pieces, sees the cut as boundary and passes it).
 std::size_t boundary_nodes_inside(const core::HexMesh& mesh) {
-  std::map<std::array<std::int32_t, 4>, int> uses;
-  for (const core::HexNodes& h : mesh.hexes())
-    for (const auto& f : core::kHexFaces) {
-      std::array<std::int32_t, 4> q{h[f[0]], h[f[1]], h[f[2]], h[f[3]]};
-      std::sort(q.begin(), q.end());
-      ++uses[q];
-    }
-  std::vector<char> inside(mesh.num_nodes(), 0);
-  for (const auto& [q, n] : uses)
-    if (n == 1)
-      for (std::int32_t v : q)
-        if (mesh.node_class(core::NodeId(v)).dim == 3) inside[std::size_t(v)] = 1;
-  return std::size_t(std::count(inside.begin(), inside.end(), 1));
+  const std::vector<char> boundary = core::boundary_nodes(mesh);
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < boundary.size(); ++i)
+    n += boundary[i] && mesh.node_classes()[i].is_interior();
+  return n;
 }
 
 // A solid no single scheme meshes: decomposed into sub-volumes (in a child process), those

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/diagnostic.h"
@@ -10,7 +11,8 @@ namespace {
 
 TEST(HexMesh, AddAndAppendKeepsConnectivityAndClasses) {
   HexMesh a;
-  for (int i = 0; i < 8; ++i) a.add_node(Vec3(i & 1, (i >> 1) & 1, i >> 2), NodeClass::on(FaceId(3)));
+  for (int i = 0; i < 8; ++i)
+    a.add_node(Vec3(i & 1, (i >> 1) & 1, i >> 2), NodeClass::on(FaceId(3)));
   a.add_hex({0, 1, 3, 2, 4, 5, 7, 6}, 5);
   HexMesh b;
   b.append(a);
@@ -22,6 +24,38 @@ TEST(HexMesh, AddAndAppendKeepsConnectivityAndClasses) {
   EXPECT_EQ(b.node_class(NodeId(9)), NodeClass::on(FaceId(3)));
   const BoundingBox box = b.bounding_box();
   EXPECT_DOUBLE_EQ(box.diagonal(), std::sqrt(3.0));
+}
+
+// A block of 3 x 3 x 3 hexahedra: its 56 nodes on the outside are on the boundary, the 8
+// inside are not; without the middle hexahedron (a cavity), all 64 are.
+TEST(HexMesh, BoundaryNodesAreTheCornersOfFacesOfOneHexahedron) {
+  HexMesh m;
+  auto node = [](int i, int j, int k) { return std::int32_t(i + 4 * j + 16 * k); };
+  for (int k = 0; k < 4; ++k)
+    for (int j = 0; j < 4; ++j)
+      for (int i = 0; i < 4; ++i) m.add_node(Vec3(i, j, k));
+  HexMesh cavity = m;
+  for (int k = 0; k < 3; ++k)
+    for (int j = 0; j < 3; ++j)
+      for (int i = 0; i < 3; ++i) {
+        const HexNodes h = {node(i, j, k),
+                            node(i + 1, j, k),
+                            node(i + 1, j + 1, k),
+                            node(i, j + 1, k),
+                            node(i, j, k + 1),
+                            node(i + 1, j, k + 1),
+                            node(i + 1, j + 1, k + 1),
+                            node(i, j + 1, k + 1)};
+        m.add_hex(h);
+        if (!(i == 1 && j == 1 && k == 1)) cavity.add_hex(h);
+      }
+  const std::vector<char> b = boundary_nodes(m);
+  ASSERT_EQ(b.size(), 64u);
+  EXPECT_EQ(std::count(b.begin(), b.end(), 1), 56);
+  EXPECT_EQ(b[std::size_t(node(1, 1, 1))], 0);
+  EXPECT_EQ(b[std::size_t(node(0, 2, 3))], 1);
+  const std::vector<char> c = boundary_nodes(cavity);
+  EXPECT_EQ(std::count(c.begin(), c.end(), 1), 64);
 }
 
 TEST(Diagnostic, FormatNamesEntities) {
