@@ -87,7 +87,15 @@ extern const std::array<std::array<int, 4>, 6> kHexFaces;
 // The twelve edges of a VTK hexahedron as corner pairs, in the order of MidEdgeNodes.
 extern const std::array<std::array<int, 2>, 12> kHexEdges;
 
-// Per node: 1 if it is a corner of a boundary quad (a face of exactly one hexahedron).
+// The boundary quads of a hex mesh: hexahedron faces that belong to no other hexahedron,
+// in hexahedron order, then face order.
+struct BoundaryFace {
+  std::int32_t hex = 0;  // 0-based hexahedron index
+  std::int8_t face = 0;  // index into kHexFaces (outward normal)
+};
+std::vector<BoundaryFace> boundary_faces(const HexMesh& mesh);
+
+// Per node: 1 if it is a corner of a boundary quad.
 std::vector<char> boundary_nodes(const HexMesh& mesh);
 
 }  // namespace vorohex::core

@@ -6,7 +6,6 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "io/detail/boundary_faces.h"
 #include "quality/linear_gauss_jacobian.h"
 #include "quality/scaled_jacobian.h"
 
@@ -19,7 +18,7 @@ constexpr ElementType kAll[] = {ElementType::C3D8, ElementType::C3D8I, ElementTy
 // Hexahedra with two opposite faces on the boundary: one element through a thickness.
 std::size_t count_one_through_thickness(const core::HexMesh& mesh) {
   std::vector<std::uint8_t> on_boundary(mesh.num_hexes(), 0);  // bit f: face f on boundary
-  for (const detail::BoundaryFace& b : detail::boundary_faces(mesh))
+  for (const core::BoundaryFace& b : core::boundary_faces(mesh))
     on_boundary[b.hex] |= static_cast<std::uint8_t>(1u << b.face);
   std::size_t n = 0;
   // kHexFaces pairs opposite faces as (0, 1), (2, 3), (4, 5).

@@ -10,7 +10,7 @@
 #include <algorithm>
 #include <map>
 
-#include "io/detail/boundary_faces.h"
+#include "io/detail/abaqus_faces.h"
 #include "io/detail/io_common.h"
 #include "io/mesh_io.h"
 

@@ -4,8 +4,6 @@
 #include <map>
 #include <set>
 
-#include "io/detail/boundary_faces.h"
-
 namespace vorohex::io {
 namespace {
 
@@ -98,7 +96,7 @@ std::vector<NamedGroup> named_groups(const core::HexMesh& mesh, const core::Mesh
   const auto& hexes = mesh.hexes();
   const auto& points = mesh.points();
   std::set<std::pair<std::int32_t, std::int32_t>> seen_edges;
-  for (const detail::BoundaryFace& b : detail::boundary_faces(mesh)) {
+  for (const core::BoundaryFace& b : core::boundary_faces(mesh)) {
     const auto& quad = core::kHexFaces[b.face];
     IdSet faces = closure.faces(classes[hexes[b.hex][quad[0]]]);
     for (int i = 1; i < 4 && !faces.empty(); ++i)

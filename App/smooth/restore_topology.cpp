@@ -65,14 +65,17 @@ RestoreStats restore_topology(core::HexMesh& mesh, const occ::Solid& pieces,
 
   // An edge of the pieces can span several original entities too: a hole's circle that the
   // union of two pieces made one edge lies on the original's two half circles (HexMe i22's
-  // bore, with the plane cuts' caps raised), so its class (the face of one half) holds only
-  // half of it; its nodes too are looked at one by one below.
+  // bore), so its class (the face of one half) holds only half of it; its nodes too are
+  // looked at one by one below.
   std::vector<char> edge_spans(pieces.num_edges() + 1, 0);
   for (EdgeId e : pieces.edges()) {
     const NodeClass c = edge_class[e.value()];
     if (c.is_interior() || pieces.edge_is_degenerated(e)) continue;
     for (const core::Vec3& p : pieces.edge_points_by_length(e, 4))
-      if (distance_to(original, c, p) > tolerance) edge_spans[e.value()] = 1;
+      if (distance_to(original, c, p) > tolerance) {
+        edge_spans[e.value()] = 1;
+        break;
+      }
   }
 
   // Vertices: an original vertex, else the class of a boundary edge through it (an
