@@ -57,7 +57,8 @@ PlaneCutSchemes plane_cut_schemes(const PlaneCutResult& cut);
 //   {"method": "plane-cuts", "status": "ok"|"failed",
 //    "counts": {"planes": n, "cylinders": n, "sub_volumes_before_merge": n, "sub_volumes": n},
 //    "sub_volumes": [{"id": i, "scheme": "sweep"|...|"none", "reason": "...", "volume": v}],
-//    "decomposition_faces": [], "diagnostics": [{"code": "plane_cuts_failed", "message": ...}]}
+//    "decomposition_faces": [], "diagnostics": [{"code": "plane_cuts_failed" or
+//    "cut_surfaces_left_out", "message": ...}]}
 std::string plane_cuts_json(const PlaneCutResult& cut, const PlaneCutSchemes& schemes);
 
 }  // namespace vorohex::decompose

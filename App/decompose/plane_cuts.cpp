@@ -38,6 +38,13 @@ const double kVolumeTolerance = 1e-6;
 struct Plane {
   Vec3 normal;        // unit
   double offset = 0;  // normal . x = offset
+  FaceId face;        // the model face it extends (the first found)
+};
+
+// A cylinder to cut along and the model face it extends.
+struct Cylinder {
+  occ::CutCylinder surface;
+  FaceId face;
 };
 
 // A block, a sweep or (`multisweep`) a prismatic part: what mesh::mesh_sub_volumes meshes.
@@ -76,7 +83,7 @@ bool same_cylinder(const occ::CutCylinder& a, const occ::CutCylinder& b, double 
 // section on a plate, a round boss); false (with why) when a concave edge has a face of
 // another kind (no exact surface to cut along).
 bool concave_surfaces(const occ::Solid& s, std::vector<Plane>& planes,
-                      std::vector<occ::CutCylinder>& cylinders, std::string& why) {
+                      std::vector<Cylinder>& cylinders, std::string& why) {
   const double diag = s.diagonal(), eps = 1e-3 * diag, tol = 1e-7 * diag;
   for (EdgeId e : s.edges()) {
     if (s.edge_is_degenerated(e)) continue;
@@ -124,13 +131,13 @@ bool concave_surfaces(const occ::Solid& s, std::vector<Plane>& planes,
         cyl[k].from = lo - 0.1 * diag;
         cyl[k].to = hi + 0.1 * diag;
         bool known = false;
-        for (const occ::CutCylinder& c : cylinders) known = known || same_cylinder(c, cyl[k], tol);
-        if (!known) cylinders.push_back(cyl[k]);
+        for (const Cylinder& c : cylinders) known = known || same_cylinder(c.surface, cyl[k], tol);
+        if (!known) cylinders.push_back({cyl[k], faces[k]});
         continue;
       }
       if (!planar[k]) continue;
       const Vec3 n = s.face_normal(faces[k], m);
-      Plane pl{n, n.dot(m)};
+      Plane pl{n, n.dot(m), faces[k]};
       if (pl.normal.x() + 1e-12 * pl.normal.y() + 1e-24 * pl.normal.z() < 0)
         pl.normal = -pl.normal, pl.offset = -pl.offset;
       bool known = false;
@@ -302,6 +309,90 @@ Touching merged_touching(const Touching& touch, std::size_t a, std::size_t b) {
   return t;
 }
 
+// The solid cut along the planes and cylinders at once; true when it gives two pieces or
+// more that fill it (`pieces`, their `volumes`), else false with why (and the pieces, if any).
+bool split_at_once(const occ::Solid& solid, const std::vector<Plane>& planes,
+                   const std::vector<Cylinder>& cylinders, double whole, double seconds,
+                   std::vector<occ::Solid>& pieces, std::vector<double>& volumes, std::string& why,
+                   bool& timed_out) {
+  std::vector<std::vector<Vec3>> tools;
+  for (const Plane& pl : planes) tools.push_back(covering_square(solid, pl));
+  std::vector<occ::CutCylinder> round;
+  for (const Cylinder& c : cylinders) round.push_back(c.surface);
+  occ::SplitResult split =
+      occ::split_solid(solid, tools, round, 1e-6 * solid.diagonal(), std::max(1.0, seconds));
+  pieces = std::move(split.pieces);
+  timed_out = split.timed_out;
+  if (!split.ok) {
+    why = "OCCT could not cut it along the surfaces of its concave edges";
+    if (!split.diagnostics.empty()) {
+      std::string m = split.diagnostics.front().message;
+      if (!m.empty() && m.back() == '.') m.pop_back();
+      why += " (" + m + ")";
+    }
+    return false;
+  }
+  if (pieces.size() < 2) {
+    why = "OCCT's cut along the surfaces of its concave edges left it whole";
+    return false;
+  }
+  return volumes_fill(pieces, whole, volumes, why);
+}
+
+// The solid cut along the surfaces of its concave edges. OCCT's splitter can fail on a set of
+// surfaces it cuts along one by one: HexMe i18's 10 planes and 4 cylinders (two of them
+// tangent to a cut plane) gave the solid back whole, while each alone cut it. So when the cut
+// along all at once fails (not for lack of time), the surfaces are added one at a time,
+// planes first, and one after which the pieces no longer fill the solid, or are no more, is
+// left out (`left_out` names each by its model face); `planes` and `cylinders` keep the
+// surfaces used. False with why when no cut is left.
+bool split_along(const occ::Solid& solid, std::vector<Plane>& planes,
+                 std::vector<Cylinder>& cylinders, double whole, double seconds,
+                 std::vector<occ::Solid>& pieces, std::vector<double>& volumes,
+                 std::vector<std::string>& left_out, std::string& why) {
+  const auto t0 = std::chrono::steady_clock::now();
+  auto left = [&] {
+    return seconds - std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
+  bool timed_out = false;
+  if (split_at_once(solid, planes, cylinders, whole, left(), pieces, volumes, why, timed_out))
+    return true;
+  if (timed_out) return false;
+  std::vector<Plane> used_planes;
+  std::vector<Cylinder> used_cylinders;
+  std::vector<occ::Solid> best;
+  std::vector<double> best_volumes;
+  const std::size_t n = planes.size() + cylinders.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    if (left() <= 0) return false;  // `why` and `pieces` stay those of the cut at once
+    std::vector<Plane> p = used_planes;
+    std::vector<Cylinder> c = used_cylinders;
+    if (k < planes.size())
+      p.push_back(planes[k]);
+    else
+      c.push_back(cylinders[k - planes.size()]);
+    std::vector<occ::Solid> next;
+    std::vector<double> next_volumes;
+    std::string next_why;
+    if (split_at_once(solid, p, c, whole, left(), next, next_volumes, next_why, timed_out) &&
+        next.size() > best.size()) {
+      used_planes = std::move(p), used_cylinders = std::move(c);
+      best = std::move(next), best_volumes = std::move(next_volumes);
+      continue;
+    }
+    if (timed_out) return false;
+    const FaceId f = k < planes.size() ? planes[k].face : cylinders[k - planes.size()].face;
+    left_out.push_back(std::string(k < planes.size() ? "the plane" : "the cylinder") + " of " +
+                       core::entity_name(f));
+  }
+  if (best.empty()) return false;
+  planes = std::move(used_planes);
+  cylinders = std::move(used_cylinders);
+  pieces = std::move(best);
+  volumes = std::move(best_volumes);
+  return true;
+}
+
 }  // namespace
 
 PlaneCutResult cut_at_concave_edges(const occ::Solid& solid, const PlaneCutOptions& options,
@@ -313,7 +404,7 @@ PlaneCutResult cut_at_concave_edges(const occ::Solid& solid, const PlaneCutOptio
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   };
   std::vector<Plane> planes;
-  std::vector<occ::CutCylinder> cylinders;
+  std::vector<Cylinder> cylinders;
   if (!concave_surfaces(solid, planes, cylinders, r.why_not)) return r;
   if (planes.empty() && cylinders.empty()) {
     r.why_not = "it has no concave edge to cut at";
@@ -324,32 +415,25 @@ PlaneCutResult cut_at_concave_edges(const occ::Solid& solid, const PlaneCutOptio
                 " cut surfaces, more than " + std::to_string(options.max_planes);
     return r;
   }
-  std::vector<std::vector<Vec3>> tools;
-  for (const Plane& pl : planes) tools.push_back(covering_square(solid, pl));
-  occ::SplitResult split =
-      occ::split_solid(solid, tools, cylinders, 1e-6 * solid.diagonal(), options.time_limit);
-  if (!split.ok) {
-    r.why_not = "OCCT could not cut it along the surfaces of its concave edges";
-    if (!split.diagnostics.empty()) {
-      std::string m = split.diagnostics.front().message;
-      if (!m.empty() && m.back() == '.') m.pop_back();
-      r.why_not += " (" + m + ")";
-    }
+  const double whole = solid.volume();
+  std::vector<occ::Solid> pieces;
+  std::vector<double> volume;  // per piece (an adaptive integration each: computed once)
+  std::vector<std::string> left_out;
+  if (!split_along(solid, planes, cylinders, whole, options.time_limit - seconds(), pieces, volume,
+                   left_out, r.why_not)) {
+    r.pieces = std::move(pieces);
     return r;
   }
+  r.left_out = std::move(left_out);
   r.planes = int(planes.size());
   r.cylinders = int(cylinders.size());
-  r.pieces_before_merge = int(split.pieces.size());
+  r.pieces_before_merge = int(pieces.size());
   if (r.pieces_before_merge > options.max_pieces) {
     r.why_not = "the surfaces of its concave edges cut it into " +
                 std::to_string(r.pieces_before_merge) + " pieces, more than " +
                 std::to_string(options.max_pieces);
     return r;
   }
-  std::vector<occ::Solid> pieces = std::move(split.pieces);
-  const double whole = solid.volume();
-  std::vector<double> volume;  // per piece (an adaptive integration each: computed once)
-  if (!volumes_fill(pieces, whole, volume, r.why_not)) return r;
   auto pointers = [](const std::vector<occ::Solid>& v) {
     std::vector<const occ::Solid*> out;
     for (const occ::Solid& s : v) out.push_back(&s);

@@ -32,6 +32,9 @@ struct PlaneCutResult {
   int planes = 0;     // distinct cut planes used
   int cylinders = 0;  // distinct cut cylinders used
   int pieces_before_merge = 0;
+  // Surfaces left out because OCCT's cut along them with the others failed ("the plane of
+  // Face7", "the cylinder of Face12"): their concave edges are not cut at.
+  std::vector<std::string> left_out;
   bool ok = false;
   std::string why_not;  // when not ok: a sentence fragment
 };

@@ -163,6 +163,7 @@ ReadResult glue(const std::vector<TopoDS_Solid>& solids, const std::string& wher
       options.check_overlap && std::abs(glued_volume - volume) > 1e-9 * std::abs(volume) + error;
   if (parts.size() != solids.size() || lost_volume) {
     std::ostringstream why;
+    why.precision(10);
     why << where << " holds " << plural(int(solids.size()), "solid");
     if (parts.size() != solids.size())
       why << " that overlap (their general fuse has " << plural(int(parts.size()), "solid")

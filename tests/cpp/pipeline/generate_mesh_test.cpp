@@ -269,6 +269,29 @@ TEST(GenerateMesh, HexMeI22IsFourMultisweeps) {
   expect_valid_on_cad(r, *in.solid);
 }
 
+// HexMe i18 (a bracket with a clevis on top): OCCT's cut along all 14 surfaces of its
+// concave edges at once gave it back whole; added one at a time, one cylinder is left out
+// and the 43 pieces merge into four multisweeps. Before: the grid fallback, min SJ 0.036.
+TEST(GenerateMesh, HexMeI18IsFourMultisweeps) {
+  const occ::ReadResult in = occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/i18o_s22.step");
+  ASSERT_TRUE(in.ok());
+  MeshOptions opt;
+  opt.fallback = false;
+  opt.decomposition_time_limit = 240;  // as for i22: about 15 s of cutting alone
+  const MeshResult r = generate_mesh(*in.solid, opt);
+  ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
+  EXPECT_EQ(r.stats.scheme, "multisweep");
+  EXPECT_EQ(r.stats.sub_volumes, 4);
+  // HexMe's industrial bar (issue 20); its three worst hexes (0.25-0.27) are where the top
+  // of the clevis's boss meets its side, at the default size (810 hexes).
+  EXPECT_GE(r.check.scaled_jacobian.min, 0.2);
+  EXPECT_TRUE(r.check.valid);
+  EXPECT_EQ(r.check.open_boundary_edges, 0u);
+  EXPECT_EQ(r.check.boundary_quads + 2 * r.check.interior_quads, 6 * r.mesh.num_hexes());
+  EXPECT_LE(r.check.max_boundary_distance_rel, 1e-6);
+  EXPECT_LE(std::abs(r.check.mesh_volume - in.solid->volume()), r.check.volume_allowance);
+}
+
 // The engraved box (tests/data/engraved_box.step: "ABC" cut 0.05 deep into a 10 x 5 x 2
 // box) at size 0.5 is a multisweep. Its worst hexes are columns through the layers under a
 // thin quad of the source mesh, equally bad at their bottom and top corners: one node alone
