@@ -65,6 +65,16 @@ class SweepScheme : public Scheme {
     o.size = size.global();
     o.size_field = &size;
     mesh::SweepResult r = mesh::sweep(solid, o, progress);
+    // Layers that fold swept one way may not the other: a source with a sliver of a quad
+    // (HexMe n04: a triangle with 15-degree corners, swept to one with 50-degree corners)
+    // folds where the other end's mesh, carried across, does not.
+    if (!r.ok && r.folded > 0 && !progress.cancelled()) {
+      mesh::SweepOptions back = o;
+      back.avoid_sources = {r.source.value()};
+      mesh::SweepResult other = mesh::sweep(solid, back, progress);
+      if (other.source != r.source && (other.ok || (other.folded > 0 && other.folded < r.folded)))
+        r = std::move(other);
+    }
     if (!r.ok && r.folded > 0 && !progress.cancelled() &&
         smooth::untangle_folded(r.mesh, solid, {}, &size, progress))
       mesh::accept_untangled(r);

@@ -412,8 +412,9 @@ TEST(GenerateMesh, AFailingSchemeHandsOverToTheNext) {
 // A plate with a hole drilled off its normal: the sweep's layers follow the outline and
 // the hole by one affine map, which cannot follow a hole that moves across the layers, and
 // fold at its wall. The smoothing untangles them (sweep_untangled) and the sweep is kept
-// when it reaches 0.3 (10 degrees through 10: min 0.53, the grid gives 0.50); drilled 30
-// degrees through 20 it untangles only to 0.04, and the next scheme takes it.
+// when it reaches 0.3 (10 degrees through 20: min 0.50, folded both ways; through 10 the
+// sweep from the other face does not fold: 0.55); drilled 30 degrees through 20 it
+// untangles only to 0.04, and the next scheme takes it.
 TEST(GenerateMesh, AFoldedSweepIsUntangledAndKeptWhenGoodEnough) {
   auto plate = [](double degrees, double thickness) {
     const double a = degrees * M_PI / 180;
@@ -424,7 +425,7 @@ TEST(GenerateMesh, AFoldedSweepIsUntangledAndKeptWhenGoodEnough) {
   };
   MeshOptions opt;
   opt.decompose = false;
-  const std::unique_ptr<occ::Solid> thin = plate(10, 10);
+  const std::unique_ptr<occ::Solid> thin = plate(10, 20);
   ASSERT_TRUE(thin);
   const MeshResult r = generate_mesh(*thin, opt);
   ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
@@ -443,6 +444,28 @@ TEST(GenerateMesh, AFoldedSweepIsUntangledAndKeptWhenGoodEnough) {
   const core::Diagnostic* f = testing::find_diagnostic(g.diagnostics, "scheme_failed");
   ASSERT_NE(f, nullptr);
   EXPECT_NE(f->message.find("fold"), std::string::npos) << f->message;
+}
+
+// HexMe n04 (a prism from a triangle with 15-degree corners to one with 50-degree corners,
+// twisted sides): swept from the larger end, the source's quads along an edge near a
+// 15-degree corner are slivers (0.003 wide), and 18 hexes fold; the untangling did not
+// save it, so it went to the fallback, whose mesh was invalid too. Swept from the other
+// end, nothing folds.
+TEST(GenerateMesh, ASweepThatFoldsOneWayIsSweptTheOther) {
+  const occ::ReadResult in =
+      occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/n04o_transition_prism.step");
+  ASSERT_TRUE(in.ok());
+  MeshOptions opt;
+  opt.fallback = false;
+  const MeshResult r = generate_mesh(*in.solid, opt);
+  ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
+  EXPECT_EQ(r.stats.scheme, "sweep");
+  const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "sweep");
+  ASSERT_NE(d, nullptr);
+  EXPECT_NE(d->message.find("Swept from Face5 to Face1"), std::string::npos) << d->message;
+  EXPECT_TRUE(r.check.valid);
+  EXPECT_GE(r.check.scaled_jacobian.min, 0.2);
+  EXPECT_LE(std::abs(r.check.mesh_volume - in.solid->volume()), r.check.volume_allowance);
 }
 
 // A size far too small for the limit is refused before any work, with the count and the
