@@ -343,7 +343,7 @@ bool split_at_once(const occ::Solid& solid, const std::vector<Plane>& planes,
 // surfaces it cuts along one by one: HexMe i18's 10 planes and 4 cylinders (two of them
 // tangent to a cut plane) gave the solid back whole, while each alone cut it. So when the cut
 // along all at once fails (not for lack of time), the surfaces are added one at a time,
-// planes first, and one after which the pieces no longer fill the solid, or are no more, is
+// planes first, and one after which the pieces no longer fill the solid, or are fewer, is
 // left out (`left_out` names each by its model face); `planes` and `cylinders` keep the
 // surfaces used. False with why when no cut is left.
 bool split_along(const occ::Solid& solid, std::vector<Plane>& planes,
@@ -375,7 +375,7 @@ bool split_along(const occ::Solid& solid, std::vector<Plane>& planes,
     std::vector<double> next_volumes;
     std::string next_why;
     if (split_at_once(solid, p, c, whole, left(), next, next_volumes, next_why, timed_out) &&
-        next.size() > best.size()) {
+        next.size() >= best.size()) {
       used_planes = std::move(p), used_cylinders = std::move(c);
       best = std::move(next), best_volumes = std::move(next_volumes);
       continue;
