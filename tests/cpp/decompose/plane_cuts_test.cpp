@@ -216,6 +216,10 @@ TEST(PlaneCuts, ASurfaceThatSpoilsTheCutIsLeftOutAndNamed) {
   ASSERT_TRUE(schemes.glue_error.empty()) << schemes.glue_error;
   for (std::size_t k = 0; k < r.pieces.size(); ++k)
     EXPECT_FALSE(schemes.schemes[k].empty()) << "piece " << k + 1 << ": " << schemes.reasons[k];
+  // The JSON report says so (what VoroHex.decompose(shape, method="plane-cuts") returns).
+  const std::string json = plane_cuts_json(r, schemes);
+  EXPECT_NE(json.find("cut_surfaces_left_out"), std::string::npos) << json;
+  EXPECT_NE(json.find("the cylinder of Face13"), std::string::npos) << json;
 }
 
 // HexMe i15 (the caps raised: 69 pieces): OCCT's face unification of one union in the
