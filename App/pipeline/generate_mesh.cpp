@@ -450,9 +450,13 @@ bool mesh_pieces(const occ::Solid& solid, const detail::IsolatedDecomposition& d
   result.stats.intervals = {0, 0, 0};
   result.stats.seconds_meshing = seconds_since(t0);
   std::ostringstream s;
-  s << (d.method == "voronoi"
-            ? "Cut along its Voronoi graph into "
-            : "Cut along the faces at its concave edges, extended through it, into ")
+  s << (d.method == "voronoi" ? "Cut along its Voronoi graph into "
+                              : "Cut along the faces at its concave edges, extended through it" +
+                                    (d.left_out.empty() ? std::string()
+                                                        : " (but not along " + d.left_out +
+                                                              ", with which OCCT's cut "
+                                                              "failed)") +
+                                    ", into ")
     << n << " sub-volumes (" << d.before_merge << " before merging; ";
   bool first = true;
   for (const auto& [name, k] : count)

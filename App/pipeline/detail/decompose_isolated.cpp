@@ -16,7 +16,8 @@ namespace vorohex::pipeline::detail {
 
 namespace {
 
-// "<before merge>\n<method>\n" then the sub-volumes as one BREP compound.
+// "<before merge>\n<method>[\t<surfaces left out>]\n" then the sub-volumes as one BREP
+// compound.
 std::string to_text(int before_merge, const char* method,
                     const std::vector<const occ::Solid*>& solids) {
   const std::string brep = occ::compound_brep_string(solids);
@@ -79,7 +80,10 @@ std::string decompose_to_text(const occ::Solid& solid, const MeshOptions& mesh_o
     if (cut.ok) {
       std::vector<const occ::Solid*> solids;
       for (const occ::Solid& s : cut.pieces) solids.push_back(&s);
-      return to_text(cut.pieces_before_merge, "plane cuts", solids);
+      std::string method = "plane cuts";
+      for (std::size_t k = 0; k < cut.left_out.size(); ++k)
+        method += (k ? ", " : "\t") + cut.left_out[k];
+      return to_text(cut.pieces_before_merge, method.c_str(), solids);
     }
     why =
         "cutting along the faces at its concave edges did not give sub-volumes that all have "
@@ -135,6 +139,11 @@ IsolatedDecomposition decompose_isolated(const occ::Solid& solid, const MeshOpti
   }
   out.before_merge = std::atoi(run.data.substr(0, eol).c_str());
   out.method = run.data.substr(eol + 1, eol2 - eol - 1);
+  const std::size_t tab = out.method.find('\t');
+  if (tab != std::string::npos) {
+    out.left_out = out.method.substr(tab + 1);
+    out.method.resize(tab);
+  }
   occ::ReadOptions ro;
   ro.several_solids = true;
   occ::ReadResult r = occ::read_solid_from_brep_string(run.data.substr(eol2 + 1), ro);

@@ -20,6 +20,8 @@ struct IsolatedDecomposition {
   std::unique_ptr<occ::Solid> pieces;  // glued sub-volumes (null: none usable)
   int before_merge = 0;                // sub-volumes of the first split
   std::string method;                  // "voronoi", or "plane cuts" (decompose/plane_cuts.h)
+  std::string left_out;                // plane cuts: the surfaces left out ("the cylinder
+                                       // of Face13, ..."; empty: none)
   std::string why_not;                 // when pieces is null: a sentence fragment
   bool cancelled = false;              // stopped by `progress` (not by the time limit)
   double seconds = 0;

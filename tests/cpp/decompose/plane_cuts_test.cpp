@@ -159,8 +159,10 @@ TEST(PlaneCuts, TheCutEndsAtItsTimeLimitEvenWhereOcctDoesNot) {
   o.time_limit = 5;
   double seconds = 0;
   const PlaneCutResult r = bounded_cut(*in.solid, o, seconds);
-  if (!r.ok) EXPECT_FALSE(r.why_not.empty());
-  if (!r.ok) EXPECT_EQ(r.why_not.find("neither a plane nor a cylinder"), std::string::npos);
+  if (!r.ok) {
+    EXPECT_FALSE(r.why_not.empty());
+    EXPECT_EQ(r.why_not.find("neither a plane nor a cylinder"), std::string::npos);
+  }
 }
 
 // HexMe i22: 11 planes and 2 cylinders cut it into 80 pieces (more than the default cap of
@@ -233,7 +235,9 @@ TEST(PlaneCuts, TheMergingEndsAtItsTimeLimitEvenWhereOcctDoesNot) {
   double seconds = 0;
   const PlaneCutResult r = bounded_cut(*in.solid, o, seconds);
   EXPECT_EQ(r.pieces_before_merge, 69);
-  if (!r.ok) EXPECT_FALSE(r.why_not.empty());
+  if (!r.ok) {
+    EXPECT_FALSE(r.why_not.empty());
+  }
   std::printf("[plane_cuts] HexMe i15: %d pieces, %zu after merging for %.1f s (limit %g s)\n",
               r.pieces_before_merge, r.pieces.size(), seconds, o.time_limit);
 }

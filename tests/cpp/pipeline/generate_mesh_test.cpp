@@ -282,6 +282,9 @@ TEST(GenerateMesh, HexMeI18IsFourMultisweeps) {
   ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
   EXPECT_EQ(r.stats.scheme, "multisweep");
   EXPECT_EQ(r.stats.sub_volumes, 4);
+  const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "decomposed");
+  ASSERT_NE(d, nullptr);
+  EXPECT_NE(d->message.find("but not along the cylinder of Face13"), std::string::npos) << d->message;
   // HexMe's industrial bar (issue 20); its three worst hexes (0.25-0.27) are where the top
   // of the clevis's boss meets its side, at the default size (810 hexes).
   EXPECT_GE(r.check.scaled_jacobian.min, 0.2);
