@@ -191,7 +191,7 @@ PlaneCutSchemes plane_cut_schemes(const PlaneCutResult& cut) {
   if (cut.pieces.empty()) return out;
   std::vector<const occ::Solid*> pieces;
   for (const occ::Solid& s : cut.pieces) pieces.push_back(&s);
-  const occ::ReadResult glued = occ::glue_solids(pieces, "The pieces");
+  const occ::ReadResult glued = occ::glue_solids(pieces, "The set of pieces");
   if (!glued.ok()) {
     for (const core::Diagnostic& d : glued.diagnostics)
       if (d.severity == core::Severity::error) {

@@ -421,6 +421,10 @@ PlaneCutResult cut_at_concave_edges(const occ::Solid& solid, const PlaneCutOptio
   std::vector<std::string> left_out;
   if (!split_along(solid, planes, cylinders, whole, options.time_limit - seconds(), pieces, volume,
                    left_out, r.why_not)) {
+    // The pieces of the cut along all surfaces at once, if any, for inspection.
+    r.planes = int(planes.size());
+    r.cylinders = int(cylinders.size());
+    r.pieces_before_merge = int(pieces.size());
     r.pieces = std::move(pieces);
     return r;
   }
