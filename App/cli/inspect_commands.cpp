@@ -189,12 +189,9 @@ int run_plane_cuts(const std::string& input, const std::string& brep_path) {
   std::cout << "plane cuts of " << input << ": " << count(cut.planes, "plane") << ", "
             << count(cut.cylinders, "cylinder") << ", " << count(cut.pieces_before_merge, "piece")
             << ", " << cut.pieces.size() << " after merging\n";
-  if (!cut.left_out.empty()) {
-    std::cout << "  left out (OCCT's cut along them with the others failed):";
-    for (std::size_t k = 0; k < cut.left_out.size(); ++k)
-      std::cout << (k ? ", " : " ") << cut.left_out[k];
-    std::cout << "\n";
-  }
+  if (!cut.left_out.empty())
+    std::cout << "  left out (OCCT's cut along them with the others failed): "
+              << decompose::left_out_text(cut) << "\n";
   const decompose::PlaneCutSchemes schemes = decompose::plane_cut_schemes(cut);
   if (!schemes.glue_error.empty()) std::cerr << "vorohex: " << schemes.glue_error << "\n";
   for (std::size_t i = 0; i < cut.pieces.size(); ++i) {

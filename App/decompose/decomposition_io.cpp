@@ -235,16 +235,15 @@ std::string plane_cuts_json(const PlaneCutResult& cut, const PlaneCutSchemes& sc
                                 {"code", "plane_cuts_failed"},
                                 {"message", "The plane cuts failed: " + cut.why_not + "."},
                                 {"entities", json::array()}});
-  if (!cut.left_out.empty()) {
-    std::string m =
-        "OCCT's cut along all surfaces of the concave edges at once failed, so they "
-        "were added one at a time; left out, their concave edges not cut at:";
-    for (std::size_t k = 0; k < cut.left_out.size(); ++k) m += (k ? ", " : " ") + cut.left_out[k];
+  if (!cut.left_out.empty())
     j["diagnostics"].push_back({{"severity", "info"},
                                 {"code", "cut_surfaces_left_out"},
-                                {"message", m + "."},
+                                {"message",
+                                 "OCCT's cut along all surfaces of the concave edges at once "
+                                 "failed, so they were added one at a time; left out, their "
+                                 "concave edges not cut at: " +
+                                     left_out_text(cut) + "."},
                                 {"entities", json::array()}});
-  }
   if (!schemes.glue_error.empty())
     j["diagnostics"].push_back({{"severity", "warning"},
                                 {"code", "pieces_not_glued"},

@@ -395,6 +395,12 @@ bool split_along(const occ::Solid& solid, std::vector<Plane>& planes,
 
 }  // namespace
 
+std::string left_out_text(const PlaneCutResult& cut) {
+  std::string s;
+  for (std::size_t k = 0; k < cut.left_out.size(); ++k) s += (k ? ", " : "") + cut.left_out[k];
+  return s;
+}
+
 PlaneCutResult cut_at_concave_edges(const occ::Solid& solid, const PlaneCutOptions& options,
                                     const core::Progress& progress) {
   options.validate();

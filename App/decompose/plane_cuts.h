@@ -42,6 +42,10 @@ struct PlaneCutResult {
 // Only solids whose concave edges all lie between planar or cylindrical faces are
 // attempted; a cylinder is extended along its axis through the whole solid (the round post
 // on a plate: the plate is cut around the post's circle and under it).
+// The surfaces left out, as one list ("the cylinder of Face13, the plane of Face7"; empty
+// when none).
+std::string left_out_text(const PlaneCutResult& cut);
+
 PlaneCutResult cut_at_concave_edges(const occ::Solid& solid, const PlaneCutOptions& options = {},
                                     const core::Progress& progress = {});
 

@@ -80,9 +80,8 @@ std::string decompose_to_text(const occ::Solid& solid, const MeshOptions& mesh_o
     if (cut.ok) {
       std::vector<const occ::Solid*> solids;
       for (const occ::Solid& s : cut.pieces) solids.push_back(&s);
-      std::string method = "plane cuts";
-      for (std::size_t k = 0; k < cut.left_out.size(); ++k)
-        method += (k ? ", " : "\t") + cut.left_out[k];
+      const std::string left_out = decompose::left_out_text(cut);
+      const std::string method = left_out.empty() ? "plane cuts" : "plane cuts\t" + left_out;
       return to_text(cut.pieces_before_merge, method.c_str(), solids);
     }
     why =

@@ -200,10 +200,11 @@ TEST(GenerateMesh, APlateWithALugIsCutIntoTwoMultisweeps) {
 // takes the nodes they placed there; and the union of two pieces makes one face of two
 // coplanar model faces (Face29, Face30), whose nodes go back to the face they lie on. Before:
 // the grid (min 0.246) or the tet split (0.09), the sub-volumes not conforming.
-// Valid, closed, conforming, on the CAD, with the solid's volume and min SJ >= 0.3.
-void expect_valid_on_cad(const MeshResult& r, const occ::Solid& solid) {
+// Valid, closed, conforming, on the CAD, with the solid's volume and min SJ >= `min_sj`
+// (0.3, the issues' bar for the shapes they list; 0.2 for HexMe's models).
+void expect_valid_on_cad(const MeshResult& r, const occ::Solid& solid, double min_sj = 0.3) {
   EXPECT_TRUE(r.check.valid);
-  EXPECT_GE(r.check.scaled_jacobian.min, 0.3);
+  EXPECT_GE(r.check.scaled_jacobian.min, min_sj);
   EXPECT_EQ(r.check.open_boundary_edges, 0u);
   EXPECT_EQ(r.check.boundary_quads + 2 * r.check.interior_quads, 6 * r.mesh.num_hexes());
   EXPECT_LE(r.check.max_boundary_distance_rel, 1e-6);
@@ -265,7 +266,6 @@ TEST(GenerateMesh, HexMeI22IsFourMultisweeps) {
   ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
   EXPECT_EQ(r.stats.scheme, "multisweep");
   EXPECT_EQ(r.stats.sub_volumes, 4);
-  EXPECT_GE(r.check.scaled_jacobian.min, 0.3);
   expect_valid_on_cad(r, *in.solid);
 }
 
@@ -284,15 +284,11 @@ TEST(GenerateMesh, HexMeI18IsFourMultisweeps) {
   EXPECT_EQ(r.stats.sub_volumes, 4);
   const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "decomposed");
   ASSERT_NE(d, nullptr);
-  EXPECT_NE(d->message.find("but not along the cylinder of Face13"), std::string::npos) << d->message;
-  // HexMe's industrial bar (issue 20); its three worst hexes (0.25-0.27) are where the top
-  // of the clevis's boss meets its side, at the default size (810 hexes).
-  EXPECT_GE(r.check.scaled_jacobian.min, 0.2);
-  EXPECT_TRUE(r.check.valid);
-  EXPECT_EQ(r.check.open_boundary_edges, 0u);
-  EXPECT_EQ(r.check.boundary_quads + 2 * r.check.interior_quads, 6 * r.mesh.num_hexes());
-  EXPECT_LE(r.check.max_boundary_distance_rel, 1e-6);
-  EXPECT_LE(std::abs(r.check.mesh_volume - in.solid->volume()), r.check.volume_allowance);
+  EXPECT_NE(d->message.find("but not along the cylinder of Face13"), std::string::npos)
+      << d->message;
+  // Issue 20's bar for HexMe (0.2): its three worst hexes (0.25-0.27) are where the top
+  // plane between the clevis's bosses is tangent to them (810 hexes at the default size).
+  expect_valid_on_cad(r, *in.solid, 0.2);
 }
 
 // The engraved box (tests/data/engraved_box.step: "ABC" cut 0.05 deep into a 10 x 5 x 2
@@ -466,9 +462,7 @@ TEST(GenerateMesh, ASweepThatFoldsOneWayIsSweptTheOther) {
   const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "sweep");
   ASSERT_NE(d, nullptr);
   EXPECT_NE(d->message.find("Swept from Face5 to Face1"), std::string::npos) << d->message;
-  EXPECT_TRUE(r.check.valid);
-  EXPECT_GE(r.check.scaled_jacobian.min, 0.2);
-  EXPECT_LE(std::abs(r.check.mesh_volume - in.solid->volume()), r.check.volume_allowance);
+  expect_valid_on_cad(r, *in.solid, 0.2);
 }
 
 // A size far too small for the limit is refused before any work, with the count and the
