@@ -373,7 +373,9 @@ bool mesh_decomposed(const occ::Solid& solid, const MeshOptions& options,
   // counts too: HexMe i22's 45 took 20 s).
   MeshOptions rest = options;
   const double spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  rest.decomposition_time_limit = std::max(5.0, options.decomposition_time_limit - spent);
+  rest.decomposition_time_limit =
+      std::max(5.0, std::min(options.decomposition_time_limit - spent,
+                             detail::voronoi_share(options.decomposition_time_limit)));
   const detail::IsolatedDecomposition voronoi =
       detail::decompose_isolated(solid, rest, progress, detail::DecompositionMethods::voronoi);
   if (voronoi.cancelled) {

@@ -65,7 +65,7 @@ std::string voronoi_decomposition(const occ::Solid& solid, const MeshOptions& me
 }
 
 // Runs in the child: exact cuts at the concave edges (with at most half the time), else the
-// Voronoi decomposition; or only the latter.
+// Voronoi decomposition (with what is left, at most the other half); or only the latter.
 std::string decompose_to_text(const occ::Solid& solid, const MeshOptions& mesh_options,
                               DecompositionMethods methods) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -92,7 +92,11 @@ std::string decompose_to_text(const occ::Solid& solid, const MeshOptions& mesh_o
   const double elapsed =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   try {
-    return voronoi_decomposition(solid, mesh_options, time_limit - elapsed);
+    const double left = time_limit - elapsed;
+    return voronoi_decomposition(solid, mesh_options,
+                                 methods == DecompositionMethods::voronoi
+                                     ? left
+                                     : std::min(left, voronoi_share(time_limit)));
   } catch (const std::exception& e) {
     if (why.empty()) throw;
     throw std::runtime_error(why + "; " + e.what());
