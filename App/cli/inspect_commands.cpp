@@ -189,6 +189,10 @@ int run_plane_cuts(const std::string& input, const std::string& brep_path) {
   std::cout << "plane cuts of " << input << ": " << count(cut.planes, "plane") << ", "
             << count(cut.cylinders, "cylinder") << ", " << count(cut.pieces_before_merge, "piece")
             << ", " << cut.pieces.size() << " after merging\n";
+  std::string along;
+  for (const decompose::CutSurface& c : cut.surfaces)
+    if (c.used) along += (along.empty() ? "" : ", ") + decompose::surface_text(c);
+  if (!along.empty()) std::cout << "  cut along: " << along << "\n";
   if (!cut.left_out.empty())
     std::cout << "  left out (OCCT's cut along them with the others failed): "
               << decompose::left_out_text(cut) << "\n";

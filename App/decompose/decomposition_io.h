@@ -57,6 +57,9 @@ PlaneCutSchemes plane_cut_schemes(const PlaneCutResult& cut);
 //   {"method": "plane-cuts", "status": "ok"|"failed",
 //    "counts": {"planes": n, "cylinders": n, "sub_volumes_before_merge": n, "sub_volumes": n},
 //    "sub_volumes": [{"id": i, "scheme": "sweep"|...|"none", "reason": "...", "volume": v}],
+//    "cut_surfaces": [{"id": i, "kind": "plane"|"cylinder", "face": "Face7" (the model face
+//    it extends), "concave_edges": ["Edge12", ...] (where it is taken), "used": false when
+//    left out}],
 //    "decomposition_faces": [], "diagnostics": [{"code": "plane_cuts_failed" or
 //    "cut_surfaces_left_out", "message": ...}]}
 std::string plane_cuts_json(const PlaneCutResult& cut, const PlaneCutSchemes& schemes);

@@ -36,15 +36,17 @@ namespace {
 const double kVolumeTolerance = 1e-6;
 
 struct Plane {
-  Vec3 normal;        // unit
-  double offset = 0;  // normal . x = offset
-  FaceId face;        // the model face it extends (the first found)
+  Vec3 normal;                // unit
+  double offset = 0;          // normal . x = offset
+  FaceId face;                // the model face it extends (the first found)
+  std::vector<EdgeId> edges;  // the concave edges it is taken at
 };
 
-// A cylinder to cut along and the model face it extends.
+// A cylinder to cut along, the model face it extends and the concave edges it is taken at.
 struct Cylinder {
   occ::CutCylinder surface;
   FaceId face;
+  std::vector<EdgeId> edges;
 };
 
 // A block, a sweep or (`multisweep`) a prismatic part: what mesh::mesh_sub_volumes meshes.
@@ -131,19 +133,20 @@ bool concave_surfaces(const occ::Solid& s, std::vector<Plane>& planes,
         cyl[k].from = lo - 0.1 * diag;
         cyl[k].to = hi + 0.1 * diag;
         bool known = false;
-        for (const Cylinder& c : cylinders) known = known || same_cylinder(c.surface, cyl[k], tol);
-        if (!known) cylinders.push_back({cyl[k], faces[k]});
+        for (Cylinder& c : cylinders)
+          if (!known && same_cylinder(c.surface, cyl[k], tol)) known = true, c.edges.push_back(e);
+        if (!known) cylinders.push_back({cyl[k], faces[k], {e}});
         continue;
       }
       if (!planar[k]) continue;
       const Vec3 n = s.face_normal(faces[k], m);
-      Plane pl{n, n.dot(m), faces[k]};
+      Plane pl{n, n.dot(m), faces[k], {e}};
       if (pl.normal.x() + 1e-12 * pl.normal.y() + 1e-24 * pl.normal.z() < 0)
         pl.normal = -pl.normal, pl.offset = -pl.offset;
       bool known = false;
-      for (const Plane& q : planes)
-        known =
-            known || (q.normal.dot(pl.normal) > 1 - 1e-9 && std::abs(q.offset - pl.offset) <= tol);
+      for (Plane& q : planes)
+        if (!known && q.normal.dot(pl.normal) > 1 - 1e-9 && std::abs(q.offset - pl.offset) <= tol)
+          known = true, q.edges.push_back(e);
       if (!known) planes.push_back(pl);
     }
   }
@@ -395,6 +398,28 @@ bool split_along(const occ::Solid& solid, std::vector<Plane>& planes,
 
 }  // namespace
 
+std::string surface_text(const CutSurface& s, bool with_edges) {
+  std::string t =
+      std::string(s.cylinder ? "the cylinder of " : "the plane of ") + core::entity_name(s.face);
+  if (!with_edges || s.edges.empty()) return t;
+  t += " (at ";
+  for (std::size_t k = 0; k < s.edges.size(); ++k)
+    t += (k ? ", " : "") + core::entity_name(s.edges[k]);
+  return t + ")";
+}
+
+std::string used_surfaces_text(const PlaneCutResult& cut, std::size_t at_most) {
+  std::string t;
+  std::size_t shown = 0, used = 0;
+  for (const CutSurface& s : cut.surfaces) {
+    if (!s.used) continue;
+    ++used;
+    if (shown < at_most) t += (shown++ ? ", " : "") + surface_text(s, false);
+  }
+  if (used > shown) t += " and " + std::to_string(used - shown) + " more";
+  return t;
+}
+
 std::string left_out_text(const PlaneCutResult& cut) {
   std::string s;
   for (std::size_t k = 0; k < cut.left_out.size(); ++k) s += (k ? ", " : "") + cut.left_out[k];
@@ -421,6 +446,8 @@ PlaneCutResult cut_at_concave_edges(const occ::Solid& solid, const PlaneCutOptio
                 " cut surfaces, more than " + std::to_string(options.max_planes);
     return r;
   }
+  for (const Plane& pl : planes) r.surfaces.push_back({false, pl.face, pl.edges, true});
+  for (const Cylinder& c : cylinders) r.surfaces.push_back({true, c.face, c.edges, true});
   const double whole = solid.volume();
   std::vector<occ::Solid> pieces;
   std::vector<double> volume;  // per piece (an adaptive integration each: computed once)
@@ -435,6 +462,14 @@ PlaneCutResult cut_at_concave_edges(const occ::Solid& solid, const PlaneCutOptio
     return r;
   }
   r.left_out = std::move(left_out);
+  for (CutSurface& c : r.surfaces) {  // split_along kept the surfaces it used
+    c.used = false;
+    if (c.cylinder) {
+      for (const Cylinder& u : cylinders) c.used = c.used || u.face == c.face;
+    } else {
+      for (const Plane& u : planes) c.used = c.used || u.face == c.face;
+    }
+  }
   r.planes = int(planes.size());
   r.cylinders = int(cylinders.size());
   r.pieces_before_merge = int(pieces.size());

@@ -25,6 +25,15 @@ struct PlaneCutOptions {
   void validate() const;   // throws std::invalid_argument naming the bad field
 };
 
+// A surface the solid is cut along: the plane or the cylinder of a model face, extended
+// through the solid from the concave edges it is taken at (why a cut is where it is).
+struct CutSurface {
+  bool cylinder = false;            // false: a plane
+  core::FaceId face;                // the model face it extends
+  std::vector<core::EdgeId> edges;  // the concave edges it is taken at
+  bool used = true;                 // false: left out (OCCT's cut with it failed)
+};
+
 struct PlaneCutResult {
   // Each a block, a sweep or prismatic once glued to the others; when not ok but the solid
   // was cut: the pieces as cut, for inspection (vorohex decompose --plane-cuts).
@@ -35,6 +44,8 @@ struct PlaneCutResult {
   // Surfaces left out because OCCT's cut along them with the others failed ("the plane of
   // Face7", "the cylinder of Face12"): their concave edges are not cut at.
   std::vector<std::string> left_out;
+  // Every surface its concave edges give, planes first (none when it was not attempted).
+  std::vector<CutSurface> surfaces;
   bool ok = false;
   std::string why_not;  // when not ok: a sentence fragment
 };
@@ -45,6 +56,11 @@ struct PlaneCutResult {
 // The surfaces left out, as one list ("the cylinder of Face13, the plane of Face7"; empty
 // when none).
 std::string left_out_text(const PlaneCutResult& cut);
+// "the plane of Face7 (at Edge12, Edge14)"; without the edges: "the plane of Face7".
+std::string surface_text(const CutSurface& surface, bool with_edges = true);
+// The surfaces used, without their edges, the first `at_most` named ("the plane of Face3,
+// the cylinder of Face9 and 4 more").
+std::string used_surfaces_text(const PlaneCutResult& cut, std::size_t at_most = 6);
 
 PlaneCutResult cut_at_concave_edges(const occ::Solid& solid, const PlaneCutOptions& options = {},
                                     const core::Progress& progress = {});

@@ -453,7 +453,9 @@ bool mesh_pieces(const occ::Solid& solid, const detail::IsolatedDecomposition& d
   result.stats.seconds_meshing = seconds_since(t0);
   std::ostringstream s;
   s << (d.method == "voronoi" ? "Cut along its Voronoi graph into "
-                              : "Cut along the faces at its concave edges, extended through it" +
+                              : "Cut along the faces at its concave edges" +
+                                    (d.along.empty() ? std::string() : " (" + d.along + ")") +
+                                    ", extended through it" +
                                     (d.left_out.empty() ? std::string()
                                                         : " (but not along " + d.left_out +
                                                               ", with which OCCT's cut "

@@ -734,6 +734,9 @@ class Decomposition:
     neighbouring face), "voronoi_elements", "governors"); diagnostics: list of dicts;
     shapes: the sub-volumes as Part.Solid, in the order of sub_volumes (empty when the
     decomposition failed). method: "voronoi" or "plane-cuts" (see decompose).
+    cut_surfaces (plane cuts only): why each cut is where it is, a dict per surface with
+    "kind" ("plane"/"cylinder"), "face" (the model face it extends, "Face7"),
+    "concave_edges" (where it is taken, ["Edge12", ...]) and "used" (False: left out).
     """
 
     def __init__(self, data, shapes):
@@ -745,6 +748,7 @@ class Decomposition:
         self.diagnostics = data.get("diagnostics", [])
         self.shapes = shapes
         self.method = data.get("method", "voronoi")
+        self.cut_surfaces = data.get("cut_surfaces", [])
 
     ok = property(lambda self: self.status != "failed",
                   doc="False when the solid could not be cut (see diagnostics)")

@@ -738,6 +738,8 @@ class InspectCommands(unittest.TestCase):
         self.assertEqual(code, 0, stdout + stderr)
         self.assertIn("2 after merging", stdout)
         self.assertEqual(stdout.count(": multisweep"), 2, stdout)
+        # Why each cut is where it is: the surfaces, each with its face and concave edges.
+        self.assertRegex(stdout, r"cut along: the plane of Face\d+ \(at Edge\d+")
         compound = Part.read(parts)
         self.assertEqual(len(compound.Solids), 2)
         self.assertAlmostEqual(sum(s.Volume for s in compound.Solids) / solid.Volume, 1, places=9)

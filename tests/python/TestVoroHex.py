@@ -213,6 +213,16 @@ class TestVoroHexApi(unittest.TestCase):
         self.assertEqual(d.counts["cylinders"], 1)
         self.assertEqual(d.counts["sub_volumes_before_merge"], 3)
         self.assertEqual(sorted(sv["scheme"] for sv in d.sub_volumes), ["multisweep", "sweep"])
+        # Why the cuts are where they are: the plate's top plane and the post's cylinder,
+        # both taken at the circle where the post stands on the plate.
+        self.assertEqual([c["kind"] for c in d.cut_surfaces], ["plane", "cylinder"])
+        top = [f for f in solid.Faces if abs(f.CenterOfMass.z - 10) < 1e-9
+               and f.Surface.__class__.__name__ == "Plane"][0]
+        index = [k for k, f in enumerate(solid.Faces) if f.isSame(top)][0]
+        self.assertEqual(d.cut_surfaces[0]["face"], "Face%d" % (index + 1))
+        circle = d.cut_surfaces[0]["concave_edges"]
+        self.assertEqual(circle, d.cut_surfaces[1]["concave_edges"])
+        self.assertTrue(all(c["used"] for c in d.cut_surfaces))
         self.assertEqual(len(d.shapes), 2)
         self.assertAlmostEqual(sum(s.Volume for s in d.shapes), solid.Volume, places=6)
         for sv, shape in zip(d.sub_volumes, d.shapes):

@@ -16,8 +16,8 @@ namespace vorohex::pipeline::detail {
 
 namespace {
 
-// "<before merge>\n<method>[\t<surfaces left out>]\n" then the sub-volumes as one BREP
-// compound.
+// "<before merge>\n<method>[\t<surfaces left out>\t<surfaces used>]\n" then the sub-volumes as one
+// BREP compound.
 std::string to_text(int before_merge, const char* method,
                     const std::vector<const occ::Solid*>& solids) {
   const std::string brep = occ::compound_brep_string(solids);
@@ -80,8 +80,8 @@ std::string decompose_to_text(const occ::Solid& solid, const MeshOptions& mesh_o
     if (cut.ok) {
       std::vector<const occ::Solid*> solids;
       for (const occ::Solid& s : cut.pieces) solids.push_back(&s);
-      const std::string left_out = decompose::left_out_text(cut);
-      const std::string method = left_out.empty() ? "plane cuts" : "plane cuts\t" + left_out;
+      const std::string method = "plane cuts\t" + decompose::left_out_text(cut) + "\t" +
+                                 decompose::used_surfaces_text(cut);
       return to_text(cut.pieces_before_merge, method.c_str(), solids);
     }
     why =
@@ -142,9 +142,12 @@ IsolatedDecomposition decompose_isolated(const occ::Solid& solid, const MeshOpti
   }
   out.before_merge = std::atoi(run.data.substr(0, eol).c_str());
   out.method = run.data.substr(eol + 1, eol2 - eol - 1);
+  // "plane cuts\t<surfaces left out>\t<surfaces used>"
   const std::size_t tab = out.method.find('\t');
   if (tab != std::string::npos) {
-    out.left_out = out.method.substr(tab + 1);
+    const std::size_t tab2 = out.method.find('\t', tab + 1);
+    out.left_out = out.method.substr(tab + 1, tab2 == std::string::npos ? tab2 : tab2 - tab - 1);
+    if (tab2 != std::string::npos) out.along = out.method.substr(tab2 + 1);
     out.method.resize(tab);
   }
   occ::ReadOptions ro;

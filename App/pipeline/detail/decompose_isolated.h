@@ -22,6 +22,8 @@ struct IsolatedDecomposition {
   std::string method;                  // "voronoi", or "plane cuts" (decompose/plane_cuts.h)
   std::string left_out;                // plane cuts: the surfaces left out ("the cylinder
                                        // of Face13, ..."; empty: none)
+  std::string along;                   // plane cuts: the surfaces cut along ("the plane of
+                                       // Face3, the cylinder of Face9 and 4 more")
   std::string why_not;                 // when pieces is null: a sentence fragment
   bool cancelled = false;              // stopped by `progress` (not by the time limit)
   double seconds = 0;

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <memory>
@@ -114,6 +115,43 @@ TEST(PlaneCuts, RoundPostOnPlateIsCutAroundAndUnderThePost) {
   EXPECT_EQ(c.cylinders, 1);
 }
 
+// Why each cut is where it is: the round post's circle on the plate is a concave edge
+// between the plate's top plane and the post's cylinder, and both are cut along, each named
+// by the model face it extends and taken at that circle.
+TEST(PlaneCuts, EachCutSurfaceNamesTheFaceItExtendsAndTheConcaveEdgesItIsTakenAt) {
+  const occ::Solid post = testing::make_round_post_on_plate();
+  const PlaneCutResult r = cut_at_concave_edges(post, blocks_and_sweeps());
+  ASSERT_TRUE(r.ok) << r.why_not;
+  ASSERT_EQ(r.surfaces.size(), 2u);
+  const CutSurface& plane = r.surfaces[0];
+  const CutSurface& cylinder = r.surfaces[1];
+  EXPECT_FALSE(plane.cylinder);
+  EXPECT_TRUE(cylinder.cylinder);
+  EXPECT_TRUE(plane.used && cylinder.used);
+  EXPECT_TRUE(post.face_is_planar(plane.face));
+  EXPECT_FALSE(post.face_is_planar(cylinder.face));
+  ASSERT_FALSE(plane.edges.empty());
+  EXPECT_EQ(plane.edges, cylinder.edges);
+  for (core::EdgeId e : plane.edges) {
+    const std::vector<core::FaceId> faces = post.edge_faces(e);
+    EXPECT_NE(std::find(faces.begin(), faces.end(), plane.face), faces.end());
+    EXPECT_NE(std::find(faces.begin(), faces.end(), cylinder.face), faces.end());
+  }
+  std::string edges;
+  for (core::EdgeId e : plane.edges) edges += (edges.empty() ? "" : ", ") + core::entity_name(e);
+  EXPECT_EQ(surface_text(plane),
+            "the plane of " + core::entity_name(plane.face) + " (at " + edges + ")");
+  EXPECT_EQ(used_surfaces_text(r), "the plane of " + core::entity_name(plane.face) +
+                                       ", the cylinder of " + core::entity_name(cylinder.face));
+  EXPECT_EQ(used_surfaces_text(r, 1),
+            "the plane of " + core::entity_name(plane.face) + " and 1 more");
+  const std::string json = plane_cuts_json(r, plane_cut_schemes(r));
+  EXPECT_NE(json.find("\"cut_surfaces\""), std::string::npos) << json;
+  EXPECT_NE(json.find("\"concave_edges\""), std::string::npos) << json;
+  EXPECT_NE(json.find("\"face\": \"" + core::entity_name(cylinder.face) + "\""), std::string::npos)
+      << json;
+}
+
 // A concave edge needs one cut: where one of its faces is a cone (a conical boss on a plate),
 // the cut follows the other, the plate's plane, which leaves the boss a frustum above it.
 TEST(PlaneCuts, AConeAtAConcaveEdgeIsLeftToThePlaneBesideIt) {
@@ -208,6 +246,16 @@ TEST(PlaneCuts, ASurfaceThatSpoilsTheCutIsLeftOutAndNamed) {
   ASSERT_TRUE(r.ok) << r.why_not;
   ASSERT_EQ(r.left_out.size(), 1u);
   EXPECT_EQ(r.left_out[0], "the cylinder of Face13");
+  // All 14 surfaces are listed; the one left out is marked so.
+  ASSERT_EQ(r.surfaces.size(), 14u);
+  int unused = 0;
+  for (const CutSurface& c : r.surfaces)
+    if (!c.used) {
+      ++unused;
+      EXPECT_TRUE(c.cylinder);
+      EXPECT_EQ(core::entity_name(c.face), "Face13");
+    }
+  EXPECT_EQ(unused, 1);
   EXPECT_EQ(r.planes, 10);
   EXPECT_EQ(r.cylinders, 3);
   EXPECT_EQ(r.pieces_before_merge, 43);

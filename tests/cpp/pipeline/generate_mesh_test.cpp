@@ -286,6 +286,9 @@ TEST(GenerateMesh, HexMeI18IsFourMultisweeps) {
   ASSERT_NE(d, nullptr);
   EXPECT_NE(d->message.find("but not along the cylinder of Face13"), std::string::npos)
       << d->message;
+  // The surfaces it was cut along, the first six named (why the cuts are where they are).
+  EXPECT_NE(d->message.find("concave edges (the plane of Face"), std::string::npos) << d->message;
+  EXPECT_NE(d->message.find(" and 7 more)"), std::string::npos) << d->message;
   // Issue 20's bar for HexMe (0.2): its three worst hexes (0.25-0.27) are where the top
   // plane between the clevis's bosses is tangent to them (810 hexes at the default size).
   expect_valid_on_cad(r, *in.solid, 0.2);
