@@ -16,6 +16,7 @@
 #include "mesh/tet_split.h"
 #include "pipeline/detail/decompose_isolated.h"
 #include "pipeline/detail/schemes.h"
+#include "quality/sharp_edges.h"
 #include "smooth/restore_topology.h"
 
 namespace vorohex::pipeline {
@@ -84,6 +85,31 @@ std::vector<core::Diagnostic> small_features(const occ::Solid& solid,
   say(faces, "sliver_faces", faces.size() == 1 ? "model face is" : "model faces are",
       "narrower than");
   return out;
+}
+
+// The part's sharp edges and the best scaled Jacobian they allow any hex mesh that follows
+// them (quality/sharp_edges.h), said before meshing so that a low minimum there is not put
+// down to the mesher: one warning naming the sharpest (none when every bound is 0.5 or more).
+std::vector<core::Diagnostic> sharp_edge_info(const occ::Solid& solid) {
+  const quality::SharpEdges sharp = quality::sharp_edges(solid);
+  if (sharp.edges.empty()) return {};
+  std::vector<std::string> names;
+  std::ostringstream s;
+  s << std::setprecision(3);
+  const quality::SharpEdge& worst = sharp.edges.front();
+  s << "The part's geometry bounds the quality of any hex mesh that follows its edges: a "
+    << "scaled Jacobian of at most " << worst.bound << " along " << core::entity_name(worst.edge)
+    << ", whatever the mesher (";
+  for (std::size_t i = 0; i < sharp.edges.size(); ++i) {
+    const quality::SharpEdge& e = sharp.edges[i];
+    names.push_back(core::entity_name(e.edge));
+    if (i < 5)
+      s << (i ? "; " : "") << core::entity_name(e.edge) << ": its faces meet at " << e.angle
+        << " degrees inside the part, " << e.bound;
+  }
+  s << (sharp.edges.size() > 5 ? "; ..." : "")
+    << "). A chamfer or a round there in the CAD lifts the bound.";
+  return {core::make_warning("geometry_bounds_quality", s.str(), names)};
 }
 
 // The sub-volume type of a solid meshed by one scheme: a sweep runs between two of its
@@ -717,6 +743,7 @@ MeshResult generate(const occ::Solid& solid, const MeshOptions& options,
     }
   }
   std::vector<core::Diagnostic> small = small_features(solid, sizes);
+  append(small, sharp_edge_info(solid));
   append(small, sizes.diagnostics());
   if (solid.num_solids() > 1) {
     MeshResult parts = generate_parts(solid, options, sizes, progress);
