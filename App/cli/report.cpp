@@ -15,6 +15,15 @@ void print_check_report(std::ostream& out, const quality::CheckReport& r) {
       << "\n";
   out << "  below 0.2          " << 100.0 * sj.fraction_below_0_2 << " %\n";
   out << "  inverted (<= 0)    " << sj.inverted << "\n";
+  if (!r.worst.empty()) {
+    // Where the worst hexahedron is, and on which CAD entities its nodes lie.
+    const quality::WorstHex& w = r.worst.front();
+    out << "  worst              " << w.scaled_jacobian << " (hex " << w.hex << " at "
+        << w.centre.x() << ", " << w.centre.y() << ", " << w.centre.z();
+    for (std::size_t i = 0; i < w.entities.size(); ++i)
+      out << (i ? ", " : "; on ") << w.entities[i];
+    out << ")\n";
+  }
   if (r.degenerate) out << "  flat (< 1e-6)      " << r.degenerate << "\n";
   out << "  histogram          ";
   // Only the non-negative half: bins [0,0.1) ... [0.9,1.0].
@@ -66,6 +75,13 @@ nlohmann::json check_report_json(const quality::CheckReport& r) {
                           {"fraction_below_0_2", sj.fraction_below_0_2},
                           {"histogram_bins", "20 bins of 0.1 from -1 to 1"},
                           {"histogram", sj.histogram}};
+  nlohmann::json worst = nlohmann::json::array();
+  for (const quality::WorstHex& w : r.worst)
+    worst.push_back({{"hex", w.hex},
+                     {"scaled_jacobian", w.scaled_jacobian},
+                     {"centre", {w.centre.x(), w.centre.y(), w.centre.z()}},
+                     {"entities", w.entities}});
+  j["scaled_jacobian"]["worst"] = worst;
   j["conformity"] = {
       {"interior_quads", r.interior_quads},           {"boundary_quads", r.boundary_quads},
       {"non_manifold_quads", r.non_manifold_quads},   {"folded_quads", r.folded_quads},

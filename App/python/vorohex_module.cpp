@@ -142,7 +142,24 @@ void bind_types(py::module_& m) {
       .def_readonly("max_boundary_distance", &R::max_boundary_distance)
       .def_readonly("max_boundary_distance_rel", &R::max_boundary_distance_rel)
       .def_property_readonly("diagnostics",
-                             [](const R& r) { return diagnostics_list(r.diagnostics); });
+                             [](const R& r) { return diagnostics_list(r.diagnostics); })
+      .def_property_readonly(
+          "worst",
+          [](const R& r) {
+            py::list out;
+            for (const quality::WorstHex& w : r.worst) {
+              py::dict d;
+              d["hex"] = w.hex;
+              d["scaled_jacobian"] = w.scaled_jacobian;
+              d["centre"] = py::make_tuple(w.centre.x(), w.centre.y(), w.centre.z());
+              d["entities"] = w.entities;
+              out.append(d);
+            }
+            return out;
+          },
+          "The (at most) three hexahedra of lowest scaled Jacobian, worst first: dicts with "
+          "hex (0-based index), scaled_jacobian, centre and entities (the CAD entities its "
+          "nodes lie on: 'Vertex3', 'Edge9', 'Face2').");
 
   using S = pipeline::MeshStats;
   py::class_<S>(m, "MeshStats")

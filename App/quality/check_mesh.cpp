@@ -345,6 +345,43 @@ void CheckOptions::validate() const {
   check(distance_rel_tol, "distance_rel_tol");
 }
 
+namespace {
+
+// The `count` hexahedra of lowest scaled Jacobian, worst first, with where they are.
+std::vector<WorstHex> worst_hexes(const HexMesh& mesh, const std::vector<double>& sj,
+                                  std::size_t count) {
+  std::vector<std::size_t> order(sj.size());
+  for (std::size_t h = 0; h < order.size(); ++h) order[h] = h;
+  count = std::min(count, order.size());
+  std::partial_sort(
+      order.begin(), order.begin() + long(count), order.end(),
+      [&](std::size_t a, std::size_t b) { return sj[a] < sj[b] || (sj[a] == sj[b] && a < b); });
+  std::vector<WorstHex> out;
+  for (std::size_t k = 0; k < count; ++k) {
+    WorstHex w;
+    w.hex = order[k];
+    w.scaled_jacobian = sj[w.hex];
+    const auto& nodes = mesh.hexes()[w.hex];
+    std::vector<std::pair<int, int>> on;  // (dim, id) of the CAD entities its corners lie on
+    for (int c = 0; c < 8; ++c) {
+      const core::NodeId n(nodes[c]);
+      w.centre += mesh.point(n) / 8.0;
+      const core::NodeClass nc = mesh.node_class(n);
+      if (nc.dim >= 0 && nc.dim <= 2 && nc.id > 0) on.emplace_back(nc.dim, nc.id);
+    }
+    std::sort(on.begin(), on.end());
+    on.erase(std::unique(on.begin(), on.end()), on.end());
+    for (const auto& [dim, id] : on)
+      w.entities.push_back(dim == 0   ? core::entity_name(core::VertexId(id))
+                           : dim == 1 ? core::entity_name(core::EdgeId(id))
+                                      : core::entity_name(core::FaceId(id)));
+    out.push_back(std::move(w));
+  }
+  return out;
+}
+
+}  // namespace
+
 CheckReport check_mesh(const HexMesh& mesh, const occ::Solid* cad, const CheckOptions& options,
                        std::vector<double>* scaled_jacobian_out) {
   options.validate();
@@ -381,6 +418,7 @@ CheckReport check_mesh(const HexMesh& mesh, const occ::Solid* cad, const CheckOp
   sj = scaled_jacobians(mesh);
   report.scaled_jacobian = quality_stats(sj);
   report.non_positive = report.scaled_jacobian.inverted;
+  report.worst = worst_hexes(mesh, sj, 3);
   if (report.non_positive) {
     std::vector<std::size_t> shown;
     for (std::size_t h = 0; h < sj.size() && shown.size() < kListHexes; ++h)

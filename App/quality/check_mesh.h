@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include "core/diagnostic.h"
@@ -22,6 +23,15 @@ struct CheckOptions {
   // CAD bounding-box diagonal (or within the CAD's own OCCT tolerance, if larger).
   double distance_rel_tol = 1e-6;
   void validate() const;  // throws std::invalid_argument naming the bad field
+};
+
+// One of the hexahedra of lowest scaled Jacobian: where it is and which CAD entities its
+// nodes lie on (so a user can tell a sharp edge of the part from a poor mesh).
+struct WorstHex {
+  std::size_t hex = 0;  // index in the mesh (0-based)
+  double scaled_jacobian = 0;
+  core::Vec3 centre{0, 0, 0};         // mean of its corner nodes
+  std::vector<std::string> entities;  // "Vertex3", "Edge9", "Face2" (vertices, edges, faces)
 };
 
 struct CheckReport {
@@ -45,6 +55,7 @@ struct CheckReport {
   double max_boundary_distance = 0;           // absolute, model units
   double max_boundary_distance_rel = 0;       // relative to the CAD diagonal
   std::vector<core::Diagnostic> diagnostics;  // one per violated invariant
+  std::vector<WorstHex> worst;                // the (at most) three lowest, worst first
 };
 
 // cad may be null: then only the mesh-intrinsic invariants are checked. Nodes classified on

@@ -96,10 +96,19 @@ class MeshCommand(unittest.TestCase):
             self.assertEqual(check["conformity"]["non_manifold_quads"], 0)
             self.assertLess(check["cad"]["volume_rel_error"], 1e-9)
             self.assertLess(check["cad"]["max_boundary_distance_rel"], 1e-9)
+            # Where the worst hexahedra are: the worst first, at the minimum, with the CAD
+            # entities its nodes lie on.
+            worst = check["scaled_jacobian"]["worst"]
+            self.assertEqual(len(worst), 3)
+            self.assertEqual(worst[0]["scaled_jacobian"], check["scaled_jacobian"]["min"])
+            self.assertLessEqual(worst[0]["scaled_jacobian"], worst[1]["scaled_jacobian"])
+            self.assertEqual(len(worst[0]["centre"]), 3)
+            self.assertTrue(worst[0]["entities"], worst[0])
             # The written mesh checks valid against its CAD, read back from disk.
             code, stdout, stderr = run("check", out, "--cad", os.path.join(EXAMPLES, name + ".step"))
             self.assertEqual(code, 0, stdout + stderr)
             self.assertIn("valid                yes", stdout)
+            self.assertRegex(stdout, r"  worst +[0-9.]+ \(hex [0-9]+ at .*; on (Vertex|Edge|Face)")
 
     def test_cylinder_is_swept_and_valid(self):
         sys.path.append("/usr/lib/freecad-python3/lib")

@@ -115,6 +115,11 @@ class TestVoroHexApi(unittest.TestCase):
         self.assertAlmostEqual(sum(vols), 6000.0, places=6)
         report = VoroHex.check(fm, self.box)
         self.assertTrue(report.valid, [str(d) for d in report.diagnostics])
+        # The worst hexahedra, located (here all alike: the first three of them).
+        self.assertEqual(len(report.worst), 3)
+        self.assertAlmostEqual(report.worst[0]["scaled_jacobian"],
+                               report.scaled_jacobian.min, places=12)
+        self.assertEqual(len(report.worst[0]["centre"]), 3)
 
     def test_cylinder_is_swept(self):
         cyl = Part.makeCylinder(5, 10)

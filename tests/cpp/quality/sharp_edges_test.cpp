@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -59,6 +60,11 @@ TEST(SharpEdges, ThePipelineSaysWhatTheGeometryAllows) {
   EXPECT_NE(d->message.find("meet at 10 degrees inside the part"), std::string::npos) << d->message;
   ASSERT_FALSE(d->entities.empty());
   EXPECT_EQ(d->entities[0].rfind("Edge", 0), 0u) << d->entities[0];
+  // The check's worst hexahedron lies on that edge: the user sees why it is the worst.
+  ASSERT_FALSE(r.check.worst.empty());
+  EXPECT_EQ(r.check.worst[0].scaled_jacobian, r.check.scaled_jacobian.min);
+  const std::vector<std::string>& on = r.check.worst[0].entities;
+  EXPECT_NE(std::find(on.begin(), on.end(), d->entities[0]), on.end()) << d->entities[0];
   // A box: no such info.
   const pipeline::MeshResult box =
       pipeline::generate_mesh(occ::make_box(2, 1, 1), pipeline::MeshOptions{});
