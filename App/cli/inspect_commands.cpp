@@ -193,9 +193,8 @@ int run_plane_cuts(const std::string& input, const std::string& brep_path) {
   for (const decompose::CutSurface& c : cut.surfaces)
     if (c.used) along += (along.empty() ? "" : ", ") + decompose::surface_text(c);
   if (!along.empty()) std::cout << "  cut along: " << along << "\n";
-  if (!cut.left_out.empty())
-    std::cout << "  left out (OCCT's cut along them with the others failed): "
-              << decompose::left_out_text(cut) << "\n";
+  if (const std::string left_out = decompose::left_out_text(cut); !left_out.empty())
+    std::cout << "  left out (OCCT's cut along them with the others failed): " << left_out << "\n";
   const decompose::PlaneCutSchemes schemes = decompose::plane_cut_schemes(cut);
   if (!schemes.glue_error.empty()) std::cerr << "vorohex: " << schemes.glue_error << "\n";
   for (std::size_t i = 0; i < cut.pieces.size(); ++i) {

@@ -246,7 +246,7 @@ std::string plane_cuts_json(const PlaneCutResult& cut, const PlaneCutSchemes& sc
                                 {"code", "plane_cuts_failed"},
                                 {"message", "The plane cuts failed: " + cut.why_not + "."},
                                 {"entities", json::array()}});
-  if (!cut.left_out.empty())
+  if (!left_out_text(cut).empty())
     j["diagnostics"].push_back({{"severity", "info"},
                                 {"code", "cut_surfaces_left_out"},
                                 {"message",

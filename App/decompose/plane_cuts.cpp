@@ -347,17 +347,19 @@ bool split_at_once(const occ::Solid& solid, const std::vector<Plane>& planes,
 // tangent to a cut plane) gave the solid back whole, while each alone cut it. So when the cut
 // along all at once fails (not for lack of time), the surfaces are added one at a time,
 // planes first, and one after which the pieces no longer fill the solid, or are fewer, is
-// left out (`left_out` names each by its model face); `planes` and `cylinders` keep the
-// surfaces used. False with why when no cut is left.
+// left out (`kept`: per surface, planes first, whether it was used); `planes` and
+// `cylinders` keep the surfaces used. False with why when no cut is left.
 bool split_along(const occ::Solid& solid, std::vector<Plane>& planes,
                  std::vector<Cylinder>& cylinders, double whole, double seconds,
                  std::vector<occ::Solid>& pieces, std::vector<double>& volumes,
-                 std::vector<std::string>& left_out, std::string& why) {
+                 std::vector<char>& kept, std::string& why) {
   const auto t0 = std::chrono::steady_clock::now();
   auto left = [&] {
     return seconds - std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   };
   bool timed_out = false;
+  const std::size_t n = planes.size() + cylinders.size();
+  kept.assign(n, 1);
   if (split_at_once(solid, planes, cylinders, whole, left(), pieces, volumes, why, timed_out))
     return true;
   if (timed_out) return false;
@@ -365,7 +367,6 @@ bool split_along(const occ::Solid& solid, std::vector<Plane>& planes,
   std::vector<Cylinder> used_cylinders;
   std::vector<occ::Solid> best;
   std::vector<double> best_volumes;
-  const std::size_t n = planes.size() + cylinders.size();
   for (std::size_t k = 0; k < n; ++k) {
     if (left() <= 0) return false;  // `why` and `pieces` stay those of the cut at once
     std::vector<Plane> p = used_planes;
@@ -384,9 +385,7 @@ bool split_along(const occ::Solid& solid, std::vector<Plane>& planes,
       continue;
     }
     if (timed_out) return false;
-    const FaceId f = k < planes.size() ? planes[k].face : cylinders[k - planes.size()].face;
-    left_out.push_back(std::string(k < planes.size() ? "the plane" : "the cylinder") + " of " +
-                       core::entity_name(f));
+    kept[k] = 0;
   }
   if (best.empty()) return false;
   planes = std::move(used_planes);
@@ -421,9 +420,10 @@ std::string used_surfaces_text(const PlaneCutResult& cut, std::size_t at_most) {
 }
 
 std::string left_out_text(const PlaneCutResult& cut) {
-  std::string s;
-  for (std::size_t k = 0; k < cut.left_out.size(); ++k) s += (k ? ", " : "") + cut.left_out[k];
-  return s;
+  std::string t;
+  for (const CutSurface& s : cut.surfaces)
+    if (!s.used) t += (t.empty() ? "" : ", ") + surface_text(s, false);
+  return t;
 }
 
 PlaneCutResult cut_at_concave_edges(const occ::Solid& solid, const PlaneCutOptions& options,
@@ -451,9 +451,9 @@ PlaneCutResult cut_at_concave_edges(const occ::Solid& solid, const PlaneCutOptio
   const double whole = solid.volume();
   std::vector<occ::Solid> pieces;
   std::vector<double> volume;  // per piece (an adaptive integration each: computed once)
-  std::vector<std::string> left_out;
+  std::vector<char> kept;
   if (!split_along(solid, planes, cylinders, whole, options.time_limit - seconds(), pieces, volume,
-                   left_out, r.why_not)) {
+                   kept, r.why_not)) {
     // The pieces of the cut along all surfaces at once, if any, for inspection.
     r.planes = int(planes.size());
     r.cylinders = int(cylinders.size());
@@ -461,15 +461,7 @@ PlaneCutResult cut_at_concave_edges(const occ::Solid& solid, const PlaneCutOptio
     r.pieces = std::move(pieces);
     return r;
   }
-  r.left_out = std::move(left_out);
-  for (CutSurface& c : r.surfaces) {  // split_along kept the surfaces it used
-    c.used = false;
-    if (c.cylinder) {
-      for (const Cylinder& u : cylinders) c.used = c.used || u.face == c.face;
-    } else {
-      for (const Plane& u : planes) c.used = c.used || u.face == c.face;
-    }
-  }
+  for (std::size_t k = 0; k < r.surfaces.size(); ++k) r.surfaces[k].used = kept[k];
   r.planes = int(planes.size());
   r.cylinders = int(cylinders.size());
   r.pieces_before_merge = int(pieces.size());

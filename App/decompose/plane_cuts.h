@@ -41,10 +41,9 @@ struct PlaneCutResult {
   int planes = 0;     // distinct cut planes used
   int cylinders = 0;  // distinct cut cylinders used
   int pieces_before_merge = 0;
-  // Surfaces left out because OCCT's cut along them with the others failed ("the plane of
-  // Face7", "the cylinder of Face12"): their concave edges are not cut at.
-  std::vector<std::string> left_out;
-  // Every surface its concave edges give, planes first (none when it was not attempted).
+  // Every surface its concave edges give, planes first (none when it was not attempted);
+  // one not `used` was left out because OCCT's cut along it with the others failed: its
+  // concave edges are not cut at.
   std::vector<CutSurface> surfaces;
   bool ok = false;
   std::string why_not;  // when not ok: a sentence fragment
@@ -53,7 +52,7 @@ struct PlaneCutResult {
 // Only solids whose concave edges all lie between planar or cylindrical faces are
 // attempted; a cylinder is extended along its axis through the whole solid (the round post
 // on a plate: the plate is cut around the post's circle and under it).
-// The surfaces left out, as one list ("the cylinder of Face13, the plane of Face7"; empty
+// The surfaces left out, as one list ("the plane of Face7, the cylinder of Face13"; empty
 // when none).
 std::string left_out_text(const PlaneCutResult& cut);
 // "the plane of Face7 (at Edge12, Edge14)"; without the edges: "the plane of Face7".

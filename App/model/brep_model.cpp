@@ -3,7 +3,6 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -161,8 +160,6 @@ BRepModel::BRepModel(const occ::Solid& solid, const ModelOptions& options) : opt
         auto& ve = vertices_[v.value() - 1].edges;
         if (std::find(ve.begin(), ve.end(), e.id) == ve.end()) ve.push_back(e.id);
       }
-  // For the dihedral angle: is the edge traversed forward in the face's wires?
-  std::map<std::pair<int, int>, int> forward_count, seen_count;
   faces_.resize(nf);
   for (int i = 1; i <= nf; ++i) {
     ModelFace& f = faces_[i - 1];
@@ -171,8 +168,6 @@ BRepModel::BRepModel(const occ::Solid& solid, const ModelOptions& options) : opt
     f.wires = solid.face_wires(f.id);
     for (const auto& w : f.wires)
       for (const occ::OrientedEdge& oe : w) {
-        ++seen_count[{i, oe.edge.value()}];
-        if (oe.forward) ++forward_count[{i, oe.edge.value()}];
         if (std::find(f.edges.begin(), f.edges.end(), oe.edge) == f.edges.end())
           f.edges.push_back(oe.edge);
         const ModelEdge& me = edges_[oe.edge.value() - 1];
@@ -337,24 +332,13 @@ BRepModel::BRepModel(const occ::Solid& solid, const ModelOptions& options) : opt
     if (e.degenerated || pts.size() < 2 || e.faces.size() != 2) continue;
     const size_t k = (pts.size() - 1) / 2;
     const Vec3 a = lin.points[pts[k]], b = lin.points[pts[k + 1]];
-    const Vec3 mid = 0.5 * (a + b), tangent = (b - a).normalized();
-    Vec3 n[2], t[2];
-    bool ok = true;
-    for (int j = 0; j < 2; ++j) {
-      const std::pair<int, int> key{e.faces[j].value(), e.id.value()};
-      if (seen_count[key] != 1) ok = false;  // a seam: both sides in one face
-      const Vec3 along = forward_count[key] > 0 ? tangent : Vec3(-tangent);
-      n[j] = solid.face_normal(e.faces[j], mid);
-      t[j] = n[j].cross(along).normalized();
-    }
-    if (!ok) continue;
-    const double angle = std::acos(std::clamp(t[0].dot(t[1]), -1.0, 1.0));
-    const bool concave = t[0].dot(n[1]) > 0;
-    e.dihedral = concave ? 2 * kPi - angle : angle;
+    const double dihedral = solid.interior_angle(e.id, 0.5 * (a + b), (b - a).normalized());
+    if (std::isnan(dihedral)) continue;  // a seam
+    e.dihedral = dihedral;
     if (std::abs(e.dihedral - kPi) < options.smooth_angle)
       e.convexity = Convexity::smooth;
     else
-      e.convexity = concave ? Convexity::concave : Convexity::convex;
+      e.convexity = e.dihedral > kPi ? Convexity::concave : Convexity::convex;
   }
 }
 

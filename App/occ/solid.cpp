@@ -548,6 +548,24 @@ Vec3 Solid::face_normal(FaceId f, const Vec3& p) const {
   return c.reversed ? Vec3(-r) : r;
 }
 
+double Solid::interior_angle(EdgeId e, const Vec3& p, const Vec3& tangent) const {
+  const std::vector<FaceId> faces = edge_faces(e);
+  if (faces.size() != 2 || faces[0] == faces[1]) return std::nan("");
+  Vec3 n[2], inward[2];
+  for (int j = 0; j < 2; ++j) {
+    int seen = 0, forward = 0;
+    for (const auto& wire : face_wires(faces[j]))
+      for (const OrientedEdge& oe : wire)
+        if (oe.edge == e) ++seen, forward += oe.forward;
+    if (seen != 1) return std::nan("");  // a seam: both sides in one face
+    // Across the edge into the face: its wires run counter-clockwise seen from outside.
+    n[j] = face_normal(faces[j], p);
+    inward[j] = n[j].cross(forward > 0 ? tangent : Vec3(-tangent)).normalized();
+  }
+  const double angle = std::acos(std::clamp(inward[0].dot(inward[1]), -1.0, 1.0));
+  return inward[0].dot(n[1]) > 0 ? 2 * M_PI - angle : angle;
+}
+
 core::SurfaceInfo Solid::surface_info(FaceId f) const {
   check_id(f.value(), num_faces(), "face");
   const FaceCache& c = impl_->face(f.value());

@@ -76,6 +76,11 @@ class Solid : public core::MeshDomain {
   EdgeId nearest_edge(const Vec3& p) const override;
   // Outward unit normal of face f at the point of the face nearest to p.
   Vec3 face_normal(FaceId f, const Vec3& p) const override;
+  // Interior angle of the solid across edge e at its point p, where `tangent` is the edge's
+  // direction (in its own orientation), radians in [0, 2 pi]: below pi convex, above concave
+  // (3 pi / 2 at the inner corner of an L), pi where the faces are tangent; NaN for a seam
+  // or an edge that does not bound two faces.
+  double interior_angle(EdgeId e, const Vec3& p, const Vec3& tangent) const;
   core::SurfaceInfo surface_info(FaceId f) const override;
   core::CurveInfo curve_info(EdgeId e) const override;
   std::unique_ptr<core::SurfaceChart> face_chart(FaceId f) const override;
