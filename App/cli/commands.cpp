@@ -449,6 +449,7 @@ int mesh_command(const std::vector<std::string>& argv) {
                     {"checking", result.stats.seconds_checking},
                     {"writing", seconds_writing},
                     {"total", total}};
+    j["fallback_beside"] = result.stats.fallback_beside;
     if (meshed) j["check"] = check_report_json(result.check);
     j["diagnostics"] = diagnostics_json(all);
     std::string error;

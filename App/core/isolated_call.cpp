@@ -1,11 +1,15 @@
 #include "core/isolated_call.h"
 
+#include <algorithm>
 #include <csignal>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <exception>
 #include <string>
 
 #if defined(__unix__) || defined(__APPLE__)
+#include <fcntl.h>
 #include <poll.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -93,37 +97,138 @@ std::string signal_name(int signal) {
   }
 }
 
-IsolatedResult isolated_call(const std::function<std::string()>& work, const Progress& progress,
-                             const IsolatedCallOptions& options) {
-#ifndef VOROHEX_HAVE_FORK
-  (void)progress;
-  return run_here(work);
-#else
-  if (!options.isolate) return run_here(work);
-  int fds[2];
-  if (::pipe(fds) != 0) return run_here(work);
-  const pid_t parent = ::getpid();
-  const pid_t pid = ::fork();
-  if (pid < 0) {
-    ::close(fds[0]);
+IsolatedJob::IsolatedJob(Work work, const Progress& limits) {
+#ifdef VOROHEX_HAVE_FORK
+  int fds[2], reports[2];
+  if (::pipe(fds) == 0) {
+    if (::pipe(reports) != 0) reports[0] = reports[1] = -1;
+    const pid_t parent = ::getpid();
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+      ::close(fds[0]);
+      if (reports[0] >= 0) ::close(reports[0]);
+      const int out = reports[1];
+      // Reports never block the work: when the caller is not reading (busy with its own
+      // work), they are dropped.
+      if (out >= 0) ::fcntl(out, F_SETFL, ::fcntl(out, F_GETFL) | O_NONBLOCK);
+      const Progress progress =
+          limits.detached().reporting_to([out](std::string_view stage, double fraction) {
+            if (out < 0) return;
+            char line[160];
+            const int n = std::snprintf(line, sizeof line, "%.*s\t%.4f\n",
+                                        int(std::min<std::size_t>(stage.size(), 100)), stage.data(),
+                                        fraction);
+            if (n > 0) [[maybe_unused]]
+              const ssize_t w = ::write(out, line, std::size_t(n));
+          });
+      child(
+          fds[1], [&] { return work(progress); }, parent);
+    }
     ::close(fds[1]);
-    return run_here(work);
-  }
-  if (pid == 0) {
+    if (reports[1] >= 0) ::close(reports[1]);
+    if (pid > 0) {
+      pid_ = pid;
+      fd_ = fds[0];
+      progress_fd_ = reports[0];
+      return;
+    }
     ::close(fds[0]);
-    child(fds[1], work, parent);
+    if (reports[0] >= 0) ::close(reports[0]);
   }
-  ::close(fds[1]);
+#else
+  (void)limits;
+#endif
+  work_ = std::move(work);
+}
 
+IsolatedJob::IsolatedJob(IsolatedJob&& other) noexcept
+    : pid_(other.pid_),
+      fd_(other.fd_),
+      progress_fd_(other.progress_fd_),
+      work_(std::move(other.work_)) {
+  other.pid_ = other.fd_ = other.progress_fd_ = -1;
+  other.work_ = nullptr;
+}
+
+IsolatedJob& IsolatedJob::operator=(IsolatedJob&& other) noexcept {
+  if (this != &other) {
+    cancel();
+    pid_ = other.pid_, fd_ = other.fd_, progress_fd_ = other.progress_fd_;
+    work_ = std::move(other.work_);
+    other.pid_ = other.fd_ = other.progress_fd_ = -1;
+    other.work_ = nullptr;
+  }
+  return *this;
+}
+
+IsolatedJob::~IsolatedJob() {
+  cancel();
+}
+
+void IsolatedJob::cancel() {
+  work_ = nullptr;
+#ifdef VOROHEX_HAVE_FORK
+  if (pid_ > 0) {
+    ::kill(pid_, SIGKILL);
+    ::close(fd_);
+    if (progress_fd_ >= 0) ::close(progress_fd_);
+    int status = 0;
+    while (::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
+    }
+  }
+#endif
+  pid_ = fd_ = progress_fd_ = -1;
+}
+
+IsolatedResult IsolatedJob::take(const Progress& progress, const IsolatedCallOptions& options) {
+  if (work_) {
+    const Work work = std::move(work_);
+    work_ = nullptr;
+    return run_here([&] { return work(progress); });
+  }
   IsolatedResult r;
-  std::string bytes;
+#ifdef VOROHEX_HAVE_FORK
+  if (pid_ <= 0) {
+    r.message = "nothing was started";
+    return r;
+  }
+  const pid_t pid = pid_;
+  const int fd = fd_;
+  int reports = progress_fd_;
+  pid_ = fd_ = progress_fd_ = -1;
+  std::string bytes, lines;
+  std::string stage(options.stage);  // the latest report: stage and fraction
+  double fraction = 0;
   bool cancelled = false;
   char buffer[1 << 16];
   for (int tick = 0;; ++tick) {
-    pollfd p{fds[0], POLLIN, 0};
-    const int ready = ::poll(&p, 1, 100);
-    if (ready > 0) {
-      const ssize_t n = ::read(fds[0], buffer, sizeof buffer);
+    pollfd p[2] = {{fd, POLLIN, 0}, {reports, POLLIN, 0}};
+    const int ready = ::poll(p, reports >= 0 ? 2 : 1, 100);
+    if (ready > 0 && reports >= 0 && (p[1].revents & (POLLIN | POLLHUP))) {
+      const ssize_t n = ::read(reports, buffer, sizeof buffer);
+      if (n > 0) {
+        lines.append(buffer, static_cast<std::size_t>(n));
+        // Only the latest complete line counts.
+        const std::size_t end = lines.rfind('\n');
+        if (end != std::string::npos) {
+          const std::size_t before = end == 0 ? std::string::npos : lines.rfind('\n', end - 1);
+          const std::size_t begin = before == std::string::npos ? 0 : before + 1;
+          const std::string last = lines.substr(begin, end - begin);
+          lines.erase(0, end + 1);
+          const std::size_t tab = last.find('\t');
+          if (tab != std::string::npos) {
+            stage = last.substr(0, tab);
+            fraction = std::strtod(last.c_str() + tab + 1, nullptr);
+            progress.report(stage, fraction);
+          }
+        }
+      } else if (n == 0 || errno != EINTR) {
+        ::close(reports);
+        reports = -1;
+      }
+    }
+    if (ready > 0 && (p[0].revents & (POLLIN | POLLHUP))) {
+      const ssize_t n = ::read(fd, buffer, sizeof buffer);
       if (n > 0) {
         bytes.append(buffer, static_cast<std::size_t>(n));
         continue;
@@ -136,9 +241,10 @@ IsolatedResult isolated_call(const std::function<std::string()>& work, const Pro
       break;
     }
     // A heartbeat, so that a GUI that processes events in the callback stays responsive.
-    if (!options.stage.empty() && tick % 2 == 0) progress.report(options.stage, 0.0);
+    if (!stage.empty() && tick % 2 == 0) progress.report(stage, fraction);
   }
-  ::close(fds[0]);
+  ::close(fd);
+  if (reports >= 0) ::close(reports);
   int status = 0;
   while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
@@ -166,8 +272,18 @@ IsolatedResult isolated_call(const std::function<std::string()>& work, const Pro
   }
   r.status = IsolatedResult::Status::ok;
   r.data = bytes.substr(1);
-  return r;
+#else
+  (void)progress;
+  (void)options;
+  r.message = "nothing was started";
 #endif
+  return r;
+}
+
+IsolatedResult isolated_call(const std::function<std::string()>& work, const Progress& progress,
+                             const IsolatedCallOptions& options) {
+  if (!options.isolate) return run_here(work);
+  return IsolatedJob([&](const Progress&) { return work(); }).take(progress, options);
 }
 
 }  // namespace vorohex::core

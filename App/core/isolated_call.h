@@ -6,6 +6,9 @@
 // cancel flag and the time limit, and kills the child when the run is cancelled (so a
 // computation that cannot check a cancel flag itself can still be stopped).
 // On systems without fork, `work` runs in the calling process.
+// IsolatedJob starts such a child and lets the caller go on with its own work meanwhile
+// (the pipeline computes the fallback beside the decomposition); its result is taken later,
+// or the child is killed when the job is dropped untaken.
 #pragma once
 
 #include <functional>
@@ -39,6 +42,33 @@ struct IsolatedCallOptions {
 IsolatedResult isolated_call(const std::function<std::string()>& work,
                              const Progress& progress = {},
                              const IsolatedCallOptions& options = {});
+
+// A computation started in a child process now, taken later. Move-only; the child is
+// killed when the job is destroyed or cancelled untaken. `work` gets a Progress with
+// `limits`' deadline (not its cancel flag: the caller kills the child on cancel) whose
+// reports cross to the caller through a second pipe: take() passes the latest on to its
+// own progress. Without fork (or when the fork fails), `work` runs in take() instead, with
+// take()'s progress.
+class IsolatedJob {
+ public:
+  using Work = std::function<std::string(const Progress&)>;
+  IsolatedJob() = default;
+  explicit IsolatedJob(Work work, const Progress& limits = {});
+  IsolatedJob(IsolatedJob&& other) noexcept;
+  IsolatedJob& operator=(IsolatedJob&& other) noexcept;
+  IsolatedJob(const IsolatedJob&) = delete;
+  IsolatedJob& operator=(const IsolatedJob&) = delete;
+  ~IsolatedJob();
+  bool started() const { return pid_ > 0 || static_cast<bool>(work_); }
+  // Waits for the result, as isolated_call does (killed on cancel), reporting the child's
+  // latest progress (or, before any, heartbeats of options.stage).
+  IsolatedResult take(const Progress& progress = {}, const IsolatedCallOptions& options = {});
+  void cancel();  // kills the child (nothing to take afterwards)
+
+ private:
+  int pid_ = -1, fd_ = -1, progress_fd_ = -1;
+  Work work_;  // set when no child runs it
+};
 
 // The name of a signal for messages ("SIGSEGV (segmentation fault)").
 std::string signal_name(int signal);

@@ -39,6 +39,22 @@ class Progress {
     return p;
   }
 
+  // A copy with the same deadline but no callback and no cancel flag: for work in a child
+  // process (core/isolated_call.h), which must not call back into the caller (FreeCAD's
+  // Python) and is killed by the caller on cancel.
+  Progress detached() const {
+    Progress p;
+    p.has_deadline_ = has_deadline_;
+    p.deadline_ = deadline_;
+    return p;
+  }
+  // A copy whose reports go to `callback` instead.
+  Progress reporting_to(Callback callback) const {
+    Progress p = *this;
+    p.callback_ = std::move(callback);
+    return p;
+  }
+
  private:
   Callback callback_;
   const std::atomic<bool>* cancel_ = nullptr;

@@ -3,11 +3,14 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <iomanip>
 #include <map>
 #include <sstream>
 #include <stdexcept>
+#include <thread>
 
+#include "core/isolated_call.h"
 #include "grid/grid_mesh.h"
 #include "io/named_groups.h"
 #include "io/second_order.h"
@@ -15,8 +18,9 @@
 #include "mesh/mesh_sub_volumes.h"
 #include "mesh/tet_split.h"
 #include "pipeline/detail/decompose_isolated.h"
+#include "pipeline/detail/fallback_bytes.h"
+#include "pipeline/detail/part_warnings.h"
 #include "pipeline/detail/schemes.h"
-#include "quality/sharp_edges.h"
 #include "smooth/restore_topology.h"
 
 namespace vorohex::pipeline {
@@ -28,88 +32,6 @@ void append(std::vector<core::Diagnostic>& to, const std::vector<core::Diagnosti
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-// Model edges shorter than, and faces narrower than, a quarter of the size: no scheme
-// absorbs them yet (that needs the virtual topology's composite entities), so the mesh
-// keeps them as entities of their own and its elements there are small and poor. Said
-// before meshing, naming them, with what the user can do.
-// With local sizes, each entity is compared with the size where it is.
-std::vector<core::Diagnostic> small_features(const occ::Solid& solid,
-                                             const core::SizeField& sizes) {
-  const double size = sizes.global();
-  std::vector<std::pair<double, std::string>> edges, faces;
-  std::vector<double> length(solid.num_edges() + 1, 0.0);  // by edge id; 0 when degenerated
-  std::vector<double> local(solid.num_edges() + 1, size);  // by edge id: the size at its middle
-  for (core::EdgeId e : solid.edges()) {
-    if (solid.edge_is_degenerated(e)) continue;
-    length[e.value()] = solid.edge_length(e);
-    if (!sizes.uniform()) local[e.value()] = sizes.at(solid.edge_points_by_length(e, 2)[1]);
-    if (length[e.value()] < 0.25 * local[e.value()])
-      edges.emplace_back(length[e.value()], core::entity_name(e));
-  }
-  for (core::FaceId f : solid.faces()) {
-    double perimeter = 0, at = size;
-    for (const auto& wire : solid.face_wires(f))
-      for (const occ::OrientedEdge& oe : wire) {
-        perimeter += length[oe.edge.value()];
-        at = std::min(at, local[oe.edge.value()]);
-      }
-    // Width of a strip of that area and perimeter (a rectangle a x b: ab / (a + b), about b
-    // for b << a; a disc: its radius).
-    const double width = perimeter > 0 ? 2 * solid.area(f) / perimeter : 0;
-    if (width < 0.25 * at) faces.emplace_back(width, core::entity_name(f));
-  }
-  std::vector<core::Diagnostic> out;
-  auto say = [&](std::vector<std::pair<double, std::string>>& list, const char* code,
-                 const char* what, const char* measure) {
-    if (list.empty()) return;
-    std::sort(list.begin(), list.end());
-    std::ostringstream s;
-    s << list.size() << " " << what << " " << measure << " a quarter of the size "
-      << (sizes.uniform() ? "" : "where they are (global size ") << size
-      << (sizes.uniform() ? "" : ")") << " (";
-    std::vector<std::string> names;
-    for (std::size_t i = 0; i < list.size(); ++i) {
-      if (i < 5) s << (i ? ", " : "") << list[i].second << " " << list[i].first;
-      names.push_back(list[i].second);
-    }
-    const bool one = list.size() == 1;
-    s << (list.size() > 5 ? ", ..." : "") << "): " << (one ? "it is" : "they are") << " meshed as "
-      << (one ? "it is" : "they are") << ", with small elements of poor "
-      << "quality around " << (one ? "it" : "them") << ". Remove " << (one ? "it" : "them")
-      << " in the CAD (defeaturing) or give a smaller size.";
-    out.push_back(core::make_warning(code, s.str(), names));
-  };
-  say(edges, "tiny_edges", edges.size() == 1 ? "model edge is" : "model edges are", "shorter than");
-  say(faces, "sliver_faces", faces.size() == 1 ? "model face is" : "model faces are",
-      "narrower than");
-  return out;
-}
-
-// The part's sharp edges and the best scaled Jacobian they allow any hex mesh that follows
-// them (quality/sharp_edges.h), said before meshing so that a low minimum there is not put
-// down to the mesher: one warning naming the sharpest (none when every bound is 0.5 or more).
-std::vector<core::Diagnostic> sharp_edge_info(const occ::Solid& solid) {
-  const quality::SharpEdges sharp = quality::sharp_edges(solid);
-  if (sharp.edges.empty()) return {};
-  std::vector<std::string> names;
-  std::ostringstream s;
-  s << std::setprecision(3);
-  const quality::SharpEdge& worst = sharp.edges.front();
-  s << "The part's geometry bounds the quality of any hex mesh that follows its edges: a "
-    << "scaled Jacobian of at most " << worst.bound << " along " << core::entity_name(worst.edge)
-    << ", whatever the mesher (";
-  for (std::size_t i = 0; i < sharp.edges.size(); ++i) {
-    const quality::SharpEdge& e = sharp.edges[i];
-    names.push_back(core::entity_name(e.edge));
-    if (i < 5)
-      s << (i ? "; " : "") << core::entity_name(e.edge) << ": its faces meet at " << e.angle
-        << " degrees inside the part, " << e.bound;
-  }
-  s << (sharp.edges.size() > 5 ? "; ..." : "")
-    << "). A chamfer or a round there in the CAD lifts the bound.";
-  return {core::make_warning("geometry_bounds_quality", s.str(), names)};
 }
 
 // The sub-volume type of a solid meshed by one scheme: a sweep runs between two of its
@@ -253,6 +175,92 @@ bool fallback(const occ::Solid& solid, const MeshOptions& options, double size,
           " tetrahedra, each split into four hexahedra; expect poorer elements than a "
           "structured mesh."));
   return true;
+}
+
+// The grid mesher's composites: how far the final boundary strays from the real surface.
+void add_deviation(MeshResult& result, const occ::Solid& solid) {
+  if (result.absorbed.empty() || result.mesh.num_hexes() == 0) return;
+  const grid::CompositeDeviation d = grid::composite_deviation(result.mesh, solid, result.absorbed);
+  result.stats.absorbed_deviation = d.max;
+  result.diagnostics.push_back(grid::deviation_diagnostic(result.absorbed, d));
+}
+
+// What the fallback makes of a solid no structured scheme meshed: its mesh, smoothed and
+// checked, with only the fallback's own diagnostics (the caller puts the run's before
+// them); or, where the grid mesher's mesh is invalid and the tet split's second chance
+// valid, that result, standing alone (`second_chance`: with the part's small features
+// first, as a run of its own).
+struct FallbackOutcome {
+  MeshResult result;
+  bool second_chance = false;
+};
+
+// Stands for the fallback's reason in a run computed before the reason is known (beside
+// the decomposition); replaced in the messages once it is.
+const std::string kWhyLater = "\x1f(why)\x1f";
+
+FallbackOutcome run_fallback(const occ::Solid& solid, const MeshOptions& options,
+                             const core::SizeField& sizes,
+                             const std::vector<core::Diagnostic>& small, const std::string& why,
+                             const core::Progress& progress,
+                             std::chrono::steady_clock::time_point t0) {
+  const double size = sizes.global();
+  FallbackOutcome out;
+  MeshResult& result = out.result;
+  result.stats.size_used = size;
+  if (fallback(solid, options, size, why, progress, t0, result)) {
+    finish(result, solid, options, progress, sizes);
+    add_deviation(result, solid);
+  }
+  // The grid mesher is not yet valid on every part the tetrahedral fallback meshes validly
+  // (several of HexMe's industrial models): when its mesh is invalid, the tet split gets a
+  // second chance, within kSecondChanceSeconds, and is used if its mesh is valid.
+  const bool grid_invalid =
+      result.stats.scheme == "grid" && has_diagnostic(result.diagnostics, "fallback") && !result.ok;
+  if (!grid_invalid || options.fallback_scheme != "grid" || progress.cancelled() ||
+      has_diagnostic(result.diagnostics, "too_many_hexes"))
+    return out;
+  MeshOptions tet = options;
+  tet.fallback_scheme = "tet-split";
+  const core::Progress budget = progress.with_time_limit(kSecondChanceSeconds);
+  MeshResult second;
+  second.stats.size_used = size;  // the tet split meshes at the global size
+  const auto t1 = std::chrono::steady_clock::now();
+  // Why the fallback was needed (no scheme, the decomposition's failure) stays in its
+  // message: the grid's fallback warning is not part of the second result.
+  std::string why_grid;
+  for (const core::Diagnostic& d : result.diagnostics)
+    if (d.code == "fallback") why_grid = d.message.substr(0, d.message.find(kMeshedByTheGrid));
+  if (fallback(solid, tet, size,
+               (why_grid.empty() ? "" : why_grid + " ") + "The grid mesher's mesh is invalid.",
+               budget, t1, second))
+    finish(second, solid, tet, budget, sizes);
+  std::string grid_errors;
+  for (const core::Diagnostic& d : result.diagnostics)
+    if (d.severity == core::Severity::error)
+      grid_errors += (grid_errors.empty() ? "" : ", ") + d.code;
+  if (second.ok) {
+    second.diagnostics.insert(second.diagnostics.begin(), small.begin(), small.end());
+    if (!sizes.uniform()) second.diagnostics.push_back(local_sizes_ignored("tet-split"));
+    second.diagnostics.push_back(core::make_warning(
+        "grid_invalid", "The grid mesher's mesh was invalid (" + grid_errors +
+                            "); the tetrahedral fallback's mesh is valid and is used."));
+    out.result = std::move(second);
+    out.second_chance = true;
+    return out;
+  }
+  std::string tet_errors;
+  for (const core::Diagnostic& d : second.diagnostics)
+    if (d.severity == core::Severity::error)
+      tet_errors += (tet_errors.empty() ? "" : ", ") + d.code;
+  result.diagnostics.push_back(core::make_info(
+      "second_fallback_failed",
+      std::string("The tetrahedral fallback, tried after the grid mesher's invalid mesh, gave "
+                  "no valid mesh either") +
+          (budget.timed_out() ? " within " + std::to_string(int(kSecondChanceSeconds)) + " s"
+                              : "") +
+          (tet_errors.empty() ? "." : " (" + tet_errors + ").")));
+  return out;
 }
 
 }  // namespace
@@ -503,10 +511,22 @@ bool mesh_pieces(const occ::Solid& solid, const detail::IsolatedDecomposition& d
   return true;
 }
 
+// How mesh_solid hands a solid no structured scheme meshes to the fallback: at once (the
+// several-solids path, which smooths all solids' meshes together), or back to the caller
+// (`deferred`: `needed` and `why` set; the caller runs it, perhaps started beside the
+// decomposition by `before_decomposition`).
+struct DeferredFallback {
+  std::function<void()> before_decomposition;  // called when the decomposition starts
+  bool needed = false;
+  std::string why;  // the fallback warning's reason
+};
+
 // Meshes one solid with the first scheme that applies, without smoothing or checking:
-// true when result.mesh holds its mesh (else result.diagnostics say why not).
+// true when result.mesh holds its mesh (else result.diagnostics say why not, or `deferred`
+// says the fallback is left to the caller).
 bool mesh_solid(const occ::Solid& solid, const MeshOptions& options, const core::SizeField& sizes,
-                const core::Progress& progress, MeshResult& result) {
+                const core::Progress& progress, MeshResult& result,
+                DeferredFallback* deferred = nullptr) {
   const auto t0 = std::chrono::steady_clock::now();
   const double size = sizes.global();
   result.stats.size_used = size;
@@ -573,6 +593,8 @@ bool mesh_solid(const occ::Solid& solid, const MeshOptions& options, const core:
   why_not_structured += ".";
   std::string not_decomposed = "decomposition is off";
   if (options.decompose) {
+    if (deferred && deferred->before_decomposition && options.fallback)
+      deferred->before_decomposition();
     if (mesh_decomposed(solid, options, sizes, progress, result, not_decomposed)) return true;
     if (progress.cancelled() || core::has_error(result.diagnostics)) return false;
   }
@@ -587,10 +609,14 @@ bool mesh_solid(const occ::Solid& solid, const MeshOptions& options, const core:
     result.diagnostics.push_back(local_sizes_ignored(options.fallback_scheme));
     result.stats.local_sizes.clear();  // none applied
   }
-  return fallback(
-      solid, options, size,
-      "No structured scheme applies (" + why_not_structured + ") and " + not_decomposed + ".",
-      progress, t0, result);
+  const std::string why =
+      "No structured scheme applies (" + why_not_structured + ") and " + not_decomposed + ".";
+  if (deferred) {
+    deferred->needed = true;
+    deferred->why = why;
+    return false;
+  }
+  return fallback(solid, options, size, why, progress, t0, result);
 }
 
 // Several solids glued at common faces: each meshed with the same size, joined into one
@@ -742,8 +768,8 @@ MeshResult generate(const occ::Solid& solid, const MeshOptions& options,
       return refused;
     }
   }
-  std::vector<core::Diagnostic> small = small_features(solid, sizes);
-  append(small, sharp_edge_info(solid));
+  std::vector<core::Diagnostic> small = detail::small_features(solid, sizes);
+  append(small, detail::sharp_edge_info(solid));
   append(small, sizes.diagnostics());
   if (solid.num_solids() > 1) {
     MeshResult parts = generate_parts(solid, options, sizes, progress);
@@ -754,63 +780,68 @@ MeshResult generate(const occ::Solid& solid, const MeshOptions& options,
   MeshResult result;
   result.diagnostics = small;
   result.stats.local_sizes = sizes.applied();
-  if (mesh_solid(solid, options, sizes, progress, result)) {
+  const auto t0 = std::chrono::steady_clock::now();
+  // The fallback beside the decomposition: started in a second child process as the
+  // decomposition starts, taken if that fails, killed (with the job) if it succeeds.
+  core::IsolatedJob beside;
+  DeferredFallback deferred;
+  if (options.fallback_beside && options.order == 1 && std::thread::hardware_concurrency() >= 2)
+    deferred.before_decomposition = [&] {
+      beside = core::IsolatedJob(
+          [&](const core::Progress& in_child) {
+            const FallbackOutcome o =
+                run_fallback(solid, options, sizes, small, kWhyLater, in_child, t0);
+            return detail::fallback_to_bytes(o.result, o.second_chance);
+          },
+          progress);
+    };
+  if (mesh_solid(solid, options, sizes, progress, result, &deferred)) {
+    beside.cancel();
     finish(result, solid, options, progress, sizes);
-    // The grid mesher's composites: how far the final boundary strays from the real surface.
-    if (!result.absorbed.empty() && result.mesh.num_hexes() > 0) {
-      const grid::CompositeDeviation d =
-          grid::composite_deviation(result.mesh, solid, result.absorbed);
-      result.stats.absorbed_deviation = d.max;
-      result.diagnostics.push_back(grid::deviation_diagnostic(result.absorbed, d));
+    add_deviation(result, solid);
+    return result;
+  }
+  if (!deferred.needed) return result;  // an error (or a cancel) said why
+  FallbackOutcome outcome;
+  bool taken = false;
+  if (beside.started()) {
+    const core::IsolatedResult got = beside.take(progress, {options.fallback_scheme});
+    if (got.status == core::IsolatedResult::Status::cancelled) {
+      result.diagnostics.push_back(core::make_error("cancelled", "Meshing was cancelled."));
+      return result;
+    }
+    taken =
+        got.ok() && detail::fallback_from_bytes(got.data, outcome.result, outcome.second_chance);
+    if (taken) {
+      // What does not cross the process boundary, from the mesh (the same check the child
+      // made: its diagnostics are among those carried).
+      MeshResult& r = outcome.result;
+      r.stats.fallback_beside = true;
+      // Meshing: until the fallback's mesh was taken, less its smoothing and check (which
+      // the child made before), never less than the child measured.
+      r.stats.seconds_meshing =
+          std::max(r.stats.seconds_meshing,
+                   seconds_since(t0) - r.stats.seconds_smoothing - r.stats.seconds_checking);
+      r.groups = io::named_groups(r.mesh, solid);
+      r.check = quality::check_mesh(r.mesh, &solid, options.check, &r.scaled_jacobian);
+      for (core::Diagnostic& d : r.diagnostics)
+        for (std::size_t at; (at = d.message.find(kWhyLater)) != std::string::npos;)
+          d.message.replace(at, kWhyLater.size(), deferred.why);
+    } else {
+      result.diagnostics.push_back(
+          core::make_info("fallback_beside_failed",
+                          "The fallback computed beside the decomposition gave no "
+                          "result (" +
+                              got.message + "); it was computed again."));
     }
   }
-  // The grid mesher is not yet valid on every part the tetrahedral fallback meshes validly
-  // (several of HexMe's industrial models): when its mesh is invalid, the tet split gets a
-  // second chance, within kSecondChanceSeconds, and is used if its mesh is valid.
-  const bool grid_fallback =
-      result.stats.scheme == "grid" && has_diagnostic(result.diagnostics, "fallback") && !result.ok;
-  if (grid_fallback && options.fallback_scheme == "grid" && !progress.cancelled() &&
-      !has_diagnostic(result.diagnostics, "too_many_hexes")) {
-    MeshOptions tet = options;
-    tet.fallback_scheme = "tet-split";
-    const core::Progress budget = progress.with_time_limit(kSecondChanceSeconds);
-    MeshResult second;
-    second.stats.size_used = size;  // the tet split meshes at the global size
-    const auto t0 = std::chrono::steady_clock::now();
-    // Why the fallback was needed (no scheme, the decomposition's failure) stays in its
-    // message: the grid's fallback warning is not part of the second result.
-    std::string why;
-    for (const core::Diagnostic& d : result.diagnostics)
-      if (d.code == "fallback") why = d.message.substr(0, d.message.find(kMeshedByTheGrid));
-    if (fallback(solid, tet, size,
-                 (why.empty() ? "" : why + " ") + "The grid mesher's mesh is invalid.", budget, t0,
-                 second))
-      finish(second, solid, tet, budget, sizes);
-    std::string grid_errors;
-    for (const core::Diagnostic& d : result.diagnostics)
-      if (d.severity == core::Severity::error)
-        grid_errors += (grid_errors.empty() ? "" : ", ") + d.code;
-    if (second.ok) {
-      second.diagnostics.insert(second.diagnostics.begin(), small.begin(), small.end());
-      if (!sizes.uniform()) second.diagnostics.push_back(local_sizes_ignored("tet-split"));
-      second.diagnostics.push_back(core::make_warning(
-          "grid_invalid", "The grid mesher's mesh was invalid (" + grid_errors +
-                              "); the tetrahedral fallback's mesh is valid and is used."));
-      return second;
-    }
-    std::string tet_errors;
-    for (const core::Diagnostic& d : second.diagnostics)
-      if (d.severity == core::Severity::error)
-        tet_errors += (tet_errors.empty() ? "" : ", ") + d.code;
-    result.diagnostics.push_back(core::make_info(
-        "second_fallback_failed",
-        std::string("The tetrahedral fallback, tried after the grid mesher's invalid mesh, gave "
-                    "no valid mesh either") +
-            (budget.timed_out() ? " within " + std::to_string(int(kSecondChanceSeconds)) + " s"
-                                : "") +
-            (tet_errors.empty() ? "." : " (" + tet_errors + ").")));
-  }
-  return result;
+  if (!taken) outcome = run_fallback(solid, options, sizes, small, deferred.why, progress, t0);
+  if (outcome.second_chance) return std::move(outcome.result);
+  MeshResult& r = outcome.result;
+  r.diagnostics.insert(r.diagnostics.begin(), result.diagnostics.begin(), result.diagnostics.end());
+  r.ok = r.ok && !core::has_error(result.diagnostics);
+  r.stats.local_sizes = result.stats.local_sizes;
+  return std::move(r);
 }
 
 }  // namespace

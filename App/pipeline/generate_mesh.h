@@ -38,6 +38,12 @@ struct MeshOptions {
   // The fallback: "grid" (core grid, pillow layer, feature capture) or "tet-split" (CGAL
   // tetrahedra each split into four hexahedra; kept only for comparison).
   std::string fallback_scheme = "grid";
+  // On a machine with two cores or more, the fallback (with the tet split's second chance)
+  // runs beside the decomposition, in a second child process, and is taken when the
+  // decomposition gives no mesh (else killed): what the user waits for is the longer of the
+  // two, not their sum. The result is the same either way; false runs it after the
+  // decomposition, as on one core. First-order meshes only (order 2 runs it after).
+  bool fallback_beside = true;
   // The single-solid schemes tried in this order, the first that applies meshes the solid:
   // "map" (topological hexahedron), "sweep" (one-to-one), "multisweep" (prismatic, many
   // levels), "revolve" (solid of revolution), "midpoint" (convex polyhedron); "grid" (the
@@ -87,6 +93,8 @@ struct MeshStats {
   // (grid/composites.h): the largest deviation of the final mesh's boundary on them from the
   // real surface, model units (-1: nothing absorbed, or not the grid mesher).
   double absorbed_deviation = -1;
+  // The fallback's mesh was computed beside the decomposition (MeshOptions::fallback_beside).
+  bool fallback_beside = false;
 };
 
 struct MeshResult {

@@ -331,6 +331,8 @@ class MeshStats:
         self.seconds_meshing = s.seconds_meshing
         self.seconds_smoothing = s.seconds_smoothing
         self.seconds_checking = s.seconds_checking
+        # The fallback's mesh was computed beside the decomposition (two cores or more).
+        self.fallback_beside = s.fallback_beside
         self.seconds = s.seconds_meshing + s.seconds_smoothing + s.seconds_checking
 
     def as_dict(self):

@@ -175,6 +175,7 @@ void bind_types(py::module_& m) {
       .def_readonly("sub_volume_types", &S::sub_volume_types)
       .def_readonly("scheme", &S::scheme)
       .def_readonly("absorbed_deviation", &S::absorbed_deviation)
+      .def_readonly("fallback_beside", &S::fallback_beside)
       .def_property_readonly("local_sizes", [](const S& st) {
         std::vector<std::pair<std::string, double>> out;
         for (const core::LocalSize& l : st.local_sizes) out.emplace_back(l.entity, l.size);
@@ -212,6 +213,9 @@ void bind_types(py::module_& m) {
       .def_readwrite("fallback_scheme", &O::fallback_scheme,
                      "the fallback: \"grid\" (core grid, pillow layer, features captured) or "
                      "\"tet-split\" (tetrahedra split into hexahedra, for comparison)")
+      .def_readwrite("fallback_beside", &O::fallback_beside,
+                     "on two cores or more, compute the fallback beside the decomposition "
+                     "(a second child process; the same result, sooner); False: after it")
       .def_readwrite("decompose", &O::decompose,
                      "where no single scheme applies: cut along the Voronoi graph and mesh the "
                      "sub-volumes into one conforming mesh (before any fallback)")

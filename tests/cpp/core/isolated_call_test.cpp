@@ -8,10 +8,13 @@
 #include <stdexcept>
 #include <string>
 #include <thread>
+#include <utility>
+#include <vector>
 
 #include "core/isolated_call.h"
 
 #ifdef __linux__
+#include <signal.h>
 #include <unistd.h>
 #endif
 
@@ -148,6 +151,90 @@ TEST(IsolatedCall, RunsInTheCallerWhenAskedTo) {
       {}, options);
   EXPECT_TRUE(r.ok());
   EXPECT_EQ(touched, 1);
+}
+
+// A job runs beside the caller: both work at once, and the result is taken afterwards.
+TEST(IsolatedJob, RunsBesideTheCallerAndIsTakenLater) {
+  const auto t0 = std::chrono::steady_clock::now();
+  IsolatedJob job([](const Progress&) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    return std::string(1 << 20, 'y');  // larger than a pipe's buffer
+  });
+  ASSERT_TRUE(job.started());
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));  // the caller's own work
+  const IsolatedResult r = job.take();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  ASSERT_TRUE(r.ok()) << r.message;
+  EXPECT_EQ(r.data.size(), std::size_t(1) << 20);
+  EXPECT_LT(seconds, 0.55);  // side by side, not one after the other (0.6 s)
+  EXPECT_FALSE(job.started());
+}
+
+#ifdef __linux__
+// A job dropped untaken (the decomposition meshed the solid: no fallback needed) leaves no
+// process behind, and dropping it does not wait for it.
+TEST(IsolatedJob, ADroppedJobKillsItsChild) {
+  int pid = -1;
+  const std::string pid_file = ::testing::TempDir() + "/vorohex_job.pid";
+  std::remove(pid_file.c_str());
+  const auto t0 = std::chrono::steady_clock::now();
+  {
+    IsolatedJob job([&](const Progress&) {
+      std::ofstream(pid_file) << ::getpid();
+      std::this_thread::sleep_for(std::chrono::minutes(10));
+      return std::string("never");
+    });
+    for (int i = 0; i < 100 && !(std::ifstream(pid_file) >> pid); ++i)
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 5.0);
+  ASSERT_GT(pid, 0);
+  EXPECT_NE(::kill(pid, 0), 0);  // reaped: no such process
+}
+#endif
+
+// Cancelling while taking kills the child and says so; the exception of a job is its message.
+TEST(IsolatedJob, TakeReportsCancelAndFailureLikeIsolatedCall) {
+  std::atomic<bool> cancel{true};
+  IsolatedJob job([](const Progress&) {
+    std::this_thread::sleep_for(std::chrono::minutes(10));
+    return std::string();
+  });
+  EXPECT_EQ(job.take(Progress({}, &cancel)).status, IsolatedResult::Status::cancelled);
+  IsolatedJob failing(
+      [](const Progress&) -> std::string { throw std::runtime_error("no closed surface"); });
+  const IsolatedResult r = failing.take();
+  EXPECT_EQ(r.status, IsolatedResult::Status::failed);
+  EXPECT_EQ(r.message, "no closed surface");
+}
+
+// The child's progress reaches the caller while it takes the result: the stages the work
+// reports, in order, ending with the last; reports made while nobody takes are not waited
+// for (the work does not block on them).
+TEST(IsolatedJob, TheChildsProgressReachesTheCaller) {
+  IsolatedJob job([](const Progress& p) {
+    for (int i = 0; i < 20000; ++i) p.report("early", i / 20000.0);  // more than a pipe holds
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    for (int i = 1; i <= 4; ++i) {
+      p.report("grid", i / 4.0);
+      std::this_thread::sleep_for(std::chrono::milliseconds(150));
+    }
+    return std::string("done");
+  });
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  std::vector<std::pair<std::string, double>> heard;
+  const IsolatedResult r = job.take(Progress([&](std::string_view stage, double fraction) {
+    heard.emplace_back(std::string(stage), fraction);
+  }));
+  ASSERT_TRUE(r.ok()) << r.message;
+  EXPECT_EQ(r.data, "done");
+  ASSERT_FALSE(heard.empty());
+  EXPECT_EQ(heard.back().first, "grid");
+  EXPECT_DOUBLE_EQ(heard.back().second, 1.0);
+  int grid = 0;
+  for (const auto& [stage, fraction] : heard) grid += stage == "grid";
+  EXPECT_GE(grid, 3);
 }
 
 }  // namespace
