@@ -785,7 +785,7 @@ MeshResult generate(const occ::Solid& solid, const MeshOptions& options,
   // decomposition starts, taken if that fails, killed (with the job) if it succeeds.
   core::IsolatedJob beside;
   DeferredFallback deferred;
-  if (options.fallback_beside && options.order == 1 && std::thread::hardware_concurrency() >= 2)
+  if (options.fallback_beside && std::thread::hardware_concurrency() >= 2)
     deferred.before_decomposition = [&] {
       beside = core::IsolatedJob(
           [&](const core::Progress& in_child) {

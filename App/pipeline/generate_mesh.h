@@ -42,7 +42,7 @@ struct MeshOptions {
   // runs beside the decomposition, in a second child process, and is taken when the
   // decomposition gives no mesh (else killed): what the user waits for is the longer of the
   // two, not their sum. The result is the same either way; false runs it after the
-  // decomposition, as on one core. First-order meshes only (order 2 runs it after).
+  // decomposition, as on one core.
   bool fallback_beside = true;
   // The single-solid schemes tried in this order, the first that applies meshes the solid:
   // "map" (topological hexahedron), "sweep" (one-to-one), "multisweep" (prismatic, many

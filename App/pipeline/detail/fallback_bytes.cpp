@@ -118,6 +118,7 @@ std::string fallback_to_bytes(const MeshResult& r, bool second_chance) {
   w.pods(r.mesh.node_classes());
   w.pods(r.mesh.hexes());
   w.pods(r.mesh.sub_volumes());
+  w.pods(r.mesh.mid_edge_nodes());
   const grid::SmallFeatures& a = r.absorbed;
   w.pods(a.absorbed_face);
   w.pods(a.absorbed_edge);
@@ -175,6 +176,12 @@ bool fallback_from_bytes(const std::string& bytes, MeshResult& r, bool& second_c
       if (v < 0 || std::size_t(v) >= points.size()) return false;
     r.mesh.add_hex(hexes[h], sub_volumes[h]);
   }
+  std::vector<core::MidEdgeNodes> mid;
+  if (!in.pods(mid) || (!mid.empty() && mid.size() != hexes.size())) return false;
+  for (const core::MidEdgeNodes& m : mid)
+    for (std::int32_t v : m)
+      if (v < 0 || std::size_t(v) >= points.size()) return false;
+  r.mesh.set_mid_edge_nodes(std::move(mid));
   grid::SmallFeatures& a = r.absorbed;
   if (!in.pods(a.absorbed_face) || !in.pods(a.absorbed_edge) || !in.pods(a.composite_of_face) ||
       !in.pod(n) || n > bytes.size())

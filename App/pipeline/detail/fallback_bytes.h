@@ -2,7 +2,7 @@
 // the decomposition (pipeline/generate_mesh.cpp) to the caller: what MeshResult holds except
 // the validity check, the per-hexahedron scaled Jacobians and the named groups, which the
 // caller recomputes from the mesh (the check is deterministic: the same report, whose
-// diagnostics are among those carried). First-order meshes only.
+// diagnostics are among those carried). First- and second-order meshes.
 #pragma once
 
 #include <string>

@@ -580,36 +580,43 @@ TEST(GenerateMesh, AnInvalidGridMeshGivesTheTetSplitASecondChance) {
 // On two cores the fallback runs beside the decomposition (MeshOptions::fallback_beside):
 // a solid neither meshes gets the same result as with the fallback after it - the same
 // mesh, node for node, the same diagnostics (the reason, with the decomposition's failure,
-// filled in once known) - and the decomposition's time is no longer added to the
-// fallback's.
+// filled in once known), at either element order - and the decomposition's time is no
+// longer added to the fallback's.
 TEST(GenerateMesh, TheFallbackBesideTheDecompositionGivesTheSameResult) {
   const occ::Solid pit = testing::make_pyramid_pit();
-  MeshOptions after;
-  after.fallback_beside = false;
-  MeshOptions beside;
-  const MeshResult a = generate_mesh(pit, after);
-  const MeshResult b = generate_mesh(pit, beside);
-  ASSERT_TRUE(a.ok) << (a.diagnostics.empty() ? "" : core::format(a.diagnostics.back()));
-  EXPECT_FALSE(a.stats.fallback_beside);
-  EXPECT_EQ(b.stats.fallback_beside, std::thread::hardware_concurrency() >= 2);
-  EXPECT_EQ(b.ok, a.ok);
-  EXPECT_EQ(b.stats.scheme, a.stats.scheme);
-  ASSERT_EQ(b.mesh.num_nodes(), a.mesh.num_nodes());
-  EXPECT_EQ(b.mesh.points(), a.mesh.points());
-  EXPECT_EQ(b.mesh.hexes(), a.mesh.hexes());
-  EXPECT_EQ(b.check.valid, a.check.valid);
-  EXPECT_EQ(b.check.scaled_jacobian.min, a.check.scaled_jacobian.min);
-  EXPECT_EQ(b.scaled_jacobian, a.scaled_jacobian);
-  EXPECT_EQ(b.groups.size(), a.groups.size());
-  ASSERT_EQ(b.diagnostics.size(), a.diagnostics.size());
-  for (std::size_t i = 0; i < a.diagnostics.size(); ++i) {
-    EXPECT_EQ(b.diagnostics[i].code, a.diagnostics[i].code);
-    EXPECT_EQ(b.diagnostics[i].message, a.diagnostics[i].message);
+  for (int order : {1, 2}) {
+    SCOPED_TRACE(order);
+    MeshOptions after;
+    after.fallback_beside = false;
+    after.order = order;
+    MeshOptions beside;
+    beside.order = order;
+    const MeshResult a = generate_mesh(pit, after);
+    const MeshResult b = generate_mesh(pit, beside);
+    EXPECT_EQ(b.mesh.order(), order);
+    EXPECT_EQ(b.mesh.mid_edge_nodes(), a.mesh.mid_edge_nodes());
+    ASSERT_TRUE(a.ok) << (a.diagnostics.empty() ? "" : core::format(a.diagnostics.back()));
+    EXPECT_FALSE(a.stats.fallback_beside);
+    EXPECT_EQ(b.stats.fallback_beside, std::thread::hardware_concurrency() >= 2);
+    EXPECT_EQ(b.ok, a.ok);
+    EXPECT_EQ(b.stats.scheme, a.stats.scheme);
+    ASSERT_EQ(b.mesh.num_nodes(), a.mesh.num_nodes());
+    EXPECT_EQ(b.mesh.points(), a.mesh.points());
+    EXPECT_EQ(b.mesh.hexes(), a.mesh.hexes());
+    EXPECT_EQ(b.check.valid, a.check.valid);
+    EXPECT_EQ(b.check.scaled_jacobian.min, a.check.scaled_jacobian.min);
+    EXPECT_EQ(b.scaled_jacobian, a.scaled_jacobian);
+    EXPECT_EQ(b.groups.size(), a.groups.size());
+    ASSERT_EQ(b.diagnostics.size(), a.diagnostics.size());
+    for (std::size_t i = 0; i < a.diagnostics.size(); ++i) {
+      EXPECT_EQ(b.diagnostics[i].code, a.diagnostics[i].code);
+      EXPECT_EQ(b.diagnostics[i].message, a.diagnostics[i].message);
+    }
+    const core::Diagnostic* why = testing::find_diagnostic(b.diagnostics, "fallback");
+    ASSERT_NE(why, nullptr);
+    EXPECT_NE(why->message.find("Not a block"), std::string::npos) << why->message;
+    EXPECT_EQ(why->message.find('\x1f'), std::string::npos) << why->message;
   }
-  const core::Diagnostic* why = testing::find_diagnostic(b.diagnostics, "fallback");
-  ASSERT_NE(why, nullptr);
-  EXPECT_NE(why->message.find("Not a block"), std::string::npos) << why->message;
-  EXPECT_EQ(why->message.find('\x1f'), std::string::npos) << why->message;
 }
 
 // Bad input that can be repaired is, and then meshes like any solid; millimetre and

@@ -20,6 +20,9 @@ TEST(FallbackBytes, AResultComesBackAsItWas) {
                         k ? core::NodeClass::on(core::FaceId(2 + i)) : core::NodeClass::interior());
   r.mesh.add_hex({0, 1, 4, 3, 6, 7, 10, 9}, 1);
   r.mesh.add_hex({1, 2, 5, 4, 7, 8, 11, 10}, 2);
+  // Second order: the mid-edge nodes of each hex (here any nodes, for the bytes' sake).
+  r.mesh.set_mid_edge_nodes(
+      {{0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11}, {11, 10, 9, 8, 7, 6, 5, 4, 3, 2, 1, 0}});
   r.stats.size_used = 0.3;
   r.stats.intervals = {1, 2, 3};
   r.stats.seconds_meshing = 1.5, r.stats.seconds_smoothing = 2.5, r.stats.seconds_checking = 0.1;
@@ -54,6 +57,8 @@ TEST(FallbackBytes, AResultComesBackAsItWas) {
   }
   EXPECT_EQ(back.mesh.hexes(), r.mesh.hexes());
   EXPECT_EQ(back.mesh.sub_volumes(), r.mesh.sub_volumes());
+  EXPECT_EQ(back.mesh.order(), 2);
+  EXPECT_EQ(back.mesh.mid_edge_nodes(), r.mesh.mid_edge_nodes());
   EXPECT_EQ(back.stats.size_used, 0.3);
   EXPECT_EQ(back.stats.intervals, r.stats.intervals);
   EXPECT_EQ(back.stats.seconds_smoothing, 2.5);
