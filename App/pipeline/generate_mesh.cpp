@@ -208,33 +208,65 @@ FallbackOutcome run_fallback(const occ::Solid& solid, const MeshOptions& options
   FallbackOutcome out;
   MeshResult& result = out.result;
   result.stats.size_used = size;
+  // The grid mesher is not yet valid on every part the tetrahedral fallback meshes validly
+  // (several of HexMe's industrial models): when its mesh is invalid, the tet split gets a
+  // second chance, within kSecondChanceSeconds, and is used if its mesh is valid. Why the
+  // fallback was needed (no scheme, the decomposition's failure) stays in its message: the
+  // grid's fallback warning is not part of the second result.
+  auto second_chance = [&](const std::string& why_grid, const core::Progress& p, bool& timed_out) {
+    MeshOptions tet = options;
+    tet.fallback_scheme = "tet-split";
+    const core::Progress budget = p.with_time_limit(kSecondChanceSeconds);
+    MeshResult second;
+    second.stats.size_used = size;  // the tet split meshes at the global size
+    if (fallback(solid, tet, size,
+                 (why_grid.empty() ? "" : why_grid + " ") + "The grid mesher's mesh is invalid.",
+                 budget, std::chrono::steady_clock::now(), second))
+      finish(second, solid, tet, budget, sizes);
+    timed_out = budget.timed_out();
+    return second;
+  };
+  std::string why_grid;
+  // On two cores or more the second chance starts beside the grid's smoothing and check
+  // (which decide whether it is needed: on HexMe's industrial models, mostly yes), and is
+  // taken or killed once they have; the same result as after them.
+  core::IsolatedJob beside;
   if (fallback(solid, options, size, why, progress, t0, result)) {
+    for (const core::Diagnostic& d : result.diagnostics)
+      if (d.code == "fallback") why_grid = d.message.substr(0, d.message.find(kMeshedByTheGrid));
+    if (options.fallback_scheme == "grid" && options.fallback_beside &&
+        std::thread::hardware_concurrency() >= 2)
+      beside = core::IsolatedJob(
+          [&](const core::Progress& in_child) {
+            bool timed_out = false;
+            const MeshResult second = second_chance(why_grid, in_child, timed_out);
+            return detail::fallback_to_bytes(second, timed_out);
+          },
+          progress);
     finish(result, solid, options, progress, sizes);
     add_deviation(result, solid);
   }
-  // The grid mesher is not yet valid on every part the tetrahedral fallback meshes validly
-  // (several of HexMe's industrial models): when its mesh is invalid, the tet split gets a
-  // second chance, within kSecondChanceSeconds, and is used if its mesh is valid.
   const bool grid_invalid =
       result.stats.scheme == "grid" && has_diagnostic(result.diagnostics, "fallback") && !result.ok;
   if (!grid_invalid || options.fallback_scheme != "grid" || progress.cancelled() ||
       has_diagnostic(result.diagnostics, "too_many_hexes"))
-    return out;
-  MeshOptions tet = options;
-  tet.fallback_scheme = "tet-split";
-  const core::Progress budget = progress.with_time_limit(kSecondChanceSeconds);
+    return out;  // (a second chance beside is killed with its job)
   MeshResult second;
-  second.stats.size_used = size;  // the tet split meshes at the global size
-  const auto t1 = std::chrono::steady_clock::now();
-  // Why the fallback was needed (no scheme, the decomposition's failure) stays in its
-  // message: the grid's fallback warning is not part of the second result.
-  std::string why_grid;
-  for (const core::Diagnostic& d : result.diagnostics)
-    if (d.code == "fallback") why_grid = d.message.substr(0, d.message.find(kMeshedByTheGrid));
-  if (fallback(solid, tet, size,
-               (why_grid.empty() ? "" : why_grid + " ") + "The grid mesher's mesh is invalid.",
-               budget, t1, second))
-    finish(second, solid, tet, budget, sizes);
+  bool timed_out = false, taken = false;
+  if (beside.started()) {
+    const core::IsolatedResult got = beside.take(progress, {"tetrahedra"});
+    if (got.status == core::IsolatedResult::Status::cancelled) {
+      result.diagnostics.push_back(core::make_error("cancelled", "Meshing was cancelled."));
+      return out;
+    }
+    taken = got.ok() && detail::fallback_from_bytes(got.data, second, timed_out);
+    if (taken) {
+      second.groups = io::named_groups(second.mesh, solid);
+      second.check =
+          quality::check_mesh(second.mesh, &solid, options.check, &second.scaled_jacobian);
+    }
+  }
+  if (!taken) second = second_chance(why_grid, progress, timed_out);
   std::string grid_errors;
   for (const core::Diagnostic& d : result.diagnostics)
     if (d.severity == core::Severity::error)
@@ -257,8 +289,7 @@ FallbackOutcome run_fallback(const occ::Solid& solid, const MeshOptions& options
       "second_fallback_failed",
       std::string("The tetrahedral fallback, tried after the grid mesher's invalid mesh, gave "
                   "no valid mesh either") +
-          (budget.timed_out() ? " within " + std::to_string(int(kSecondChanceSeconds)) + " s"
-                              : "") +
+          (timed_out ? " within " + std::to_string(int(kSecondChanceSeconds)) + " s" : "") +
           (tet_errors.empty() ? "." : " (" + tet_errors + ").")));
   return out;
 }

@@ -90,10 +90,10 @@ class Reader {
 
 }  // namespace
 
-std::string fallback_to_bytes(const MeshResult& r, bool second_chance) {
+std::string fallback_to_bytes(const MeshResult& r, bool flag) {
   Writer w;
   w.pod(kMagic);
-  w.pod(std::uint8_t(second_chance));
+  w.pod(std::uint8_t(flag));
   w.pod(std::uint8_t(r.ok));
   const MeshStats& s = r.stats;
   w.pod(s.size_used);
@@ -137,12 +137,12 @@ std::string fallback_to_bytes(const MeshResult& r, bool second_chance) {
   return std::move(w.out);
 }
 
-bool fallback_from_bytes(const std::string& bytes, MeshResult& r, bool& second_chance) {
+bool fallback_from_bytes(const std::string& bytes, MeshResult& r, bool& flag) {
   Reader in(bytes);
   std::uint32_t magic = 0;
   std::uint8_t second = 0, ok = 0;
   if (!in.pod(magic) || magic != kMagic || !in.pod(second) || !in.pod(ok)) return false;
-  second_chance = second != 0;
+  flag = second != 0;
   r = MeshResult();
   r.ok = ok != 0;
   MeshStats& s = r.stats;

@@ -11,9 +11,12 @@
 
 namespace vorohex::pipeline::detail {
 
-std::string fallback_to_bytes(const MeshResult& result, bool second_chance);
+// `flag` travels with the result: for the fallback beside the decomposition, whether it is
+// the tet split's second chance; for that second chance beside the grid's smoothing,
+// whether it ran out of its time.
+std::string fallback_to_bytes(const MeshResult& result, bool flag);
 
 // False (and `result` unspecified) when the bytes are not what fallback_to_bytes wrote.
-bool fallback_from_bytes(const std::string& bytes, MeshResult& result, bool& second_chance);
+bool fallback_from_bytes(const std::string& bytes, MeshResult& result, bool& flag);
 
 }  // namespace vorohex::pipeline::detail
