@@ -213,10 +213,11 @@ FallbackOutcome run_fallback(const occ::Solid& solid, const MeshOptions& options
   // second chance, within kSecondChanceSeconds, and is used if its mesh is valid. Why the
   // fallback was needed (no scheme, the decomposition's failure) stays in its message: the
   // grid's fallback warning is not part of the second result.
-  auto second_chance = [&](const std::string& why_grid, const core::Progress& p, bool& timed_out) {
+  auto second_chance = [&](const std::string& why_grid, const core::Progress& p, bool& timed_out,
+                           bool limited) {
     MeshOptions tet = options;
     tet.fallback_scheme = "tet-split";
-    const core::Progress budget = p.with_time_limit(kSecondChanceSeconds);
+    const core::Progress budget = limited ? p.with_time_limit(kSecondChanceSeconds) : p;
     MeshResult second;
     second.stats.size_used = size;  // the tet split meshes at the global size
     if (fallback(solid, tet, size,
@@ -229,7 +230,9 @@ FallbackOutcome run_fallback(const occ::Solid& solid, const MeshOptions& options
   std::string why_grid;
   // On two cores or more the second chance starts beside the grid's smoothing and check
   // (which decide whether it is needed: on HexMe's industrial models, mostly yes), and is
-  // taken or killed once they have; the same result as after them.
+  // taken or killed once they have. Its 60 s count from then, as after them (the caller
+  // stops it): it shares the cores with them and with the decomposition before, and a limit
+  // counted from its start cut HexMe i03's and i12's short.
   core::IsolatedJob beside;
   if (fallback(solid, options, size, why, progress, t0, result)) {
     for (const core::Diagnostic& d : result.diagnostics)
@@ -239,7 +242,7 @@ FallbackOutcome run_fallback(const occ::Solid& solid, const MeshOptions& options
       beside = core::IsolatedJob(
           [&](const core::Progress& in_child) {
             bool timed_out = false;
-            const MeshResult second = second_chance(why_grid, in_child, timed_out);
+            const MeshResult second = second_chance(why_grid, in_child, timed_out, false);
             return detail::fallback_to_bytes(second, timed_out);
           },
           progress);
@@ -254,19 +257,27 @@ FallbackOutcome run_fallback(const occ::Solid& solid, const MeshOptions& options
   MeshResult second;
   bool timed_out = false, taken = false;
   if (beside.started()) {
-    const core::IsolatedResult got = beside.take(progress, {"tetrahedra"});
+    const core::IsolatedResult got =
+        beside.take(progress.with_time_limit(kSecondChanceSeconds), {"tetrahedra"});
     if (got.status == core::IsolatedResult::Status::cancelled) {
-      result.diagnostics.push_back(core::make_error("cancelled", "Meshing was cancelled."));
-      return out;
+      if (progress.cancelled()) {
+        result.diagnostics.push_back(core::make_error("cancelled", "Meshing was cancelled."));
+        return out;
+      }
+      timed_out = true;  // its 60 s ran out: no second result, as after the check
+      second.diagnostics.push_back(
+          core::make_error("cancelled", "The tetrahedral fallback was stopped at its time limit."));
+      taken = true;
+    } else {
+      taken = got.ok() && detail::fallback_from_bytes(got.data, second, timed_out);
     }
-    taken = got.ok() && detail::fallback_from_bytes(got.data, second, timed_out);
-    if (taken) {
+    if (taken && second.mesh.num_hexes() > 0) {
       second.groups = io::named_groups(second.mesh, solid);
       second.check =
           quality::check_mesh(second.mesh, &solid, options.check, &second.scaled_jacobian);
     }
   }
-  if (!taken) second = second_chance(why_grid, progress, timed_out);
+  if (!taken) second = second_chance(why_grid, progress, timed_out, true);
   std::string grid_errors;
   for (const core::Diagnostic& d : result.diagnostics)
     if (d.severity == core::Severity::error)

@@ -41,8 +41,9 @@ struct MeshOptions {
   // On a machine with two cores or more, the fallback (with the tet split's second chance)
   // runs beside the decomposition, in a second child process, and is taken when the
   // decomposition gives no mesh (else killed): what the user waits for is the longer of the
-  // two, not their sum. The result is the same either way; false runs it after the
-  // decomposition, as on one core.
+  // two, not their sum; likewise the tet split's second chance beside the grid's smoothing
+  // and check. The result is the same either way; false runs them one after the other, as
+  // on one core.
   bool fallback_beside = true;
   // The single-solid schemes tried in this order, the first that applies meshes the solid:
   // "map" (topological hexahedron), "sweep" (one-to-one), "multisweep" (prismatic, many
