@@ -7,7 +7,6 @@
 #include <BRepGProp.hxx>
 #include <BRepTools.hxx>
 #include <BRepTools_WireExplorer.hxx>
-#include <BRepTopAdaptor_FClass2d.hxx>
 #include <BRep_Tool.hxx>
 #include <ElSLib.hxx>
 #include <GCPnts_AbscissaPoint.hxx>
@@ -37,6 +36,7 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "occ/detail/face_classifier.h"
 #include "occ/face_chart.h"
 #include "occ/solid_impl.h"
 
@@ -134,8 +134,7 @@ std::unique_ptr<Solid::Impl> make_solid_impl(const TopoDS_Shape& solid) {
     if (c.is_plane) c.plane = as.Plane();
     c.planar = c.is_plane || GeomLib_IsPlanarSurface(c.surface, 1e-7).IsPlanar();
     BRepBndLib::AddOptimal(f, c.box, false, false);
-    c.classifier = std::make_shared<BRepTopAdaptor_FClass2d>(
-        TopoDS::Face(f.Oriented(TopAbs_FORWARD)), std::max(c.tolerance, 1e-9));
+    c.classifier = std::make_shared<const detail::FaceClassifier>(f, std::max(c.tolerance, 1e-9));
     for (TopExp_Explorer ex(f, TopAbs_EDGE); ex.More(); ex.Next()) {
       const int e = impl->edges.FindIndex(ex.Current());
       if (std::find(c.edges.begin(), c.edges.end(), e) == c.edges.end()) c.edges.push_back(e);
@@ -420,7 +419,7 @@ FacePoint nearest_on_face(const Solid& solid, const Solid::Impl& impl, int f, co
     if (c.is_plane) {
       double u, v;
       ElSLib::Parameters(c.plane, to_pnt(p), u, v);
-      const TopAbs_State s = c.classifier->Perform(gp_Pnt2d(u, v), false);
+      const TopAbs_State s = c.classifier->perform(u, v, false);
       if (s == TopAbs_IN || s == TopAbs_ON) {
         best = {to_vec(ElSLib::Value(u, v, c.plane)), u, v, true};
         return best;
@@ -433,7 +432,7 @@ FacePoint nearest_on_face(const Solid& solid, const Solid::Impl& impl, int f, co
         if (d >= best_d) continue;
         double u, v;
         proj.Parameters(i, u, v);
-        const TopAbs_State s = c.classifier->Perform(gp_Pnt2d(u, v));
+        const TopAbs_State s = c.classifier->perform(u, v);
         if (s == TopAbs_IN || s == TopAbs_ON) {
           best_d = d;
           best = {to_vec(proj.Point(i)), u, v, true};

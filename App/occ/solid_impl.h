@@ -1,5 +1,6 @@
 // Private to App/occ: the OCCT side of occ::Solid. Everything a query needs is computed once
-// at construction and never changed, so const queries are safe from several threads.
+// (at construction, or on the first question, guarded: a face classifier's raster) and never
+// changed, so const queries are safe from several threads.
 #pragma once
 
 #include <Bnd_Box.hxx>
@@ -16,9 +17,10 @@
 
 #include "occ/solid.h"
 
-class BRepTopAdaptor_FClass2d;
-
 namespace vorohex::occ {
+namespace detail {
+class FaceClassifier;
+}
 
 // Per-face data for fast projection (index 0 unused so that FaceId indexes directly).
 struct FaceCache {
@@ -30,8 +32,8 @@ struct FaceCache {
   bool reversed = false;  // face orientation in the solid is REVERSED
   double tolerance = 1e-7;
   Bnd_Box box;
-  std::shared_ptr<BRepTopAdaptor_FClass2d> classifier;  // point-in-face in (u, v)
-  std::vector<int> edges;                               // edge ids of the face boundary
+  std::shared_ptr<const detail::FaceClassifier> classifier;  // point-in-face in (u, v)
+  std::vector<int> edges;                                    // edge ids of the face boundary
 };
 
 struct EdgeCache {
