@@ -85,7 +85,10 @@ FaceClassifier::FaceClassifier(const TopoDS_Face& face, double tolerance, int re
   occt_ = std::make_shared<BRepTopAdaptor_FClass2d>(face_, tolerance);
 }
 
-void FaceClassifier::ensure_raster() const {
+bool FaceClassifier::ensure_raster() const {
+  if (asked_.load(std::memory_order_relaxed) < kQuestionsBeforeRaster &&
+      asked_.fetch_add(1, std::memory_order_relaxed) < kQuestionsBeforeRaster)
+    return false;
   std::call_once(built_, [this] {
     try {
       build();
@@ -93,6 +96,7 @@ void FaceClassifier::ensure_raster() const {
       cells_.clear();
     }
   });
+  return true;
 }
 
 FaceClassifier::~FaceClassifier() = default;
@@ -171,20 +175,17 @@ void FaceClassifier::build() const {
 }
 
 bool FaceClassifier::rastered() const {
-  ensure_raster();
-  return !cells_.empty();
+  return asked_.load() >= kQuestionsBeforeRaster && ensure_raster() && !cells_.empty();
 }
 
 double FaceClassifier::share_known() const {
-  ensure_raster();
-  if (cells_.empty()) return 0;
+  if (!rastered()) return 0;
   return double(std::count_if(cells_.begin(), cells_.end(), [](auto c) { return c != 0; })) /
          double(cells_.size());
 }
 
 TopAbs_State FaceClassifier::perform(double u, double v, bool recadre_on_periodic) const {
-  ensure_raster();
-  if (!cells_.empty()) {
+  if (ensure_raster() && !cells_.empty()) {
     const double x = (u - u0_) / du_, y = (v - v0_) / dv_;
     if (x >= 0 && y >= 0 && x < n_ && y < n_) {
       const std::uint8_t c = cells_[std::size_t(y) * n_ + std::size_t(x)];

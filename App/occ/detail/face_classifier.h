@@ -11,6 +11,7 @@
 #include <TopAbs_State.hxx>
 #include <TopoDS_Face.hxx>
 
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <mutex>
@@ -36,14 +37,17 @@ class FaceClassifier {
   double share_known() const;
 
  private:
-  // The raster is built on the first question (a solid's faces are not all asked: the
-  // decomposition makes solids of its pieces), once, also when asked from several threads.
-  void ensure_raster() const;
+  // The raster is built once a face has been asked kQuestionsBeforeRaster times (OCCT answers
+  // until then): most solids the decomposition makes of its pieces are asked a few questions
+  // per face, fewer than building a raster is worth. Once, also from several threads.
+  static constexpr int kQuestionsBeforeRaster = 256;
+  bool ensure_raster() const;
   void build() const;
   TopoDS_Face face_;  // FORWARD
   double tolerance_;
   int resolution_;
   std::shared_ptr<BRepTopAdaptor_FClass2d> occt_;
+  mutable std::atomic<int> asked_{0};
   mutable std::once_flag built_;
   mutable std::vector<std::uint8_t> cells_;  // n_ x n_, row-major in v; 0 unknown, 1 in, 2 out
   mutable int n_ = 0;
