@@ -97,7 +97,7 @@ std::string signal_name(int signal) {
   }
 }
 
-IsolatedJob::IsolatedJob(Work work, const Progress& limits) {
+IsolatedJob::IsolatedJob(Work work, const Progress& limits, int nice) {
 #ifdef VOROHEX_HAVE_FORK
   int fds[2], reports[2];
   if (::pipe(fds) == 0) {
@@ -107,6 +107,7 @@ IsolatedJob::IsolatedJob(Work work, const Progress& limits) {
     if (pid == 0) {
       ::close(fds[0]);
       if (reports[0] >= 0) ::close(reports[0]);
+      if (nice > 0) (void)::nice(std::min(nice, 19));  // a failure leaves the priority as is
       const int out = reports[1];
       // Reports never block the work: when the caller is not reading (busy with its own
       // work), they are dropped.

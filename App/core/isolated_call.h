@@ -48,12 +48,13 @@ IsolatedResult isolated_call(const std::function<std::string()>& work,
 // `limits`' deadline (not its cancel flag: the caller kills the child on cancel) whose
 // reports cross to the caller through a second pipe: take() passes the latest on to its
 // own progress. Without fork (or when the fork fails), `work` runs in take() instead, with
-// take()'s progress.
+// take()'s progress. `nice` (0-19) lowers the child's scheduling priority: work that may be
+// thrown away then takes only what the caller's other processes leave of the cores.
 class IsolatedJob {
  public:
   using Work = std::function<std::string(const Progress&)>;
   IsolatedJob() = default;
-  explicit IsolatedJob(Work work, const Progress& limits = {});
+  explicit IsolatedJob(Work work, const Progress& limits = {}, int nice = 0);
   IsolatedJob(IsolatedJob&& other) noexcept;
   IsolatedJob& operator=(IsolatedJob&& other) noexcept;
   IsolatedJob(const IsolatedJob&) = delete;

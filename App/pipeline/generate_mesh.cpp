@@ -117,6 +117,8 @@ void finish(MeshResult& result, const occ::Solid& solid, const MeshOptions& opti
 
 // Seconds the tetrahedral fallback may take when the grid mesher's mesh was invalid.
 constexpr double kSecondChanceSeconds = 60;
+// Scheduling priority of the second chance when it runs beside (IsolatedJob's nice).
+constexpr int kSecondChanceNice = 10;
 
 core::Diagnostic local_sizes_ignored(const std::string& scheme) {
   return core::make_warning("local_sizes_ignored",
@@ -232,7 +234,9 @@ FallbackOutcome run_fallback(const occ::Solid& solid, const MeshOptions& options
   // (which decide whether it is needed: on HexMe's industrial models, mostly yes), and is
   // taken or killed once they have. Its 60 s count from then, as after them (the caller
   // stops it): it shares the cores with them and with the decomposition before, and a limit
-  // counted from its start cut HexMe i03's and i12's short.
+  // counted from its start cut HexMe i03's and i12's short. It runs at a lower priority
+  // (nice 10): beside the decomposition, a third process on two cores, it slowed the cuts
+  // until HexMe i22's merges ran into their limit, and the structured mesh was lost.
   core::IsolatedJob beside;
   if (fallback(solid, options, size, why, progress, t0, result)) {
     for (const core::Diagnostic& d : result.diagnostics)
@@ -245,7 +249,7 @@ FallbackOutcome run_fallback(const occ::Solid& solid, const MeshOptions& options
             const MeshResult second = second_chance(why_grid, in_child, timed_out, false);
             return detail::fallback_to_bytes(second, timed_out);
           },
-          progress);
+          progress, kSecondChanceNice);
     finish(result, solid, options, progress, sizes);
     add_deviation(result, solid);
   }

@@ -15,7 +15,10 @@
 
 #ifdef __linux__
 #include <signal.h>
+#include <sys/resource.h>
 #include <unistd.h>
+
+#include <cerrno>
 #endif
 
 namespace vorohex::core {
@@ -191,6 +194,22 @@ TEST(IsolatedJob, ADroppedJobKillsItsChild) {
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 5.0);
   ASSERT_GT(pid, 0);
   EXPECT_NE(::kill(pid, 0), 0);  // reaped: no such process
+}
+#endif
+
+#ifdef __linux__
+// Work that may be thrown away (the tet split's second chance) runs at a lower priority: its
+// child's niceness is the caller's plus the job's (at most 19); the caller's is unchanged.
+TEST(IsolatedJob, ANiceJobRunsAtALowerPriority) {
+  errno = 0;
+  const int mine = ::getpriority(PRIO_PROCESS, 0);
+  ASSERT_EQ(errno, 0);
+  IsolatedJob job([](const Progress&) { return std::to_string(::getpriority(PRIO_PROCESS, 0)); },
+                  {}, 10);
+  const IsolatedResult r = job.take();
+  ASSERT_TRUE(r.ok()) << r.message;
+  EXPECT_EQ(std::stoi(r.data), std::min(mine + 10, 19));
+  EXPECT_EQ(::getpriority(PRIO_PROCESS, 0), mine);
 }
 #endif
 
