@@ -55,7 +55,9 @@ class Rasteriser {
     }
     const double cells = std::max(std::abs(b.X() - a.X()) / du_, std::abs(b.Y() - a.Y()) / dv_);
     const int steps = int(std::ceil(4 * cells)) + 1;
-    if (steps > 4 * (n_ + 2) * 4) return false;
+    // A chord can cross the box a few times at most; far longer, the pcurve runs far outside
+    // the face's parameter box (bad geometry): no raster.
+    if (steps > 16 * (n_ + 2)) return false;
     for (int s = 0; s <= steps; ++s) {
       const double w = double(s) / steps;
       mark((1 - w) * a.X() + w * b.X(), (1 - w) * a.Y() + w * b.Y());
@@ -81,9 +83,8 @@ class Rasteriser {
 FaceClassifier::FaceClassifier(const TopoDS_Face& face, double tolerance, int resolution)
     : face_(TopoDS::Face(face.Oriented(TopAbs_FORWARD))),
       tolerance_(tolerance),
-      resolution_(std::max(resolution, 4)) {
-  occt_ = std::make_shared<BRepTopAdaptor_FClass2d>(face_, tolerance);
-}
+      resolution_(std::max(resolution, 4)),
+      occt_(std::make_unique<BRepTopAdaptor_FClass2d>(face_, tolerance)) {}
 
 bool FaceClassifier::ensure_raster() const {
   if (asked_.load(std::memory_order_relaxed) < kQuestionsBeforeRaster &&

@@ -46,7 +46,7 @@ class FaceClassifier {
   TopoDS_Face face_;  // FORWARD
   double tolerance_;
   int resolution_;
-  std::shared_ptr<BRepTopAdaptor_FClass2d> occt_;
+  std::unique_ptr<BRepTopAdaptor_FClass2d> occt_;
   mutable std::atomic<int> asked_{0};
   mutable std::once_flag built_;
   mutable std::vector<std::uint8_t> cells_;  // n_ x n_, row-major in v; 0 unknown, 1 in, 2 out
