@@ -47,6 +47,10 @@ struct GlueOptions {
   // neighbourhood cut out of pieces that are checked as a whole elsewhere (the solids that
   // join two such neighbours by faces may be outside it).
   bool check_manifold = true;
+  // The solids only touch, without crossing (pieces of one exact split, and unions of
+  // such pieces): OCCT's gluing mode (BOPAlgo_GlueShift) then skips the intersections of
+  // their faces that cannot exist. Wrong for solids whose faces cross.
+  bool only_touching = false;
 };
 ReadResult glue_solids(const std::vector<const Solid*>& solids, const std::string& where,
                        const GlueOptions& options = {});

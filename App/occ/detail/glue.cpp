@@ -1,5 +1,6 @@
 #include "occ/detail/glue.h"
 
+#include <BOPAlgo_GlueEnum.hxx>
 #include <BRepAlgoAPI_BuilderAlgo.hxx>
 #include <BRepGProp.hxx>
 #include <BRep_Builder.hxx>
@@ -135,6 +136,7 @@ ReadResult glue(const std::vector<TopoDS_Solid>& solids, const std::string& wher
     fuse.SetArguments(args);
     fuse.SetRunParallel(false);
     fuse.SetNonDestructive(true);  // the solids may share sub-shapes with others (split pieces)
+    if (options.only_touching) fuse.SetGlue(BOPAlgo_GlueShift);
     fuse.Build();
     if (fuse.IsDone() && !fuse.HasErrors()) glued = fuse.Shape();
   } catch (const Standard_Failure&) {

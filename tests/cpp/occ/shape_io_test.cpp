@@ -191,6 +191,27 @@ TEST(GlueSolids, TheManifoldAndOverlapChecksCanBeLeftOut) {
             "overlapping_solids");
 }
 
+// Solids that only touch (pieces of one split): OCCT's gluing mode skips intersecting their
+// faces, and glues them as the full general fuse does: a block standing on part of a
+// plate's face splits that face, and the two share one face.
+TEST(GlueSolids, SolidsThatOnlyTouchAreGluedAsByTheFullFuse) {
+  const Solid plate = make_box(10, 10, 1);
+  const Solid block = make_box(2, 3, 4, core::Vec3(4, 3, 1));
+  const Solid side = make_box(1, 10, 1, core::Vec3(10, 0, 0));
+  GlueOptions touching;
+  touching.only_touching = true;
+  const ReadResult full = glue_solids({&plate, &block, &side}, "The pieces");
+  const ReadResult glued = glue_solids({&plate, &block, &side}, "The pieces", touching);
+  ASSERT_TRUE(full.ok());
+  ASSERT_TRUE(glued.ok());
+  EXPECT_EQ(glued.solid->num_solids(), 3);
+  EXPECT_EQ(glued.solid->num_interface_faces(), full.solid->num_interface_faces());
+  EXPECT_EQ(glued.solid->num_interface_faces(), 2);
+  EXPECT_EQ(glued.solid->num_faces(), full.solid->num_faces());
+  EXPECT_EQ(glued.solid->num_edges(), full.solid->num_edges());
+  EXPECT_NEAR(glued.solid->volume(), 10 * 10 + 2 * 3 * 4 + 10, 1e-9);
+}
+
 // Solids touching along an edge or at a vertex only: one mesh of them would not be a
 // manifold there, so the input is refused naming where they touch.
 TEST(ReadSolid, SolidsTouchingAlongAnEdgeOrAtAVertexAreNonManifold) {
