@@ -203,6 +203,24 @@ TEST(PlaneCuts, TheCutEndsAtItsTimeLimitEvenWhereOcctDoesNot) {
   }
 }
 
+// On that piece of i02's the unification loops; where it ends at all it takes milliseconds.
+// So it is stopped at its own bound (not at the cut's limit, which it used to wait out), and
+// the cut goes on: adding the surfaces one at a time, it leaves out the one whose pieces do
+// not unify (the cylinder of Face5) and cuts along the other eight.
+TEST(PlaneCuts, AUnificationThatLoopsIsStoppedAndItsSurfaceLeftOut) {
+  const occ::ReadResult in = occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/i02o_m2.step");
+  ASSERT_TRUE(in.ok()) << "HexMe model i02 not found in " << VOROHEX_HEXME_DIR;
+  PlaneCutOptions o;
+  o.time_limit = 120;
+  const PlaneCutResult r = cut_at_concave_edges(*in.solid, o);
+  EXPECT_EQ(left_out_text(r), "the cylinder of Face5");
+  EXPECT_EQ(r.planes + r.cylinders, 8);
+  EXPECT_EQ(r.pieces_before_merge, 36);
+  // What remains to say is about the pieces (one has no scheme), not about OCCT or time.
+  EXPECT_NE(r.why_not.find("pieces"), std::string::npos) << r.why_not;
+  EXPECT_EQ(r.why_not.find("OCCT"), std::string::npos) << r.why_not;
+}
+
 // HexMe i22: 11 planes and 2 cylinders cut it into 80 pieces (more than the default cap of
 // 60, raised here), which share their common edges and vertices. A merge fuses two of them
 // and unifies the union's faces; that unification changed the shared sub-shapes in place,
