@@ -65,7 +65,7 @@ std::string voronoi_decomposition(const occ::Solid& solid, const MeshOptions& me
 }
 
 // Runs in the child: exact cuts at the concave edges (with at most half the time), else the
-// Voronoi decomposition (with what is left, at most the other half); or only the latter.
+// Voronoi decomposition (with what is left, at most voronoi_share); or only the latter.
 std::string decompose_to_text(const occ::Solid& solid, const MeshOptions& mesh_options,
                               DecompositionMethods methods) {
   const auto t0 = std::chrono::steady_clock::now();
