@@ -178,7 +178,8 @@ int parse_count_or_zero(const std::string& name, const std::string& text) {
   return static_cast<int>(v);
 }
 
-// Progress lines on stderr: one per stage and every 25 % within it.
+}  // namespace
+
 core::Progress progress_printer(bool quiet) {
   if (quiet) return {};
   auto t0 = std::chrono::steady_clock::now();
@@ -194,6 +195,8 @@ core::Progress progress_printer(bool quiet) {
                  static_cast<int>(100 * fraction));
   });
 }
+
+namespace {
 
 void print_diagnostics(const std::vector<core::Diagnostic>& diagnostics) {
   for (const auto& d : diagnostics) std::cerr << "vorohex: " << core::format(d) << "\n";

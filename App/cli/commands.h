@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "core/progress.h"
+
 namespace vorohex::cli {
 
 constexpr int kExitOk = 0;
@@ -15,6 +17,10 @@ int run_mesh(const std::vector<std::string>& args);
 int run_check(const std::vector<std::string>& args);
 int run_voronoi(const std::vector<std::string>& args);
 int run_decompose(const std::vector<std::string>& args);
+
+// Progress lines on stderr ("[   1.25s] split     50%"): one per stage and every 25 %
+// within it; none when quiet.
+core::Progress progress_printer(bool quiet);
 
 extern const char* const kMeshUsage;
 extern const char* const kCheckUsage;

@@ -5,10 +5,12 @@
 #include <functional>
 #include <iostream>
 #include <map>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include "cli/commands.h"
+#include "core/isolated_call.h"
 #include "decompose/decompose.h"
 #include "decompose/decomposition_io.h"
 #include "decompose/plane_cuts.h"
@@ -35,14 +37,21 @@ const char* const kVoronoiUsage =
 
 const char* const kDecomposeUsage =
     "usage: vorohex decompose IN -o PARTS.brep [--report DECOMPOSITION.json] [--vtp FACES.vtp]\n"
-    "                         [--sharp-angle DEG] [--no-merge] [--plane-cuts] [graph options]\n"
+    "                         [--sharp-angle DEG] [--no-merge] [--plane-cuts] [--time-limit S]\n"
+    "                         [--quiet] [graph options]\n"
     "  IN    a solid as STEP, BREP or IGES\n"
     "  -o    the sub-volumes as solids in one BREP compound (open it in FreeCAD)\n"
     "  --plane-cuts           the mesher's second way instead of the Voronoi graph: exact\n"
     "                         cuts along the planes and cylinders of the faces at concave\n"
     "                         edges, neighbours merged while the union has a scheme; the\n"
     "                         pieces are written also when one has no scheme (exit 1);\n"
-    "                         with it, only -o (the options below are the Voronoi one's)\n"
+    "                         with it, only -o, --time-limit and --quiet (the options\n"
+    "                         below are the Voronoi one's)\n"
+    "  --time-limit S         seconds the whole may take (default 30): the split and the\n"
+    "                         merging get what is left; stopped before merging, it fails\n"
+    "                         (error time_limit, naming the step); stopped while merging, it\n"
+    "                         keeps the sub-volumes it has\n"
+    "  --quiet                no progress lines\n"
     "  --report FILE          edge types, vertex rules, decomposition faces, sub-volumes\n"
     "                         with type (Vs/Ve), scheme and reason, counts before/after merging\n"
     "  --vtp FILE             the decomposition faces as VTK PolyData for ParaView\n"
@@ -166,11 +175,15 @@ int run_voronoi(const std::vector<std::string>& args) {
 
 // vorohex decompose --plane-cuts: the pieces, each with the scheme it gets once glued to the
 // others (or why it has none).
-int run_plane_cuts(const std::string& input, const std::string& brep_path) {
+int run_plane_cuts(const std::string& input, const std::string& brep_path, double time_limit,
+                   const core::Progress& progress) {
   occ::ReadResult read = occ::read_solid(input);
   print_problems(read.diagnostics);
   if (!read.ok()) return kExitBadInput;
-  const decompose::PlaneCutResult cut = decompose::cut_at_concave_edges(*read.solid);
+  decompose::PlaneCutOptions options;
+  options.time_limit = time_limit;
+  const decompose::PlaneCutResult cut =
+      decompose::cut_at_concave_edges(*read.solid, options, progress.with_time_limit(time_limit));
   if (cut.pieces.empty()) {
     std::cerr << "vorohex: the plane cuts of " << input << " failed: " << cut.why_not
               << " (nothing written)\n";
@@ -235,48 +248,101 @@ int run_decompose(const std::vector<std::string>& args) {
       voronoi_option = name;
       inner();
     };
-  bool plane_cuts = false;
+  bool plane_cuts = false, quiet = false;
+  double time_limit = 30;
   t.flags["--plane-cuts"] = [&] { plane_cuts = true; };
+  t.flags["--quiet"] = [&] { quiet = true; };
+  t.values["--time-limit"] = [&](const std::string& s) {
+    return parse_number(s, &time_limit) && time_limit > 0;
+  };
   if (std::string e = parse(args, t, &input); !e.empty()) return usage_error(e, kDecomposeUsage);
   if (brep_path.empty()) return usage_error("missing -o PARTS.brep", kDecomposeUsage);
+  // The deadline counts from here: reading the file and the graph are part of the whole.
+  const core::Progress printer = progress_printer(quiet);
+  const core::Progress progress = printer.with_time_limit(time_limit);
   if (plane_cuts) {
     if (!voronoi_option.empty())
       return usage_error(voronoi_option +
                              " is an option of the Voronoi decomposition; --plane-cuts takes "
-                             "only -o",
+                             "only -o, --time-limit and --quiet",
                          kDecomposeUsage);
-    return run_plane_cuts(input, brep_path);
+    return run_plane_cuts(input, brep_path, time_limit, progress);
   }
   if (std::string why = graph_options.validate(); !why.empty())
     return usage_error(why, kDecomposeUsage);
   if (std::string why = options.validate(); !why.empty()) return usage_error(why, kDecomposeUsage);
 
-  std::unique_ptr<occ::Solid> solid;
-  voronoi::VoronoiResult graph;
-  if (int code = read_and_graph(input, graph_options, &solid, &graph); code >= 0) return code;
-  const decompose::DecompositionResult result = decompose::decompose(*solid, graph, options);
-  print_problems(result.diagnostics);
-  std::string error;
-  if (!result.ok()) {
-    // The report says why (status failed, the diagnostics); no sub-volumes are written.
-    if (!json_path.empty() && !decompose::write_decomposition(result, "", json_path, &error))
-      std::cerr << "vorohex: " << error << "\n";
-    return kExitInvalid;
-  }
-  if (!decompose::write_decomposition(result, brep_path, json_path, &error, vtp_path)) {
-    std::cerr << "vorohex: " << error << "\n";
+  occ::ReadResult read = occ::read_solid(input);
+  if (!read.ok()) {
+    print_problems(read.diagnostics);
     return kExitBadInput;
   }
-  std::cout << "decomposition of " << input << ": " << result.stats.sub_volumes_before_merge
+  // The graph and the decomposition run in a child process: they stop themselves at the
+  // deadline where they can, and the child is killed a little after it where OCCT's split
+  // does not return (HexMe i09: 20 s past its limit). Its stderr is this process's; what
+  // it prints on stdout comes back, after the exit code, on the first line.
+  const occ::Solid& solid = *read.solid;
+  core::IsolatedJob job(
+      [&](const core::Progress& in_child) {
+        in_child.report("voronoi", 0.0);
+        const voronoi::VoronoiResult graph = voronoi::compute_voronoi_graph(solid, graph_options);
+        print_problems(graph.diagnostics);
+        if (!graph.ok()) return std::to_string(kExitInvalid) + "\n";
+        in_child.report("voronoi", 1.0);
+        const decompose::DecompositionResult result =
+            decompose::decompose(solid, graph, options, in_child);
+        print_problems(result.diagnostics);
+        std::string error;
+        if (!result.ok()) {
+          // The report says why (status failed, the diagnostics); no sub-volumes are written.
+          if (!json_path.empty() && !decompose::write_decomposition(result, "", json_path, &error))
+            std::cerr << "vorohex: " << error << "\n";
+          return std::to_string(kExitInvalid) + "\n";
+        }
+        if (!decompose::write_decomposition(result, brep_path, json_path, &error, vtp_path)) {
+          std::cerr << "vorohex: " << error << "\n";
+          return std::to_string(kExitBadInput) + "\n";
+        }
+        std::ostringstream out;
+        out << kExitOk << "\n"
+            << "decomposition of " << input << ": " << result.stats.sub_volumes_before_merge
             << " sub-volumes before merging, " << result.stats.sub_volumes << " after, "
             << result.stats.decomposition_faces << " decomposition faces\n";
-  for (std::size_t i = 0; i < result.sub_volumes.size(); ++i) {
-    const auto& sv = result.sub_volumes[i];
-    std::cout << "  sub-volume " << i << ": " << sv.reason << "\n";
-  }
-  std::cout << "wrote " << brep_path << (json_path.empty() ? "" : ", " + json_path)
+        for (std::size_t i = 0; i < result.sub_volumes.size(); ++i)
+          out << "  sub-volume " << i << ": " << result.sub_volumes[i].reason << "\n";
+        out << "wrote " << brep_path << (json_path.empty() ? "" : ", " + json_path)
             << (vtp_path.empty() ? "" : ", " + vtp_path) << "\n";
-  return kExitOk;
+        return out.str();
+      },
+      progress);
+  const double grace = std::max(2.0, 0.1 * time_limit);
+  const core::IsolatedResult got =
+      job.take(printer.with_time_limit(progress.seconds_left() + grace), {"decompose"});
+  if (got.ok()) {
+    const std::size_t eol = got.data.find('\n');
+    std::cout << got.data.substr(eol + 1);
+    return std::stoi(got.data.substr(0, eol));
+  }
+  decompose::DecompositionResult failed;  // status failed
+  if (got.status == core::IsolatedResult::Status::cancelled) {
+    std::ostringstream s;
+    s << "The decomposition did not stop within its time limit of " << time_limit
+      << " s (OCCT's split or fuse did not return in time) and was stopped " << grace
+      << " s after it";
+    failed.diagnostics.push_back(core::make_error("time_limit", s.str()));
+  } else {
+    failed.diagnostics.push_back(core::make_error(
+        "decomposition_crashed",
+        "The decomposition " +
+            std::string(got.status == core::IsolatedResult::Status::crashed ? "crashed: "
+                                                                            : "failed: ") +
+            got.message));
+  }
+  print_problems(failed.diagnostics);
+  std::string error;
+  if (!json_path.empty() && !decompose::write_decomposition(failed, "", json_path, &error))
+    std::cerr << "vorohex: " << error << "\n";
+  return kExitInvalid;
 }
 
 }  // namespace vorohex::cli

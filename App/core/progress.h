@@ -5,6 +5,7 @@
 #include <atomic>
 #include <chrono>
 #include <functional>
+#include <limits>
 #include <string_view>
 
 namespace vorohex::core {
@@ -26,6 +27,11 @@ class Progress {
     return (cancel_ && cancel_->load(std::memory_order_relaxed)) || timed_out();
   }
   bool timed_out() const { return has_deadline_ && std::chrono::steady_clock::now() > deadline_; }
+  // Seconds until the deadline (negative past it; infinity without one).
+  double seconds_left() const {
+    if (!has_deadline_) return std::numeric_limits<double>::infinity();
+    return std::chrono::duration<double>(deadline_ - std::chrono::steady_clock::now()).count();
+  }
 
   // A copy that also counts as cancelled once `seconds` have passed from now (or at this
   // one's deadline, if that comes first: a limit never extends another).

@@ -227,7 +227,7 @@ void extend_cut(const occ::Solid& solid, const ClassifiedEdge& ce, const detail:
 
 // Step 3: the quadrilaterals of the projected edges and of the closing rectangles.
 void build_quads(const occ::Solid& solid, const VoronoiGraph& g, double line_tol,
-                 DecompositionResult& r) {
+                 const core::Progress& progress, DecompositionResult& r) {
   std::map<int, const TreatedVertex*> treated;
   for (const TreatedVertex& t : r.vertices) treated[t.element] = &t;
   // The vertex's single point for the faces a target stands for.
@@ -259,6 +259,7 @@ void build_quads(const occ::Solid& solid, const VoronoiGraph& g, double line_tol
   };
   for (const ClassifiedEdge& ce : r.edges) {
     if (ce.targets.empty()) continue;
+    if (progress.cancelled()) return;  // (the caller says so)
     const auto& el = g.elements[ce.element];
     std::vector<Vec3> line = el.polyline;
     if (line.size() < 2) continue;
@@ -579,9 +580,10 @@ void judge_glued(DecompositionResult& r) {
 // one alone (the L with a hole in each leg: its corner and one leg make a sweep alone, but
 // the other leg's interface splits its end face). Repeats
 // until nothing qualifies. A rejected group is not fused again (its solids are unchanged),
-// and the pass stops at the time limit: each try is an OCCT fuse.
+// and the pass stops at the time limit (or when `progress` is cancelled): each try is an
+// OCCT fuse.
 void merge_pass(const occ::Solid& solid, const VoronoiGraph& g, double tol, double time_limit,
-                DecompositionResult& r) {
+                const core::Progress& progress, DecompositionResult& r) {
   std::set<std::vector<const occ::Solid*>> rejected;
   const auto start = Clock::now();
   for (bool merged = true; merged;) {
@@ -615,8 +617,9 @@ void merge_pass(const occ::Solid& solid, const VoronoiGraph& g, double tol, doub
       for (int i : group) key.push_back(r.sub_volumes[i].solid.get());
       std::sort(key.begin(), key.end());
       if (rejected.count(key)) continue;
-      if (time_limit > 0 &&
-          std::chrono::duration<double>(Clock::now() - start).count() > time_limit) {
+      if (progress.cancelled() ||
+          (time_limit > 0 &&
+           std::chrono::duration<double>(Clock::now() - start).count() > time_limit)) {
         r.diagnostics.push_back(core::make_info(
             "merge_stopped", "The merge pass stopped at the time limit (" +
                                  std::to_string(r.sub_volumes.size()) + " sub-volumes left)"));
@@ -687,6 +690,38 @@ DecompositionResult& finish(DecompositionResult& r, Clock::time_point t0) {
   return r;
 }
 
+// The seconds a step may take: its own limit (0: none), or what is left before the
+// deadline when that comes first (at least a little: the step then says it ran out).
+double within(double own, const core::Progress& progress) {
+  const double left = progress.seconds_left();
+  if (!std::isfinite(left)) return own;
+  const double bounded = std::max(left, 0.1);
+  return own > 0 ? std::min(own, bounded) : bounded;
+}
+
+// Cancelled by the user, not (only) past the deadline: once the split has given sub-volumes,
+// a deadline no longer fails the run (their checks run to the end; the merge pass stops).
+bool cancelled_only(const core::Progress& progress) {
+  return progress.cancelled() && !progress.timed_out();
+}
+
+// Cancelled or past the deadline: fails, naming the step it stopped in.
+DecompositionResult& stopped(DecompositionResult& r, const core::Progress& progress,
+                             const std::string& during, Clock::time_point t0) {
+  r.status = DecompositionStatus::failed;
+  const double s = std::chrono::duration<double>(Clock::now() - t0).count();
+  char seconds[32];
+  std::snprintf(seconds, sizeof seconds, "%.1f", s);
+  if (progress.timed_out())
+    r.diagnostics.push_back(
+        core::make_error("time_limit", "The decomposition stopped at its time limit while " +
+                                           during + " (after " + seconds + " s)"));
+  else
+    r.diagnostics.push_back(
+        core::make_error("cancelled", "The decomposition was cancelled while " + during));
+  return finish(r, t0);
+}
+
 // The Voronoi elements generating the most quads, for the too-many-quads diagnostic.
 std::string most_prolific(const std::vector<DecompositionQuad>& quads) {
   std::map<int, int> count;
@@ -711,9 +746,10 @@ std::vector<ClassifiedEdge> classify_edges(const voronoi::VoronoiResult& voronoi
 }
 
 DecompositionResult decompose(const occ::Solid& solid, const voronoi::VoronoiResult& voronoi,
-                              const DecomposeOptions& options) {
+                              const DecomposeOptions& options, const core::Progress& progress) {
   const auto t0 = Clock::now();
   DecompositionResult r;
+  progress.report("decompose", 0.0);
   if (const std::string why = options.validate(); !why.empty()) {
     r.diagnostics.push_back(core::make_error("invalid_options", why));
     return r;
@@ -726,8 +762,10 @@ DecompositionResult decompose(const occ::Solid& solid, const voronoi::VoronoiRes
   const double tol = options.tolerance * solid.diagonal();
   const detail::ModelRelations rel(*voronoi.model);
   classify_all(g, rel, options.sharp_angle * kPi / 180, r);
-  build_quads(solid, g, options.polyline_tolerance * solid.diagonal(), r);
+  build_quads(solid, g, options.polyline_tolerance * solid.diagonal(), progress, r);
+  if (progress.cancelled()) return stopped(r, progress, "projecting the Voronoi edges", t0);
   snap_coplanar(solid, r.quads, options.plane_snap * solid.diagonal());
+  progress.report("decompose", 0.25);
 
   const int max_quads = options.max_quads_per_face * std::max(solid.num_faces(), 1);
   if (r.stats.quads > max_quads) {
@@ -741,10 +779,13 @@ DecompositionResult decompose(const occ::Solid& solid, const voronoi::VoronoiRes
 
   std::vector<std::vector<Vec3>> tools;
   for (const auto& q : r.quads) tools.push_back(q.points);
-  occ::SplitResult split =
-      occ::split_solid(solid, tools, std::max(tol, 1e-7), options.split_time_limit);
+  occ::SplitResult split = occ::split_solid(solid, tools, std::max(tol, 1e-7),
+                                            within(options.split_time_limit, progress));
   for (auto& d : split.diagnostics) r.diagnostics.push_back(d);
+  if (!split.ok && progress.cancelled())
+    return stopped(r, progress, "OCCT split the solid by its decomposition faces", t0);
   if (!split.ok) return finish(r, t0);
+  progress.report("decompose", 0.5);
   if (split.dropped_internal_faces > 0)
     r.diagnostics.push_back(
         core::make_info("dangling_decomposition_faces",
@@ -760,6 +801,7 @@ DecompositionResult decompose(const occ::Solid& solid, const voronoi::VoronoiRes
   for (std::size_t i = 0; i < r.sub_volumes.size(); ++i)
     type_sub_volume(g, r, int(i), r.sub_volumes[i]);
   r.stats.sub_volumes_before_merge = int(r.sub_volumes.size());
+  if (cancelled_only(progress)) return stopped(r, progress, "typing the sub-volumes", t0);
   // Pieces that are not closed or lose volume cannot be repaired by merging: report now.
   r.status = DecompositionStatus::ok;
   detail::self_check(solid, tol, false, options.sharp_angle, r);
@@ -773,7 +815,12 @@ DecompositionResult decompose(const occ::Solid& solid, const voronoi::VoronoiRes
                                      }),
                       r.diagnostics.end());
 
-  if (options.merge) merge_pass(solid, g, tol, options.split_time_limit, r);
+  if (cancelled_only(progress)) return stopped(r, progress, "checking the sub-volumes", t0);
+  if (options.merge)
+    merge_pass(solid, g, tol, within(options.split_time_limit, progress), progress, r);
+  // A deadline ends the merge pass with what it has (merge_stopped); a cancel ends the run.
+  if (cancelled_only(progress)) return stopped(r, progress, "merging sub-volumes", t0);
+  progress.report("decompose", 0.75);
   // Judged glued only when it is a candidate for meshing: every piece has a scheme alone.
   if (std::none_of(r.sub_volumes.begin(), r.sub_volumes.end(),
                    [](const SubVolume& sv) { return sv.scheme == Scheme::none; }))
@@ -794,6 +841,7 @@ DecompositionResult decompose(const occ::Solid& solid, const voronoi::VoronoiRes
     if (d.code == "open_vertex_gap" || d.code == "unusable_voronoi_edge") complete = false;
   r.status = complete ? DecompositionStatus::ok : DecompositionStatus::partial;
   detail::self_check(solid, tol, true, options.sharp_angle, r);
+  progress.report("decompose", 1.0);
   return finish(r, t0);
 }
 

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/diagnostic.h"
+#include "core/progress.h"
 #include "decompose/detail/rules.h"
 #include "occ/solid.h"
 #include "voronoi/voronoi_graph.h"
@@ -171,7 +172,14 @@ std::vector<ClassifiedEdge> classify_edges(const voronoi::VoronoiResult& voronoi
 // (diagnostics say which); failed: invalid options, no model, too many quads, OCCT could
 // not split (or not in time), or the final self-check found the sub-volumes not closed,
 // overlapping or not summing to the solid's volume (1e-9 relative).
+// `progress` gets stage "decompose" (fractions) and bounds the whole: the split and the
+// merge pass get at most the time left before its deadline. Cancelled, the decomposition
+// fails with error `cancelled` naming the step; past the deadline before the split has
+// given sub-volumes, with error `time_limit` naming the step. Past it after, the merge pass
+// stops (info merge_stopped) and the sub-volumes it has are checked (the self-checks run to
+// their end) and returned.
 DecompositionResult decompose(const occ::Solid& solid, const voronoi::VoronoiResult& voronoi,
-                              const DecomposeOptions& options = {});
+                              const DecomposeOptions& options = {},
+                              const core::Progress& progress = {});
 
 }  // namespace vorohex::decompose

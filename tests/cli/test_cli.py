@@ -5,6 +5,7 @@ Run by ctest: /usr/bin/python3 test_cli.py <path to vorohex> <examples dir>
 """
 import json
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -761,6 +762,40 @@ class InspectCommands(unittest.TestCase):
             code, _, stderr = run("decompose", step, "-o", parts, "--plane-cuts", *option)
             self.assertEqual(code, 2, option)
             self.assertIn(option[0] + " is an option of the Voronoi decomposition", stderr)
+
+    def test_decompose_shows_progress_and_stops_at_its_time_limit(self):
+        step = os.path.join(EXAMPLES, "tapered_brick.step")
+        parts, rep = os.path.join(self.dir, "parts.brep"), os.path.join(self.dir, "d.json")
+        code, stdout, stderr = run("decompose", step, "-o", parts, "--report", rep)
+        self.assertEqual(code, 0, stdout + stderr)
+        lines = [l for l in stderr.splitlines() if l.startswith("[")]
+        self.assertTrue(any(re.search(r"voronoi +0%", l) for l in lines), stderr)
+        self.assertTrue(any(re.search(r"decompose +100%", l) for l in lines), stderr)
+        self.assertIn("after", stdout)  # the summary comes back from the child process
+        code, _, stderr = run("decompose", step, "-o", parts, "--quiet")
+        self.assertEqual(code, 0, stderr)
+        self.assertNotIn("%", stderr)
+        # A limit too short for anything: a failure naming the step, in the report too; no
+        # sub-volumes written.
+        os.remove(parts)
+        code, _, stderr = run("decompose", step, "-o", parts, "--report", rep,
+                              "--time-limit", "0.001")
+        self.assertEqual(code, 1, stderr)
+        self.assertIn("error [time_limit] The decomposition stopped at its time limit while",
+                      stderr)
+        with open(rep) as f:
+            report = json.load(f)
+        self.assertEqual(report["status"], "failed")
+        self.assertIn("time_limit", [d["code"] for d in report["diagnostics"]])
+        self.assertFalse(os.path.exists(parts))
+        for bad in ("0", "-1", "abc", "nan", "inf"):
+            code, _, stderr = run("decompose", step, "-o", parts, "--time-limit", bad)
+            self.assertEqual(code, 2, bad)
+            self.assertIn("--time-limit", stderr)
+        # The plane cuts take the limit too.
+        code, _, stderr = run("decompose", step, "-o", parts, "--plane-cuts", "--time-limit",
+                              "20", "--quiet")
+        self.assertNotEqual(code, 2, stderr)
 
     def test_failed_decomposition_still_writes_its_report(self):
         # HexMe's notch: the split loses 1.3e-9 of the volume (over the 1e-9 allowed), so the

@@ -27,14 +27,17 @@ std::string to_text(int before_merge, const char* method,
 
 // Runs in the child: the Voronoi decomposition, or throws with the reason.
 // `seconds`: what is left of the decomposition's time.
+// The seconds bound the whole (graph, split, merging): the decomposition stops itself at
+// them, with the step it was in, before the parent's kill at the decomposition's limit.
 std::string voronoi_decomposition(const occ::Solid& solid, const MeshOptions& mesh_options,
                                   double seconds) {
+  const core::Progress deadline = core::Progress{}.with_time_limit(std::max(1.0, seconds));
   const voronoi::VoronoiResult graph = voronoi::compute_voronoi_graph(solid, mesh_options.graph);
   if (!graph.ok()) throw std::runtime_error("its Voronoi graph could not be computed");
   decompose::DecomposeOptions options;
   options.sharp_angle = mesh_options.sharp_angle;
   options.split_time_limit = std::max(1.0, std::min(30.0, seconds));
-  const decompose::DecompositionResult d = decompose::decompose(solid, graph, options);
+  const decompose::DecompositionResult d = decompose::decompose(solid, graph, options, deadline);
   if (!d.ok()) {
     for (const core::Diagnostic& diag : d.diagnostics)
       if (diag.severity != core::Severity::info) {

@@ -4,7 +4,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <string>
+#include <string_view>
+#include <thread>
+#include <vector>
 
 #include "decompose/decompose.h"
 #include "occ/primitives.h"
@@ -137,6 +142,52 @@ TEST(DecomposeBounds, SplitTimeLimitFailsWithADiagnostic) {
   const DecompositionResult r = decompose(l, v, opt);
   EXPECT_EQ(r.status, DecompositionStatus::failed);
   EXPECT_TRUE(has(r, "split_timeout"));
+}
+
+TEST(DecomposeBounds, APassedDeadlineOrACancelFailsNamingTheStep) {
+  const occ::Solid l = thick_l();
+  const voronoi::VoronoiResult v = voronoi::compute_voronoi_graph(l);
+  const DecompositionResult late = decompose(l, v, {}, core::Progress().with_time_limit(0));
+  EXPECT_EQ(late.status, DecompositionStatus::failed);
+  EXPECT_TRUE(late.sub_volumes.empty());
+  const auto d = std::find_if(late.diagnostics.begin(), late.diagnostics.end(),
+                              [](const auto& x) { return x.code == "time_limit"; });
+  ASSERT_NE(d, late.diagnostics.end());
+  EXPECT_EQ(d->severity, core::Severity::error);
+  EXPECT_NE(d->message.find("while projecting the Voronoi edges"), std::string::npos) << d->message;
+  std::atomic<bool> cancel{true};
+  const DecompositionResult cancelled = decompose(l, v, {}, core::Progress({}, &cancel));
+  EXPECT_EQ(cancelled.status, DecompositionStatus::failed);
+  EXPECT_TRUE(has(cancelled, "cancelled"));
+  EXPECT_FALSE(has(cancelled, "time_limit"));
+}
+
+TEST(DecomposeBounds, ADeadlineWhileMergingKeepsTheSubVolumesItHas) {
+  // The thick L: 3 sub-volumes, merged into one sweep without a deadline. Here the deadline
+  // passes right after the split (the progress callback waits it out): the merge pass
+  // stops, says so, and the sub-volumes of the split are the result, checked as ever.
+  const occ::Solid l = thick_l();
+  const voronoi::VoronoiResult v = voronoi::compute_voronoi_graph(l);
+  const DecompositionResult merged = decompose(l, v);
+  ASSERT_EQ(merged.sub_volumes.size(), 1u);
+  const double seconds = 5;  // ample for the split of the L (a fraction of a second)
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  std::vector<double> reported;
+  const core::Progress progress = core::Progress([&](std::string_view stage, double f) {
+                                    EXPECT_EQ(stage, "decompose");
+                                    reported.push_back(f);
+                                    if (f == 0.5) std::this_thread::sleep_until(deadline);
+                                  }).with_time_limit(seconds);
+  const DecompositionResult r = decompose(l, v, {}, progress);
+  ASSERT_TRUE(r.ok());
+  EXPECT_TRUE(has(r, "merge_stopped"));
+  EXPECT_EQ(r.sub_volumes.size(), 3u);
+  EXPECT_EQ(r.stats.sub_volumes_before_merge, 3);
+  expect_invariants(l, r);
+  EXPECT_TRUE(std::is_sorted(reported.begin(), reported.end()));
+  ASSERT_FALSE(reported.empty());
+  EXPECT_EQ(reported.front(), 0.0);
+  EXPECT_EQ(reported.back(), 1.0);
 }
 
 TEST(DecomposeBounds, HexMeModelsStayBoundedAndNeverInvalidOk) {
