@@ -2,6 +2,7 @@
 //   vorohex voronoi IN -o GRAPH.json [--vtp G.vtp]          the embedded Voronoi graph
 //   vorohex decompose IN -o PARTS.brep [--report D.json]    the sub-volumes
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <iostream>
 #include <map>
@@ -48,9 +49,9 @@ const char* const kDecomposeUsage =
     "                         with it, only -o, --time-limit and --quiet (the options\n"
     "                         below are the Voronoi one's)\n"
     "  --time-limit S         seconds the whole may take (default 30): the split and the\n"
-    "                         merging get what is left; stopped before merging, it fails\n"
-    "                         (error time_limit, naming the step); stopped while merging, it\n"
-    "                         keeps the sub-volumes it has\n"
+    "                         merging get what is left; stopped before the split ends, it\n"
+    "                         fails (error time_limit, naming the step); stopped later, the\n"
+    "                         merging ends and the sub-volumes it has are checked and written\n"
     "  --quiet                no progress lines\n"
     "  --report FILE          edge types, vertex rules, decomposition faces, sub-volumes\n"
     "                         with type (Vs/Ve), scheme and reason, counts before/after merging\n"
@@ -221,6 +222,21 @@ int run_plane_cuts(const std::string& input, const std::string& brep_path, doubl
   return cut.ok ? kExitOk : kExitInvalid;
 }
 
+// Where a file is written before it is renamed to `path` ("" stays "").
+std::string partial(const std::string& path) {
+  return path.empty() ? path : path + ".partial";
+}
+
+// Renames each partial file to its path; false (with why) at the first that fails.
+bool renamed(const std::vector<std::string>& paths, std::string* error) {
+  for (const std::string& path : paths)
+    if (!path.empty() && std::rename(partial(path).c_str(), path.c_str()) != 0) {
+      *error = "could not write " + path + " (renaming " + partial(path) + " failed)";
+      return false;
+    }
+  return true;
+}
+
 int run_decompose(const std::vector<std::string>& args) {
   std::string input, brep_path, json_path, vtp_path;
   voronoi::VoronoiOptions graph_options;
@@ -299,7 +315,13 @@ int run_decompose(const std::vector<std::string>& args) {
             std::cerr << "vorohex: " << error << "\n";
           return std::to_string(kExitInvalid) + "\n";
         }
-        if (!decompose::write_decomposition(result, brep_path, json_path, &error, vtp_path)) {
+        // Written beside and renamed once all are: a child stopped while writing leaves
+        // what the user had at those paths.
+        if (!decompose::write_decomposition(result, partial(brep_path), partial(json_path), &error,
+                                            partial(vtp_path)) ||
+            !renamed({brep_path, json_path, vtp_path}, &error)) {
+          for (const std::string& path : {brep_path, json_path, vtp_path})
+            if (!path.empty()) std::remove(partial(path).c_str());
           std::cerr << "vorohex: " << error << "\n";
           return std::to_string(kExitBadInput) + "\n";
         }
@@ -339,6 +361,8 @@ int run_decompose(const std::vector<std::string>& args) {
             got.message));
   }
   print_problems(failed.diagnostics);
+  for (const std::string& path : {brep_path, json_path, vtp_path})
+    if (!path.empty()) std::remove(partial(path).c_str());
   std::string error;
   if (!json_path.empty() && !decompose::write_decomposition(failed, "", json_path, &error))
     std::cerr << "vorohex: " << error << "\n";

@@ -772,6 +772,9 @@ class InspectCommands(unittest.TestCase):
         self.assertTrue(any(re.search(r"voronoi +0%", l) for l in lines), stderr)
         self.assertTrue(any(re.search(r"decompose +100%", l) for l in lines), stderr)
         self.assertIn("after", stdout)  # the summary comes back from the child process
+        # Written beside and renamed: nothing partial is left.
+        self.assertTrue(os.path.exists(parts) and os.path.exists(rep))
+        self.assertFalse([f for f in os.listdir(self.dir) if f.endswith(".partial")])
         code, _, stderr = run("decompose", step, "-o", parts, "--quiet")
         self.assertEqual(code, 0, stderr)
         self.assertNotIn("%", stderr)
