@@ -763,13 +763,17 @@ class Decomposition:
 
 
 def decompose(shape, sharp_angle=None, merge=True, vtp=None, eps=None, delta=None,
-              max_depth=None, linear_tolerance=None, progress=None, method="voronoi"):
+              max_depth=None, linear_tolerance=None, progress=None, method="voronoi",
+              time_limit=30):
     """Cuts the one solid in `shape` into sweepable and mappable sub-volumes along its
     embedded Voronoi graph (vorohex decompose). sharp_angle: degrees in (0, 180] below
     which a dihedral counts as sharp (default 60); merge: unite neighbours whose union is
     a sweep; vtp: a path to write the decomposition faces to (VTK PolyData); the graph
-    options are those of voronoi_graph; progress as for voronoi_graph. Returns a
-    Decomposition.
+    options are those of voronoi_graph; progress as for voronoi_graph; time_limit: seconds
+    the whole may take (default 30, as `vorohex decompose --time-limit`): the split and the
+    merging get what is left; stopped before the split ends it fails (status "failed", a
+    "time_limit" error naming the step), stopped later the merging ends and the
+    sub-volumes it has are returned. Returns a Decomposition.
 
     method="plane-cuts": the mesher's other way (vorohex decompose --plane-cuts): exact
     cuts along the planes and cylinders of the faces at concave edges, through the whole
@@ -777,11 +781,16 @@ def decompose(shape, sharp_angle=None, merge=True, vtp=None, eps=None, delta=Non
     "scheme" (the scheme it gets once glued to the others, "none" with a "reason") and
     "volume"; counts has "planes", "cylinders", "sub_volumes_before_merge" and
     "sub_volumes"; shapes holds the pieces, also the pieces as cut when the cuts failed
-    (status "failed", the reason in diagnostics). It takes none of the Voronoi options."""
+    (status "failed", the reason in diagnostics). It takes none of the Voronoi options
+    (time_limit and progress it takes)."""
     import tempfile
     if method not in ("voronoi", "plane-cuts"):
         raise ValueError("VoroHex: option 'method' must be 'voronoi' or 'plane-cuts', got "
                          "{!r}".format(method))
+    limit = _number("time_limit", time_limit)
+    if not (math.isfinite(limit) and limit > 0):
+        raise ValueError("VoroHex: option 'time_limit' must be a number of seconds > 0, got "
+                         "{!r}".format(time_limit))
     if method == "plane-cuts":
         given = dict(sharp_angle=sharp_angle, vtp=vtp, eps=eps, delta=delta,
                      max_depth=max_depth, linear_tolerance=linear_tolerance)
@@ -794,7 +803,7 @@ def decompose(shape, sharp_angle=None, merge=True, vtp=None, eps=None, delta=Non
         solid = _read_solid(check_shape(shape))
         with tempfile.TemporaryDirectory(prefix="vorohex-") as tmp:
             brep = os.path.join(tmp, "pieces.brep")
-            text = _core.plane_cuts_json(solid, brep, progress)
+            text = _core.plane_cuts_json(solid, brep, progress, limit)
             shapes = []
             if os.path.exists(brep):
                 import Part
@@ -810,7 +819,8 @@ def decompose(shape, sharp_angle=None, merge=True, vtp=None, eps=None, delta=Non
     solid = _read_solid(check_shape(shape))
     with tempfile.TemporaryDirectory(prefix="vorohex-") as tmp:
         brep = os.path.join(tmp, "parts.brep")
-        text = _core.decomposition_json(solid, opts, angle, merge, brep, vtp or "", progress)
+        text = _core.decomposition_json(solid, opts, angle, merge, brep, vtp or "", progress,
+                                        limit)
         shapes = []
         if os.path.exists(brep):
             import Part

@@ -6,10 +6,13 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cctype>
+#include <cmath>
 #include <cstring>
 #include <memory>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -432,8 +435,13 @@ std::string voronoi_json(SolidPtr solid, const voronoi::VoronoiOptions& options)
 // gets heartbeats through `progress(stage, 0.0)` (False cancels: the child is killed, the
 // Python exception Cancelled is raised), and a crash inside the child is an error, not the
 // end of FreeCAD.
+// With `kill_after` > 0 the child is also killed after that many seconds, and
+// TimeLimitError is thrown.
+struct TimeLimitError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
 std::string run_isolated(const std::function<std::string()>& work, py::object progress,
-                         const char* stage) {
+                         const char* stage, double kill_after = 0) {
   std::atomic<bool> cancel{false};
   std::unique_ptr<py::error_already_set> callback_error;
   core::Progress::Callback cb;
@@ -454,13 +462,15 @@ std::string run_isolated(const std::function<std::string()>& work, py::object pr
     py::gil_scoped_release nogil;
     core::IsolatedCallOptions o;
     o.stage = stage;
-    run = core::isolated_call(work, core::Progress(cb, &cancel), o);
+    const core::Progress p(cb, &cancel);
+    run = core::isolated_call(work, kill_after > 0 ? p.with_time_limit(kill_after) : p, o);
   }
   if (callback_error) throw std::move(*callback_error);
   switch (run.status) {
     case core::IsolatedResult::Status::ok:
       return run.data;
     case core::IsolatedResult::Status::cancelled:
+      if (!cancel) throw TimeLimitError(std::string(stage) + " did not stop in time");
       throw CancelledError(std::string(stage) + " was cancelled");
     case core::IsolatedResult::Status::crashed:
       throw std::runtime_error(std::string(stage) + " crashed (" + run.message + ")");
@@ -505,45 +515,95 @@ py::tuple typed_voronoi(SolidPtr solid, const voronoi::VoronoiOptions& options, 
 
 // The decomposition as JSON text (decomposition_io.h layout), writing the sub-volumes as a
 // BREP compound and the decomposition faces as VTP where paths are given.
+// The seconds after a decomposition's time limit at which its child is killed where OCCT
+// does not return (as `vorohex decompose` does).
+double kill_after(double time_limit) {
+  return time_limit + std::max(2.0, 0.1 * time_limit);
+}
+
+// What a decomposition killed at its time limit reports.
+std::string stopped_at(double time_limit) {
+  std::ostringstream s;
+  s << "The decomposition did not stop within its time limit of " << time_limit
+    << " s (OCCT's split or fuse did not return in time) and was stopped "
+    << kill_after(time_limit) - time_limit << " s after it";
+  return s.str();
+}
+
+void check_time_limit(double time_limit) {
+  if (!(std::isfinite(time_limit) && time_limit > 0))
+    throw std::invalid_argument("time_limit must be a number of seconds > 0, got " +
+                                std::to_string(time_limit));
+}
+
 std::string decomposition_json(SolidPtr solid, const voronoi::VoronoiOptions& graph_options,
                                double sharp_angle, bool merge, const std::string& brep_path,
-                               const std::string& vtp_path, py::object progress) {
+                               const std::string& vtp_path, py::object progress,
+                               double time_limit) {
   if (!solid) throw std::invalid_argument("no solid given");
   if (std::string why = graph_options.validate(); !why.empty()) throw std::invalid_argument(why);
   decompose::DecomposeOptions options;
   options.sharp_angle = sharp_angle;
   options.merge = merge;
   if (std::string why = options.validate(); !why.empty()) throw std::invalid_argument(why);
-  // In the child: it writes the files, the JSON comes back.
-  return run_isolated(
-      [&] {
-        const voronoi::VoronoiResult graph = voronoi::compute_voronoi_graph(*solid, graph_options);
-        const decompose::DecompositionResult result = decompose::decompose(*solid, graph, options);
-        std::string error;
-        if (result.ok() && !decompose::write_decomposition(result, brep_path, "", &error, vtp_path))
-          throw std::runtime_error(error);
-        return decompose::decomposition_json(result);
-      },
-      progress, "decomposition");
+  check_time_limit(time_limit);
+  // In the child: it writes the files, the JSON comes back. The time limit bounds the whole
+  // (decompose/decompose.h); a child that does not stop is killed a little after it.
+  try {
+    return run_isolated(
+        [&] {
+          const core::Progress deadline = core::Progress().with_time_limit(time_limit);
+          const voronoi::VoronoiResult graph =
+              voronoi::compute_voronoi_graph(*solid, graph_options);
+          const decompose::DecompositionResult result =
+              decompose::decompose(*solid, graph, options, deadline);
+          std::string error;
+          if (result.ok() &&
+              !decompose::write_decomposition(result, brep_path, "", &error, vtp_path))
+            throw std::runtime_error(error);
+          return decompose::decomposition_json(result);
+        },
+        progress, "decomposition", kill_after(time_limit));
+  } catch (const TimeLimitError&) {
+    decompose::DecompositionResult failed;  // status failed
+    failed.diagnostics.push_back(core::make_error("time_limit", stopped_at(time_limit)));
+    return decompose::decomposition_json(failed);
+  }
 }
 
 // The mesher's exact plane cuts at concave edges (decompose/plane_cuts.h) as JSON text
 // (decomposition_io.h), each piece with the scheme it gets; writes the pieces as a BREP
 // compound where a path is given (also when the cuts failed: the pieces as cut).
-std::string plane_cuts_json(SolidPtr solid, const std::string& brep_path, py::object progress) {
+std::string plane_cuts_json(SolidPtr solid, const std::string& brep_path, py::object progress,
+                            double time_limit) {
   if (!solid) throw std::invalid_argument("no solid given");
-  return run_isolated(
-      [&] {
-        const decompose::PlaneCutResult cut = decompose::cut_at_concave_edges(*solid);
-        if (!brep_path.empty() && !cut.pieces.empty()) {
-          std::vector<const occ::Solid*> pieces;
-          for (const occ::Solid& s : cut.pieces) pieces.push_back(&s);
-          std::string error;
-          if (!occ::write_compound_brep(pieces, brep_path, &error)) throw std::runtime_error(error);
-        }
-        return decompose::plane_cuts_json(cut, decompose::plane_cut_schemes(cut));
-      },
-      progress, "plane cuts");
+  check_time_limit(time_limit);
+  decompose::PlaneCutOptions options;
+  options.time_limit = time_limit;
+  try {
+    return run_isolated(
+        [&] {
+          const decompose::PlaneCutResult cut = decompose::cut_at_concave_edges(
+              *solid, options, core::Progress().with_time_limit(time_limit));
+          if (!brep_path.empty() && !cut.pieces.empty()) {
+            std::vector<const occ::Solid*> pieces;
+            for (const occ::Solid& s : cut.pieces) pieces.push_back(&s);
+            std::string error;
+            if (!occ::write_compound_brep(pieces, brep_path, &error))
+              throw std::runtime_error(error);
+          }
+          return decompose::plane_cuts_json(cut, decompose::plane_cut_schemes(cut));
+        },
+        progress, "plane cuts", kill_after(time_limit));
+  } catch (const TimeLimitError&) {
+    decompose::PlaneCutResult failed;
+    std::ostringstream s;
+    s << "the cuts did not stop within their time limit of " << time_limit
+      << " s (OCCT did not return in time) and were stopped " << kill_after(time_limit) - time_limit
+      << " s after it";
+    failed.why_not = s.str();
+    return decompose::plane_cuts_json(failed, {});
+  }
 }
 
 quality::CheckReport check(const core::HexMesh& mesh, SolidPtr solid, double volume_rel_tol,
@@ -579,11 +639,11 @@ PYBIND11_MODULE(_VoroHexCore, m) {
         "process, progress(stage, fraction) heartbeats may return False to cancel");
   m.def("decomposition_json", &decomposition_json, py::arg("solid"), py::arg("graph_options"),
         py::arg("sharp_angle"), py::arg("merge"), py::arg("brep_path") = "",
-        py::arg("vtp_path") = "", py::arg("progress") = py::none(),
+        py::arg("vtp_path") = "", py::arg("progress") = py::none(), py::arg("time_limit") = 30.0,
         "the decomposition of a solid as JSON text; writes the sub-volumes (BREP) and the "
-        "decomposition faces (VTP) where paths are given");
+        "decomposition faces (VTP) where paths are given; time_limit: seconds for the whole");
   m.def("plane_cuts_json", &plane_cuts_json, py::arg("solid"), py::arg("brep_path") = "",
-        py::arg("progress") = py::none(),
+        py::arg("progress") = py::none(), py::arg("time_limit") = 30.0,
         "the exact plane cuts at a solid's concave edges as JSON text, each piece with its "
         "scheme; writes the pieces (BREP) where a path is given");
   m.def("check_mesh", &check, py::arg("mesh"), py::arg("solid") = nullptr,

@@ -205,6 +205,20 @@ class TestVoroHexApi(unittest.TestCase):
             VoroHex.decompose(solid, sharp_angle=0)
         with self.assertRaisesRegex(TypeError, "merge"):
             VoroHex.decompose(solid, merge="yes")
+        # A time limit too short for anything: a failed decomposition naming the step.
+        late = VoroHex.decompose(solid, time_limit=0.001)
+        self.assertFalse(late.ok)
+        self.assertEqual(late.shapes, [])
+        errors = [d for d in late.diagnostics if d["severity"] == "error"]
+        self.assertIn("time_limit", [d["code"] for d in errors])
+        self.assertIn("stopped at its time limit while",
+                      [d for d in errors if d["code"] == "time_limit"][0]["message"])
+        for bad in (0, -1, float("nan")):
+            with self.assertRaisesRegex(ValueError, "time_limit"):
+                VoroHex.decompose(solid, time_limit=bad)
+        with self.assertRaisesRegex(TypeError, "time_limit"):
+            VoroHex.decompose(solid, time_limit="10")
+        self.assertTrue(VoroHex.decompose(solid, method="plane-cuts", time_limit=20).ok)
 
     def test_plane_cuts_decomposition(self):
         # The mesher's other decomposition, from Python: a round post on a plate is cut
