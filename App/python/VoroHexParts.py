@@ -28,6 +28,10 @@ ROLES = (
 )
 COLOURS = {r[0]: r[1] for r in ROLES}
 
+# Seconds a decomposition may take unless its TimeLimit says otherwise (as `vorohex
+# decompose --time-limit`).
+DEFAULT_TIME_LIMIT = 30.0
+
 RESULTS = (
     ("Status", "App::PropertyString", "ok, partial, or error when the last recompute failed"),
     ("Message", "App::PropertyString", "Summary of the last recompute, or why it failed"),
@@ -73,6 +77,11 @@ class Decomposition:
             obj.addProperty("App::PropertyBool", "Merge", "Decomposition",
                             "Unite neighbouring sub-volumes whose union is a sweep")
             obj.Merge = True
+        if not hasattr(obj, "TimeLimit"):
+            obj.addProperty("App::PropertyFloat", "TimeLimit", "Decomposition",
+                            "Seconds the decomposition may take (> 0): stopped before its "
+                            "split ends it fails, later its merging stops")
+            obj.TimeLimit = DEFAULT_TIME_LIMIT
         for name, prop_type, doc in RESULTS:
             if not hasattr(obj, name):
                 obj.addProperty(prop_type, name, "Result", doc)
@@ -101,7 +110,8 @@ class Decomposition:
             if data is None or getattr(self, "key", None) != key:
                 data = VoroHexObjects.compute_or_raise(obj, "decomposition", lambda: compute(
                     obj.Part.Shape, obj.SharpAngle, obj.Merge,
-                    VoroHexObjects.graph_options_of(obj), getattr(self, "progress", None)))
+                    VoroHexObjects.graph_options_of(obj), getattr(self, "progress", None),
+                    obj.TimeLimit))
                 if data is None:  # cancelled (Status and Message say so)
                     return
             error = self.apply(obj, data)
@@ -140,15 +150,16 @@ class Decomposition:
 
 
 def cache_key(obj):
-    return (obj.Part.Name if obj.Part else None, obj.SharpAngle, obj.Merge,
+    return (obj.Part.Name if obj.Part else None, obj.SharpAngle, obj.Merge, obj.TimeLimit,
             tuple(sorted(VoroHexObjects.graph_options_of(obj).items())))
 
 
-def compute(shape, sharp_angle, merge, options, progress=None):
+def compute(shape, sharp_angle, merge, options, progress=None, time_limit=None):
     """The decomposition of `shape` as plain values (no document access: it runs in a child
     process for the GUI): the VoroHex.Decomposition without its shapes, each sub-volume as
     a BREP string, and the role of each of its faces. apply() stores them."""
     d = VoroHex.decompose(shape, sharp_angle=sharp_angle, merge=merge, progress=progress,
+                          time_limit=DEFAULT_TIME_LIMIT if time_limit is None else time_limit,
                           **options)
     roles = face_roles(d) if d.ok and d.shapes else []
     solids = [s.exportBrepToString() for s in d.shapes]
@@ -156,9 +167,10 @@ def compute(shape, sharp_angle, merge, options, progress=None):
     return {"decomposition": d, "solids": solids, "roles": roles}
 
 
-def compute_work(report, brep, sharp_angle, merge, options):
+def compute_work(report, brep, sharp_angle, merge, options, time_limit=None):
     """compute() of the shape `brep` (exportBrepToString()), in a VoroHexJobs child."""
-    return compute(VoroHexObjects.shape_from_brep(brep), sharp_angle, merge, options, report)
+    return compute(VoroHexObjects.shape_from_brep(brep), sharp_angle, merge, options, report,
+                   time_limit)
 
 
 def set_children(obj, solids, roles):
@@ -238,14 +250,20 @@ def face_roles(d):
     return roles
 
 
-def makeDecomposition(doc, part, name=None, merge=True, progress=None, data=None, **options):
+def makeDecomposition(doc, part, name=None, merge=True, progress=None, data=None,
+                      time_limit=None, **options):
     """Adds a decomposition object for `part` to `doc` and computes it. Raises ValueError
     (and leaves the document as it was) when `part` holds no single solid. progress as for
     VoroHexGraph.makeVoronoiGraph; options: sharp_angle, eps, delta, max_depth, set as the
-    object's properties before it computes."""
+    object's properties before it computes; time_limit: seconds (TimeLimit, default 30)."""
     error = VoroHexObjects.source_error(part)
     if error is not None:
         raise ValueError("VoroHex: " + error)
+    if time_limit is not None:
+        time_limit = VoroHex._number("time_limit", time_limit)
+        if not time_limit > 0:
+            raise ValueError("VoroHex: option 'time_limit' must be a number of seconds > 0, "
+                             "got {!r}".format(time_limit))
     obj = doc.addObject("Part::FeaturePython",
                         name or VoroHexObjects.object_name(part, "Decomposition"))
     if name is None:
@@ -258,6 +276,8 @@ def makeDecomposition(doc, part, name=None, merge=True, progress=None, data=None
         doc.removeObject(obj.Name)  # the document as it was
         raise
     obj.Merge = merge
+    if time_limit is not None:
+        obj.TimeLimit = time_limit
     if FreeCAD.GuiUp:
         from VoroHexGui import parts_view
 

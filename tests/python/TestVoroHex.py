@@ -809,6 +809,21 @@ class TestVoroHexObject(unittest.TestCase):
         self.assertEqual(list(d.Schemes), ["sweep"])
         self.assertEqual(list(d.FaceRoles).count("source/target"), 2)
         self.assertNotIn("decomposition", d.FaceRoles)
+        # Its time limit: too short, the recompute fails saying so and keeps the last result.
+        self.assertEqual(d.TimeLimit, 30.0)
+        d.TimeLimit = 0.001
+        self.doc.recompute()
+        self.assertEqual(d.Status, "error")
+        self.assertIn("time limit", d.Message)
+        self.assertEqual((d.SubVolumeCount, len(d.Shape.Solids)), (1, 1))
+        d.TimeLimit = 30
+        self.doc.recompute()
+        self.assertEqual((d.Status, d.SubVolumeCount), ("ok", 1))
+        names = [o.Name for o in self.doc.Objects]
+        for bad in (0, -5):
+            with self.assertRaisesRegex(ValueError, "time_limit"):
+                VoroHexParts.makeDecomposition(self.doc, l_shape, time_limit=bad)
+        self.assertEqual([o.Name for o in self.doc.Objects], names)
 
     def test_recompute_counts_validity(self):
         obj = self.make_mesh()
