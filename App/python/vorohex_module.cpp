@@ -432,7 +432,8 @@ std::string voronoi_json(SolidPtr solid, const voronoi::VoronoiOptions& options)
 }
 
 // Runs `work` in a child process (core/isolated_call.h) with the GIL released: the caller
-// gets heartbeats through `progress(stage, 0.0)` (False cancels: the child is killed, the
+// gets the child's reports, or before any heartbeats, through `progress(stage, fraction)`
+// (False cancels: the child is killed, the
 // Python exception Cancelled is raised), and a crash inside the child is an error, not the
 // end of FreeCAD.
 // With `kill_after` > 0 the child is also killed after that many seconds, and
@@ -440,8 +441,9 @@ std::string voronoi_json(SolidPtr solid, const voronoi::VoronoiOptions& options)
 struct TimeLimitError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
-std::string run_isolated(const std::function<std::string()>& work, py::object progress,
-                         const char* stage, double kill_after = 0) {
+// `work` gets a Progress whose reports cross to `progress` (core::IsolatedJob).
+std::string run_isolated(const std::function<std::string(const core::Progress&)>& work,
+                         py::object progress, const char* stage, double kill_after = 0) {
   std::atomic<bool> cancel{false};
   std::unique_ptr<py::error_already_set> callback_error;
   core::Progress::Callback cb;
@@ -463,7 +465,9 @@ std::string run_isolated(const std::function<std::string()>& work, py::object pr
     core::IsolatedCallOptions o;
     o.stage = stage;
     const core::Progress p(cb, &cancel);
-    run = core::isolated_call(work, kill_after > 0 ? p.with_time_limit(kill_after) : p, o);
+    const core::Progress limited = kill_after > 0 ? p.with_time_limit(kill_after) : p;
+    core::IsolatedJob job(work, limited);
+    run = job.take(limited, o);
   }
   if (callback_error) throw std::move(*callback_error);
   switch (run.status) {
@@ -491,7 +495,7 @@ py::tuple typed_voronoi(SolidPtr solid, const voronoi::VoronoiOptions& options, 
   if (std::string why = d.validate(); !why.empty()) throw std::invalid_argument(why);
   // The child sends "<id> <type>" lines, a 0x1e separator, then the graph's JSON.
   const std::string bytes = run_isolated(
-      [&] {
+      [&](const core::Progress&) {
         const voronoi::VoronoiResult graph = voronoi::compute_voronoi_graph(*solid, options);
         std::string out;
         for (const decompose::ClassifiedEdge& e : decompose::classify_edges(graph, d))
@@ -551,8 +555,8 @@ std::string decomposition_json(SolidPtr solid, const voronoi::VoronoiOptions& gr
   // (decompose/decompose.h); a child that does not stop is killed a little after it.
   try {
     return run_isolated(
-        [&] {
-          const core::Progress deadline = core::Progress().with_time_limit(time_limit);
+        [&](const core::Progress& in_child) {
+          const core::Progress deadline = in_child.with_time_limit(time_limit);
           const voronoi::VoronoiResult graph =
               voronoi::compute_voronoi_graph(*solid, graph_options);
           const decompose::DecompositionResult result =
@@ -582,9 +586,9 @@ std::string plane_cuts_json(SolidPtr solid, const std::string& brep_path, py::ob
   options.time_limit = time_limit;
   try {
     return run_isolated(
-        [&] {
+        [&](const core::Progress& in_child) {
           const decompose::PlaneCutResult cut = decompose::cut_at_concave_edges(
-              *solid, options, core::Progress().with_time_limit(time_limit));
+              *solid, options, in_child.with_time_limit(time_limit));
           if (!brep_path.empty() && !cut.pieces.empty()) {
             std::vector<const occ::Solid*> pieces;
             for (const occ::Solid& s : cut.pieces) pieces.push_back(&s);

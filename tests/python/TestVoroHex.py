@@ -262,12 +262,19 @@ class TestVoroHexApi(unittest.TestCase):
         # Both run in a child process: heartbeats reach the callback, False stops it.
         fig6 = figure6_shape()
         beats = []
-        d = VoroHex.decompose(fig6, progress=lambda stage, f: beats.append(stage) or True)
+        d = VoroHex.decompose(fig6,
+                              progress=lambda stage, f: beats.append((stage, f)) or True)
         # It ran to the end: walls, corners and protrusions cut apart, then merged into the
         # one sweep the prism is.
         self.assertGreaterEqual(d.counts["sub_volumes_before_merge"], 12)
         self.assertEqual([sv["scheme"] for sv in d.sub_volumes], ["sweep"])
-        self.assertIn("decomposition", beats)
+        # The decomposition's own fractions cross from the child process, in order, to the
+        # end; between them heartbeats repeat the latest (the run takes about 2.4 s).
+        self.assertGreaterEqual(len(beats), 5)
+        fractions = [f for s, f in beats if s == "decompose"]
+        self.assertEqual(fractions, sorted(fractions))
+        self.assertEqual((fractions[0], fractions[-1]), (0.0, 1.0))
+        self.assertIn(0.5, fractions)
         t0 = time.time()
         with self.assertRaisesRegex(VoroHex.Cancelled, "cancelled"):
             VoroHex.decompose(fig6, progress=lambda stage, f: False)
