@@ -237,6 +237,11 @@ bool renamed(const std::vector<std::string>& paths, std::string* error) {
   return true;
 }
 
+void remove_partials(const std::vector<std::string>& paths) {
+  for (const std::string& path : paths)
+    if (!path.empty()) std::remove(partial(path).c_str());
+}
+
 int run_decompose(const std::vector<std::string>& args) {
   std::string input, brep_path, json_path, vtp_path;
   voronoi::VoronoiOptions graph_options;
@@ -320,8 +325,7 @@ int run_decompose(const std::vector<std::string>& args) {
         if (!decompose::write_decomposition(result, partial(brep_path), partial(json_path), &error,
                                             partial(vtp_path)) ||
             !renamed({brep_path, json_path, vtp_path}, &error)) {
-          for (const std::string& path : {brep_path, json_path, vtp_path})
-            if (!path.empty()) std::remove(partial(path).c_str());
+          remove_partials({brep_path, json_path, vtp_path});
           std::cerr << "vorohex: " << error << "\n";
           return std::to_string(kExitBadInput) + "\n";
         }
@@ -337,9 +341,9 @@ int run_decompose(const std::vector<std::string>& args) {
         return out.str();
       },
       progress);
-  const double grace = std::max(2.0, 0.1 * time_limit);
   const core::IsolatedResult got =
-      job.take(printer.with_time_limit(progress.seconds_left() + grace), {"decompose"});
+      job.take(printer.with_time_limit(progress.seconds_left() + decompose::stop_grace(time_limit)),
+               {"decompose"});
   if (got.ok()) {
     const std::size_t eol = got.data.find('\n');
     std::cout << got.data.substr(eol + 1);
@@ -347,11 +351,7 @@ int run_decompose(const std::vector<std::string>& args) {
   }
   decompose::DecompositionResult failed;  // status failed
   if (got.status == core::IsolatedResult::Status::cancelled) {
-    std::ostringstream s;
-    s << "The decomposition did not stop within its time limit of " << time_limit
-      << " s (OCCT's split or fuse did not return in time) and was stopped " << grace
-      << " s after it";
-    failed.diagnostics.push_back(core::make_error("time_limit", s.str()));
+    failed.diagnostics.push_back(decompose::not_stopped_error(time_limit));
   } else {
     failed.diagnostics.push_back(core::make_error(
         "decomposition_crashed",
@@ -361,8 +361,7 @@ int run_decompose(const std::vector<std::string>& args) {
             got.message));
   }
   print_problems(failed.diagnostics);
-  for (const std::string& path : {brep_path, json_path, vtp_path})
-    if (!path.empty()) std::remove(partial(path).c_str());
+  remove_partials({brep_path, json_path, vtp_path});
   std::string error;
   if (!json_path.empty() && !decompose::write_decomposition(failed, "", json_path, &error))
     std::cerr << "vorohex: " << error << "\n";

@@ -8,6 +8,7 @@
 #include <map>
 #include <optional>
 #include <set>
+#include <sstream>
 
 #include "decompose/detail/topology.h"
 #include "mesh/map_block.h"
@@ -743,6 +744,18 @@ std::vector<ClassifiedEdge> classify_edges(const voronoi::VoronoiResult& voronoi
   const detail::ModelRelations rel(*voronoi.model);
   classify_all(voronoi.graph, rel, options.sharp_angle * kPi / 180, r);
   return r.edges;
+}
+
+double stop_grace(double time_limit) {
+  return std::max(2.0, 0.1 * time_limit);
+}
+
+core::Diagnostic not_stopped_error(double time_limit) {
+  std::ostringstream s;
+  s << "The decomposition did not stop within its time limit of " << time_limit
+    << " s (OCCT's split or fuse did not return in time) and was stopped " << stop_grace(time_limit)
+    << " s after it";
+  return core::make_error("time_limit", s.str());
 }
 
 DecompositionResult decompose(const occ::Solid& solid, const voronoi::VoronoiResult& voronoi,

@@ -182,4 +182,11 @@ DecompositionResult decompose(const occ::Solid& solid, const voronoi::VoronoiRes
                               const DecomposeOptions& options = {},
                               const core::Progress& progress = {});
 
+// For callers that run decompose() in a child process (vorohex decompose, VoroHex.decompose):
+// the seconds they wait past its time limit before killing the child where OCCT's split
+// does not return (its deadline is only polled at OCCT's progress points): 10 %, at least
+// 2 s; and the `time_limit` error such a kill gives.
+double stop_grace(double time_limit);
+core::Diagnostic not_stopped_error(double time_limit);
+
 }  // namespace vorohex::decompose

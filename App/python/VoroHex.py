@@ -150,6 +150,15 @@ def _number(name, value, integer=False):
     return value
 
 
+def _seconds(name, value):
+    """A time limit: a number of seconds > 0, else TypeError / ValueError naming it."""
+    value = _number(name, value)
+    if value <= 0:
+        raise ValueError("VoroHex: option '{}' must be a number of seconds > 0, got "
+                         "{!r}".format(name, value))
+    return value
+
+
 def _check_range(option, value):
     """Raises ValueError naming the option unless value suits option.kind."""
     kind, name = option.kind, option.name
@@ -762,9 +771,13 @@ class Decomposition:
         return "<VoroHex.Decomposition {} {}>".format(self.status, self.counts)
 
 
+# Seconds decompose() may take unless told otherwise (as `vorohex decompose --time-limit`).
+DECOMPOSITION_TIME_LIMIT = 30.0
+
+
 def decompose(shape, sharp_angle=None, merge=True, vtp=None, eps=None, delta=None,
               max_depth=None, linear_tolerance=None, progress=None, method="voronoi",
-              time_limit=30):
+              time_limit=DECOMPOSITION_TIME_LIMIT):
     """Cuts the one solid in `shape` into sweepable and mappable sub-volumes along its
     embedded Voronoi graph (vorohex decompose). sharp_angle: degrees in (0, 180] below
     which a dihedral counts as sharp (default 60); merge: unite neighbours whose union is
@@ -787,10 +800,7 @@ def decompose(shape, sharp_angle=None, merge=True, vtp=None, eps=None, delta=Non
     if method not in ("voronoi", "plane-cuts"):
         raise ValueError("VoroHex: option 'method' must be 'voronoi' or 'plane-cuts', got "
                          "{!r}".format(method))
-    limit = _number("time_limit", time_limit)
-    if not (math.isfinite(limit) and limit > 0):
-        raise ValueError("VoroHex: option 'time_limit' must be a number of seconds > 0, got "
-                         "{!r}".format(time_limit))
+    limit = _seconds("time_limit", time_limit)
     if method == "plane-cuts":
         given = dict(sharp_angle=sharp_angle, vtp=vtp, eps=eps, delta=delta,
                      max_depth=max_depth, linear_tolerance=linear_tolerance)

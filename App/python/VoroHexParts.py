@@ -28,10 +28,6 @@ ROLES = (
 )
 COLOURS = {r[0]: r[1] for r in ROLES}
 
-# Seconds a decomposition may take unless its TimeLimit says otherwise (as `vorohex
-# decompose --time-limit`).
-DEFAULT_TIME_LIMIT = 30.0
-
 RESULTS = (
     ("Status", "App::PropertyString", "ok, partial, or error when the last recompute failed"),
     ("Message", "App::PropertyString", "Summary of the last recompute, or why it failed"),
@@ -81,7 +77,7 @@ class Decomposition:
             obj.addProperty("App::PropertyFloat", "TimeLimit", "Decomposition",
                             "Seconds the decomposition may take (> 0): stopped before its "
                             "split ends it fails, later its merging stops")
-            obj.TimeLimit = DEFAULT_TIME_LIMIT
+            obj.TimeLimit = VoroHex.DECOMPOSITION_TIME_LIMIT
         for name, prop_type, doc in RESULTS:
             if not hasattr(obj, name):
                 obj.addProperty(prop_type, name, "Result", doc)
@@ -154,12 +150,13 @@ def cache_key(obj):
             tuple(sorted(VoroHexObjects.graph_options_of(obj).items())))
 
 
-def compute(shape, sharp_angle, merge, options, progress=None, time_limit=None):
+def compute(shape, sharp_angle, merge, options, progress=None,
+            time_limit=VoroHex.DECOMPOSITION_TIME_LIMIT):
     """The decomposition of `shape` as plain values (no document access: it runs in a child
     process for the GUI): the VoroHex.Decomposition without its shapes, each sub-volume as
     a BREP string, and the role of each of its faces. apply() stores them."""
     d = VoroHex.decompose(shape, sharp_angle=sharp_angle, merge=merge, progress=progress,
-                          time_limit=DEFAULT_TIME_LIMIT if time_limit is None else time_limit,
+                          time_limit=time_limit,
                           **options)
     roles = face_roles(d) if d.ok and d.shapes else []
     solids = [s.exportBrepToString() for s in d.shapes]
@@ -167,7 +164,8 @@ def compute(shape, sharp_angle, merge, options, progress=None, time_limit=None):
     return {"decomposition": d, "solids": solids, "roles": roles}
 
 
-def compute_work(report, brep, sharp_angle, merge, options, time_limit=None):
+def compute_work(report, brep, sharp_angle, merge, options,
+                 time_limit=VoroHex.DECOMPOSITION_TIME_LIMIT):
     """compute() of the shape `brep` (exportBrepToString()), in a VoroHexJobs child."""
     return compute(VoroHexObjects.shape_from_brep(brep), sharp_angle, merge, options, report,
                    time_limit)
@@ -260,10 +258,7 @@ def makeDecomposition(doc, part, name=None, merge=True, progress=None, data=None
     if error is not None:
         raise ValueError("VoroHex: " + error)
     if time_limit is not None:
-        time_limit = VoroHex._number("time_limit", time_limit)
-        if not time_limit > 0:
-            raise ValueError("VoroHex: option 'time_limit' must be a number of seconds > 0, "
-                             "got {!r}".format(time_limit))
+        time_limit = VoroHex._seconds("time_limit", time_limit)
     obj = doc.addObject("Part::FeaturePython",
                         name or VoroHexObjects.object_name(part, "Decomposition"))
     if name is None:

@@ -432,16 +432,14 @@ std::string voronoi_json(SolidPtr solid, const voronoi::VoronoiOptions& options)
 }
 
 // Runs `work` in a child process (core/isolated_call.h) with the GIL released: the caller
-// gets the child's reports, or before any heartbeats, through `progress(stage, fraction)`
-// (False cancels: the child is killed, the
-// Python exception Cancelled is raised), and a crash inside the child is an error, not the
-// end of FreeCAD.
-// With `kill_after` > 0 the child is also killed after that many seconds, and
-// TimeLimitError is thrown.
+// gets the child's reports (`work` gets a Progress whose reports cross, core::IsolatedJob),
+// or before any heartbeats, through `progress(stage, fraction)` (False cancels: the child
+// is killed, the Python exception Cancelled is raised), and a crash inside the child is an
+// error, not the end of FreeCAD. With `kill_after` > 0 the child is also killed after that
+// many seconds, and TimeLimitError is thrown.
 struct TimeLimitError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
-// `work` gets a Progress whose reports cross to `progress` (core::IsolatedJob).
 std::string run_isolated(const std::function<std::string(const core::Progress&)>& work,
                          py::object progress, const char* stage, double kill_after = 0) {
   std::atomic<bool> cancel{false};
@@ -517,21 +515,10 @@ py::tuple typed_voronoi(SolidPtr solid, const voronoi::VoronoiOptions& options, 
   return py::make_tuple(bytes.substr(sep + 1), types);
 }
 
-// The decomposition as JSON text (decomposition_io.h layout), writing the sub-volumes as a
-// BREP compound and the decomposition faces as VTP where paths are given.
-// The seconds after a decomposition's time limit at which its child is killed where OCCT
-// does not return (as `vorohex decompose` does).
+// When a decomposition's child is killed where OCCT does not return (as in `vorohex
+// decompose`).
 double kill_after(double time_limit) {
-  return time_limit + std::max(2.0, 0.1 * time_limit);
-}
-
-// What a decomposition killed at its time limit reports.
-std::string stopped_at(double time_limit) {
-  std::ostringstream s;
-  s << "The decomposition did not stop within its time limit of " << time_limit
-    << " s (OCCT's split or fuse did not return in time) and was stopped "
-    << kill_after(time_limit) - time_limit << " s after it";
-  return s.str();
+  return time_limit + decompose::stop_grace(time_limit);
 }
 
 void check_time_limit(double time_limit) {
@@ -540,6 +527,8 @@ void check_time_limit(double time_limit) {
                                 std::to_string(time_limit));
 }
 
+// The decomposition as JSON text (decomposition_io.h layout), writing the sub-volumes as a
+// BREP compound and the decomposition faces as VTP where paths are given.
 std::string decomposition_json(SolidPtr solid, const voronoi::VoronoiOptions& graph_options,
                                double sharp_angle, bool merge, const std::string& brep_path,
                                const std::string& vtp_path, py::object progress,
@@ -570,7 +559,7 @@ std::string decomposition_json(SolidPtr solid, const voronoi::VoronoiOptions& gr
         progress, "decomposition", kill_after(time_limit));
   } catch (const TimeLimitError&) {
     decompose::DecompositionResult failed;  // status failed
-    failed.diagnostics.push_back(core::make_error("time_limit", stopped_at(time_limit)));
+    failed.diagnostics.push_back(decompose::not_stopped_error(time_limit));
     return decompose::decomposition_json(failed);
   }
 }
@@ -603,7 +592,7 @@ std::string plane_cuts_json(SolidPtr solid, const std::string& brep_path, py::ob
     decompose::PlaneCutResult failed;
     std::ostringstream s;
     s << "the cuts did not stop within their time limit of " << time_limit
-      << " s (OCCT did not return in time) and were stopped " << kill_after(time_limit) - time_limit
+      << " s (OCCT did not return in time) and were stopped " << decompose::stop_grace(time_limit)
       << " s after it";
     failed.why_not = s.str();
     return decompose::plane_cuts_json(failed, {});

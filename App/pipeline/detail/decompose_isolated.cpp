@@ -25,10 +25,10 @@ std::string to_text(int before_merge, const char* method,
   return std::to_string(before_merge) + "\n" + method + "\n" + brep;
 }
 
-// Runs in the child: the Voronoi decomposition, or throws with the reason.
-// `seconds`: what is left of the decomposition's time.
-// The seconds bound the whole (graph, split, merging): the decomposition stops itself at
-// them, with the step it was in, before the parent's kill at the decomposition's limit.
+// Runs in the child: the Voronoi decomposition, or throws with the reason. `seconds`, what
+// is left of the decomposition's time, bound the whole (graph, split, merging): the
+// decomposition stops itself at them, with the step it was in, before the parent's kill
+// at the decomposition's limit.
 std::string voronoi_decomposition(const occ::Solid& solid, const MeshOptions& mesh_options,
                                   double seconds) {
   const core::Progress deadline = core::Progress{}.with_time_limit(std::max(1.0, seconds));
@@ -36,7 +36,6 @@ std::string voronoi_decomposition(const occ::Solid& solid, const MeshOptions& me
   if (!graph.ok()) throw std::runtime_error("its Voronoi graph could not be computed");
   decompose::DecomposeOptions options;
   options.sharp_angle = mesh_options.sharp_angle;
-  options.split_time_limit = std::max(1.0, std::min(30.0, seconds));
   const decompose::DecompositionResult d = decompose::decompose(solid, graph, options, deadline);
   if (!d.ok()) {
     for (const core::Diagnostic& diag : d.diagnostics)
