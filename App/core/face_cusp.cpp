@@ -26,7 +26,8 @@ Vec3 along(const MeshDomain& d, const OrientedEdge& oe, bool at_end, double l) {
 
 }  // namespace
 
-std::string face_cusp(const MeshDomain& d, FaceId f, double degrees) {
+std::vector<Cusp> face_cusps(const MeshDomain& d, FaceId f, double degrees) {
+  std::vector<Cusp> found;
   const double cos_limit = std::cos(degrees * M_PI / 180);
   // Per vertex, the edges into and out of it as the wires run: one of each per wire passing,
   // more where wires touch (a hole tangent to the outline is a wire of its own).
@@ -63,11 +64,26 @@ std::string face_cusp(const MeshDomain& d, FaceId f, double degrees) {
         const Vec3 c_in = vertex - along(d, in, true, l);
         const Vec3 c_out = along(d, out, false, l) - vertex;
         if (c_in.cross(c_out).dot(normal) <= 1e-9 * c_in.norm() * c_out.norm()) continue;
-        return entity_name(v) + " of " + entity_name(f) + ", where " + entity_name(in.edge) +
-               " and " + entity_name(out.edge) + " meet tangentially";
+        found.push_back({f, v, in, out});
       }
   }
-  return {};
+  return found;
+}
+
+double cusp_angle_at(const MeshDomain& d, const Cusp& c, double l) {
+  const Vec3 vertex = d.vertex_point(c.vertex);
+  const Vec3 a = along(d, c.in, true, std::min(l, d.edge_length(c.in.edge))) - vertex;
+  const Vec3 b = along(d, c.out, false, std::min(l, d.edge_length(c.out.edge))) - vertex;
+  if (a.norm() <= 0 || b.norm() <= 0) return 0;
+  return std::acos(std::clamp(a.normalized().dot(b.normalized()), -1.0, 1.0));
+}
+
+std::string face_cusp(const MeshDomain& d, FaceId f, double degrees) {
+  const std::vector<Cusp> cusps = face_cusps(d, f, degrees);
+  if (cusps.empty()) return {};
+  const Cusp& c = cusps.front();
+  return entity_name(c.vertex) + " of " + entity_name(f) + ", where " + entity_name(c.in.edge) +
+         " and " + entity_name(c.out.edge) + " meet tangentially";
 }
 
 std::string first_cusp(const MeshDomain& d, double degrees) {

@@ -8,10 +8,27 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "core/mesh_domain.h"
 
 namespace vorohex::core {
+
+// One such corner: the face, the vertex, and the edges into and out of it as the face's
+// wire runs.
+struct Cusp {
+  FaceId face;
+  VertexId vertex;
+  OrientedEdge in, out;
+};
+
+// Every such corner of face f. `degrees`: the largest angle counted as a point.
+std::vector<Cusp> face_cusps(const MeshDomain& domain, FaceId f, double degrees = 2);
+
+// The angle (radians) at the cusp between the chords from its vertex to the points at arc
+// length l along each of its two edges (l at most each edge's length): what a quad with its
+// corner there and its next nodes at l gets.
+double cusp_angle_at(const MeshDomain& domain, const Cusp& cusp, double l);
 
 // The first such corner of face f ("Vertex3 of Face2, where Edge4 and Edge7 meet
 // tangentially"), empty if none. `degrees`: the largest angle counted as a point.

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <utility>
 
+#include "core/face_cusp.h"
+
 namespace vorohex::mesh::detail {
 
 using core::Vec3;
@@ -62,14 +64,84 @@ std::vector<Vec3> graded_points(const std::vector<Vec3>& polyline, int n,
   return out;
 }
 
+namespace {
+
+// The corner angle a quad at a cusp should get at least (its hexahedra's scaled Jacobian
+// there is about its sine: 0.3).
+const double kCuspAngle = std::asin(0.3);
+
+// How long the segment of edge e next to vertex v should be where a face of e comes to a
+// point there (core/face_cusp.h; 0 where none does): long enough that the chords from v along
+// both edges of the point open to kCuspAngle, at most `most`. A quad at such a corner has the
+// angle of those chords; with segments of the size, a plate's outline tangent to a tube of
+// radius r gives about size / (2 r) radians (HexMe i14: 7 degrees, hexahedra at 0.08-0.15).
+// `at_last`: at the edge's last vertex (a closed edge has the vertex at both ends; a wire
+// runs into a point along the edge that ends there and out along the one that starts there).
+double cusp_segment(const core::MeshDomain& s, core::EdgeId e, bool at_last, double from,
+                    double most) {
+  const core::VertexId v = at_last ? s.edge_last_vertex(e) : s.edge_first_vertex(e);
+  double want = 0;
+  for (core::FaceId f : s.edge_faces(e))
+    for (const core::Cusp& c : core::face_cusps(s, f)) {
+      const bool in = c.in.edge == e && c.in.forward == at_last;
+      const bool out = c.out.edge == e && c.out.forward != at_last;
+      if (c.vertex != v || (!in && !out)) continue;
+      double l = from;
+      while (l < most && core::cusp_angle_at(s, c, l) < kCuspAngle) l = std::min(most, 1.2 * l);
+      want = std::max(want, l);
+    }
+  return want;
+}
+
+// `points` (n + 1 on edge e, first to last vertex) with the first and last segments
+// lengthened where a face comes to a point at that end (cusp_segment), the inner points
+// moved proportionally between them.
+std::vector<Vec3> widened_at_cusps(const core::MeshDomain& s, core::EdgeId e,
+                                   std::vector<Vec3> points) {
+  const int n = int(points.size()) - 1;
+  if (n < 2 || s.edge_is_degenerated(e)) return points;
+  // Fractions of the length along the points' own chords.
+  std::vector<double> u(n + 1, 0.0);
+  for (int i = 1; i <= n; ++i) u[i] = u[i - 1] + (points[i] - points[i - 1]).norm();
+  const double length = u[n];
+  if (!(length > 0)) return points;
+  for (double& x : u) x /= length;
+  // At most three segments' worth, and leaving at least a segment's worth between both ends.
+  const double most = std::min(3.0 * length / n, 0.45 * length);
+  const double w0 = cusp_segment(s, e, false, u[1] * length, most) / length;
+  const double w1 = cusp_segment(s, e, true, (1 - u[n - 1]) * length, most) / length;
+  if (w0 <= u[1] && w1 <= 1 - u[n - 1]) return points;
+  const double a = std::max(u[1], w0), b = std::min(u[n - 1], 1 - w1);
+  std::vector<double> w(n + 1);
+  w[0] = 0, w[n] = 1;
+  for (int i = 1; i < n; ++i)
+    w[i] = n == 2 ? 0.5 * (a + b) : a + (b - a) * (u[i] - u[1]) / std::max(u[n - 1] - u[1], 1e-300);
+  // The new points on a dense polyline of the edge, put on it.
+  const int m = std::max(64, 16 * n);
+  const std::vector<Vec3> dense = s.edge_points_by_length(e, m);
+  std::vector<double> c(dense.size(), 0.0);
+  for (std::size_t k = 1; k < dense.size(); ++k) c[k] = c[k - 1] + (dense[k] - dense[k - 1]).norm();
+  std::size_t k = 0;
+  for (int i = 1; i < n; ++i) {
+    const double t = w[i] * c.back();
+    while (k + 2 < c.size() && c[k + 1] < t) ++k;
+    const double span = c[k + 1] - c[k];
+    const double f = span > 0 ? std::clamp((t - c[k]) / span, 0.0, 1.0) : 0.0;
+    points[i] = s.project_to_edge(e, (1 - f) * dense[k] + f * dense[k + 1]);
+  }
+  return points;
+}
+
+}  // namespace
+
 std::vector<Vec3> edge_points(const core::MeshDomain& s, core::EdgeId e, int n,
                               const core::SizeField* field) {
-  if (!graded(field) || n <= 1) return s.edge_points_by_length(e, n);
+  if (!graded(field) || n <= 1) return widened_at_cusps(s, e, s.edge_points_by_length(e, n));
   const std::vector<Vec3> dense =
       s.edge_points_by_length(e, std::max(samples(s.edge_length(e), *field), 4 * n));
   std::vector<Vec3> out = graded_points(dense, n, *field);
   for (int i = 1; i < n; ++i) out[i] = s.project_to_edge(e, out[i]);
-  return out;
+  return widened_at_cusps(s, e, std::move(out));
 }
 
 std::vector<double> graded_parameters(const Vec3& a, const Vec3& b, int n,

@@ -6,6 +6,8 @@
 
 #include <cmath>
 
+#include "core/face_cusp.h"
+#include "fixtures/machined.h"
 #include "occ/primitives.h"
 
 namespace vorohex::mesh::detail {
@@ -56,6 +58,51 @@ TEST(Sizing, GradedEdgeStartsAtTheLocalSizeAndGrows) {
   }
   const auto t = graded_parameters(f.box.vertex_point(core::VertexId(1)), p[count], count, &field);
   for (int i = 0; i <= count; ++i) EXPECT_NEAR(t[i] * 40, (p[i] - p[0]).norm(), 1e-3);
+}
+
+// A face that comes to a point (a plate's top around a boss tangent to the plate's outline
+// from inside: a crescent): with nodes at equal spacing the quad at the point has the angle
+// of the chords to the first nodes, about size / (2 r) radians. The segments next to the
+// point are lengthened until those chords open to asin(0.3) (at most three segments' worth);
+// the other nodes keep their order, and an edge with no point at its ends is as before.
+TEST(Sizing, SegmentsNextToAPointAreLengthenedUntilItsCornerOpens) {
+  const occ::Solid s = testing::fuse(occ::make_cylinder(20, 4, Vec3::Zero(), testing::kZ),
+                                     occ::make_cylinder(10, 12, Vec3(10, 0, 0), testing::kZ));
+  std::vector<core::Cusp> cusps;
+  for (core::FaceId f : s.faces())
+    for (const core::Cusp& c : core::face_cusps(s, f)) cusps.push_back(c);
+  ASSERT_FALSE(cusps.empty());
+  const core::Cusp& c = cusps.front();
+  const double l_in = s.edge_length(c.in.edge), l_out = s.edge_length(c.out.edge);
+  const int n_in = int(std::lround(l_in / 2)), n_out = int(std::lround(l_out / 2));
+  // The segment at the point: the wire runs into it along `in`, out of it along `out`.
+  auto first_segment = [&](const core::OrientedEdge& oe, int n, bool into) {
+    const std::vector<Vec3> p = edge_points(s, oe.edge, n, nullptr);
+    const bool at_last = oe.forward == into;
+    EXPECT_LT((p[at_last ? n : 0] - s.vertex_point(c.vertex)).norm(), 1e-9);
+    return at_last ? (p[n - 1] - p[n]).norm() : (p[1] - p[0]).norm();
+  };
+  const double a = first_segment(c.in, n_in, true), b = first_segment(c.out, n_out, false);
+  EXPECT_GT(a, 1.2 * l_in / n_in);
+  EXPECT_GT(b, 1.2 * l_out / n_out);
+  // The corner opens to asin(0.3), or the segments reached their cap of three.
+  const double angle = core::cusp_angle_at(s, c, std::min(a, b));
+  const bool capped = a > 2.9 * l_in / n_in || b > 2.9 * l_out / n_out;
+  EXPECT_TRUE(angle >= std::asin(0.3) - 0.02 || capped) << angle;
+  // Without the lengthening the corner would be much sharper.
+  EXPECT_LT(core::cusp_angle_at(s, c, 2.0), 0.5 * angle);
+  // An edge with no point at either end keeps its equal spacing.
+  for (core::EdgeId e : s.edges()) {
+    if (e == c.in.edge || e == c.out.edge || s.edge_is_degenerated(e)) continue;
+    bool at_point = false;
+    for (const core::Cusp& k : cusps)
+      at_point =
+          at_point || k.vertex == s.edge_first_vertex(e) || k.vertex == s.edge_last_vertex(e);
+    if (at_point) continue;
+    const auto p = edge_points(s, e, 8, nullptr);
+    const auto q = s.edge_points_by_length(e, 8);
+    for (std::size_t i = 0; i < p.size(); ++i) EXPECT_LT((p[i] - q[i]).norm(), 1e-12);
+  }
 }
 
 }  // namespace
