@@ -106,10 +106,15 @@ std::vector<Vec3> widened_at_cusps(const core::MeshDomain& s, core::EdgeId e,
   const double length = u[n];
   if (!(length > 0)) return points;
   for (double& x : u) x /= length;
-  // At most three segments' worth, and leaving at least a segment's worth between both ends.
-  const double most = std::min(3.0 * length / n, 0.45 * length);
-  const double w0 = cusp_segment(s, e, false, u[1] * length, most) / length;
-  const double w1 = cusp_segment(s, e, true, (1 - u[n - 1]) * length, most) / length;
+  // At most three segments' worth, and leaving the other segments at least half their
+  // mean length (with points at both ends, each end gets half of what is left for both).
+  const double mean = length / n;
+  const double most = std::min(3.0 * mean, length - 0.5 * (n - 1) * mean);
+  double w0 = cusp_segment(s, e, false, u[1] * length, most);
+  double w1 = cusp_segment(s, e, true, (1 - u[n - 1]) * length, most);
+  const double both = length - 0.5 * (n - 2) * mean;  // what the two end segments may have
+  if (w0 > 0 && w1 > 0 && w0 + w1 > both) w0 = w1 = std::max(0.5 * both, mean);
+  w0 /= length, w1 /= length;
   if (w0 <= u[1] && w1 <= 1 - u[n - 1]) return points;
   const double a = std::max(u[1], w0), b = std::min(u[n - 1], 1 - w1);
   std::vector<double> w(n + 1);
