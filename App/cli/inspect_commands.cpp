@@ -38,8 +38,8 @@ const char* const kVoronoiUsage =
 
 const char* const kDecomposeUsage =
     "usage: vorohex decompose IN -o PARTS.brep [--report DECOMPOSITION.json] [--vtp FACES.vtp]\n"
-    "                         [--sharp-angle DEG] [--no-merge] [--plane-cuts] [--time-limit S]\n"
-    "                         [--quiet] [graph options]\n"
+    "                         [--sharp-angle DEG] [--no-merge] [--plane-cuts [--tangent-planes]]\n"
+    "                         [--time-limit S] [--quiet] [graph options]\n"
     "  IN    a solid as STEP, BREP or IGES\n"
     "  -o    the sub-volumes as solids in one BREP compound (open it in FreeCAD)\n"
     "  --plane-cuts           the mesher's second way instead of the Voronoi graph: exact\n"
@@ -48,6 +48,10 @@ const char* const kDecomposeUsage =
     "                         pieces are written also when one has no scheme (exit 1);\n"
     "                         with it, only -o, --time-limit and --quiet (the options\n"
     "                         below are the Voronoi one's)\n"
+    "  --tangent-planes       with --plane-cuts: a cylinder that a planar face touches\n"
+    "                         tangently is replaced by the plane tangent to it across its\n"
+    "                         concave edges (what the mesher tries where the pieces have\n"
+    "                         knife edges and do not mesh: a lug as wide as its tube)\n"
     "  --time-limit S         seconds the whole may take (default 30): the split and the\n"
     "                         merging get what is left; stopped before the split ends, it\n"
     "                         fails (error time_limit, naming the step); stopped later, the\n"
@@ -177,12 +181,13 @@ int run_voronoi(const std::vector<std::string>& args) {
 // vorohex decompose --plane-cuts: the pieces, each with the scheme it gets once glued to the
 // others (or why it has none).
 int run_plane_cuts(const std::string& input, const std::string& brep_path, double time_limit,
-                   const core::Progress& progress) {
+                   bool tangent_planes, const core::Progress& progress) {
   occ::ReadResult read = occ::read_solid(input);
   print_problems(read.diagnostics);
   if (!read.ok()) return kExitBadInput;
   decompose::PlaneCutOptions options;
   options.time_limit = time_limit;
+  options.tangent_planes = tangent_planes;
   const decompose::PlaneCutResult cut =
       decompose::cut_at_concave_edges(*read.solid, options, progress.with_time_limit(time_limit));
   if (cut.pieces.empty()) {
@@ -209,6 +214,10 @@ int run_plane_cuts(const std::string& input, const std::string& brep_path, doubl
   if (!along.empty()) std::cout << "  cut along: " << along << "\n";
   if (const std::string left_out = decompose::left_out_text(cut); !left_out.empty())
     std::cout << "  left out (OCCT's cut along them with the others failed): " << left_out << "\n";
+  if (cut.knife_edges)
+    std::cout << "  knife edges: pieces meet a planar face that touches a cylinder cut along at "
+                 "an angle near zero; where they do not mesh, the mesher cuts with "
+                 "--tangent-planes\n";
   const decompose::PlaneCutSchemes schemes = decompose::plane_cut_schemes(cut);
   if (!schemes.glue_error.empty()) std::cerr << "vorohex: " << schemes.glue_error << "\n";
   for (std::size_t i = 0; i < cut.pieces.size(); ++i) {
@@ -269,9 +278,10 @@ int run_decompose(const std::vector<std::string>& args) {
       voronoi_option = name;
       inner();
     };
-  bool plane_cuts = false, quiet = false;
+  bool plane_cuts = false, tangent_planes = false, quiet = false;
   double time_limit = 30;
   t.flags["--plane-cuts"] = [&] { plane_cuts = true; };
+  t.flags["--tangent-planes"] = [&] { tangent_planes = true; };
   t.flags["--quiet"] = [&] { quiet = true; };
   t.values["--time-limit"] = [&](const std::string& s) {
     return parse_number(s, &time_limit) && time_limit > 0;
@@ -287,8 +297,10 @@ int run_decompose(const std::vector<std::string>& args) {
                              " is an option of the Voronoi decomposition; --plane-cuts takes "
                              "only -o, --time-limit and --quiet",
                          kDecomposeUsage);
-    return run_plane_cuts(input, brep_path, time_limit, progress);
+    return run_plane_cuts(input, brep_path, time_limit, tangent_planes, progress);
   }
+  if (tangent_planes)
+    return usage_error("--tangent-planes is an option of --plane-cuts", kDecomposeUsage);
   if (std::string why = graph_options.validate(); !why.empty())
     return usage_error(why, kDecomposeUsage);
   if (std::string why = options.validate(); !why.empty()) return usage_error(why, kDecomposeUsage);

@@ -228,13 +228,16 @@ std::string plane_cuts_json(const PlaneCutResult& cut, const PlaneCutSchemes& sc
                                 {"reason", reason},
                                 {"volume", cut.pieces[i].volume()}});
   }
+  j["knife_edges"] = cut.knife_edges;
   j["cut_surfaces"] = json::array();
   for (std::size_t i = 0; i < cut.surfaces.size(); ++i) {
     const CutSurface& c = cut.surfaces[i];
     json edges = json::array();
     for (core::EdgeId e : c.edges) edges.push_back(core::entity_name(e));
     j["cut_surfaces"].push_back({{"id", i},
-                                 {"kind", c.cylinder ? "cylinder" : "plane"},
+                                 {"kind", c.cylinder  ? "cylinder"
+                                          : c.tangent ? "tangent_plane"
+                                                      : "plane"},
                                  {"face", core::entity_name(c.face)},
                                  {"concave_edges", edges},
                                  {"used", c.used}});

@@ -40,6 +40,7 @@ struct Plane {
   double offset = 0;          // normal . x = offset
   FaceId face;                // the model face it extends (the first found)
   std::vector<EdgeId> edges;  // the concave edges it is taken at
+  bool tangent = false;       // tangent to the cylinder of `face`, in its place
 };
 
 // A cylinder to cut along, the model face it extends and the concave edges it is taken at.
@@ -88,6 +89,18 @@ bool same_cylinder(const occ::CutCylinder& a, const occ::CutCylinder& b, double 
   if (std::abs(a.axis.dot(b.axis)) < 1 - 1e-9 || std::abs(a.radius - b.radius) > tol) return false;
   const Vec3 d = b.origin - a.origin;
   return (d - d.dot(a.axis) * a.axis).norm() <= tol;
+}
+
+// Adds `pl` to `planes` unless it is there (same plane within tol: its edges join it).
+void add_plane(std::vector<Plane>& planes, Plane pl, double tol) {
+  if (pl.normal.x() + 1e-12 * pl.normal.y() + 1e-24 * pl.normal.z() < 0)
+    pl.normal = -pl.normal, pl.offset = -pl.offset;
+  for (Plane& q : planes)
+    if (q.normal.dot(pl.normal) > 1 - 1e-9 && std::abs(q.offset - pl.offset) <= tol) {
+      q.edges.insert(q.edges.end(), pl.edges.begin(), pl.edges.end());
+      return;
+    }
+  planes.push_back(std::move(pl));
 }
 
 // The surfaces of the faces at concave edges: planes, and cylinders (a post of round
@@ -149,17 +162,104 @@ bool concave_surfaces(const occ::Solid& s, std::vector<Plane>& planes,
       }
       if (!planar[k]) continue;
       const Vec3 n = s.face_normal(faces[k], m);
-      Plane pl{n, n.dot(m), faces[k], {e}};
-      if (pl.normal.x() + 1e-12 * pl.normal.y() + 1e-24 * pl.normal.z() < 0)
-        pl.normal = -pl.normal, pl.offset = -pl.offset;
-      bool known = false;
-      for (Plane& q : planes)
-        if (!known && q.normal.dot(pl.normal) > 1 - 1e-9 && std::abs(q.offset - pl.offset) <= tol)
-          known = true, q.edges.push_back(e);
-      if (!known) planes.push_back(pl);
+      add_plane(planes, {n, n.dot(m), faces[k], {e}}, tol);
     }
   }
   return true;
+}
+
+// A planar face of the solid that touches cylinder c tangently along a line (HexMe i14: a
+// lug as wide as the tube it stands on, its sides tangent to the tube); its unit normal in
+// `n`. Cut along the cylinder, the piece beyond it would come to an edge of zero angle
+// there.
+bool tangent_planar_face(const occ::Solid& s, const occ::CutCylinder& c, Vec3& n) {
+  const double tol = 1e-6 * s.diagonal();
+  for (FaceId f : s.faces()) {
+    if (!s.face_is_planar(f)) continue;
+    const core::SurfaceInfo info = s.surface_info(f);
+    if (info.kind != core::SurfaceKind::plane) continue;
+    const Vec3 fn = info.direction.normalized();
+    if (std::abs(fn.dot(c.axis)) > 1e-9) continue;
+    const double d = fn.dot(c.origin - info.origin);  // the axis's distance from the plane
+    if (std::abs(std::abs(d) - c.radius) > tol) continue;
+    // The line of contact, sampled over the face's extent along the axis.
+    const Vec3 q = c.origin - d * fn;
+    const core::BoundingBox box = s.face_bounding_box(f);
+    double lo = 0, hi = 0;
+    for (int k = 0; k < 8; ++k) {
+      const Vec3 corner((k & 1) ? box.max.x() : box.min.x(), (k & 2) ? box.max.y() : box.min.y(),
+                        (k & 4) ? box.max.z() : box.min.z());
+      const double t = (corner - q).dot(c.axis);
+      lo = k ? std::min(lo, t) : t;
+      hi = k ? std::max(hi, t) : t;
+    }
+    for (int k = 1; k < 8; ++k)
+      if (s.distance_to_face(f, q + (lo + (hi - lo) * k / 8.0) * c.axis) <= tol) {
+        n = fn;
+        return true;
+      }
+  }
+  return false;
+}
+
+// Each cylinder a planar face touches tangently is replaced by the planes tangent to it at
+// right angles to that face, on the sides where its concave edges are (a lug on a tube: the
+// plane across the tube's top, above which the lug is a plain sweep). False when none is.
+bool tangent_planes_instead(const occ::Solid& s, std::vector<Plane>& planes,
+                            std::vector<Cylinder>& cylinders) {
+  const double tol = 1e-7 * s.diagonal();
+  bool replaced = false;
+  std::vector<Cylinder> kept;
+  for (Cylinder& c : cylinders) {
+    Vec3 n;
+    if (!tangent_planar_face(s, c.surface, n)) {
+      kept.push_back(std::move(c));
+      continue;
+    }
+    const Vec3 m = c.surface.axis.cross(n).normalized();
+    bool side[2] = {false, false};  // the concave edges beyond +m, beyond -m
+    for (EdgeId e : c.edges) {
+      const double h = m.dot(s.edge_points_by_length(e, 2)[1] - c.surface.origin);
+      if (std::abs(h) > 0.05 * c.surface.radius) side[h < 0] = true;
+    }
+    if (!side[0] && !side[1]) {
+      kept.push_back(std::move(c));
+      continue;
+    }
+    for (int k = 0; k < 2; ++k)
+      if (side[k]) {
+        const Vec3 mk = k ? Vec3(-m) : m;
+        add_plane(planes, {mk, mk.dot(c.surface.origin) + c.surface.radius, c.face, c.edges, true},
+                  tol);
+      }
+    replaced = true;
+  }
+  cylinders = std::move(kept);
+  return replaced;
+}
+
+// Whether a piece has an edge where its two faces meet at an angle near zero (a knife)
+// that is no such edge of the solid: a cut surface tangent to a face of the solid (HexMe
+// i14's lug cut off its tube along the tube's cylinder, to which the lug's sides are
+// tangent). No hexahedron along such an edge is good; the sweeps' layers fold there.
+bool adds_knife_edges(const occ::Solid& solid, const std::vector<occ::Solid>& pieces) {
+  const double cos_knife = std::cos(3 * M_PI / 180);
+  const double tol = 1e-6 * solid.diagonal();
+  auto knife = [&](const occ::Solid& s, EdgeId e, const Vec3& m) {
+    const std::vector<FaceId> faces = s.edge_faces(e);
+    return faces.size() == 2 &&
+           s.face_normal(faces[0], m).dot(s.face_normal(faces[1], m)) < -cos_knife;
+  };
+  for (const occ::Solid& p : pieces)
+    for (EdgeId e : p.edges()) {
+      if (p.edge_is_degenerated(e)) continue;
+      const Vec3 m = p.edge_points_by_length(e, 2)[1];
+      if (!knife(p, e, m)) continue;
+      const EdgeId own = solid.nearest_edge(m);
+      if ((solid.project_to_edge(own, m) - m).norm() <= tol && knife(solid, own, m)) continue;
+      return true;
+    }
+  return false;
 }
 
 // A square on the plane covering the solid (its tool face for the splitter).
@@ -407,8 +507,10 @@ bool split_along(const occ::Solid& solid, std::vector<Plane>& planes,
 }  // namespace
 
 std::string surface_text(const CutSurface& s, bool with_edges) {
-  std::string t =
-      std::string(s.cylinder ? "the cylinder of " : "the plane of ") + core::entity_name(s.face);
+  std::string t = std::string(s.cylinder  ? "the cylinder of "
+                              : s.tangent ? "the plane tangent to the cylinder of "
+                                          : "the plane of ") +
+                  core::entity_name(s.face);
   if (!with_edges || s.edges.empty()) return t;
   t += " (at ";
   for (std::size_t k = 0; k < s.edges.size(); ++k)
@@ -435,17 +537,18 @@ std::string left_out_text(const PlaneCutResult& cut) {
   return t;
 }
 
-PlaneCutResult cut_at_concave_edges(const occ::Solid& solid, const PlaneCutOptions& options,
-                                    const core::Progress& progress) {
-  options.validate();
+namespace {
+
+// The solid cut along these surfaces and the pieces merged, in `time_limit` seconds.
+PlaneCutResult cut_along(const occ::Solid& solid, std::vector<Plane> planes,
+                         std::vector<Cylinder> cylinders, PlaneCutOptions options,
+                         double time_limit, const core::Progress& progress) {
+  options.time_limit = time_limit;
   PlaneCutResult r;
   const auto t0 = std::chrono::steady_clock::now();
   auto seconds = [&] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   };
-  std::vector<Plane> planes;
-  std::vector<Cylinder> cylinders;
-  if (!concave_surfaces(solid, planes, cylinders, r.why_not)) return r;
   if (planes.empty() && cylinders.empty()) {
     r.why_not = "it has no concave edge to cut at";
     return r;
@@ -455,8 +558,8 @@ PlaneCutResult cut_at_concave_edges(const occ::Solid& solid, const PlaneCutOptio
                 " cut surfaces, more than " + std::to_string(options.max_planes);
     return r;
   }
-  for (const Plane& pl : planes) r.surfaces.push_back({false, pl.face, pl.edges, true});
-  for (const Cylinder& c : cylinders) r.surfaces.push_back({true, c.face, c.edges, true});
+  for (const Plane& pl : planes) r.surfaces.push_back({false, pl.tangent, pl.face, pl.edges, true});
+  for (const Cylinder& c : cylinders) r.surfaces.push_back({true, false, c.face, c.edges, true});
   const double whole = solid.volume();
   std::vector<occ::Solid> pieces;
   std::vector<double> volume;  // per piece (an adaptive integration each: computed once)
@@ -562,6 +665,32 @@ PlaneCutResult cut_at_concave_edges(const occ::Solid& solid, const PlaneCutOptio
   r.pieces = std::move(pieces);
   r.ok = r.pieces.size() >= 2;
   if (!r.ok) r.why_not = "its cuts merge back into one piece";
+  return r;
+}
+
+}  // namespace
+
+PlaneCutResult cut_at_concave_edges(const occ::Solid& solid, const PlaneCutOptions& options,
+                                    const core::Progress& progress) {
+  options.validate();
+  std::vector<Plane> planes;
+  std::vector<Cylinder> cylinders;
+  PlaneCutResult r;
+  if (!concave_surfaces(solid, planes, cylinders, r.why_not)) return r;
+  std::vector<Plane> tangent_planes = planes;
+  std::vector<Cylinder> other_cylinders = cylinders;
+  const bool tangent = tangent_planes_instead(solid, tangent_planes, other_cylinders);
+  if (options.tangent_planes) {
+    if (!tangent) {
+      r.why_not = "no cylinder it is cut along is touched tangently by a planar face";
+      return r;
+    }
+    planes = std::move(tangent_planes);
+    cylinders = std::move(other_cylinders);
+  }
+  r = cut_along(solid, std::move(planes), std::move(cylinders), options, options.time_limit,
+                progress);
+  r.knife_edges = !options.tangent_planes && tangent && adds_knife_edges(solid, r.pieces);
   return r;
 }
 

@@ -22,13 +22,24 @@ struct PlaneCutOptions {
   int max_pieces = 100;    // more pieces after cutting: not attempted (>= 2)
   double time_limit = 30;  // seconds for the whole (> 0); OCCT splits stop at it
   bool multisweep = true;  // pieces may be prismatic (multisweeps), not only blocks and sweeps
-  void validate() const;   // throws std::invalid_argument naming the bad field
+  // Each cylinder a planar face touches tangently replaced by planes tangent to it (see
+  // CutSurface): where the cut with the cylinders leaves knife edges.
+  bool tangent_planes = false;
+  void validate() const;  // throws std::invalid_argument naming the bad field
 };
 
 // A surface the solid is cut along: the plane or the cylinder of a model face, extended
 // through the solid from the concave edges it is taken at (why a cut is where it is).
+// A cylinder that a planar model face touches tangently along a line (a lug as wide as the
+// tube it stands on: its sides are tangent to the tube) can leave a piece with an edge of
+// zero angle there (a knife), where no hexahedron is good. With
+// PlaneCutOptions::tangent_planes each such cylinder is replaced by the plane tangent to it
+// on the side of its concave edges, at right angles to that face (`tangent`). Only then: on
+// a boss with a rounded end (its sides tangent to its end's cylinder) the cylinder's cut
+// and the merging do better (HexMe i18).
 struct CutSurface {
   bool cylinder = false;            // false: a plane
+  bool tangent = false;             // a plane tangent to the cylinder of `face`, in its place
   core::FaceId face;                // the model face it extends
   std::vector<core::EdgeId> edges;  // the concave edges it is taken at
   bool used = true;                 // false: left out (OCCT's cut with it failed)
@@ -45,6 +56,10 @@ struct PlaneCutResult {
   // one not `used` was left out because OCCT's cut along it with the others failed: its
   // concave edges are not cut at.
   std::vector<CutSurface> surfaces;
+  // Some piece has an edge where its faces meet at an angle near zero that is no such edge
+  // of the solid (a knife), and a cylinder cut along is touched tangently by a planar face:
+  // the cut with PlaneCutOptions::tangent_planes may do better.
+  bool knife_edges = false;
   bool ok = false;
   std::string why_not;  // when not ok: a sentence fragment
 };
@@ -55,7 +70,8 @@ struct PlaneCutResult {
 // The surfaces left out, as one list ("the plane of Face7, the cylinder of Face13"; empty
 // when none).
 std::string left_out_text(const PlaneCutResult& cut);
-// "the plane of Face7 (at Edge12, Edge14)"; without the edges: "the plane of Face7".
+// "the plane of Face7 (at Edge12, Edge14)"; without the edges: "the plane of Face7"; "the
+// plane tangent to the cylinder of Face3" for a tangent plane.
 std::string surface_text(const CutSurface& surface, bool with_edges = true);
 // The surfaces used, without their edges, the first `at_most` named ("the plane of Face3,
 // the cylinder of Face9 and 4 more").

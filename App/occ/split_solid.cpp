@@ -119,10 +119,21 @@ class Deadline : public Message_ProgressIndicator {
   std::chrono::steady_clock::time_point end_;
 };
 
+// Faces (and edges) on one surface merged. OCCT's unification can throw where it would
+// concatenate B-splines or merge edges (HexMe i14: a tube's end ring fused to its middle,
+// where a plane tangent to the tube left a line on its cylinder): it is tried again without
+// concatenating, then without merging edges, and else the shape is left as it is.
 TopoDS_Shape unified(const TopoDS_Shape& s) {
-  ShapeUpgrade_UnifySameDomain unify(s, true, true, true);
-  unify.Build();
-  return unify.Shape();
+  const bool modes[][2] = {{true, true}, {true, false}, {false, false}};  // edges, B-splines
+  for (int k = 0; k < 3; ++k) {
+    try {
+      ShapeUpgrade_UnifySameDomain unify(s, modes[k][0], true, modes[k][1]);
+      unify.Build();
+      return unify.Shape();
+    } catch (...) {  // Standard_Failure and others
+    }
+  }
+  return s;  // as it is: a valid solid, its faces split where the pieces met
 }
 
 // What unifying solids may take at most: where it ends at all it takes milliseconds

@@ -448,13 +448,34 @@ bool mesh_decomposed(const occ::Solid& solid, const MeshOptions& options,
   }
   if (mesh_pieces(solid, d, options, sizes, progress, t0, result, why_not)) return true;
   if (d.method != "plane cuts" || progress.cancelled()) return false;
+  auto spent = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
+  // Pieces with knife edges (a cylinder cut along where a planar face touches it) that did
+  // not mesh: the cuts with the planes tangent to those cylinders instead (HexMe i14: a lug
+  // as wide as its tube, cut off it along the tube's cylinder, folded its sweep's layers).
+  if (d.knife_edges && spent() < 0.5 * options.decomposition_time_limit) {
+    MeshOptions tangent = options;
+    tangent.decomposition_time_limit =
+        std::max(5.0, 0.5 * options.decomposition_time_limit - spent());
+    const detail::IsolatedDecomposition t = detail::decompose_isolated(
+        solid, tangent, progress, detail::DecompositionMethods::tangent_plane_cuts);
+    if (t.cancelled) {
+      result.diagnostics.push_back(core::make_error("cancelled", "Meshing was cancelled."));
+      return false;
+    }
+    std::string why_tangent;
+    if (t.pieces && mesh_pieces(solid, t, options, sizes, progress, t0, result, why_tangent))
+      return true;
+    why_not += "; with planes tangent to the cylinders that planar faces touch, " +
+               (t.pieces ? why_tangent : t.why_not);
+  }
   // The exact cuts' sub-volumes did not mesh together: the Voronoi decomposition, within
   // what is left of the decomposition's time (the attempt to mesh the cuts' sub-volumes
   // counts too: HexMe i22's 45 took 20 s).
   MeshOptions rest = options;
-  const double spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   rest.decomposition_time_limit =
-      std::max(5.0, std::min(options.decomposition_time_limit - spent,
+      std::max(5.0, std::min(options.decomposition_time_limit - spent(),
                              detail::voronoi_share(options.decomposition_time_limit)));
   const detail::IsolatedDecomposition voronoi =
       detail::decompose_isolated(solid, rest, progress, detail::DecompositionMethods::voronoi);

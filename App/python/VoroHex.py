@@ -746,8 +746,11 @@ class Decomposition:
     shapes: the sub-volumes as Part.Solid, in the order of sub_volumes (empty when the
     decomposition failed). method: "voronoi" or "plane-cuts" (see decompose).
     cut_surfaces (plane cuts only): why each cut is where it is, a dict per surface with
-    "kind" ("plane"/"cylinder"), "face" (the model face it extends, "Face7"),
-    "concave_edges" (where it is taken, ["Edge12", ...]) and "used" (False: left out).
+    "kind" ("plane"/"cylinder"/"tangent_plane": tangent to the cylinder of "face"),
+    "face" (the model face it extends, "Face7"), "concave_edges" (where it is taken,
+    ["Edge12", ...]) and "used" (False: left out); knife_edges: pieces meet at an angle near
+    zero where a planar face touches a cylinder cut along (the mesher then tries
+    tangent_planes=True where they do not mesh).
     """
 
     def __init__(self, data, shapes):
@@ -760,6 +763,7 @@ class Decomposition:
         self.shapes = shapes
         self.method = data.get("method", "voronoi")
         self.cut_surfaces = data.get("cut_surfaces", [])
+        self.knife_edges = data.get("knife_edges", False)
 
     ok = property(lambda self: self.status != "failed",
                   doc="False when the solid could not be cut (see diagnostics)")
@@ -777,7 +781,7 @@ DECOMPOSITION_TIME_LIMIT = 30.0
 
 def decompose(shape, sharp_angle=None, merge=True, vtp=None, eps=None, delta=None,
               max_depth=None, linear_tolerance=None, progress=None, method="voronoi",
-              time_limit=DECOMPOSITION_TIME_LIMIT):
+              time_limit=DECOMPOSITION_TIME_LIMIT, tangent_planes=False):
     """Cuts the one solid in `shape` into sweepable and mappable sub-volumes along its
     embedded Voronoi graph (vorohex decompose). sharp_angle: degrees in (0, 180] below
     which a dihedral counts as sharp (default 60); merge: unite neighbours whose union is
@@ -795,12 +799,21 @@ def decompose(shape, sharp_angle=None, merge=True, vtp=None, eps=None, delta=Non
     "volume"; counts has "planes", "cylinders", "sub_volumes_before_merge" and
     "sub_volumes"; shapes holds the pieces, also the pieces as cut when the cuts failed
     (status "failed", the reason in diagnostics). It takes none of the Voronoi options
-    (time_limit and progress it takes)."""
+    (time_limit and progress it takes). tangent_planes=True (plane cuts only): each
+    cylinder that a planar face touches tangently is replaced by the plane tangent to it
+    across its concave edges (vorohex decompose --plane-cuts --tangent-planes; what the
+    mesher tries where the cut's pieces have knife edges and do not mesh)."""
     import tempfile
     if method not in ("voronoi", "plane-cuts"):
         raise ValueError("VoroHex: option 'method' must be 'voronoi' or 'plane-cuts', got "
                          "{!r}".format(method))
     limit = _seconds("time_limit", time_limit)
+    if not isinstance(tangent_planes, bool):
+        raise TypeError("VoroHex: option 'tangent_planes' must be True or False, got "
+                        "{!r}".format(tangent_planes))
+    if tangent_planes and method != "plane-cuts":
+        raise ValueError("VoroHex: option 'tangent_planes' is an option of "
+                         "method='plane-cuts'")
     if method == "plane-cuts":
         given = dict(sharp_angle=sharp_angle, vtp=vtp, eps=eps, delta=delta,
                      max_depth=max_depth, linear_tolerance=linear_tolerance)
@@ -813,7 +826,7 @@ def decompose(shape, sharp_angle=None, merge=True, vtp=None, eps=None, delta=Non
         solid = _read_solid(check_shape(shape))
         with tempfile.TemporaryDirectory(prefix="vorohex-") as tmp:
             brep = os.path.join(tmp, "pieces.brep")
-            text = _core.plane_cuts_json(solid, brep, progress, limit)
+            text = _core.plane_cuts_json(solid, brep, progress, limit, tangent_planes)
             shapes = []
             if os.path.exists(brep):
                 import Part

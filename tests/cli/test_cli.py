@@ -763,6 +763,45 @@ class InspectCommands(unittest.TestCase):
             self.assertEqual(code, 2, option)
             self.assertIn(option[0] + " is an option of the Voronoi decomposition", stderr)
 
+    def test_a_lug_as_wide_as_its_tube_is_cut_across_the_tube(self):
+        # A tube with a lug as wide as the tube standing on it, a hole across the lug, built
+        # with Part booleans: the lug's sides are tangent to the tube. Cut along the tube's
+        # cylinder, the lug comes off with knife edges (said so); the mesher then cuts along
+        # the plane tangent to the tube across its top, and the pieces mesh structured.
+        sys.path.append("/usr/lib/freecad-python3/lib")
+        import FreeCAD
+        import Part
+        V = FreeCAD.Vector
+        x = V(1, 0, 0)
+        solid = (Part.makeCylinder(35, 80, V(-40, 0, 0), x)
+                 .fuse(Part.makeBox(60, 70, 60, V(-30, -35, 0)))
+                 .cut(Part.makeCylinder(17.5, 80, V(-40, 0, 0), x))
+                 .cut(Part.makeCylinder(10, 70, V(0, -35, 47), V(0, 1, 0)))
+                 .removeSplitter())
+        step = os.path.join(self.dir, "lug_tube.step")
+        solid.exportStep(step)
+        parts = os.path.join(self.dir, "cuts.brep")
+        code, stdout, stderr = run("decompose", step, "-o", parts, "--plane-cuts", "--quiet")
+        self.assertIn("knife edges", stdout)
+        self.assertRegex(stdout, r"the cylinder of Face\d+")
+        code, stdout, stderr = run("decompose", step, "-o", parts, "--plane-cuts",
+                                   "--tangent-planes", "--quiet")
+        self.assertEqual(code, 0, stdout + stderr)
+        self.assertRegex(stdout, r"the plane tangent to the cylinder of Face\d+")
+        self.assertNotIn("knife edges", stdout)
+        self.assertEqual(stdout.count(": multisweep"), 2, stdout)
+        code, _, stderr = run("decompose", step, "-o", parts, "--tangent-planes")
+        self.assertEqual(code, 2)
+        self.assertIn("--tangent-planes is an option of --plane-cuts", stderr)
+        out, rep = os.path.join(self.dir, "lug_tube.vtu"), os.path.join(self.dir, "r.json")
+        code, _, stderr = run("mesh", step, "-o", out, "--report", rep, "--quiet")
+        self.assertEqual(code, 0, stderr)
+        with open(rep) as f:
+            report = json.load(f)
+        self.assertEqual(report["scheme"], "multisweep", report["diagnostics"])
+        self.assertGreaterEqual(report["check"]["scaled_jacobian"]["min"], 0.25)
+        self.assertTrue(report["check"]["valid"])
+
     def test_decompose_shows_progress_and_stops_at_its_time_limit(self):
         step = os.path.join(EXAMPLES, "tapered_brick.step")
         parts, rep = os.path.join(self.dir, "parts.brep"), os.path.join(self.dir, "d.json")

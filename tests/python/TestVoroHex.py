@@ -257,6 +257,33 @@ class TestVoroHexApi(unittest.TestCase):
             VoroHex.decompose(solid, method="plane-cuts", sharp_angle=30)
         with self.assertRaisesRegex(ValueError, "'method' must be"):
             VoroHex.decompose(solid, method="planes")
+        with self.assertRaisesRegex(ValueError, "'tangent_planes' is an option of"):
+            VoroHex.decompose(solid, tangent_planes=True)
+        with self.assertRaisesRegex(TypeError, "'tangent_planes' must be True or False"):
+            VoroHex.decompose(solid, method="plane-cuts", tangent_planes="yes")
+
+    def test_plane_cuts_tangent_to_a_tube_where_a_lug_is_as_wide(self):
+        # A lug as wide as the tube it stands on (its sides tangent to the tube): cut along
+        # the tube's cylinder, its pieces have knife edges; with tangent_planes the cut is the
+        # plane across the tube's top, and both pieces have a scheme.
+        V = FreeCAD.Vector
+        x = V(1, 0, 0)
+        solid = (Part.makeCylinder(35, 80, V(-40, 0, 0), x)
+                 .fuse(Part.makeBox(60, 70, 60, V(-30, -35, 0)))
+                 .cut(Part.makeCylinder(17.5, 80, V(-40, 0, 0), x))
+                 .cut(Part.makeCylinder(10, 70, V(0, -35, 47), V(0, 1, 0)))
+                 .removeSplitter())
+        d = VoroHex.decompose(solid, method="plane-cuts")
+        self.assertTrue(d.knife_edges)
+        self.assertIn("cylinder", [c["kind"] for c in d.cut_surfaces])
+        t = VoroHex.decompose(solid, method="plane-cuts", tangent_planes=True)
+        self.assertTrue(t.ok, t.diagnostics)
+        self.assertFalse(t.knife_edges)
+        kinds = [c["kind"] for c in t.cut_surfaces]
+        self.assertEqual(kinds.count("tangent_plane"), 1, kinds)
+        self.assertNotIn("cylinder", kinds)
+        self.assertEqual([sv["scheme"] for sv in t.sub_volumes], ["multisweep", "multisweep"])
+        self.assertAlmostEqual(sum(s.Volume for s in t.shapes) / solid.Volume, 1, places=6)
 
     def test_graph_and_decomposition_report_progress_and_can_be_cancelled(self):
         # Both run in a child process: heartbeats reach the callback, False stops it.

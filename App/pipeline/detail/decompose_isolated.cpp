@@ -16,8 +16,8 @@ namespace vorohex::pipeline::detail {
 
 namespace {
 
-// "<before merge>\n<method>[\t<surfaces left out>\t<surfaces used>]\n" then the sub-volumes as one
-// BREP compound.
+// "<before merge>\n<method>[\t<surfaces left out>\t<surfaces used>\t<knife edges: 0 or 1>]\n"
+// then the sub-volumes as one BREP compound.
 std::string to_text(int before_merge, const char* method,
                     const std::vector<const occ::Solid*>& solids) {
   const std::string brep = occ::compound_brep_string(solids);
@@ -77,19 +77,33 @@ std::string decompose_to_text(const occ::Solid& solid, const MeshOptions& mesh_o
     decompose::PlaneCutOptions options;
     options.multisweep = std::find(mesh_options.schemes.begin(), mesh_options.schemes.end(),
                                    "multisweep") != mesh_options.schemes.end();
-    options.time_limit = std::max(1.0, 0.5 * time_limit);
-    const decompose::PlaneCutResult cut = decompose::cut_at_concave_edges(solid, options);
+    options.tangent_planes = methods == DecompositionMethods::tangent_plane_cuts;
+    options.time_limit = std::max(1.0, options.tangent_planes ? time_limit : 0.5 * time_limit);
+    decompose::PlaneCutResult cut = decompose::cut_at_concave_edges(solid, options);
+    // Pieces left with knife edges that do not all have a scheme: the tangent planes instead,
+    // within what is left of the cuts' time.
+    const double spent =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (!cut.ok && cut.knife_edges && spent < options.time_limit) {
+      decompose::PlaneCutOptions tangent = options;
+      tangent.tangent_planes = true;
+      tangent.time_limit = options.time_limit - spent;
+      decompose::PlaneCutResult second = decompose::cut_at_concave_edges(solid, tangent);
+      if (second.ok) cut = std::move(second);
+    }
     if (cut.ok) {
       std::vector<const occ::Solid*> solids;
       for (const occ::Solid& s : cut.pieces) solids.push_back(&s);
       const std::string method = "plane cuts\t" + decompose::left_out_text(cut) + "\t" +
-                                 decompose::used_surfaces_text(cut);
+                                 decompose::used_surfaces_text(cut) + "\t" +
+                                 (cut.knife_edges ? "1" : "0");
       return to_text(cut.pieces_before_merge, method.c_str(), solids);
     }
     why =
         "cutting along the faces at its concave edges did not give sub-volumes that all have "
         "a scheme (" +
         cut.why_not + ")";
+    if (methods == DecompositionMethods::tangent_plane_cuts) throw std::runtime_error(why);
   }
   const double elapsed =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -149,7 +163,11 @@ IsolatedDecomposition decompose_isolated(const occ::Solid& solid, const MeshOpti
   if (tab != std::string::npos) {
     const std::size_t tab2 = out.method.find('\t', tab + 1);
     out.left_out = out.method.substr(tab + 1, tab2 == std::string::npos ? tab2 : tab2 - tab - 1);
-    if (tab2 != std::string::npos) out.along = out.method.substr(tab2 + 1);
+    if (tab2 != std::string::npos) {
+      const std::size_t tab3 = out.method.find('\t', tab2 + 1);
+      out.along = out.method.substr(tab2 + 1, tab3 == std::string::npos ? tab3 : tab3 - tab2 - 1);
+      out.knife_edges = tab3 != std::string::npos && out.method.substr(tab3 + 1) == "1";
+    }
     out.method.resize(tab);
   }
   occ::ReadOptions ro;

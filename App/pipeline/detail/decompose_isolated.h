@@ -24,6 +24,7 @@ struct IsolatedDecomposition {
                                        // of Face13, ..."; empty: none)
   std::string along;                   // plane cuts: the surfaces cut along ("the plane of
                                        // Face3, the cylinder of Face9 and 4 more")
+  bool knife_edges = false;            // plane cuts: PlaneCutResult::knife_edges
   std::string why_not;                 // when pieces is null: a sentence fragment
   bool cancelled = false;              // stopped by `progress` (not by the time limit)
   double seconds = 0;
@@ -36,8 +37,11 @@ struct IsolatedDecomposition {
 enum class DecompositionMethods {
   plane_cuts_then_voronoi,  // the cuts (with at most half the time), else the Voronoi one
                             // (with at most a quarter)
-  voronoi,                  // only the Voronoi decomposition (the pipeline's second try,
+  voronoi,                  // only the Voronoi decomposition (the pipeline's last try,
                             // when the cuts' sub-volumes did not mesh together)
+  tangent_plane_cuts,       // only the cuts with tangent planes instead of the cylinders
+                            // that planar faces touch (PlaneCutOptions::tangent_planes):
+                            // where the cuts' pieces had knife edges and did not mesh
 };
 
 // The Voronoi decomposition's share of a decomposition time limit: at most a quarter. Where
