@@ -627,7 +627,8 @@ PlaneCutResult cut_along(const occ::Solid& solid, std::vector<Plane> planes,
         // OCCT's face unification in the fuse can run without end (HexMe i15's cuts, with
         // the caps raised): it gets the time left.
         std::unique_ptr<occ::Solid> u =
-            occ::fuse_solids(pieces[a], pieces[b], std::max(0.5, options.time_limit - seconds()));
+            occ::fuse_solids(pieces[a], pieces[b], std::max(0.5, options.time_limit - seconds()),
+                             /*split_faces_if_unification_fails=*/true);
         // A union OCCT turned inside out, or that lost volume, is no union.
         const double both = volume[a] + volume[b], uv = u ? u->volume() : 0;
         if (!u || !(uv > 0) || std::abs(uv - both) > kVolumeTolerance * both ||

@@ -119,11 +119,12 @@ class Deadline : public Message_ProgressIndicator {
   std::chrono::steady_clock::time_point end_;
 };
 
-// Faces (and edges) on one surface merged. OCCT's unification can throw where it would
-// concatenate B-splines or merge edges (HexMe i14: a tube's end ring fused to its middle,
-// where a plane tangent to the tube left a line on its cylinder): it is tried again without
-// concatenating, then without merging edges, and else the shape is left as it is.
-TopoDS_Shape unified(const TopoDS_Shape& s) {
+// Faces (and edges) on one surface merged. With `or_as_is`, where OCCT's unification throws
+// (HexMe i14: a tube's end ring fused to its middle, where a plane tangent to the tube left a
+// line on its cylinder) it is tried again without concatenating B-splines, then without
+// merging edges, and else the shape is left as it is (a valid solid, its faces split where
+// the pieces met); without, the exception is passed on (a failed cut or union).
+TopoDS_Shape unified(const TopoDS_Shape& s, bool or_as_is = false) {
   const bool modes[][2] = {{true, true}, {true, false}, {false, false}};  // edges, B-splines
   for (int k = 0; k < 3; ++k) {
     try {
@@ -131,9 +132,10 @@ TopoDS_Shape unified(const TopoDS_Shape& s) {
       unify.Build();
       return unify.Shape();
     } catch (...) {  // Standard_Failure and others
+      if (!or_as_is) throw;
     }
   }
-  return s;  // as it is: a valid solid, its faces split where the pieces met
+  return s;
 }
 
 // What unifying solids may take at most: where it ends at all it takes milliseconds
@@ -151,13 +153,13 @@ double unification_bound(std::size_t solids) {
 // and at most unification_bound) it runs in a child process, stopped at the limit
 // (`timed_out`). "" when done, else why not.
 std::string unified_within(const std::vector<TopoDS_Solid>& solids, double seconds,
-                           std::vector<TopoDS_Solid>& out, bool& timed_out) {
-  auto unify_all = [&solids] {
+                           std::vector<TopoDS_Solid>& out, bool& timed_out, bool or_as_is = false) {
+  auto unify_all = [&solids, or_as_is] {
     BRep_Builder b;
     TopoDS_Compound c;
     b.MakeCompound(c);
     for (const TopoDS_Solid& s : solids) {
-      const TopoDS_Shape u = unified(s);
+      const TopoDS_Shape u = unified(s, or_as_is);
       for (TopExp_Explorer ex(u, TopAbs_SOLID); ex.More(); ex.Next()) b.Add(c, ex.Current());
     }
     return c;
@@ -372,7 +374,8 @@ bool run_boolean(Operation& op, const Solid& a, const Solid& b) {
 
 }  // namespace
 
-std::unique_ptr<Solid> fuse_solids(const Solid& a, const Solid& b, double time_limit) {
+std::unique_ptr<Solid> fuse_solids(const Solid& a, const Solid& b, double time_limit,
+                                   bool split_faces_if_unification_fails) {
   try {
     BRepAlgoAPI_Fuse fuse;
     if (!run_boolean(fuse, a, b)) return nullptr;
@@ -381,7 +384,10 @@ std::unique_ptr<Solid> fuse_solids(const Solid& a, const Solid& b, double time_l
       fused.push_back(TopoDS::Solid(ex.Current()));
     if (fused.size() != 1) return nullptr;  // apart, or touching along an edge
     bool timed_out = false;
-    if (!unified_within(fused, time_limit, u, timed_out).empty() || u.size() != 1) return nullptr;
+    if (!unified_within(fused, time_limit, u, timed_out, split_faces_if_unification_fails)
+             .empty() ||
+        u.size() != 1)
+      return nullptr;
     return std::make_unique<Solid>(make_solid(u[0]));
   } catch (const Standard_Failure&) {
     return nullptr;

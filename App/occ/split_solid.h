@@ -65,7 +65,11 @@ std::vector<FaceSample> sample_faces(const Solid& solid);
 // The union of two solids as one solid with unified faces, or null if it is not one solid.
 // `time_limit` (seconds, > 0): the unification, which takes no progress indicator and can
 // run without end, runs in a child process stopped at the limit (then null); 0: in this one.
-std::unique_ptr<Solid> fuse_solids(const Solid& a, const Solid& b, double time_limit = 0);
+// `split_faces_if_unification_fails`: where OCCT's unification throws (also without
+// concatenating B-splines and without merging edges), the union keeps its faces split
+// instead of being null (the plane cuts' merging: HexMe i14's tube, i18).
+std::unique_ptr<Solid> fuse_solids(const Solid& a, const Solid& b, double time_limit = 0,
+                                   bool split_faces_if_unification_fails = false);
 
 // The difference a - b as one solid with unified faces, or null if it is not one solid.
 std::unique_ptr<Solid> cut_solids(const Solid& a, const Solid& b);
