@@ -26,7 +26,11 @@ Vec3 along(const MeshDomain& d, const OrientedEdge& oe, bool at_end, double l) {
 
 }  // namespace
 
-std::vector<Cusp> face_cusps(const MeshDomain& d, FaceId f, double degrees) {
+namespace {
+
+// The cusps of face f, at vertex `only` (all when invalid). The wires are walked by their
+// topology; geometry is asked only at the vertices looked at.
+std::vector<Cusp> cusps(const MeshDomain& d, FaceId f, double degrees, VertexId only) {
   std::vector<Cusp> found;
   const double cos_limit = std::cos(degrees * M_PI / 180);
   // Per vertex, the edges into and out of it as the wires run: one of each per wire passing,
@@ -39,6 +43,7 @@ std::vector<Cusp> face_cusps(const MeshDomain& d, FaceId f, double degrees) {
       const OrientedEdge& out = wire[k];
       if (d.edge_is_degenerated(in.edge) || d.edge_is_degenerated(out.edge)) continue;
       const VertexId v = out.forward ? d.edge_first_vertex(out.edge) : d.edge_last_vertex(out.edge);
+      if (only.valid() && v != only) continue;
       at[v.value()].first.push_back(in);
       at[v.value()].second.push_back(out);
     }
@@ -51,6 +56,15 @@ std::vector<Cusp> face_cusps(const MeshDomain& d, FaceId f, double degrees) {
       for (const OrientedEdge& out : edges.second) {
         const double shorter = std::min(d.edge_length(in.edge), d.edge_length(out.edge));
         if (!(shorter > 0)) continue;
+        // First from chords over an eighth of each edge (cheap; an eighth of a full circle
+        // turns 22.5 degrees): corners far from a point are passed over.
+        const std::vector<Vec3> pi = d.edge_points_by_length(in.edge, 8);
+        const std::vector<Vec3> po = d.edge_points_by_length(out.edge, 8);
+        const Vec3 c_in8 = in.forward ? Vec3(pi[8] - pi[7]) : Vec3(pi[0] - pi[1]);
+        const Vec3 c_out8 = out.forward ? Vec3(po[1] - po[0]) : Vec3(po[7] - po[8]);
+        if (c_in8.norm() > 0 && c_out8.norm() > 0 &&
+            c_in8.normalized().dot(c_out8.normalized()) > -std::cos(M_PI / 3))
+          continue;
         // Directions of travel into and out of the vertex, from chords 1% of the shorter edge.
         const double l_tangent = 0.01 * shorter;
         const Vec3 t_in = vertex - along(d, in, true, l_tangent);
@@ -68,6 +82,16 @@ std::vector<Cusp> face_cusps(const MeshDomain& d, FaceId f, double degrees) {
       }
   }
   return found;
+}
+
+}  // namespace
+
+std::vector<Cusp> face_cusps(const MeshDomain& d, FaceId f, double degrees) {
+  return cusps(d, f, degrees, VertexId());
+}
+
+std::vector<Cusp> cusps_at(const MeshDomain& d, FaceId f, VertexId v, double degrees) {
+  return cusps(d, f, degrees, v);
 }
 
 double cusp_angle_at(const MeshDomain& d, const Cusp& c, double l) {

@@ -24,6 +24,8 @@ struct Cusp {
 
 // Every such corner of face f. `degrees`: the largest angle counted as a point.
 std::vector<Cusp> face_cusps(const MeshDomain& domain, FaceId f, double degrees = 2);
+// Those at vertex v only (geometry is evaluated there only: what each edge's meshing asks).
+std::vector<Cusp> cusps_at(const MeshDomain& domain, FaceId f, VertexId v, double degrees = 2);
 
 // The angle (radians) at the cusp between the chords from its vertex to the points at arc
 // length l along each of its two edges (l at most each edge's length): what a quad with its

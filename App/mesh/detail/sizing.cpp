@@ -82,7 +82,7 @@ double cusp_segment(const core::MeshDomain& s, core::EdgeId e, bool at_last, dou
   const core::VertexId v = at_last ? s.edge_last_vertex(e) : s.edge_first_vertex(e);
   double want = 0;
   for (core::FaceId f : s.edge_faces(e))
-    for (const core::Cusp& c : core::face_cusps(s, f)) {
+    for (const core::Cusp& c : core::cusps_at(s, f, v)) {
       const bool in = c.in.edge == e && c.in.forward == at_last;
       const bool out = c.out.edge == e && c.out.forward != at_last;
       if (c.vertex != v || (!in && !out)) continue;
