@@ -451,45 +451,39 @@ bool mesh_decomposed(const occ::Solid& solid, const MeshOptions& options,
   auto spent = [&] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   };
+  // Another decomposition (`method`, within `seconds`) meshed; else why not is appended
+  // (`what` before it, `end` after it) or, when the user stopped it, a `cancelled` error.
+  auto again = [&](detail::DecompositionMethods method, double seconds, const std::string& what,
+                   const char* end) {
+    MeshOptions o = options;
+    o.decomposition_time_limit = seconds;
+    const detail::IsolatedDecomposition e = detail::decompose_isolated(solid, o, progress, method);
+    if (e.cancelled) {
+      result.diagnostics.push_back(core::make_error("cancelled", "Meshing was cancelled."));
+      return false;
+    }
+    std::string why;
+    if (e.pieces && mesh_pieces(solid, e, options, sizes, progress, t0, result, why)) return true;
+    why_not += what + (e.pieces ? why : e.why_not) + end;
+    return false;
+  };
   // Pieces with knife edges (a cylinder cut along where a planar face touches it) that did
   // not mesh: the cuts with the planes tangent to those cylinders instead (HexMe i14: a lug
   // as wide as its tube, cut off it along the tube's cylinder, folded its sweep's layers).
   if (d.knife_edges && spent() < 0.5 * options.decomposition_time_limit) {
-    MeshOptions tangent = options;
-    tangent.decomposition_time_limit =
-        std::max(5.0, 0.5 * options.decomposition_time_limit - spent());
-    const detail::IsolatedDecomposition t = detail::decompose_isolated(
-        solid, tangent, progress, detail::DecompositionMethods::tangent_plane_cuts);
-    if (t.cancelled) {
-      result.diagnostics.push_back(core::make_error("cancelled", "Meshing was cancelled."));
-      return false;
-    }
-    std::string why_tangent;
-    if (t.pieces && mesh_pieces(solid, t, options, sizes, progress, t0, result, why_tangent))
+    if (again(detail::DecompositionMethods::tangent_plane_cuts,
+              std::max(5.0, 0.5 * options.decomposition_time_limit - spent()),
+              "; with planes tangent to the cylinders that planar faces touch, ", ""))
       return true;
-    why_not += "; with planes tangent to the cylinders that planar faces touch, " +
-               (t.pieces ? why_tangent : t.why_not);
+    if (progress.cancelled()) return false;
   }
   // The exact cuts' sub-volumes did not mesh together: the Voronoi decomposition, within
   // what is left of the decomposition's time (the attempt to mesh the cuts' sub-volumes
   // counts too: HexMe i22's 45 took 20 s).
-  MeshOptions rest = options;
-  rest.decomposition_time_limit =
-      std::max(5.0, std::min(options.decomposition_time_limit - spent(),
-                             detail::voronoi_share(options.decomposition_time_limit)));
-  const detail::IsolatedDecomposition voronoi =
-      detail::decompose_isolated(solid, rest, progress, detail::DecompositionMethods::voronoi);
-  if (voronoi.cancelled) {
-    result.diagnostics.push_back(core::make_error("cancelled", "Meshing was cancelled."));
-    return false;
-  }
-  std::string why_voronoi;
-  if (voronoi.pieces &&
-      mesh_pieces(solid, voronoi, options, sizes, progress, t0, result, why_voronoi))
-    return true;
-  why_not += "; the Voronoi decomposition did not help either (" +
-             (voronoi.pieces ? why_voronoi : voronoi.why_not) + ")";
-  return false;
+  return again(detail::DecompositionMethods::voronoi,
+               std::max(5.0, std::min(options.decomposition_time_limit - spent(),
+                                      detail::voronoi_share(options.decomposition_time_limit))),
+               "; the Voronoi decomposition did not help either (", ")");
 }
 
 bool mesh_pieces(const occ::Solid& solid, const detail::IsolatedDecomposition& d,
