@@ -102,6 +102,17 @@ double cusp_angle_at(const MeshDomain& d, const Cusp& c, double l) {
   return std::acos(std::clamp(a.normalized().dot(b.normalized()), -1.0, 1.0));
 }
 
+double cusp_signed_angle(const MeshDomain& d, const Cusp& c, double l_in, double l_out) {
+  const Vec3 vertex = d.vertex_point(c.vertex);
+  // a: back along the edge the wire runs in by; b: along the edge it runs out by. The face
+  // lies to the left of the wire (about its normal), so from b to a counter-clockwise.
+  const Vec3 a = along(d, c.in, true, std::min(l_in, d.edge_length(c.in.edge))) - vertex;
+  const Vec3 b = along(d, c.out, false, std::min(l_out, d.edge_length(c.out.edge))) - vertex;
+  if (a.norm() <= 0 || b.norm() <= 0) return 0;
+  const Vec3 n = d.face_normal(c.face, vertex);
+  return std::atan2(b.cross(a).dot(n), b.dot(a));
+}
+
 std::string face_cusp(const MeshDomain& d, FaceId f, double degrees) {
   const std::vector<Cusp> cusps = face_cusps(d, f, degrees);
   if (cusps.empty()) return {};

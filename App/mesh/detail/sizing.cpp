@@ -70,27 +70,78 @@ namespace {
 // there is about its sine: 0.3).
 const double kCuspAngle = std::asin(0.3);
 
+// A cusp's angle as edge e (one of its two) sees it: with e's chord at l_e and the other's
+// at l_o.
+struct CuspSide {
+  const core::MeshDomain& s;
+  const core::Cusp& c;
+  bool e_is_in;
+  double angle(double l_e, double l_o) const {
+    return e_is_in ? core::cusp_signed_angle(s, c, l_e, l_o)
+                   : core::cusp_signed_angle(s, c, l_o, l_e);
+  }
+  double other_length() const { return s.edge_length((e_is_in ? c.out : c.in).edge); }
+  double own_length() const { return s.edge_length((e_is_in ? c.in : c.out).edge); }
+  double tiny() const { return 0.01 * std::min(own_length(), other_length()); }
+  // e's own part of the angle: its chord at l against the other's tangent.
+  double part(double l) const { return angle(l, tiny()) - angle(tiny(), tiny()); }
+  CuspSide other() const { return {s, c, !e_is_in}; }
+};
+
+// Where both edges of a point curve the same way (a crescent between a circle and a larger
+// one: HexMe i11's plate, rounded with radius 65, tangent to its tube of radius 37.5), the
+// edge that curves less closes the corner as its chord lengthens (its part is negative): its
+// segment at the point is shortened, to at least a quarter, until it takes at most a fifth of
+// what the other edge's chord opens (estimated at `from`, or that edge's length). Else the
+// chords cross once the other edge's segment is capped (i11: at a vertex 8 units along it,
+// with segments of 9 along the larger circle), and no quad mesh of the face exists.
+double closing_segment(const CuspSide& side, double from) {
+  const double opens = std::max(0.0, side.other().part(std::min(from, side.other_length())));
+  double l = from;
+  while (l > 0.25 * from && side.part(l) < -0.2 * opens) l = std::max(0.25 * from, 0.8 * l);
+  return l;
+}
+
 // How long the segment of edge e next to vertex v should be where a face of e comes to a
 // point there (core/face_cusp.h; 0 where none does): long enough that the chords from v along
 // both edges of the point open to kCuspAngle, at most `most`. A quad at such a corner has the
 // angle of those chords; with segments of the size, a plate's outline tangent to a tube of
 // radius r gives about size / (2 r) radians (HexMe i14: 7 degrees, hexahedra at 0.08-0.15).
+// An edge whose chord closes the corner instead is shortened (closing_segment); the other
+// edge's lengthening then counts with that.
 // `at_last`: at the edge's last vertex (a closed edge has the vertex at both ends; a wire
 // runs into a point along the edge that ends there and out along the one that starts there).
-double cusp_segment(const core::MeshDomain& s, core::EdgeId e, bool at_last, double from,
-                    double most) {
+struct CuspEnd {
+  double length = 0;     // the segment at the point; 0: no point at that end
+  bool closing = false;  // shortened (closing_segment), and graded up from there
+};
+
+CuspEnd cusp_segment(const core::MeshDomain& s, core::EdgeId e, bool at_last, double from,
+                     double most) {
   const core::VertexId v = at_last ? s.edge_last_vertex(e) : s.edge_first_vertex(e);
-  double want = 0;
+  double longest = 0, shortest = 0;  // 0: none asked for
   for (core::FaceId f : s.edge_faces(e))
     for (const core::Cusp& c : core::cusps_at(s, f, v)) {
       const bool in = c.in.edge == e && c.in.forward == at_last;
       const bool out = c.out.edge == e && c.out.forward != at_last;
       if (c.vertex != v || (!in && !out)) continue;
+      const CuspSide side{s, c, in};
+      if (side.part(from) < 0) {
+        const double l = closing_segment(side, from);
+        shortest = shortest > 0 ? std::min(shortest, l) : l;
+        continue;
+      }
+      const CuspSide other = side.other();
+      const double other_from = std::min(from, other.own_length());
+      const bool other_closes = other.part(other_from) < 0;
+      const double l_other = other_closes ? closing_segment(other, other_from) : 0;
       double l = from;
-      while (l < most && core::cusp_angle_at(s, c, l) < kCuspAngle) l = std::min(most, 1.2 * l);
-      want = std::max(want, l);
+      while (l < most && side.angle(l, other_closes ? l_other : l) < kCuspAngle)
+        l = std::min(most, 1.2 * l);
+      longest = std::max(longest, l);
     }
-  return want;
+  if (shortest > 0) return {shortest, true};
+  return {longest, false};
 }
 
 // `points` (n + 1 on edge e, first to last vertex) with the first and last segments
@@ -110,17 +161,47 @@ std::vector<Vec3> widened_at_cusps(const core::MeshDomain& s, core::EdgeId e,
   // mean length (with points at both ends, each end gets half of what is left for both).
   const double mean = length / n;
   const double most = std::min(3.0 * mean, length - 0.5 * (n - 1) * mean);
-  double w0 = cusp_segment(s, e, false, u[1] * length, most);
-  double w1 = cusp_segment(s, e, true, (1 - u[n - 1]) * length, most);
+  CuspEnd e0 = cusp_segment(s, e, false, u[1] * length, most);
+  CuspEnd e1 = cusp_segment(s, e, true, (1 - u[n - 1]) * length, most);
+  if (e0.length <= 0 && e1.length <= 0) return points;
   const double both = length - 0.5 * (n - 2) * mean;  // what the two end segments may have
-  if (w0 > 0 && w1 > 0 && w0 + w1 > both) w0 = w1 = std::max(0.5 * both, mean);
-  w0 /= length, w1 /= length;
-  if (w0 <= u[1] && w1 <= 1 - u[n - 1]) return points;
-  const double a = std::max(u[1], w0), b = std::min(u[n - 1], 1 - w1);
-  std::vector<double> w(n + 1);
-  w[0] = 0, w[n] = 1;
-  for (int i = 1; i < n; ++i)
-    w[i] = n == 2 ? 0.5 * (a + b) : a + (b - a) * (u[i] - u[1]) / std::max(u[n - 1] - u[1], 1e-300);
+  if (!e0.closing && !e1.closing && e0.length > 0 && e1.length > 0 &&
+      e0.length + e1.length > both) {
+    const double share = std::max(0.5 * both, mean);
+    e0.length = std::min(e0.length, share), e1.length = std::min(e1.length, share);
+  }
+  // The nodes' distances from each end that a point asks for: the lengthened segment; or
+  // the shortened one, then segments growing by 1.5 while shorter than the mean (a ladder
+  // of quads at the point needs two nodes of this edge where the other edge has one:
+  // cusp_ladder.h), using at most half the inner nodes.
+  auto ends = [&](const CuspEnd& c) {
+    std::vector<double> at;
+    if (c.length <= 0) return at;
+    if (!c.closing) return std::vector<double>{c.length};
+    double segment = c.length, sum = 0;
+    while (int(at.size()) < std::max(1, (n - 1) / 2)) {
+      at.push_back(sum += segment);
+      if ((segment *= 1.5) >= 0.9 * mean) break;
+    }
+    return at;
+  };
+  const std::vector<double> head = ends(e0), tail = ends(e1);
+  std::vector<double> w(n + 1, 0.0);
+  w[n] = 1;
+  const int h = int(head.size()), t = int(tail.size());
+  if (h + t > n - 1) {  // two inner nodes asked for, one there (n == 2)
+    w[1] = 0.5 * (head.front() + length - tail.front()) / length;
+  } else {
+    for (int i = 1; i <= h; ++i) w[i] = head[i - 1] / length;
+    for (int i = 1; i <= t; ++i) w[n - i] = 1 - tail[i - 1] / length;
+    // The nodes between keep their spacing, stretched between the two ends'.
+    const double a = w[h], b = w[n - t], ua = u[h], ub = u[n - t];
+    for (int i = h + 1; i < n - t; ++i)
+      w[i] = a + (b - a) * (u[i] - ua) / std::max(ub - ua, 1e-300);
+  }
+  bool same = true;
+  for (int i = 1; i < n && same; ++i) same = std::abs(w[i] - u[i]) <= 1e-12;
+  if (same) return points;
   // The new points on a dense polyline of the edge, put on it.
   const int m = std::max(64, 16 * n);
   const std::vector<Vec3> dense = s.edge_points_by_length(e, m);

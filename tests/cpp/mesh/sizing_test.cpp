@@ -62,10 +62,13 @@ TEST(Sizing, GradedEdgeStartsAtTheLocalSizeAndGrows) {
 
 // A face that comes to a point (a plate's top around a boss tangent to the plate's outline
 // from inside: a crescent): with nodes at equal spacing the quad at the point has the angle
-// of the chords to the first nodes, about size / (2 r) radians. The segments next to the
-// point are lengthened until those chords open to asin(0.3) (at most three segments' worth);
-// the other nodes keep their order, and an edge with no point at its ends is as before.
-TEST(Sizing, SegmentsNextToAPointAreLengthenedUntilItsCornerOpens) {
+// of the chords to the first nodes, about size / (2 r) radians for a line and a circle. Here
+// both edges curve the same way: the boss's circle (radius 10) opens the corner as its chord
+// lengthens, the outline's (radius 20) closes it. The boss's segment at the point is
+// lengthened until the chords open to asin(0.3) (at most three segments' worth); the
+// outline's is shortened and the next ones grow by 1.5 (two of its nodes where the boss has
+// one: the quad mesher's ladder at the point). An edge with no point at its ends is as before.
+TEST(Sizing, SegmentsNextToAPointOpenItsCorner) {
   const occ::Solid s = testing::fuse(occ::make_cylinder(20, 4, Vec3::Zero(), testing::kZ),
                                      occ::make_cylinder(10, 12, Vec3(10, 0, 0), testing::kZ));
   std::vector<core::Cusp> cusps;
@@ -73,24 +76,33 @@ TEST(Sizing, SegmentsNextToAPointAreLengthenedUntilItsCornerOpens) {
     for (const core::Cusp& c : core::face_cusps(s, f)) cusps.push_back(c);
   ASSERT_FALSE(cusps.empty());
   const core::Cusp& c = cusps.front();
+  // The segments from the point: the wire runs into it along `in`, out of it along `out`.
+  auto from_point = [&](const core::OrientedEdge& oe, int n, bool into) {
+    std::vector<Vec3> p = edge_points(s, oe.edge, n, nullptr);
+    if (oe.forward == into) std::reverse(p.begin(), p.end());
+    EXPECT_LT((p[0] - s.vertex_point(c.vertex)).norm(), 1e-9);
+    std::vector<double> segments;
+    for (int i = 0; i < n; ++i) segments.push_back((p[i + 1] - p[i]).norm());
+    return segments;
+  };
   const double l_in = s.edge_length(c.in.edge), l_out = s.edge_length(c.out.edge);
   const int n_in = int(std::lround(l_in / 2)), n_out = int(std::lround(l_out / 2));
-  // The segment at the point: the wire runs into it along `in`, out of it along `out`.
-  auto first_segment = [&](const core::OrientedEdge& oe, int n, bool into) {
-    const std::vector<Vec3> p = edge_points(s, oe.edge, n, nullptr);
-    const bool at_last = oe.forward == into;
-    EXPECT_LT((p[at_last ? n : 0] - s.vertex_point(c.vertex)).norm(), 1e-9);
-    return at_last ? (p[n - 1] - p[n]).norm() : (p[1] - p[0]).norm();
-  };
-  const double a = first_segment(c.in, n_in, true), b = first_segment(c.out, n_out, false);
-  EXPECT_GT(a, 1.2 * l_in / n_in);
-  EXPECT_GT(b, 1.2 * l_out / n_out);
-  // The corner opens to asin(0.3), or the segments reached their cap of three.
-  const double angle = core::cusp_angle_at(s, c, std::min(a, b));
-  const bool capped = a > 2.9 * l_in / n_in || b > 2.9 * l_out / n_out;
-  EXPECT_TRUE(angle >= std::asin(0.3) - 0.02 || capped) << angle;
-  // Without the lengthening the corner would be much sharper.
-  EXPECT_LT(core::cusp_angle_at(s, c, 2.0), 0.5 * angle);
+  const std::vector<double> in = from_point(c.in, n_in, true),
+                            out = from_point(c.out, n_out, false);
+  const bool in_is_outline = l_in > l_out;  // the outline's circle is the longer
+  const std::vector<double>& outline = in_is_outline ? in : out;
+  const std::vector<double>& boss = in_is_outline ? out : in;
+  const double outline_mean = std::max(l_in, l_out) / (in_is_outline ? n_in : n_out);
+  const double boss_mean = std::min(l_in, l_out) / (in_is_outline ? n_out : n_in);
+  EXPECT_GT(boss[0], 1.2 * boss_mean);
+  EXPECT_LT(outline[0], 0.8 * outline_mean);
+  EXPECT_NEAR(outline[1], 1.5 * outline[0], 0.05 * outline[0]);
+  // The corner is open, and much wider than with equal segments of the mean.
+  const double angle = core::cusp_signed_angle(s, c, in[0], out[0]);
+  const double equal = core::cusp_signed_angle(s, c, in_is_outline ? outline_mean : boss_mean,
+                                               in_is_outline ? boss_mean : outline_mean);
+  EXPECT_GT(angle, 0.1);
+  EXPECT_GT(angle, 2 * equal);
   // An edge with no point at either end keeps its equal spacing.
   for (core::EdgeId e : s.edges()) {
     if (e == c.in.edge || e == c.out.edge || s.edge_is_degenerated(e)) continue;
