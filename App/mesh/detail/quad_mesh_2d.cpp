@@ -15,6 +15,8 @@
 #include <tuple>
 #include <utility>
 
+#include "mesh/detail/cusp_ladder.h"
+
 namespace vorohex::mesh::detail {
 
 namespace {
@@ -616,10 +618,8 @@ bool smooth_loop(const std::vector<Vec2>& l) {
   return true;
 }
 
-}  // namespace
-
-QuadMesh2d quad_mesh_2d(const std::vector<std::vector<Vec2>>& loops, double size,
-                        int smoothing_passes, int ring_layers, const SizeAt& size_at) {
+QuadMesh2d mesh_without_ladders(const std::vector<std::vector<Vec2>>& loops, double size,
+                                int smoothing_passes, int ring_layers, const SizeAt& size_at) {
   if (ring_layers <= 0 || loops.empty() || !(size > 0))
     return lattice_mesh(loops, size, smoothing_passes, size_at);
   const std::size_t L = loops.size();
@@ -715,6 +715,34 @@ QuadMesh2d quad_mesh_2d(const std::vector<std::vector<Vec2>>& loops, double size
   for (const auto& q : out.quads)
     if (quad_quality(out.points[q[0]], out.points[q[1]], out.points[q[2]], out.points[q[3]]) <= 0)
       return lattice_mesh(loops, size, smoothing_passes, size_at);
+  return out;
+}
+
+}  // namespace
+
+QuadMesh2d quad_mesh_2d(const std::vector<std::vector<Vec2>>& loops, double size,
+                        int smoothing_passes, int ring_layers, const SizeAt& size_at) {
+  const CuspLadders ladders = cusp_ladders(loops, size);
+  if (ladders.quads.empty())
+    return mesh_without_ladders(loops, size, smoothing_passes, ring_layers, size_at);
+  const QuadMesh2d rest =
+      mesh_without_ladders(ladders.loops, size, smoothing_passes, ring_layers, size_at);
+  QuadMesh2d out;
+  for (const auto& loop : loops) out.points.insert(out.points.end(), loop.begin(), loop.end());
+  const int nb = int(out.points.size());
+  std::vector<int> given;  // the rest's boundary nodes -> the given nodes
+  for (const auto& l : ladders.index) given.insert(given.end(), l.begin(), l.end());
+  const int rest_nb = int(given.size());
+  for (std::size_t k = std::size_t(rest_nb); k < rest.points.size(); ++k)
+    out.points.push_back(rest.points[k]);
+  out.quads = ladders.quads;
+  for (const auto& q : rest.quads) {
+    std::array<int, 4> r{};
+    for (int c = 0; c < 4; ++c)
+      r[c] = q[c] < rest_nb ? given[std::size_t(q[c])] : nb + q[c] - rest_nb;
+    out.quads.push_back(r);
+  }
+  out.error = rest.error;
   return out;
 }
 

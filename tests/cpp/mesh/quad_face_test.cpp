@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <set>
@@ -247,6 +248,45 @@ TEST(QuadMesh2d, SmallFacesAndRefusals) {
   const std::vector<Vec2> bow = {{0, 0}, {1, 0}, {2, 1},  {2, 0},
                                  {1, 1}, {0, 1}, {-1, 1}, {-1, 0.5}};
   EXPECT_NE(detail::quad_mesh_2d({bow}, 0.5, 10).error, "");
+}
+
+// A crescent: a plate's round outline (radius 20) and a hole of radius 10 tangent to it from
+// inside, at (20, 0). The two loops touch there and the domain comes to a point on both
+// sides of it. Nodes as the edges' spacing gives them at such a point: along the outline
+// (which closes the corner as its chords lengthen) short segments growing by 1.5, along the
+// hole (which opens it) a longer first one. The triangulation cannot take two loops through
+// one point, and inner nodes in the strip along the point fold: the loops are joined there
+// and a ladder of quads of boundary nodes is peeled off at each side of the point.
+TEST(QuadMesh2d, ACrescentBetweenTouchingLoopsGetsALadderAtItsPoint) {
+  const double step = 2 * M_PI / 64;
+  std::vector<double> half = {0.5 * step, 1.25 * step, 2.375 * step};
+  for (double a = 3.5 * step; a < M_PI - 0.5 * step; a += step) half.push_back(a);
+  std::vector<Vec2> outline = {{20, 0}};
+  for (double a : half) outline.push_back(20 * Vec2(std::cos(a), std::sin(a)));
+  outline.push_back({-20, 0});
+  for (auto it = half.rbegin(); it != half.rend(); ++it)
+    outline.push_back(20 * Vec2(std::cos(*it), -std::sin(*it)));
+  ASSERT_EQ(outline.size() % 2, 0u);
+  // The hole clockwise from the point, its first and last segments 1.5 times the others.
+  std::vector<Vec2> hole = {{20, 0}};
+  const int n_hole = 30;
+  const double first = 1.5 * 2 * M_PI / (n_hole + 1);
+  for (int k = 0; k < n_hole - 1; ++k) {
+    const double a = first + (2 * M_PI - 2 * first) * k / (n_hole - 2);
+    hole.push_back(Vec2(10, 0) + 10 * Vec2(std::cos(a), -std::sin(a)));
+  }
+  const std::vector<std::vector<Vec2>> loops = {outline, hole};
+  const auto m = detail::quad_mesh_2d(loops, 2, 10);
+  check_2d(loops, m, 0.01);
+  // The quads at the point (either copy of its node) have only boundary nodes: a ladder.
+  const int nb = int(outline.size() + hole.size());
+  int at_point = 0;
+  for (const auto& q : m.quads)
+    if (std::count(q.begin(), q.end(), 0) + std::count(q.begin(), q.end(), int(outline.size()))) {
+      ++at_point;
+      for (int c : q) EXPECT_LT(c, nb);
+    }
+  EXPECT_EQ(at_point, 2);
 }
 
 TEST(QuadFace, PlanarFaceWithHolesOfAPrism) {
