@@ -6,8 +6,10 @@ the Part workbench's Fusion/Cut with "Refine" do; a fillet with makeFillet), wri
 STEP and meshed with `vorohex mesh` at the default size (bounding-box diagonal / 20) and
 at diagonal / 25. The shapes are the ones issues 20 and 22 name (a stepped block, the
 paper's Figure 6 and 7 shapes, a block with two crossing holes, an L bracket with a hole
-in each leg, a stepped plate with holes, a flanged pipe) and a few more a user makes every
-day. Writes bench/results/parts.md.
+in each leg, a stepped plate with holes, a flanged pipe), a few more a user makes every
+day, and two whose faces come to a point (a boss tangent to a plate's round outline from
+inside; a lug whose round end is tangent to its tube, as HexMe i11). Writes
+bench/results/parts.md.
 
 usage: run_parts.py [--build BUILD]
 """
@@ -98,6 +100,14 @@ def build_parts(work):
     parts["angle bracket, two holes in each leg"] = angle.fuse(wall)
     parts["block with a boss, cross hole"] = box(80, 40, 30).cut(
         cyl(6, 40, (40, 0, 15), (0, 1, 0))).fuse(cyl(10, 15, (20, 20, 30)))
+    # Faces that come to a point: a boss whose circle is tangent to the plate's outline from
+    # inside; a lug whose rounded end is tangent to the tube it is on (as HexMe i11).
+    parts["plate with a boss tangent to its outline"] = cyl(20, 4, (0, 0, 0)).fuse(
+        cyl(10, 12, (10, 0, 0)))
+    lug = cyl(25, 10, (0, 10, 0), (1, 0, 0)).fuse(box(10, 40, 50, (0, 10, -25))).cut(
+        cyl(6, 10, (0, 40, 0), (1, 0, 0)))
+    parts["tube with a lug whose round end is tangent to it"] = cyl(15, 60, (0, 0, 0), (1, 0, 0)).fuse(
+        lug).cut(cyl(9, 60, (0, 0, 0), (1, 0, 0)))
     out = []
     for k, (name, shape) in enumerate(parts.items()):
         solid = refined(shape)
