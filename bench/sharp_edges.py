@@ -1,9 +1,9 @@
 #!/usr/bin/python3
 """Boundary quads of a hex mesh that cross a sharp model edge with no node on it.
 
-Such a quad has a node on one face of the edge (and not on the other) and a node on the
-other face (and not on the first), and none on the edge or its vertices: the mesh cuts the
-corner off there. `vorohex check` does not see it (it checks nodes, and its volume allowance
+Such a quad has no face that all its nodes lie on, a node on one face of the edge (and not
+on the other) and a node on the other face (and not on the first), and none on the edge or
+its vertices: the mesh cuts the corner off there. `vorohex check` does not see it (it checks nodes, and its volume allowance
 counts the quad's distance from the CAD as chord error): the measurement behind the known
 gap in the README's "Validity and quality". Geometric, from FreeCAD's distances: a node is
 on a face or an edge within 1e-6 x the bounding-box diagonal; an edge is sharp where its two
@@ -86,6 +86,8 @@ def main():
                        if a in faces and b in faces and shape.Edges[i].distToShape(vertex)[0] <= tol}
     crossed = {}
     for k in boundary:
+        if set.intersection(*[on_faces[n] for n in k]):
+            continue  # the quad lies on one face (its sides may run along two of its edges)
         for i, a, b in sharp:
             only_a = any(a in on_faces[n] and b not in on_faces[n] for n in k)
             only_b = any(b in on_faces[n] and a not in on_faces[n] for n in k)

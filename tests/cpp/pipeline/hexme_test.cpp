@@ -79,6 +79,11 @@ TEST(GenerateMesh, HexMeI22IsFourMultisweeps) {
   EXPECT_EQ(r.stats.scheme, "multisweep");
   EXPECT_EQ(r.stats.sub_volumes, 4);
   expect_valid_on_cad(r, *in.solid);
+  // The rim of the boss at x = 45 (Edge7, a half circle between its end face and its round
+  // top) is one circle of the merged pieces over two of the part's: its nodes were given the
+  // end face and slid off the rim while smoothing, cutting the corner off (volume 0.8 % short,
+  // within the check's chord allowance). On the part's edges, the volume is off by 3e-5.
+  EXPECT_LT(r.check.volume_rel_error, 1e-3);
 }
 
 // HexMe i14 (a tube with a lug as wide as the tube): cut along the tube's cylinder, the
