@@ -192,6 +192,40 @@ TEST(CheckMeshCad, TaperedBrickMeshMatchesExactly) {
   EXPECT_LT(r.scaled_jacobian.min, 1.0);
 }
 
+// A mesh whose nodes all lie on the CAD can still cut a corner off: two nodes of a box's
+// top front edge moved onto the top face leave the front quad between them spanning the
+// front and the top faces with no node on the edge. The chord allowance takes its centre's
+// distance as chord error; the check names the edge (HexMe i22's multisweeps cut a boss's
+// rim off so, 0.8 % of the volume, and passed unnoticed).
+TEST(CheckMeshCad, AQuadAcrossASharpEdgeIsNamed) {
+  const occ::Solid box = occ::make_box(3, 1, 1);
+  HexMesh m = structured_grid(3, 1, 1);
+  for (int i : {1, 2}) {
+    const NodeId n(static_cast<std::int32_t>(grid_node(3, 1, i, 0, 1)));
+    m.set_point(n, Vec3(i, 0.3, 1));
+  }
+  classify_by_geometry(m, box);
+  const CheckReport r = check_mesh(m, &box);
+  EXPECT_LT(r.max_boundary_distance, 1e-9);
+  const auto* across = find(r, "boundary_across_edges");
+  ASSERT_NE(across, nullptr);
+  EXPECT_EQ(across->severity, core::Severity::warning);
+  EXPECT_EQ(across->message.rfind("1 boundary quads", 0), 0u) << across->message;
+  ASSERT_EQ(across->entities.size(), 1u);
+  // The edge named is the top front one (y = 0, z = 1).
+  core::EdgeId named;
+  for (core::EdgeId e : box.edges())
+    if (core::entity_name(e) == across->entities[0]) named = e;
+  ASSERT_TRUE(named.valid());
+  const Vec3 mid = box.edge_points_by_length(named, 2)[1];
+  EXPECT_NEAR(mid.y(), 0, 1e-9);
+  EXPECT_NEAR(mid.z(), 1, 1e-9);
+  // The same grid untouched has none.
+  HexMesh plain = structured_grid(3, 1, 1);
+  classify_by_geometry(plain, box);
+  EXPECT_EQ(find(check_mesh(plain, &box), "boundary_across_edges"), nullptr);
+}
+
 TEST(CheckMeshCad, CurvedFaceGetsChordAllowance) {
   // Cylinder r = 1, h = 1 meshed by a 5-block o-grid: an inner square of half-side a and
   // four hexes out to nodes on the circles at 45 degrees. Lateral quads are chords.
