@@ -130,6 +130,9 @@ def main():
                        v_min_before=r["smoothing"]["min_scaled_jacobian_before"],
                        v_mean_before=r["smoothing"]["mean_scaled_jacobian_before"],
                        v_min=c["scaled_jacobian"]["min"], v_mean=c["scaled_jacobian"]["mean"])
+            for d in r["diagnostics"]:
+                if d["code"] == "boundary_across_edges":
+                    row["v_across"] = int(d["message"].split()[0])
         else:
             size = row["size"] = r["size"]
             row["v"] = errors(r["diagnostics"])
@@ -224,6 +227,17 @@ def decomposition_times(rows):
         (" (" + ", ".join(over) + ")") if over else ""))
 
 
+def across_edges(rows):
+    """The valid meshes whose boundary quads cut across sharp edges (the check's warning)."""
+    valid = [r for r in rows if r.get("v", "").startswith("valid")]
+    across = [r for r in valid if r.get("v_across")]
+    return ("Valid meshes with boundary quads that span two faces across a sharp edge with no"
+            " node on it (warning `boundary_across_edges`: the mesh cuts a corner off there):"
+            " %d of %d%s." % (len(across), len(valid), (": " + ", ".join(
+                "%s %d (%s)" % (r["model"].split("_")[0], r["v_across"], r["v"].split()[-1])
+                for r in across)) if across else ""))
+
+
 def write_table(rows):
     def f(v, fmt="%.3f"):
         return fmt % v if isinstance(v, (int, float)) else (v if v is not None else "")
@@ -267,6 +281,7 @@ def write_table(rows):
         " on %d (the others fail: errors named, or stopped at the limit)." % (len(decomposed),
                                                                               len(schemed)),
         decomposition_times(rows),
+        across_edges(rows),
         "",
         "| model | VoroHex | hexes | min SJ | mean SJ | s | Gmsh | hexes | min SJ | mean SJ | inverted | s | decomposition | s |",
         "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|",
