@@ -307,6 +307,8 @@ void check_against_cad(const HexMesh& mesh, const occ::Solid& cad, const CheckOp
     return c.dim == 0 &&
            (c.id == cad.edge_first_vertex(id).value() || c.id == cad.edge_last_vertex(id).value());
   };
+  // Two faces can meet along several edges (a rim of two half circles): a quad with a node
+  // on any of them follows the faces' border there.
   auto count_across = [&](const std::array<std::int32_t, 4>& n) {
     std::set<int> crossed;
     for (int i = 0; i < 4; ++i)
@@ -317,11 +319,15 @@ void check_against_cad(const HexMesh& mesh, const occ::Solid& cad, const CheckOp
             if (a >= b) continue;
             const auto it = edges_between.find({a, b});
             if (it == edges_between.end()) continue;
-            for (int e : it->second) {
-              bool on = false;
-              for (std::int32_t k : n) on = on || on_edge(k, e);
-              if (!on && is_sharp(e)) crossed.insert(e);
-            }
+            bool on = false;
+            // On one by its class, or lying on one (a node on the edge given a face).
+            for (int e : it->second)
+              for (std::int32_t k : n)
+                on = on || on_edge(k, e) ||
+                     cad.distance_to_edge(core::EdgeId(e), points[k]) <= distance_tol;
+            if (on) continue;
+            for (int e : it->second)
+              if (is_sharp(e)) crossed.insert(e);
           }
       }
     if (crossed.empty()) return;
