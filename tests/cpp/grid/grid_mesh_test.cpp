@@ -43,9 +43,9 @@ std::vector<core::Vec3> boundary_points(const occ::Solid& s) {
 // Every result must pass the project's validity check: positive scaled Jacobians,
 // conforming, closed, volume and boundary nodes on the CAD. Its one warning allowed here is
 // boundary_across_edges: the pillow layer's quads still cut across sharp edges where the
-// feature capture did not follow them or untangling moved their nodes off them (n06 31,
-// HexMe's industrial parts 125-140 quads: issue 23's "each boundary quad on exactly one
-// model face" is not met yet); the check names them since it looks for them.
+// feature capture did not follow them or untangling moved their nodes off them (n06 17
+// quads, HexMe's industrial parts over a hundred: issue 23's "each boundary quad on exactly
+// one model face" is not met yet); the check names them since it looks for them.
 void expect_valid(const occ::Solid& solid, const grid::GridResult& r) {
   ASSERT_TRUE(r.ok);
   const quality::CheckReport c = quality::check_mesh(r.mesh, &solid);
