@@ -19,9 +19,9 @@
 #include "mesh/tet_split.h"
 #include "pipeline/detail/decompose_isolated.h"
 #include "pipeline/detail/fallback_bytes.h"
+#include "pipeline/detail/mesh_decomposed.h"
 #include "pipeline/detail/part_warnings.h"
 #include "pipeline/detail/schemes.h"
-#include "smooth/restore_topology.h"
 
 namespace vorohex::pipeline {
 namespace {
@@ -401,177 +401,6 @@ MeshResult generate_mesh(const occ::Solid& solid, const MeshOptions& options,
 }
 
 namespace {
-// Schemes of several sub-volumes or solids, each once, in order of first use ("sweep+map").
-std::string joined_schemes(const std::vector<std::string>& schemes) {
-  std::vector<std::string> seen;
-  std::string out;
-  for (const std::string& s : schemes)
-    if (std::find(seen.begin(), seen.end(), s) == seen.end()) {
-      seen.push_back(s);
-      out += (out.empty() ? "" : "+") + s;
-    }
-  return out;
-}
-
-// Nodes of the mesh's boundary that restore_topology made interior: they lie on a cut, so
-// the sub-volumes' meshes leave a gap inside the solid there (the join check, made against
-// the pieces, sees the cut as boundary and passes it).
-std::size_t boundary_nodes_inside(const core::HexMesh& mesh) {
-  const std::vector<char> boundary = core::boundary_nodes(mesh);
-  std::size_t n = 0;
-  for (std::size_t i = 0; i < boundary.size(); ++i)
-    n += boundary[i] && mesh.node_classes()[i].is_interior();
-  return n;
-}
-
-// A solid no single scheme meshes: decomposed into sub-volumes (in a child process), those
-// meshed into one conforming mesh, which is put back onto the solid's own topology. True
-// when result.mesh holds it; else false with `why_not` (a sentence fragment), or a
-// `cancelled` error when the user stopped it.
-bool mesh_pieces(const occ::Solid& solid, const detail::IsolatedDecomposition& d,
-                 const MeshOptions& options, const core::SizeField& sizes,
-                 const core::Progress& progress, std::chrono::steady_clock::time_point t0,
-                 MeshResult& result, std::string& why_not);
-
-bool mesh_decomposed(const occ::Solid& solid, const MeshOptions& options,
-                     const core::SizeField& sizes, const core::Progress& progress,
-                     MeshResult& result, std::string& why_not) {
-  const auto t0 = std::chrono::steady_clock::now();
-  const detail::IsolatedDecomposition d = detail::decompose_isolated(solid, options, progress);
-  if (d.cancelled) {
-    result.diagnostics.push_back(core::make_error("cancelled", "Meshing was cancelled."));
-    return false;
-  }
-  if (!d.pieces) {
-    why_not = d.why_not;
-    return false;
-  }
-  if (mesh_pieces(solid, d, options, sizes, progress, t0, result, why_not)) return true;
-  if (d.method != "plane cuts" || progress.cancelled()) return false;
-  auto spent = [&] {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  };
-  // Another decomposition (`method`, within `seconds`) meshed; else why not is appended
-  // (`what` before it, `end` after it) or, when the user stopped it, a `cancelled` error.
-  auto again = [&](detail::DecompositionMethods method, double seconds, const std::string& what,
-                   const char* end) {
-    MeshOptions o = options;
-    o.decomposition_time_limit = seconds;
-    const detail::IsolatedDecomposition e = detail::decompose_isolated(solid, o, progress, method);
-    if (e.cancelled) {
-      result.diagnostics.push_back(core::make_error("cancelled", "Meshing was cancelled."));
-      return false;
-    }
-    std::string why;
-    if (e.pieces && mesh_pieces(solid, e, options, sizes, progress, t0, result, why)) return true;
-    why_not += what + (e.pieces ? why : e.why_not) + end;
-    return false;
-  };
-  // Pieces with knife edges (a cylinder cut along where a planar face touches it) that did
-  // not mesh: the cuts with the planes tangent to those cylinders instead (HexMe i14: a lug
-  // as wide as its tube, cut off it along the tube's cylinder, folded its sweep's layers).
-  if (d.knife_edges && spent() < 0.5 * options.decomposition_time_limit) {
-    if (again(detail::DecompositionMethods::tangent_plane_cuts,
-              std::max(5.0, 0.5 * options.decomposition_time_limit - spent()),
-              "; with planes tangent to the cylinders that planar faces touch, ", ""))
-      return true;
-    if (progress.cancelled()) return false;
-  }
-  // The exact cuts' sub-volumes did not mesh together: the Voronoi decomposition, within
-  // what is left of the decomposition's time (the attempt to mesh the cuts' sub-volumes
-  // counts too: HexMe i22's 45 took 20 s).
-  return again(detail::DecompositionMethods::voronoi,
-               std::max(5.0, std::min(options.decomposition_time_limit - spent(),
-                                      detail::voronoi_share(options.decomposition_time_limit))),
-               "; the Voronoi decomposition did not help either (", ")");
-}
-
-bool mesh_pieces(const occ::Solid& solid, const detail::IsolatedDecomposition& d,
-                 const MeshOptions& options, const core::SizeField& sizes,
-                 const core::Progress& progress, std::chrono::steady_clock::time_point t0,
-                 MeshResult& result, std::string& why_not) {
-  mesh::SubVolumeMeshOptions o;
-  o.size = sizes.global();
-  o.size_field = &sizes;
-  o.max_hexes = options.max_hexes;
-  o.multisweep = std::find(options.schemes.begin(), options.schemes.end(), "multisweep") !=
-                 options.schemes.end();
-  mesh::SubVolumeMeshResult m = mesh::mesh_sub_volumes(*d.pieces, o, progress);
-  const int n = d.pieces->num_solids();
-  if (!m.ok) {
-    if (progress.cancelled()) {
-      result.diagnostics.push_back(core::make_error("cancelled", "Meshing was cancelled."));
-      return false;
-    }
-    std::string errors;
-    for (const core::Diagnostic& diag : m.diagnostics)
-      if (diag.severity == core::Severity::error) {
-        std::string msg = diag.message;
-        if (!msg.empty() && msg.back() == '.') msg.pop_back();
-        errors += (errors.empty() ? "" : "; ") + msg;
-      }
-    why_not =
-        "its " + std::to_string(n) + " sub-volumes could not be meshed together (" + errors + ")";
-    return false;
-  }
-  // Faces two sub-volumes share are meshed by both (mesh/mesh_sub_volumes.h): identical
-  // for grids and lattices, not always for unstructured sweep ends. A mesh that does not
-  // conform across them is no result; the fallback takes over.
-  quality::CheckOptions conformity;
-  conformity.volume_rel_tol = 1;  // the final check measures the volume; this one, the joins
-  const quality::CheckReport joined = quality::check_mesh(m.mesh, d.pieces.get(), conformity);
-  if (!joined.valid) {
-    std::string errors;
-    for (const core::Diagnostic& diag : joined.diagnostics)
-      if (diag.severity == core::Severity::error)
-        errors += (errors.empty() ? "" : ", ") + diag.code;
-    why_not = "the meshes of its " + std::to_string(n) +
-              " sub-volumes do not match where they meet (" + errors + ")";
-    return false;
-  }
-  const double tolerance = std::max(1e-9 * solid.diagonal(), solid.tolerance());
-  const smooth::RestoreStats restored =
-      smooth::restore_topology(m.mesh, *d.pieces, solid, tolerance);
-  if (const std::size_t gap = boundary_nodes_inside(m.mesh); gap > 0) {
-    why_not = "the meshes of its " + std::to_string(n) + " sub-volumes leave a gap inside it (" +
-              std::to_string(gap) + " nodes of the mesh's boundary lie on the cuts)";
-    return false;
-  }
-  result.mesh = std::move(m.mesh);
-  std::map<std::string, int> count;
-  for (const std::string& s : m.stats.schemes) ++count[s];
-  result.stats.scheme = joined_schemes(m.stats.schemes);
-  result.stats.sub_volume_schemes = m.stats.schemes;
-  result.stats.sub_volume_types = m.stats.types;
-  result.stats.sub_volumes = n;
-  result.stats.intervals = {0, 0, 0};
-  result.stats.seconds_meshing = seconds_since(t0);
-  std::ostringstream s;
-  s << (d.method == "voronoi" ? "Cut along its Voronoi graph into "
-                              : "Cut along the faces at its concave edges" +
-                                    (d.along.empty() ? std::string() : " (" + d.along + ")") +
-                                    ", extended through it" +
-                                    (d.left_out.empty() ? std::string()
-                                                        : " (but not along " + d.left_out +
-                                                              ", with which OCCT's cut "
-                                                              "failed)") +
-                                    ", into ")
-    << n << " sub-volumes (" << d.before_merge << " before merging; ";
-  bool first = true;
-  for (const auto& [name, k] : count)
-    s << (first ? "" : ", ") << k << " "
-      << (name == "map"          ? "mapped"
-          : name == "multisweep" ? "multiswept"
-                                 : "swept"),
-        first = false;
-  s << "), meshed with one interval assignment over " << m.stats.curves << " curves and "
-    << m.stats.constraints << " constraints, joined (" << m.stats.nodes_merged << " nodes merged); "
-    << restored.interior << " nodes on the cuts are inside the solid again. Decomposition "
-    << std::fixed << std::setprecision(1) << d.seconds << " s.";
-  result.diagnostics.push_back(core::make_info("decomposed", s.str()));
-  return true;
-}
-
 // How mesh_solid hands a solid no structured scheme meshes to the fallback: at once (the
 // several-solids path, which smooths all solids' meshes together), or back to the caller
 // (`deferred`: `needed` and `why` set; the caller runs it, perhaps started beside the
@@ -656,7 +485,8 @@ bool mesh_solid(const occ::Solid& solid, const MeshOptions& options, const core:
   if (options.decompose) {
     if (deferred && deferred->before_decomposition && options.fallback)
       deferred->before_decomposition();
-    if (mesh_decomposed(solid, options, sizes, progress, result, not_decomposed)) return true;
+    if (detail::mesh_decomposed(solid, options, sizes, progress, result, not_decomposed))
+      return true;
     if (progress.cancelled() || core::has_error(result.diagnostics)) return false;
   }
   if (!options.fallback) {
@@ -702,7 +532,7 @@ MeshResult generate_parts(const occ::Solid& whole, const MeshOptions& options,
     mesh::SubVolumeMeshResult m = mesh::mesh_sub_volumes(whole, o, progress);
     if (m.ok) {
       result.mesh = std::move(m.mesh);
-      result.stats.scheme = joined_schemes(m.stats.schemes);
+      result.stats.scheme = detail::joined_schemes(m.stats.schemes);
       result.stats.sub_volume_schemes = m.stats.schemes;
       result.stats.sub_volume_types = m.stats.types;
       result.stats.sub_volumes = whole.num_solids();
