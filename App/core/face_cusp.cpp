@@ -94,14 +94,6 @@ std::vector<Cusp> cusps_at(const MeshDomain& d, FaceId f, VertexId v, double deg
   return cusps(d, f, degrees, v);
 }
 
-double cusp_angle_at(const MeshDomain& d, const Cusp& c, double l) {
-  const Vec3 vertex = d.vertex_point(c.vertex);
-  const Vec3 a = along(d, c.in, true, std::min(l, d.edge_length(c.in.edge))) - vertex;
-  const Vec3 b = along(d, c.out, false, std::min(l, d.edge_length(c.out.edge))) - vertex;
-  if (a.norm() <= 0 || b.norm() <= 0) return 0;
-  return std::acos(std::clamp(a.normalized().dot(b.normalized()), -1.0, 1.0));
-}
-
 double cusp_signed_angle(const MeshDomain& d, const Cusp& c, double l_in, double l_out) {
   const Vec3 vertex = d.vertex_point(c.vertex);
   // a: back along the edge the wire runs in by; b: along the edge it runs out by. The face

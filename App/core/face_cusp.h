@@ -27,17 +27,12 @@ std::vector<Cusp> face_cusps(const MeshDomain& domain, FaceId f, double degrees 
 // Those at vertex v only (geometry is evaluated there only: what each edge's meshing asks).
 std::vector<Cusp> cusps_at(const MeshDomain& domain, FaceId f, VertexId v, double degrees = 2);
 
-// The angle (radians) at the cusp between the chords from its vertex to the points at arc
-// length l along each of its two edges (l at most each edge's length): what a quad with its
-// corner there and its next nodes at l gets.
-double cusp_angle_at(const MeshDomain& domain, const Cusp& cusp, double l);
-
 // The signed angle (radians) at the cusp between the chords from its vertex to the points at
 // arc lengths l_in and l_out along its in and out edges (each at most its edge's length):
 // positive while the face lies between the chords, negative where they cross (the polygon of
-// the edges' nodes would cross itself there). Where both edges curve the same way (a crescent
-// between a circle and a larger one), lengthening the chord along the larger circle closes
-// the corner: cusp_angle_at's equal lengths are then not what to aim for.
+// the edges' nodes would cross itself there): what a quad with its corner there and its next
+// nodes at those lengths gets. Where both edges curve the same way (a crescent between a
+// circle and a larger one), lengthening the chord along the larger circle closes the corner.
 double cusp_signed_angle(const MeshDomain& domain, const Cusp& cusp, double l_in, double l_out);
 
 // The first such corner of face f ("Vertex3 of Face2, where Edge4 and Edge7 meet

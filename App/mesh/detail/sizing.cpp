@@ -73,18 +73,24 @@ const double kCuspAngle = std::asin(0.3);
 // A cusp's angle as edge e (one of its two) sees it: with e's chord at l_e and the other's
 // at l_o.
 struct CuspSide {
+  CuspSide(const core::MeshDomain& domain, const core::Cusp& cusp, bool in)
+      : s(domain), c(cusp), e_is_in(in) {
+    tiny = 0.01 * std::min(own_length(), other_length());
+    tangents = angle(tiny, tiny);
+  }
   const core::MeshDomain& s;
   const core::Cusp& c;
   bool e_is_in;
+  double tiny = 0;      // a chord length that stands for the tangent
+  double tangents = 0;  // the angle between the two edges' tangents (about 0)
   double angle(double l_e, double l_o) const {
     return e_is_in ? core::cusp_signed_angle(s, c, l_e, l_o)
                    : core::cusp_signed_angle(s, c, l_o, l_e);
   }
   double other_length() const { return s.edge_length((e_is_in ? c.out : c.in).edge); }
   double own_length() const { return s.edge_length((e_is_in ? c.in : c.out).edge); }
-  double tiny() const { return 0.01 * std::min(own_length(), other_length()); }
   // e's own part of the angle: its chord at l against the other's tangent.
-  double part(double l) const { return angle(l, tiny()) - angle(tiny(), tiny()); }
+  double part(double l) const { return angle(l, tiny) - tangents; }
   CuspSide other() const { return {s, c, !e_is_in}; }
 };
 
@@ -102,6 +108,12 @@ double closing_segment(const CuspSide& side, double from) {
   return l;
 }
 
+// What an end of an edge at a point asks for (cusp_segment).
+struct CuspEnd {
+  double length = 0;     // the segment at the point; 0: no point at that end
+  bool closing = false;  // shortened (closing_segment), and graded up from there
+};
+
 // How long the segment of edge e next to vertex v should be where a face of e comes to a
 // point there (core/face_cusp.h; 0 where none does): long enough that the chords from v along
 // both edges of the point open to kCuspAngle, at most `most`. A quad at such a corner has the
@@ -111,11 +123,6 @@ double closing_segment(const CuspSide& side, double from) {
 // edge's lengthening then counts with that.
 // `at_last`: at the edge's last vertex (a closed edge has the vertex at both ends; a wire
 // runs into a point along the edge that ends there and out along the one that starts there).
-struct CuspEnd {
-  double length = 0;     // the segment at the point; 0: no point at that end
-  bool closing = false;  // shortened (closing_segment), and graded up from there
-};
-
 CuspEnd cusp_segment(const core::MeshDomain& s, core::EdgeId e, bool at_last, double from,
                      double most) {
   const core::VertexId v = at_last ? s.edge_last_vertex(e) : s.edge_first_vertex(e);
@@ -125,7 +132,7 @@ CuspEnd cusp_segment(const core::MeshDomain& s, core::EdgeId e, bool at_last, do
       const bool in = c.in.edge == e && c.in.forward == at_last;
       const bool out = c.out.edge == e && c.out.forward != at_last;
       if (c.vertex != v || (!in && !out)) continue;
-      const CuspSide side{s, c, in};
+      const CuspSide side(s, c, in);
       if (side.part(from) < 0) {
         const double l = closing_segment(side, from);
         shortest = shortest > 0 ? std::min(shortest, l) : l;
