@@ -1,7 +1,9 @@
 // Reading and writing hex meshes; the format follows the file extension.
 //   .vtu  VTK XML unstructured grid (binary, base64; cell data SubVolume and ScaledJacobian;
 //         point data Classification dimension and entity id)   read + write
-//   .msh  Gmsh MSH 4.1 (write: ASCII; read: 4.1 ASCII/binary and 2.2 ASCII)  read + write
+//   .msh  Gmsh MSH 4.1 (write: ASCII; read: 4.1 ASCII/binary and 2.2 ASCII)  read + write;
+//         read back, the point, line and surface elements of physical groups named
+//         "Vertex1", "Edge3", "Face7" classify their nodes (the lowest dimension wins)
 //   .inp  Abaqus / CalculiX, C3D8/C3D8I/C3D8R or C3D20/C3D20R elements  write
 // Second-order (20-node) meshes are VTK type 25, Gmsh type 17 and C3D20(R).
 #pragma once

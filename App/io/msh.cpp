@@ -275,6 +275,14 @@ class Cursor {
     const auto r = std::from_chars(b, t.data() + t.size(), *v);
     return r.ec == std::errc() && r.ptr == t.data() + t.size();
   }
+  // The rest of the current line (without its newline), which is skipped.
+  std::string_view rest_of_line() {
+    const std::size_t b = pos_;
+    while (pos_ < s_.size() && s_[pos_] != '\n') ++pos_;
+    std::string_view t = s_.substr(b, pos_ - b);
+    if (pos_ < s_.size()) ++pos_;
+    return t;
+  }
   // Skips the rest of the current line, newline included.
   void skip_line() {
     while (pos_ < s_.size() && s_[pos_] != '\n') ++pos_;
@@ -340,12 +348,15 @@ class MshReader {
         ok = v4_ ? nodes41() : nodes22();
       else if (section == "Elements")
         ok = v4_ ? elements41() : elements22();
-      else if (section == "Entities" && binary_)
-        ok = entities41_binary();
+      else if (section == "Entities" && v4_)
+        ok = entities41();
+      else if (section == "PhysicalNames")
+        ok = physical_names();
       else if (!in_.skip_past("$End" + section))
         return fail("section $" + section + " has no end (truncated?)");
       if (!ok) return false;
-      if ((section == "Nodes" || section == "Elements" || (section == "Entities" && binary_)) &&
+      if ((section == "Nodes" || section == "Elements" || section == "PhysicalNames" ||
+           (section == "Entities" && v4_)) &&
           (!in_.token(&t) || t != "$End" + section))
         return fail("section $" + section + " does not end with $End" + section +
                     " (truncated or inconsistent counts)");
@@ -357,6 +368,7 @@ class MshReader {
     if (quadratic > 0 && quadratic < static_cast<std::ptrdiff_t>(hexes_.size()))
       return fail("the file mixes 8-node and 20-node hexahedra");
     store_hexes();
+    classify_nodes();
     report_skipped();
     return true;
   }
@@ -404,10 +416,13 @@ class MshReader {
     return true;
   }
 
+  // `physical`: MSH 2's physical tag of the element (MSH 4 finds it through the entity).
   bool add_element(std::uint64_t tag, int type, std::int64_t entity,
-                   const std::vector<std::uint64_t>& nodes) {
+                   const std::vector<std::uint64_t>& nodes, std::int64_t physical = 0) {
     if (type != kGmshHexahedron && type != kGmshHexahedron20) {
-      ++skipped_[element_kind(type).dim < 3 ? 0 : 1];
+      const int dim = element_kind(type).dim;
+      ++skipped_[dim < 3 ? 0 : 1];
+      if (dim >= 0 && dim < 3) return classify_element(dim, entity, physical, nodes);
       return true;
     }
     if (entity <= std::numeric_limits<std::int32_t>::min() ||
@@ -438,10 +453,16 @@ class MshReader {
   }
 
   void report_skipped() {
-    if (skipped_[0] > 0)
+    if (skipped_[0] > 0 && node_class_.empty())
       result_->diagnostics.push_back(core::make_info(
           "boundary_elements_skipped",
           "Skipped " + std::to_string(skipped_[0]) + " point, line and surface elements"));
+    else if (skipped_[0] > 0)
+      result_->diagnostics.push_back(core::make_info(
+          "boundary_elements_read",
+          "Read " + std::to_string(skipped_[0]) + " point, line and surface elements: their " +
+              "groups named after the model's entities put " + std::to_string(node_class_.size()) +
+              " nodes on their vertex, edge or face"));
     if (skipped_[1] > 0)
       result_->diagnostics.push_back(
           core::make_warning("non_hex_elements_skipped",
@@ -530,29 +551,86 @@ class MshReader {
     return true;
   }
 
-  // Binary $Entities cannot be skipped by searching; walk it (its content is unused).
-  bool entities41_binary() {
+  // $Entities (text or binary): the physical groups of each point, curve and surface, by
+  // which the boundary elements name the model entity their nodes lie on.
+  bool entities41() {
     std::uint64_t counts[4];
     for (auto& c : counts)
       if (!size_value(&c)) return fail("truncated $Entities");
     for (int dim = 0; dim < 4; ++dim) {
       if (!plausible(counts[dim], 12, "entities")) return false;
       for (std::uint64_t e = 0; e < counts[dim]; ++e) {
-        std::int32_t tag = 0;
+        std::int32_t entity = 0, tag = 0;
         double box[6];
         std::uint64_t n = 0;
-        if (!int_value(&tag)) return fail("truncated $Entities");
+        if (!int_value(&entity)) return fail("truncated $Entities");
         for (int k = 0; k < (dim == 0 ? 3 : 6); ++k)
           if (!double_value(&box[k])) return fail("truncated $Entities");
         for (int list = 0; list < (dim == 0 ? 1 : 2); ++list) {  // physicals, then boundary
-          if (!size_value(&n) || !plausible(n, 4, "entity tags"))
+          if (!size_value(&n) || !plausible(n, binary_ ? 4 : 2, "entity tags"))
             return fail("truncated $Entities");
-          for (std::uint64_t i = 0; i < n; ++i)
+          for (std::uint64_t i = 0; i < n; ++i) {
             if (!int_value(&tag)) return fail("truncated $Entities");
+            if (list == 0 && dim < 3) entity_physicals_[{dim, entity}].push_back(tag);
+          }
         }
       }
     }
     return true;
+  }
+
+  // $PhysicalNames (text in both versions): `dim tag "name"` per line.
+  bool physical_names() {
+    std::uint64_t count = 0;
+    if (!in_.number(&count) || !plausible(count, 6, "physical names"))
+      return fail("invalid $PhysicalNames");
+    in_.skip_line();
+    for (std::uint64_t i = 0; i < count; ++i) {
+      std::int32_t dim = 0, tag = 0;
+      if (!in_.number(&dim) || !in_.number(&tag)) return fail("invalid $PhysicalNames line");
+      std::string_view name = in_.rest_of_line();
+      while (!name.empty() && (name.front() == ' ' || name.front() == '"')) name.remove_prefix(1);
+      while (!name.empty() && (name.back() == '\r' || name.back() == ' ' || name.back() == '"'))
+        name.remove_suffix(1);
+      physical_names_[{dim, tag}] = std::string(name);
+    }
+    return true;
+  }
+
+  // A point, line or surface element in a physical group named as VoroHex names the model's
+  // entities ("Vertex1", "Edge3", "Face7": FreeCAD's names, as written by write_msh) puts
+  // its nodes on that entity; a node in several keeps the lowest dimension (a node on an
+  // edge is also in the quads of both its faces). Other names classify nothing.
+  bool classify_element(int dim, std::int64_t entity, std::int64_t physical,
+                        const std::vector<std::uint64_t>& nodes) {
+    std::vector<std::int32_t> physicals;
+    if (v4_) {
+      const auto it = entity_physicals_.find({dim, static_cast<std::int32_t>(entity)});
+      if (it != entity_physicals_.end()) physicals = it->second;
+    } else if (physical > 0 && physical <= std::numeric_limits<std::int32_t>::max()) {
+      physicals.push_back(static_cast<std::int32_t>(physical));
+    }
+    static const char* const kPrefix[3] = {"Vertex", "Edge", "Face"};
+    for (std::int32_t ph : physicals) {
+      const auto name = physical_names_.find({dim, ph});
+      if (name == physical_names_.end()) continue;
+      const std::string_view n = name->second, prefix = kPrefix[dim];
+      if (n.size() <= prefix.size() || n.substr(0, prefix.size()) != prefix) continue;
+      std::int32_t id = 0;
+      const auto r = std::from_chars(n.data() + prefix.size(), n.data() + n.size(), id);
+      if (r.ec != std::errc() || r.ptr != n.data() + n.size() || id <= 0) continue;
+      for (std::uint64_t tag : nodes) {
+        std::int32_t index = 0;
+        if (!node_of(tag, &index)) return false;
+        auto [it, fresh] = node_class_.try_emplace(index, core::NodeClass{std::int8_t(dim), id});
+        if (!fresh && dim < it->second.dim) it->second = {std::int8_t(dim), id};
+      }
+    }
+    return true;
+  }
+
+  void classify_nodes() {
+    for (const auto& [node, c] : node_class_) result_->mesh.set_node_class(core::NodeId(node), c);
   }
 
   bool nodes22() {
@@ -585,16 +663,25 @@ class MshReader {
       std::int32_t type = 0, ntags = 0;
       if (!in_.number(&tag) || !in_.number(&type) || !in_.number(&ntags) || ntags < 0 || ntags > 64)
         return fail("truncated or invalid element line");
-      std::int64_t entity = 1;
+      std::int64_t entity = 1, physical = 0;
       for (std::int32_t k = 0; k < ntags; ++k) {
         std::int64_t v = 0;
         if (!in_.number(&v)) return fail("truncated or invalid element tags");
         // Tag 0 is the physical group, tag 1 the elementary entity.
+        if (k == 0) physical = v;
         if (k == 1 || ntags == 1) entity = v;
       }
       if (type != kGmshHexahedron && type != kGmshHexahedron20) {
-        in_.skip_line();
-        ++skipped_[element_kind(type).dim < 3 ? 0 : 1];
+        const ElementKind kind = element_kind(type);
+        if (kind.dim < 0 || kind.dim > 2 || physical <= 0) {
+          in_.skip_line();
+          ++skipped_[kind.dim < 3 ? 0 : 1];
+          continue;
+        }
+        nodes.resize(static_cast<std::size_t>(kind.nodes));
+        for (auto& v : nodes)
+          if (!in_.number(&v)) return fail("truncated or invalid element line");
+        if (!add_element(tag, type, entity, nodes, physical)) return false;
         continue;
       }
       nodes.resize(type == kGmshHexahedron ? 8 : 20);
@@ -613,6 +700,9 @@ class MshReader {
   bool have_nodes_ = false;
   std::unordered_map<std::uint64_t, std::int32_t> node_index_;
   std::uint64_t skipped_[2] = {0, 0};  // lower-dimensional, other volume elements
+  std::map<std::pair<int, int>, std::string> physical_names_;                  // (dim, tag) -> name
+  std::map<std::pair<int, int>, std::vector<std::int32_t>> entity_physicals_;  // MSH 4
+  std::unordered_map<std::int32_t, core::NodeClass> node_class_;  // from boundary elements
   struct Hex {
     std::uint64_t tag;
     core::HexNodes nodes;

@@ -223,6 +223,12 @@ TEST(NamedGroups, MshHasPhysicalGroupsPerEntityAndReadsBack) {
     EXPECT_EQ(back.mesh.num_hexes(), r.mesh.num_hexes());
     EXPECT_EQ(back.mesh.order(), order);
     if (order == 2) EXPECT_EQ(back.mesh.mid_edge_nodes(), r.mesh.mid_edge_nodes());
+    // The groups' point, line and surface elements give every node its vertex, edge or face
+    // back (the check needs them: nodes on their entity, quads across edges).
+    EXPECT_TRUE(back.mesh.node_classes() == r.mesh.node_classes());
+    EXPECT_TRUE(
+        std::any_of(back.diagnostics.begin(), back.diagnostics.end(),
+                    [](const core::Diagnostic& d) { return d.code == "boundary_elements_read"; }));
   }
 }
 

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "fixtures/diagnostics.h"
+#include "io/mesh_io.h"
 #include "occ/primitives.h"
 #include "quality/check_mesh.h"
 #include "quality/grid_fixture.h"
@@ -220,6 +221,18 @@ TEST(CheckMeshCad, AQuadAcrossASharpEdgeIsNamed) {
   const Vec3 mid = box.edge_points_by_length(named, 2)[1];
   EXPECT_NEAR(mid.y(), 0, 1e-9);
   EXPECT_NEAR(mid.z(), 1, 1e-9);
+  // Read back from a .msh file, whose named groups carry the classification, it is seen too.
+  io::WriteOptions w;
+  w.groups = io::named_groups(m, box);
+  const std::string path = ::testing::TempDir() + "/across_edge.msh";
+  std::string error;
+  ASSERT_TRUE(io::write_mesh(m, path, w, &error)) << error;
+  const io::ReadMeshResult back = io::read_mesh(path);
+  ASSERT_TRUE(back.ok);
+  const CheckReport from_file = check_mesh(back.mesh, &box);
+  const auto* again = find(from_file, "boundary_across_edges");
+  ASSERT_NE(again, nullptr);
+  EXPECT_EQ(again->entities, across->entities);
   // The same grid untouched has none.
   HexMesh plain = structured_grid(3, 1, 1);
   classify_by_geometry(plain, box);
