@@ -200,11 +200,7 @@ FeatureCapture capture_features(core::HexMesh& mesh,
     for (std::int32_t c : s.nodes) {
       if (on_feature.count(c)) continue;
       const double d = (mesh.point(NodeId(c)) - p).norm();
-      // Farther than two cells, no node is the vertex's: the core does not reach it (a thin
-      // part of the solid left out), and a node dragged there would stretch its pillow hex
-      // across the solid (HexMe i02: outer nodes moved 9 units, 25 cells, hexes of 1,500
-      // times a cell's volume). The vertex is named as not captured instead.
-      if (d >= best || d > 2 * size) continue;
+      if (d >= best) continue;
       const double score = d + (m.allFinite() ? 2 * mismatch(c, m) : 0.0);
       if (score < best) best = score, n = c;
     }

@@ -249,41 +249,6 @@ TEST(GridMesh, IndustrialPartsWithFoldedBoundaryQuadsEndValid) {
   }
 }
 
-// A block with a fin 0.2 thick and 5 tall, at size 1: no core cell reaches into the fin,
-// so no outer node is near the vertices at its tip. Feature capture used to give such a
-// vertex the nearest free outer node however far (HexMe i02: nodes moved 9 units, 25 cells;
-// one hexahedron held 1,500 cells' volume and the mesh 29 % too much). A vertex farther
-// than two cells from every outer node is named as not captured; no hexahedron stretches.
-TEST(GridMesh, AVertexNoCoreReachesIsNamedNotCaptured) {
-  const occ::Solid finned = occ::make_prism(
-      {{0, 0}, {10, 0}, {10, 10}, {5.1, 10}, {5.1, 15}, {4.9, 15}, {4.9, 10}, {0, 10}}, 10);
-  grid::GridOptions o;
-  o.size = 1;
-  o.laplacian_iterations = 0, o.optimisation_passes = 0;  // the capture's own result
-  const grid::GridResult r = grid::grid_mesh(finned, o);
-  EXPECT_NEAR(r.stats.size_used, 1.0, 1e-12);
-  int tip_vertices_missed = 0;
-  for (const core::Diagnostic& d : r.diagnostics)
-    if (d.code == "features_not_captured")
-      for (const std::string& e : d.entities)
-        if (e.rfind("Vertex", 0) == 0) {
-          const core::Vec3 p = finned.vertex_point(core::VertexId(std::stoi(e.substr(6))));
-          EXPECT_GT(p.y(), 12.0) << e << " is not at the fin's tip";
-          ++tip_vertices_missed;
-        }
-  EXPECT_EQ(tip_vertices_missed, 4);  // the fin's tip: two vertices at each end
-  double largest = 0, longest = 0;
-  for (std::size_t h = 0; h < r.mesh.num_hexes(); ++h) {
-    std::array<core::Vec3, 8> c;
-    for (int k = 0; k < 8; ++k) c[k] = r.mesh.point(core::NodeId(r.mesh.hex(core::HexId(h))[k]));
-    largest = std::max(largest, std::abs(quality::hex_volume(c)));
-    for (const auto& e : core::kHexEdges) longest = std::max(longest, (c[e[0]] - c[e[1]]).norm());
-  }
-  // Cells of 1 x 1 x 1: a pillow hexahedron reaches at most a couple of cells out.
-  EXPECT_LT(largest, 4.0);
-  EXPECT_LT(longest, 3.0);
-}
-
 // HexMe i14: at the first refinement the core fell apart and 150 cells (2.5% of the
 // volume) away from the largest piece were left out, too few to count as a split (a quarter
 // of the core): the mesh missed 12% of the volume. Pieces left out holding more than 1% of
