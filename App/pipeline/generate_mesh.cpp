@@ -727,9 +727,14 @@ MeshResult generate(const occ::Solid& solid, const MeshOptions& options,
     }
   }
   if (!taken) outcome = run_fallback(solid, options, sizes, small, deferred.why, progress, t0);
-  if (outcome.second_chance) return std::move(outcome.result);
   MeshResult& r = outcome.result;
-  r.diagnostics.insert(r.diagnostics.begin(), result.diagnostics.begin(), result.diagnostics.end());
+  // What the schemes and the decomposition said (scheme_failed, sweep_untangled, ...) goes
+  // before the fallback's own diagnostics; the second chance's result already starts with
+  // the small features, as `result` does.
+  const std::size_t skip =
+      outcome.second_chance ? std::min(small.size(), result.diagnostics.size()) : 0;
+  r.diagnostics.insert(r.diagnostics.begin() + std::ptrdiff_t(outcome.second_chance ? skip : 0),
+                       result.diagnostics.begin() + std::ptrdiff_t(skip), result.diagnostics.end());
   r.ok = r.ok && !core::has_error(result.diagnostics);
   r.stats.local_sizes = result.stats.local_sizes;
   return std::move(r);

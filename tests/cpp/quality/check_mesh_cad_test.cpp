@@ -195,9 +195,10 @@ TEST(CheckMeshCad, TaperedBrickMeshMatchesExactly) {
 
 // A mesh whose nodes all lie on the CAD can still cut a corner off: two nodes of a box's
 // top front edge moved onto the top face leave the front quad between them spanning the
-// front and the top faces with no node on the edge. The chord allowance takes its centre's
-// distance as chord error; the check names the edge (HexMe i22's multisweeps cut a boss's
-// rim off so, 0.8 % of the volume, and passed unnoticed).
+// front and the top faces with no node on the edge. The check names the edge, and the quad
+// is no chord of the surface: the chord allowance took its centre's distance as chord error
+// and excused the missing volume (HexMe i22's multisweeps cut a boss's rim off so, 0.8 % of
+// the volume, and passed unnoticed); now the volume is checked without it.
 TEST(CheckMeshCad, AQuadAcrossASharpEdgeIsNamed) {
   const occ::Solid box = occ::make_box(3, 1, 1);
   HexMesh m = structured_grid(3, 1, 1);
@@ -210,6 +211,9 @@ TEST(CheckMeshCad, AQuadAcrossASharpEdgeIsNamed) {
   EXPECT_LT(r.max_boundary_distance, 1e-9);
   const auto* across = find(r, "boundary_across_edges");
   ASSERT_NE(across, nullptr);
+  EXPECT_FALSE(r.valid);
+  EXPECT_NE(find(r, "volume_mismatch"), nullptr);
+  EXPECT_LT(r.volume_allowance, std::abs(r.mesh_volume - r.cad_volume));
   EXPECT_EQ(across->severity, core::Severity::warning);
   EXPECT_EQ(across->message.rfind("1 boundary quads", 0), 0u) << across->message;
   ASSERT_EQ(across->entities.size(), 1u);
