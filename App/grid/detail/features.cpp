@@ -104,6 +104,17 @@ void relax(core::HexMesh& mesh, const Surface& s, const core::MeshDomain& solid,
 
 }  // namespace
 
+// How far from a model edge, in cells, the outer nodes of its chain may lie. Along a
+// curve the grid does not follow, the core's staircase keeps its outer nodes up to about
+// the margin plus a cell's diagonal (0.5 + 1.41 cells) from the curve: with 1.5 the band of
+// nodes around a tube's end circle fell apart where the staircase turns (at 45 degrees to
+// the grid) and the circle got no chain (a tube with a cross hole: its two end circles and
+// the hole's three rims uncaptured, 1.1 % of the volume cut off).
+constexpr double kChainBand = 2.5;
+// How far from the points at a third and two thirds of a closed curve its chain's
+// waypoints may lie, in cells (within the band).
+constexpr double kTargetReach = 1.5;
+
 FeatureCapture capture_features(core::HexMesh& mesh,
                                 const std::vector<std::array<std::int32_t, 4>>& outer_quads,
                                 const std::vector<std::int32_t>& outer_nodes,
@@ -252,11 +263,11 @@ FeatureCapture capture_features(core::HexMesh& mesh,
         const Vec3 q = solid.project_to_edge(e, p);
         Vec3 m = Vec3::Zero();
         for (core::FaceId f : faces) m += solid.face_normal(f, q);
-        // Nodes farther than one and a half cells from the curve are not entered: a path
-        // that needs them is no chain along the edge (and the search stays local).
+        // Nodes farther than kChainBand cells from the curve are not entered: a path that
+        // needs them is no chain along the edge (and the search stays local).
         const double d = (q - p).norm();
-        it->second = d > 1.5 * size ? std::numeric_limits<double>::infinity()
-                                    : d + mismatch(n, m.normalized());
+        it->second = d > kChainBand * size ? std::numeric_limits<double>::infinity()
+                                           : d + mismatch(n, m.normalized());
       }
       return it->second;
     };
@@ -271,7 +282,7 @@ FeatureCapture capture_features(core::HexMesh& mesh,
         for (std::int32_t n : s.nodes) {
           if (on_feature.count(n)) continue;
           const double d = (mesh.point(NodeId(n)) - thirds[i]).norm();
-          if (d > size || d >= best) continue;
+          if (d > kTargetReach * size || d >= best) continue;
           const double score = d + off_curve(n);
           if (score < best) best = score, t = n;
         }

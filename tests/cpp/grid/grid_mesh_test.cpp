@@ -15,6 +15,7 @@
 #include "grid/grid_mesh.h"
 #include "occ/primitives.h"
 #include "occ/shape_io.h"
+#include "occ/split_solid.h"
 #include "occ/tessellate.h"
 #include "pipeline/generate_mesh.h"
 #include "quality/check_mesh.h"
@@ -231,12 +232,8 @@ TEST(GridMesh, NodesHeldAtAFaceBoundaryCrossItWhileUntangling) {
 // cut along their diagonal by a curved edge, folded flat onto a plane: scaled Jacobian
 // 1e-15) and i15 (pillow nodes pressed together at the boundary of a cylinder). The
 // untangling takes on flat hexes, lets boundary nodes cross onto the neighbouring face and
-// runs again after the optimisation: no hex is inverted or flat, every boundary node is on
-// its entity. i15's mesh is valid. i10's misses 0.7 % of the volume where its quads cut
-// across sharp edges, which the check names; since those quads no longer count as chords
-// of the surface (they are none) that is beyond the allowance and the mesh is invalid,
-// volume_mismatch its one error (issue 23: the grid does not follow every sharp edge yet).
-TEST(GridMesh, IndustrialPartsWithFoldedBoundaryQuadsEndUntangled) {
+// runs again after the optimisation: both are valid, every boundary node on its entity.
+TEST(GridMesh, IndustrialPartsWithFoldedBoundaryQuadsEndValid) {
   for (const char* name : {"i10o_simp.step", "i15o_s8.step"}) {
     SCOPED_TRACE(name);
     const occ::ReadResult in = occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/" + name);
@@ -244,25 +241,39 @@ TEST(GridMesh, IndustrialPartsWithFoldedBoundaryQuadsEndUntangled) {
     grid::GridOptions o;
     o.size = in.solid->diagonal() / 20;
     const grid::GridResult r = grid::grid_mesh(*in.solid, o);
-    ASSERT_TRUE(r.ok);
+    expect_valid(*in.solid, r);
     const std::vector<double> sj = quality::scaled_jacobians(r.mesh);
-    EXPECT_GT(*std::min_element(sj.begin(), sj.end()), 1e-6);  // none inverted or flat
+    EXPECT_GT(*std::min_element(sj.begin(), sj.end()), 1e-6);  // none flat either
     EXPECT_GT(r.stats.inverted_before_optimisation, 0u);
     const quality::CheckReport c = quality::check_mesh(r.mesh, in.solid.get());
     EXPECT_LT(c.max_boundary_distance_rel, 1e-7);
-    EXPECT_EQ(c.non_positive, 0u);
-    EXPECT_EQ(c.non_manifold_quads, 0u);
-    EXPECT_EQ(c.open_boundary_edges, 0u);
-    if (std::string(name) == "i15o_s8.step") {
-      expect_valid(*in.solid, r);
-      continue;
-    }
-    EXPECT_FALSE(c.valid);
-    std::set<std::string> codes;
-    for (const core::Diagnostic& d : c.diagnostics) codes.insert(d.code);
-    EXPECT_EQ(codes, (std::set<std::string>{"volume_mismatch", "boundary_across_edges"}));
-    EXPECT_LT(c.volume_rel_error, 0.01);
   }
+}
+
+// A tube (radius 10 and 7, 50 long) with a cross hole of radius 3, as built in FreeCAD's
+// Part workbench: its walls are 3 thick, so the grid refines to a quarter of the size, and
+// the core's staircase keeps the outer nodes up to about two cells from the end circles and
+// the hole's rims where it turns at 45 degrees to them. With chains allowed within 1.5 cells
+// of their curve, those five edges had none: 331 quads cut across them, 1.1 % of the
+// volume missing. Within 2.5 cells every edge has its chain and the mesh is valid.
+TEST(GridMesh, ATubesCircularEdgesGetChainsAcrossTheStaircase) {
+  const std::unique_ptr<occ::Solid> bore =
+      occ::cut_solids(occ::make_cylinder(10, 50), occ::make_cylinder(7, 50));
+  ASSERT_TRUE(bore);
+  const std::unique_ptr<occ::Solid> tube =
+      occ::cut_solids(*bore, occ::make_cylinder(3, 30, Vec3(-15, 0, 25), Vec3(1, 0, 0)));
+  ASSERT_TRUE(tube);
+  grid::GridOptions o;
+  o.size = tube->diagonal() / 20;
+  const grid::GridResult r = grid::grid_mesh(*tube, o);
+  expect_valid(*tube, r);
+  for (const core::Diagnostic& d : r.diagnostics)
+    EXPECT_NE(d.code, "features_not_captured") << core::format(d);
+  EXPECT_EQ(r.stats.edges_captured, r.stats.edges);
+  const quality::CheckReport c = quality::check_mesh(r.mesh, tube.get());
+  for (const core::Diagnostic& d : c.diagnostics)
+    EXPECT_NE(d.code, "boundary_across_edges") << core::format(d);
+  EXPECT_LT(c.volume_rel_error, 0.005);
 }
 
 // HexMe i14: at the first refinement the core fell apart and 150 cells (2.5% of the
