@@ -6,6 +6,7 @@
 #include <functional>
 #include <iomanip>
 #include <map>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <thread>
@@ -282,9 +283,11 @@ FallbackOutcome run_fallback(const occ::Solid& solid, const MeshOptions& options
     }
   }
   if (!taken) second = second_chance(why_grid, progress, timed_out, true);
+  // Each error code once (the smoothing and the check both name inverted hexahedra).
   std::string grid_errors;
+  std::set<std::string> named;
   for (const core::Diagnostic& d : result.diagnostics)
-    if (d.severity == core::Severity::error)
+    if (d.severity == core::Severity::error && named.insert(d.code).second)
       grid_errors += (grid_errors.empty() ? "" : ", ") + d.code;
   if (second.ok) {
     second.diagnostics.insert(second.diagnostics.begin(), small.begin(), small.end());
@@ -297,8 +300,9 @@ FallbackOutcome run_fallback(const occ::Solid& solid, const MeshOptions& options
     return out;
   }
   std::string tet_errors;
+  named.clear();
   for (const core::Diagnostic& d : second.diagnostics)
-    if (d.severity == core::Severity::error)
+    if (d.severity == core::Severity::error && named.insert(d.code).second)
       tet_errors += (tet_errors.empty() ? "" : ", ") + d.code;
   result.diagnostics.push_back(core::make_info(
       "second_fallback_failed",
