@@ -1,5 +1,7 @@
 #include "core/diagnostic.h"
 
+#include <set>
+
 namespace vorohex::core {
 
 const char* severity_name(Severity s) {
@@ -18,6 +20,15 @@ bool has_error(const std::vector<Diagnostic>& diagnostics) {
   for (const auto& d : diagnostics)
     if (d.severity == Severity::error) return true;
   return false;
+}
+
+std::string error_codes(const std::vector<Diagnostic>& diagnostics) {
+  std::string codes;
+  std::set<std::string> named;
+  for (const auto& d : diagnostics)
+    if (d.severity == Severity::error && named.insert(d.code).second)
+      codes += (codes.empty() ? "" : ", ") + d.code;
+  return codes;
 }
 
 std::string format(const Diagnostic& d) {

@@ -34,6 +34,9 @@ inline Diagnostic make_info(std::string code, std::string message,
 // True if any diagnostic is an error.
 bool has_error(const std::vector<Diagnostic>& diagnostics);
 
+// The codes of the errors, each once, in order: "inverted_elements, volume_mismatch".
+std::string error_codes(const std::vector<Diagnostic>& diagnostics);
+
 // "error [open_shell] The shell is not closed (Edge3, Edge4)"
 std::string format(const Diagnostic& d);
 

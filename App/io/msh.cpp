@@ -603,15 +603,16 @@ class MshReader {
   // edge is also in the quads of both its faces). Other names classify nothing.
   bool classify_element(int dim, std::int64_t entity, std::int64_t physical,
                         const std::vector<std::uint64_t>& nodes) {
-    std::vector<std::int32_t> physicals;
+    std::vector<std::int32_t> own;  // MSH 2: the element's physical tag
+    const std::vector<std::int32_t>* physicals = &own;
     if (v4_) {
       const auto it = entity_physicals_.find({dim, static_cast<std::int32_t>(entity)});
-      if (it != entity_physicals_.end()) physicals = it->second;
+      if (it != entity_physicals_.end()) physicals = &it->second;
     } else if (physical > 0 && physical <= std::numeric_limits<std::int32_t>::max()) {
-      physicals.push_back(static_cast<std::int32_t>(physical));
+      own.push_back(static_cast<std::int32_t>(physical));
     }
     static const char* const kPrefix[3] = {"Vertex", "Edge", "Face"};
-    for (std::int32_t ph : physicals) {
+    for (std::int32_t ph : *physicals) {
       const auto name = physical_names_.find({dim, ph});
       if (name == physical_names_.end()) continue;
       const std::string_view n = name->second, prefix = kPrefix[dim];

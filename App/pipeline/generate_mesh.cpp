@@ -6,7 +6,6 @@
 #include <functional>
 #include <iomanip>
 #include <map>
-#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <thread>
@@ -284,11 +283,7 @@ FallbackOutcome run_fallback(const occ::Solid& solid, const MeshOptions& options
   }
   if (!taken) second = second_chance(why_grid, progress, timed_out, true);
   // Each error code once (the smoothing and the check both name inverted hexahedra).
-  std::string grid_errors;
-  std::set<std::string> named;
-  for (const core::Diagnostic& d : result.diagnostics)
-    if (d.severity == core::Severity::error && named.insert(d.code).second)
-      grid_errors += (grid_errors.empty() ? "" : ", ") + d.code;
+  const std::string grid_errors = core::error_codes(result.diagnostics);
   if (second.ok) {
     second.diagnostics.insert(second.diagnostics.begin(), small.begin(), small.end());
     if (!sizes.uniform()) second.diagnostics.push_back(local_sizes_ignored("tet-split"));
@@ -299,11 +294,7 @@ FallbackOutcome run_fallback(const occ::Solid& solid, const MeshOptions& options
     out.second_chance = true;
     return out;
   }
-  std::string tet_errors;
-  named.clear();
-  for (const core::Diagnostic& d : second.diagnostics)
-    if (d.severity == core::Severity::error && named.insert(d.code).second)
-      tet_errors += (tet_errors.empty() ? "" : ", ") + d.code;
+  const std::string tet_errors = core::error_codes(second.diagnostics);
   result.diagnostics.push_back(core::make_info(
       "second_fallback_failed",
       std::string("The tetrahedral fallback, tried after the grid mesher's invalid mesh, gave "
@@ -735,10 +726,10 @@ MeshResult generate(const occ::Solid& solid, const MeshOptions& options,
   // What the schemes and the decomposition said (scheme_failed, sweep_untangled, ...) goes
   // before the fallback's own diagnostics; the second chance's result already starts with
   // the small features, as `result` does.
-  const std::size_t skip =
-      outcome.second_chance ? std::min(small.size(), result.diagnostics.size()) : 0;
-  r.diagnostics.insert(r.diagnostics.begin() + std::ptrdiff_t(outcome.second_chance ? skip : 0),
-                       result.diagnostics.begin() + std::ptrdiff_t(skip), result.diagnostics.end());
+  const auto skip =
+      std::ptrdiff_t(outcome.second_chance ? std::min(small.size(), result.diagnostics.size()) : 0);
+  r.diagnostics.insert(r.diagnostics.begin() + skip, result.diagnostics.begin() + skip,
+                       result.diagnostics.end());
   r.ok = r.ok && !core::has_error(result.diagnostics);
   r.stats.local_sizes = result.stats.local_sizes;
   return std::move(r);

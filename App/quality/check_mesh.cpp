@@ -311,26 +311,28 @@ void check_against_cad(const HexMesh& mesh, const occ::Solid& cad, const CheckOp
   // Two faces can meet along several edges (a rim of two half circles): a quad with a node
   // on any of them follows the faces' border there.
   auto count_across = [&](const std::array<std::int32_t, 4>& n) -> bool {
-    std::set<int> crossed;
+    // The pairs of faces two of its nodes lie on, each once.
+    std::set<std::pair<int, int>> pairs;
     for (int i = 0; i < 4; ++i)
-      for (int j = 0; j < 4; ++j) {
-        if (i == j) continue;
-        for (int a : node_faces(n[i]))
-          for (int b : node_faces(n[j])) {
-            if (a >= b) continue;
-            const auto it = edges_between.find({a, b});
-            if (it == edges_between.end()) continue;
-            bool on = false;
-            // On one by its class, or lying on one (a node on the edge given a face).
-            for (int e : it->second)
-              for (std::int32_t k : n)
-                on = on || on_edge(k, e) ||
-                     cad.distance_to_edge(core::EdgeId(e), points[k]) <= distance_tol;
-            if (on) continue;
-            for (int e : it->second)
-              if (is_sharp(e)) crossed.insert(e);
-          }
-      }
+      for (int j = 0; j < 4; ++j)
+        if (i != j)
+          for (int a : node_faces(n[i]))
+            for (int b : node_faces(n[j]))
+              if (a < b) pairs.insert({a, b});
+    std::set<int> crossed;
+    for (const auto& pair : pairs) {
+      const auto it = edges_between.find(pair);
+      if (it == edges_between.end()) continue;
+      bool on = false;
+      // On one by its class, or lying on one (a node on the edge given a face).
+      for (int e : it->second)
+        for (std::int32_t k : n)
+          on = on || on_edge(k, e) ||
+               cad.distance_to_edge(core::EdgeId(e), points[k]) <= distance_tol;
+      if (on) continue;
+      for (int e : it->second)
+        if (is_sharp(e)) crossed.insert(e);
+    }
     if (crossed.empty()) return false;
     ++across_quads;
     across_edges.insert(crossed.begin(), crossed.end());

@@ -81,12 +81,9 @@ bool mesh_pieces(const occ::Solid& solid, const IsolatedDecomposition& d,
   conformity.volume_rel_tol = 1;  // the final check measures the volume; this one, the joins
   const quality::CheckReport joined = quality::check_mesh(m.mesh, d.pieces.get(), conformity);
   if (!joined.valid) {
-    std::string errors;
-    for (const core::Diagnostic& diag : joined.diagnostics)
-      if (diag.severity == core::Severity::error)
-        errors += (errors.empty() ? "" : ", ") + diag.code;
     why_not = "the meshes of its " + std::to_string(n) +
-              " sub-volumes do not match where they meet (" + errors + ")";
+              " sub-volumes do not match where they meet (" +
+              core::error_codes(joined.diagnostics) + ")";
     return false;
   }
   const double tolerance = std::max(1e-9 * solid.diagonal(), solid.tolerance());
