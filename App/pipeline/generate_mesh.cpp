@@ -13,12 +13,12 @@
 #include "core/isolated_call.h"
 #include "grid/grid_mesh.h"
 #include "io/named_groups.h"
-#include "io/second_order.h"
 #include "mesh/assemble.h"
 #include "mesh/mesh_sub_volumes.h"
 #include "mesh/tet_split.h"
 #include "pipeline/detail/decompose_isolated.h"
 #include "pipeline/detail/fallback_bytes.h"
+#include "pipeline/detail/finish.h"
 #include "pipeline/detail/mesh_decomposed.h"
 #include "pipeline/detail/part_warnings.h"
 #include "pipeline/detail/schemes.h"
@@ -32,87 +32,6 @@ void append(std::vector<core::Diagnostic>& to, const std::vector<core::Diagnosti
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-// The sub-volume type of a solid meshed by one scheme: a sweep runs between two of its
-// faces (Vs), a block or a midpoint cell is Ve, the fallbacks (grid, tet-split) are neither.
-std::string type_of_scheme(const std::string& scheme) {
-  if (scheme == "sweep" || scheme == "multisweep") return "Vs";
-  return scheme == "map" || scheme == "midpoint" ? "Ve" : "-";
-}
-
-// Smoothing and the validity check every result goes through.
-void finish(MeshResult& result, const occ::Solid& solid, const MeshOptions& options,
-            const core::Progress& progress, const core::SizeField& sizes) {
-  if (result.stats.sub_volumes == 0) result.stats.sub_volumes = 1;
-  if (result.stats.sub_volume_schemes.empty())
-    result.stats.sub_volume_schemes.assign(result.stats.sub_volumes, result.stats.scheme);
-  if (result.stats.sub_volume_types.size() != result.stats.sub_volume_schemes.size()) {
-    result.stats.sub_volume_types.clear();
-    for (const std::string& s : result.stats.sub_volume_schemes)
-      result.stats.sub_volume_types.push_back(type_of_scheme(s));
-  }
-
-  if (progress.cancelled()) {
-    result.diagnostics.push_back(core::make_error("cancelled", "Meshing was cancelled."));
-    return;
-  }
-
-  // Global smoothing with nodes kept on their CAD entities; it never lowers the minimum
-  // scaled Jacobian and never inverts an element.
-  const auto ts = std::chrono::steady_clock::now();
-  if (options.smoothing.laplacian_iterations > 0 || options.smoothing.optimisation_passes > 0) {
-    smooth::SmoothOptions smoothing = options.smoothing;
-    smoothing.size_field = &sizes;  // keeps a graded mesh graded
-    const smooth::SmoothResult smoothed =
-        smooth::smooth_mesh(result.mesh, solid, smoothing, progress);
-    append(result.diagnostics, smoothed.diagnostics);
-    result.stats.min_sj_before_smoothing = smoothed.min_before;
-    result.stats.mean_sj_before_smoothing = smoothed.mean_before;
-    if (smoothed.status == smooth::SmoothStatus::cancelled) {
-      result.mesh = core::HexMesh();  // a cancelled run hands over nothing
-      return;
-    }
-  }
-  result.stats.seconds_smoothing = seconds_since(ts);
-
-  // Named groups per CAD entity; second order adds the mid-edge nodes (on the CAD where the
-  // edge is), after smoothing, which moves corners only.
-  result.groups = io::named_groups(result.mesh, solid);
-  io::SecondOrderStats second;
-  if (options.order == 2 && result.mesh.num_hexes() > 0) {
-    second = io::make_second_order(result.mesh, solid, result.groups);
-    if (second.straightened)
-      result.diagnostics.push_back(core::make_warning(
-          "mid_nodes_straightened",
-          std::to_string(second.straightened) +
-              " mid-edge nodes were put back on their straight edge because on the CAD they "
-              "folded an element; they lie off the curved surface by the chord height"));
-    result.groups = io::named_groups(result.mesh, solid);
-  }
-
-  // Never hand over an unchecked mesh: the validity check runs on every result.
-  progress.report("check", 0.0);
-  const auto t1 = std::chrono::steady_clock::now();
-  result.check = quality::check_mesh(result.mesh, &solid, options.check, &result.scaled_jacobian);
-  if (options.smoothing.laplacian_iterations == 0 && options.smoothing.optimisation_passes == 0) {
-    result.stats.min_sj_before_smoothing = result.check.scaled_jacobian.min;
-    result.stats.mean_sj_before_smoothing = result.check.scaled_jacobian.mean;
-  }
-  result.stats.seconds_checking = seconds_since(t1);
-  progress.report("check", 1.0);
-  // Straightened mid-edge nodes off the CAD: say what they are and what helps.
-  if (second.straightened)
-    for (core::Diagnostic& d : result.check.diagnostics)
-      if (d.code == "nodes_off_cad")
-        d.message += std::string(!d.message.empty() && d.message.back() == '.' ? "" : ".") + " " +
-                     std::to_string(second.straightened) +
-                     " mid-edge nodes were put back straight (mid_nodes_straightened): at this "
-                     "size some elements are too thin for the curvature of their face. Give a "
-                     "smaller size (more elements across the curved faces) or first-order "
-                     "elements.";
-  append(result.diagnostics, result.check.diagnostics);
-  result.ok = result.check.valid && !core::has_error(result.diagnostics);
 }
 
 // Seconds the tetrahedral fallback may take when the grid mesher's mesh was invalid.
@@ -147,7 +66,7 @@ bool fallback(const occ::Solid& solid, const MeshOptions& options, double size,
     grid::GridOptions o;
     o.size = size;
     o.max_hexes = options.max_hexes;
-    // The optimisation is the global smoothing every result goes through (finish()).
+    // The optimisation is the global smoothing every result goes through (detail::finish).
     o.laplacian_iterations = 0;
     o.optimisation_passes = 0;
     grid::GridResult g = grid::grid_mesh(solid, o, progress);
@@ -225,7 +144,7 @@ FallbackOutcome run_fallback(const occ::Solid& solid, const MeshOptions& options
     if (fallback(solid, tet, size,
                  (why_grid.empty() ? "" : why_grid + " ") + "The grid mesher's mesh is invalid.",
                  budget, std::chrono::steady_clock::now(), second))
-      finish(second, solid, tet, budget, sizes);
+      detail::finish(second, solid, tet, budget, sizes);
     timed_out = budget.timed_out();
     return second;
   };
@@ -250,7 +169,7 @@ FallbackOutcome run_fallback(const occ::Solid& solid, const MeshOptions& options
             return detail::fallback_to_bytes(second, timed_out);
           },
           progress, kSecondChanceNice);
-    finish(result, solid, options, progress, sizes);
+    detail::finish(result, solid, options, progress, sizes);
     add_deviation(result, solid);
   }
   const bool grid_invalid =
@@ -539,7 +458,7 @@ MeshResult generate_parts(const occ::Solid& whole, const MeshOptions& options,
         << (shared == 1 ? " face they share; " : " faces they share; ") << m.stats.nodes_merged
         << " nodes merged.";
       result.diagnostics.push_back(core::make_info("solids_joined", s.str()));
-      finish(result, whole, options, progress, sizes);
+      detail::finish(result, whole, options, progress, sizes);
       return result;
     }
     if (progress.cancelled()) {
@@ -571,7 +490,7 @@ MeshResult generate_parts(const occ::Solid& whole, const MeshOptions& options,
     result.stats.sub_volume_schemes.push_back(one.stats.scheme);
     result.stats.sub_volume_types.push_back(one.stats.sub_volume_types.size() == 1
                                                 ? one.stats.sub_volume_types[0]
-                                                : type_of_scheme(one.stats.scheme));
+                                                : detail::type_of_scheme(one.stats.scheme));
     if (result.mesh.num_hexes() > options.max_hexes) {
       std::ostringstream s;
       s << "The solids' meshes have " << result.mesh.num_hexes() << " hexahedra after solid "
@@ -593,7 +512,7 @@ MeshResult generate_parts(const occ::Solid& whole, const MeshOptions& options,
     << shared << (shared == 1 ? " shared face" : " shared faces")
     << " (with their edges and vertices) merged.";
   result.diagnostics.push_back(core::make_info("solids_joined", s.str()));
-  finish(result, whole, options, progress, sizes);
+  detail::finish(result, whole, options, progress, sizes);
   return result;
 }
 
@@ -683,7 +602,7 @@ MeshResult generate(const occ::Solid& solid, const MeshOptions& options,
     };
   if (mesh_solid(solid, options, sizes, progress, result, &deferred)) {
     beside.cancel();
-    finish(result, solid, options, progress, sizes);
+    detail::finish(result, solid, options, progress, sizes);
     add_deviation(result, solid);
     return result;
   }

@@ -1,0 +1,119 @@
+#include "pipeline/detail/finish.h"
+
+#include <chrono>
+#include <sstream>
+
+#include "io/named_groups.h"
+#include "io/second_order.h"
+#include "quality/check_mesh.h"
+#include "smooth/smooth_mesh.h"
+
+namespace vorohex::pipeline::detail {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void append(std::vector<core::Diagnostic>& to, const std::vector<core::Diagnostic>& from) {
+  to.insert(to.end(), from.begin(), from.end());
+}
+
+}  // namespace
+
+std::string type_of_scheme(const std::string& scheme) {
+  if (scheme == "sweep" || scheme == "multisweep") return "Vs";
+  return scheme == "map" || scheme == "midpoint" ? "Ve" : "-";
+}
+
+void finish(MeshResult& result, const occ::Solid& solid, const MeshOptions& options,
+            const core::Progress& progress, const core::SizeField& sizes) {
+  if (result.stats.sub_volumes == 0) result.stats.sub_volumes = 1;
+  if (result.stats.sub_volume_schemes.empty())
+    result.stats.sub_volume_schemes.assign(result.stats.sub_volumes, result.stats.scheme);
+  if (result.stats.sub_volume_types.size() != result.stats.sub_volume_schemes.size()) {
+    result.stats.sub_volume_types.clear();
+    for (const std::string& s : result.stats.sub_volume_schemes)
+      result.stats.sub_volume_types.push_back(type_of_scheme(s));
+  }
+
+  if (progress.cancelled()) {
+    result.diagnostics.push_back(core::make_error("cancelled", "Meshing was cancelled."));
+    return;
+  }
+
+  // Global smoothing with nodes kept on their CAD entities; it never lowers the minimum
+  // scaled Jacobian and never inverts an element. It moves nodes, so it cannot close an
+  // open boundary or mend a quad more than two hexes share: such a mesh goes straight to
+  // the check (HexMe i07's tetrahedra, 134,536 hexes with two open edges, were smoothed
+  // for 40 s before the check found them open).
+  const auto ts = std::chrono::steady_clock::now();
+  bool smoothing =
+      options.smoothing.laplacian_iterations > 0 || options.smoothing.optimisation_passes > 0;
+  if (smoothing && result.mesh.num_hexes() > 0) {
+    const quality::CheckReport topology = quality::check_mesh(result.mesh, nullptr);
+    if (topology.open_boundary_edges > 0 || topology.non_manifold_quads > 0) {
+      smoothing = false;
+      std::ostringstream s;
+      s << "The mesh was not smoothed: its boundary has " << topology.open_boundary_edges
+        << " open edges and " << topology.non_manifold_quads
+        << " quads are shared by more than two hexahedra, which moving nodes cannot mend.";
+      result.diagnostics.push_back(core::make_info("smoothing_skipped", s.str()));
+      result.stats.min_sj_before_smoothing = topology.scaled_jacobian.min;
+      result.stats.mean_sj_before_smoothing = topology.scaled_jacobian.mean;
+    }
+  }
+  if (smoothing) {
+    smooth::SmoothOptions so = options.smoothing;
+    so.size_field = &sizes;  // keeps a graded mesh graded
+    const smooth::SmoothResult smoothed = smooth::smooth_mesh(result.mesh, solid, so, progress);
+    append(result.diagnostics, smoothed.diagnostics);
+    result.stats.min_sj_before_smoothing = smoothed.min_before;
+    result.stats.mean_sj_before_smoothing = smoothed.mean_before;
+    if (smoothed.status == smooth::SmoothStatus::cancelled) {
+      result.mesh = core::HexMesh();  // a cancelled run hands over nothing
+      return;
+    }
+  }
+  result.stats.seconds_smoothing = seconds_since(ts);
+
+  // Named groups per CAD entity; second order adds the mid-edge nodes (on the CAD where the
+  // edge is), after smoothing, which moves corners only.
+  result.groups = io::named_groups(result.mesh, solid);
+  io::SecondOrderStats second;
+  if (options.order == 2 && result.mesh.num_hexes() > 0) {
+    second = io::make_second_order(result.mesh, solid, result.groups);
+    if (second.straightened)
+      result.diagnostics.push_back(core::make_warning(
+          "mid_nodes_straightened",
+          std::to_string(second.straightened) +
+              " mid-edge nodes were put back on their straight edge because on the CAD they "
+              "folded an element; they lie off the curved surface by the chord height"));
+    result.groups = io::named_groups(result.mesh, solid);
+  }
+
+  // Never hand over an unchecked mesh: the validity check runs on every result.
+  progress.report("check", 0.0);
+  const auto t1 = std::chrono::steady_clock::now();
+  result.check = quality::check_mesh(result.mesh, &solid, options.check, &result.scaled_jacobian);
+  if (options.smoothing.laplacian_iterations == 0 && options.smoothing.optimisation_passes == 0) {
+    result.stats.min_sj_before_smoothing = result.check.scaled_jacobian.min;
+    result.stats.mean_sj_before_smoothing = result.check.scaled_jacobian.mean;
+  }
+  result.stats.seconds_checking = seconds_since(t1);
+  progress.report("check", 1.0);
+  // Straightened mid-edge nodes off the CAD: say what they are and what helps.
+  if (second.straightened)
+    for (core::Diagnostic& d : result.check.diagnostics)
+      if (d.code == "nodes_off_cad")
+        d.message += std::string(!d.message.empty() && d.message.back() == '.' ? "" : ".") + " " +
+                     std::to_string(second.straightened) +
+                     " mid-edge nodes were put back straight (mid_nodes_straightened): at this "
+                     "size some elements are too thin for the curvature of their face. Give a "
+                     "smaller size (more elements across the curved faces) or first-order "
+                     "elements.";
+  append(result.diagnostics, result.check.diagnostics);
+  result.ok = result.check.valid && !core::has_error(result.diagnostics);
+}
+
+}  // namespace vorohex::pipeline::detail

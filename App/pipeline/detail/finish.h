@@ -1,0 +1,26 @@
+// What every mesh the pipeline makes goes through before it is handed over: the global
+// smoothing (unless the mesh's topology is broken, which moving nodes cannot mend), the
+// named groups, second order if asked, and the validity check.
+#pragma once
+
+#include <string>
+
+#include "core/progress.h"
+#include "core/size_field.h"
+#include "occ/solid.h"
+#include "pipeline/generate_mesh.h"
+
+namespace vorohex::pipeline::detail {
+
+// The sub-volume type of a solid meshed by one scheme: a sweep runs between two of its
+// faces (Vs), a block or a midpoint cell is Ve, the fallbacks (grid, tet-split) are neither.
+std::string type_of_scheme(const std::string& scheme);
+
+// Smooths result.mesh (options.smoothing, graded by `sizes`) and checks it against `solid`:
+// result.check, result.groups, result.ok and the stats' smoothing and checking figures. A
+// mesh with open boundary edges or quads shared by more than two hexahedra is not smoothed
+// (info smoothing_skipped); the check names what is wrong. Cancelled: error `cancelled`.
+void finish(MeshResult& result, const occ::Solid& solid, const MeshOptions& options,
+            const core::Progress& progress, const core::SizeField& sizes);
+
+}  // namespace vorohex::pipeline::detail
