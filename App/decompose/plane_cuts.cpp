@@ -558,6 +558,7 @@ PlaneCutResult cut_along(const occ::Solid& solid, std::vector<Plane> planes,
                 " cut surfaces, more than " + std::to_string(options.max_planes);
     return r;
   }
+  progress.report("plane_cuts", 0.0);
   for (const Plane& pl : planes) r.surfaces.push_back({false, pl.tangent, pl.face, pl.edges, true});
   for (const Cylinder& c : cylinders) r.surfaces.push_back({true, false, c.face, c.edges, true});
   const double whole = solid.volume();
@@ -618,7 +619,10 @@ PlaneCutResult cut_along(const occ::Solid& solid, std::vector<Plane> planes,
   for (std::size_t k = 0; k < id.size(); ++k) id[k] = int(k);
   int next_id = int(id.size());
   std::set<std::pair<int, int>> no_union;
+  const double cut_into = double(pieces.size());
   for (bool merged = true; merged && pieces.size() > 1 && seconds() < options.time_limit;) {
+    // The second half: the merges, each taking one piece away.
+    progress.report("plane_cuts", 0.5 + 0.5 * (1 - double(pieces.size()) / cut_into));
     merged = false;
     for (std::size_t a = 0; a < pieces.size() && !merged; ++a)
       for (std::size_t b = a + 1; b < pieces.size() && !merged; ++b) {

@@ -28,12 +28,14 @@ std::string to_text(int before_merge, const char* method,
 // Runs in the child: the Voronoi decomposition, or throws with the reason. `seconds`, what
 // is left of the decomposition's time, bound the whole (graph, split, merging): the
 // decomposition stops itself at them, with the step it was in, before the parent's kill
-// at the decomposition's limit.
+// at the decomposition's limit. Its steps are reported to `reports` (no deadline).
 std::string voronoi_decomposition(const occ::Solid& solid, const MeshOptions& mesh_options,
-                                  double seconds) {
-  const core::Progress deadline = core::Progress{}.with_time_limit(std::max(1.0, seconds));
+                                  double seconds, const core::Progress& reports) {
+  const core::Progress deadline = reports.with_time_limit(std::max(1.0, seconds));
+  reports.report("voronoi", 0.0);
   const voronoi::VoronoiResult graph = voronoi::compute_voronoi_graph(solid, mesh_options.graph);
   if (!graph.ok()) throw std::runtime_error("its Voronoi graph could not be computed");
+  reports.report("voronoi", 1.0);
   decompose::DecomposeOptions options;
   options.sharp_angle = mesh_options.sharp_angle;
   const decompose::DecompositionResult d = decompose::decompose(solid, graph, options, deadline);
@@ -67,9 +69,11 @@ std::string voronoi_decomposition(const occ::Solid& solid, const MeshOptions& me
 }
 
 // Runs in the child: exact cuts at the concave edges (with at most half the time), else the
-// Voronoi decomposition (with what is left, at most voronoi_share); or only the latter.
+// Voronoi decomposition (with what is left, at most voronoi_share); or only the latter. The
+// steps (plane_cuts, voronoi, decompose) are reported to `reports`, which has no deadline:
+// each step keeps its own time limit, as before the reports crossed to the parent.
 std::string decompose_to_text(const occ::Solid& solid, const MeshOptions& mesh_options,
-                              DecompositionMethods methods) {
+                              DecompositionMethods methods, const core::Progress& reports) {
   const auto t0 = std::chrono::steady_clock::now();
   const double time_limit = mesh_options.decomposition_time_limit;
   std::string why;
@@ -79,7 +83,7 @@ std::string decompose_to_text(const occ::Solid& solid, const MeshOptions& mesh_o
                                    "multisweep") != mesh_options.schemes.end();
     options.tangent_planes = methods == DecompositionMethods::tangent_plane_cuts;
     options.time_limit = std::max(1.0, options.tangent_planes ? time_limit : 0.5 * time_limit);
-    decompose::PlaneCutResult cut = decompose::cut_at_concave_edges(solid, options);
+    decompose::PlaneCutResult cut = decompose::cut_at_concave_edges(solid, options, reports);
     // Pieces left with knife edges that do not all have a scheme: the tangent planes instead,
     // within what is left of the cuts' time.
     const double spent =
@@ -88,7 +92,7 @@ std::string decompose_to_text(const occ::Solid& solid, const MeshOptions& mesh_o
       decompose::PlaneCutOptions tangent = options;
       tangent.tangent_planes = true;
       tangent.time_limit = options.time_limit - spent;
-      decompose::PlaneCutResult second = decompose::cut_at_concave_edges(solid, tangent);
+      decompose::PlaneCutResult second = decompose::cut_at_concave_edges(solid, tangent, reports);
       if (second.ok) cut = std::move(second);
     }
     if (cut.ok) {
@@ -109,10 +113,10 @@ std::string decompose_to_text(const occ::Solid& solid, const MeshOptions& mesh_o
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   try {
     const double left = time_limit - elapsed;
-    return voronoi_decomposition(solid, mesh_options,
-                                 methods == DecompositionMethods::voronoi
-                                     ? left
-                                     : std::min(left, voronoi_share(time_limit)));
+    return voronoi_decomposition(
+        solid, mesh_options,
+        methods == DecompositionMethods::voronoi ? left : std::min(left, voronoi_share(time_limit)),
+        reports);
   } catch (const std::exception& e) {
     if (why.empty()) throw;
     throw std::runtime_error(why + "; " + e.what());
@@ -129,9 +133,14 @@ IsolatedDecomposition decompose_isolated(const occ::Solid& solid, const MeshOpti
   const auto t0 = std::chrono::steady_clock::now();
   core::IsolatedCallOptions io;
   io.stage = "decompose";
+  // The child's steps are reported here as they happen (the job's progress pipe); the
+  // decomposition's own limits, not the job's deadline, stop its steps.
   const core::IsolatedResult run =
-      core::isolated_call([&] { return decompose_to_text(solid, options, methods); },
-                          progress.with_time_limit(time_limit), io);
+      core::IsolatedJob([&](const core::Progress& in_child) {
+        const core::Progress reports = core::Progress(
+            [in_child](std::string_view stage, double f) { in_child.report(stage, f); });
+        return decompose_to_text(solid, options, methods, reports);
+      }).take(progress.with_time_limit(time_limit), io);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   switch (run.status) {
     case core::IsolatedResult::Status::ok:

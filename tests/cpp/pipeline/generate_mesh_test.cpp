@@ -130,6 +130,28 @@ TEST(GenerateMesh, SolidsNeedingSeveralSubVolumesAreCutAndMeshedAsOne) {
   }
 }
 
+// The decomposition runs in a child process; its steps reach the caller's progress as they
+// happen (the GUI's bar and the CLI's lines showed "decompose 0%" for the whole of it, 50 s
+// on HexMe i08), in order: the exact cuts first, then the meshing of their sub-volumes.
+TEST(GenerateMesh, TheDecompositionsStepsReachTheCallersProgress) {
+  MeshOptions opt;
+  opt.size = 0.25;
+  opt.fallback = false;
+  opt.schemes = {"map", "sweep", "midpoint"};
+  std::vector<std::string> stages;
+  const core::Progress progress([&](std::string_view stage, double) {
+    if (stages.empty() || stages.back() != stage) stages.emplace_back(stage);
+  });
+  const MeshResult r = generate_mesh(testing::make_post_on_plate(), opt, progress);
+  ASSERT_TRUE(r.ok);
+  const auto at = [&](const std::string& s) {
+    return std::find(stages.begin(), stages.end(), s) - stages.begin();
+  };
+  ASSERT_LT(at("plane_cuts"), std::ptrdiff_t(stages.size()));
+  ASSERT_LT(at("sub_volumes"), std::ptrdiff_t(stages.size()));
+  EXPECT_LT(at("plane_cuts"), at("sub_volumes"));
+}
+
 // An L bracket with a hole in each leg, as a FreeCAD user makes one. The exact cuts at its
 // concave edge come first: the plane of either leg's inner face cuts it into a leg (a sweep
 // along its hole) and the other leg with the corner (a multisweep along the other hole).
