@@ -243,6 +243,29 @@ TEST(CheckMeshCad, AQuadAcrossASharpEdgeIsNamed) {
   EXPECT_EQ(find(check_mesh(plain, &box), "boundary_across_edges"), nullptr);
 }
 
+// A quad across an edge that is not sharp (20 degrees) but not tangent either cuts the
+// corner off as well: no chord, no allowance for it. One hex fills a prism whose top is a
+// ridge of two planes; its top quad spans both, 8 % of the volume under it. Counted as a
+// chord (its centre 0.17 below the ridge, times its area 2) it excused 0.34 and passed.
+TEST(CheckMeshCad, AQuadAcrossAShallowRidgeIsNoChord) {
+  const double t = std::tan(10 * M_PI / 180);  // each half of the top turns 10 degrees
+  const occ::Solid ridge = occ::make_prism({{0, 0}, {2, 0}, {2, 1}, {1, 1 + t}, {0, 1}}, 1);
+  HexMesh m = structured_grid(1, 1, 1);
+  for (std::size_t n = 0; n < m.num_nodes(); ++n) {
+    const NodeId id(static_cast<std::int32_t>(n));
+    const Vec3 p = m.points()[n];
+    m.set_point(id, Vec3(2 * p.x(), p.y(), p.z()));
+  }
+  classify_by_geometry(m, ridge);
+  const CheckReport r = check_mesh(m, &ridge);
+  EXPECT_LT(r.max_boundary_distance, 1e-9);
+  EXPECT_NEAR(r.cad_volume - r.mesh_volume, t, 1e-9);
+  EXPECT_NE(find(r, "volume_mismatch"), nullptr);
+  EXPECT_FALSE(r.valid);
+  // Not sharp: not named as a corner cut off at a sharp edge.
+  EXPECT_EQ(find(r, "boundary_across_edges"), nullptr);
+}
+
 TEST(CheckMeshCad, CurvedFaceGetsChordAllowance) {
   // Cylinder r = 1, h = 1 meshed by a 5-block o-grid: an inner square of half-side a and
   // four hexes out to nodes on the circles at 45 degrees. Lateral quads are chords.
