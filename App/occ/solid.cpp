@@ -259,9 +259,13 @@ double Solid::volume() const {
   // Adaptive integration to a relative error of about 1e-11: the fixed-order default is
   // exact on planes but errs by 1e-7 on cylinders, which the decomposition's volume check
   // (1e-9) would read as a gap between its pieces.
-  GProp_GProps props;
-  BRepGProp::VolumeProperties(impl_->solid, props, 1e-11);
-  return props.Mass();
+  // Computed once per shape (clones share it).
+  std::call_once(impl_->volume->once, [&] {
+    GProp_GProps props;
+    BRepGProp::VolumeProperties(impl_->solid, props, 1e-11);
+    impl_->volume->value = props.Mass();
+  });
+  return impl_->volume->value;
 }
 
 double Solid::area(FaceId f) const {

@@ -13,6 +13,7 @@
 #include <gp_Pnt.hxx>
 
 #include <memory>
+#include <mutex>
 #include <vector>
 
 #include "occ/solid.h"
@@ -45,6 +46,13 @@ struct EdgeCache {
   Bnd_Box box;
 };
 
+// A value computed on the first question and kept (guarded: const queries may come from
+// several threads).
+struct LazyValue {
+  std::once_flag once;
+  double value = 0;
+};
+
 struct Solid::Impl {
   TopoDS_Shape solid;                // a solid, or a compound of solids sharing common faces
   std::vector<TopoDS_Solid> parts;   // the solids (one for a plain solid)
@@ -54,6 +62,9 @@ struct Solid::Impl {
   std::shared_ptr<const std::vector<FaceCache>> face_cache;
   std::shared_ptr<const std::vector<EdgeCache>> edge_cache;
   std::shared_ptr<const std::vector<std::vector<int>>> edge_faces;
+  // The volume, an adaptive integration that takes seconds on B-spline faces (HexMe i08:
+  // about a second per call, which the grid mesher made six times).
+  std::shared_ptr<LazyValue> volume = std::make_shared<LazyValue>();
 
   const FaceCache& face(int i) const { return (*face_cache)[i]; }
   const EdgeCache& edge(int i) const { return (*edge_cache)[i]; }
