@@ -34,6 +34,11 @@ inline Diagnostic make_info(std::string code, std::string message,
 // True if any diagnostic is an error.
 bool has_error(const std::vector<Diagnostic>& diagnostics);
 
+// Appends `from` to `to`.
+inline void append(std::vector<Diagnostic>& to, const std::vector<Diagnostic>& from) {
+  to.insert(to.end(), from.begin(), from.end());
+}
+
 // The codes of the errors, each once, in order: "inverted_elements, volume_mismatch".
 std::string error_codes(const std::vector<Diagnostic>& diagnostics);
 

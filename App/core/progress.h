@@ -10,6 +10,11 @@
 
 namespace vorohex::core {
 
+// Seconds of the steady clock since t0 (the stages' timings in results and reports).
+inline double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
 class Progress {
  public:
   using Callback = std::function<void(std::string_view stage, double fraction)>;

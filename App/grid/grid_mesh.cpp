@@ -5,6 +5,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/progress.h"
 #include "grid/detail/core_cells.h"
 #include "grid/detail/features.h"
 #include "grid/detail/grid_frame.h"
@@ -16,9 +17,7 @@
 namespace vorohex::grid {
 namespace {
 
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
+using core::seconds_since;
 
 void measure(const core::HexMesh& mesh, double& min_sj, double& mean_sj, std::size_t& inverted) {
   const std::vector<double> sj = quality::scaled_jacobians(mesh);

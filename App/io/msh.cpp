@@ -592,15 +592,23 @@ class MshReader {
       while (!name.empty() && (name.front() == ' ' || name.front() == '"')) name.remove_prefix(1);
       while (!name.empty() && (name.back() == '\r' || name.back() == ' ' || name.back() == '"'))
         name.remove_suffix(1);
-      physical_names_[{dim, tag}] = std::string(name);
+      // A group named as VoroHex names the model's entities ("Vertex1", "Edge3", "Face7":
+      // FreeCAD's names, as written by write_msh) stands for that entity; others for none.
+      static const char* const kPrefix[3] = {"Vertex", "Edge", "Face"};
+      if (dim < 0 || dim > 2) continue;
+      const std::string_view prefix = kPrefix[dim];
+      if (name.size() <= prefix.size() || name.substr(0, prefix.size()) != prefix) continue;
+      std::int32_t id = 0;
+      const auto r = std::from_chars(name.data() + prefix.size(), name.data() + name.size(), id);
+      if (r.ec == std::errc() && r.ptr == name.data() + name.size() && id > 0)
+        physical_entity_[{dim, tag}] = core::NodeClass{std::int8_t(dim), id};
     }
     return true;
   }
 
-  // A point, line or surface element in a physical group named as VoroHex names the model's
-  // entities ("Vertex1", "Edge3", "Face7": FreeCAD's names, as written by write_msh) puts
-  // its nodes on that entity; a node in several keeps the lowest dimension (a node on an
-  // edge is also in the quads of both its faces). Other names classify nothing.
+  // A point, line or surface element in a physical group that stands for a model entity
+  // puts its nodes on that entity; a node in several keeps the lowest dimension (a node on
+  // an edge is also in the quads of both its faces).
   bool classify_element(int dim, std::int64_t entity, std::int64_t physical,
                         const std::vector<std::uint64_t>& nodes) {
     std::vector<std::int32_t> own;  // MSH 2: the element's physical tag
@@ -611,20 +619,15 @@ class MshReader {
     } else if (physical > 0 && physical <= std::numeric_limits<std::int32_t>::max()) {
       own.push_back(static_cast<std::int32_t>(physical));
     }
-    static const char* const kPrefix[3] = {"Vertex", "Edge", "Face"};
     for (std::int32_t ph : *physicals) {
-      const auto name = physical_names_.find({dim, ph});
-      if (name == physical_names_.end()) continue;
-      const std::string_view n = name->second, prefix = kPrefix[dim];
-      if (n.size() <= prefix.size() || n.substr(0, prefix.size()) != prefix) continue;
-      std::int32_t id = 0;
-      const auto r = std::from_chars(n.data() + prefix.size(), n.data() + n.size(), id);
-      if (r.ec != std::errc() || r.ptr != n.data() + n.size() || id <= 0) continue;
+      const auto named = physical_entity_.find({dim, ph});
+      if (named == physical_entity_.end()) continue;
+      const core::NodeClass c = named->second;
       for (std::uint64_t tag : nodes) {
         std::int32_t index = 0;
         if (!node_of(tag, &index)) return false;
-        auto [it, fresh] = node_class_.try_emplace(index, core::NodeClass{std::int8_t(dim), id});
-        if (!fresh && dim < it->second.dim) it->second = {std::int8_t(dim), id};
+        auto [it, fresh] = node_class_.try_emplace(index, c);
+        if (!fresh && c.dim < it->second.dim) it->second = c;
       }
     }
     return true;
@@ -701,7 +704,7 @@ class MshReader {
   bool have_nodes_ = false;
   std::unordered_map<std::uint64_t, std::int32_t> node_index_;
   std::uint64_t skipped_[2] = {0, 0};  // lower-dimensional, other volume elements
-  std::map<std::pair<int, int>, std::string> physical_names_;                  // (dim, tag) -> name
+  std::map<std::pair<int, int>, core::NodeClass> physical_entity_;  // (dim, tag) -> entity
   std::map<std::pair<int, int>, std::vector<std::int32_t>> entity_physicals_;  // MSH 4
   std::unordered_map<std::int32_t, core::NodeClass> node_class_;  // from boundary elements
   struct Hex {

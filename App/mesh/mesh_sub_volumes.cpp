@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "core/option_checks.h"
+#include "core/progress.h"
 #include "mesh/assemble.h"
 #include "mesh/detail/sizing.h"
 #include "mesh/interval_assignment.h"
@@ -36,9 +37,7 @@ void SubVolumeMeshOptions::validate() const {
 
 namespace {
 
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
+using core::seconds_since;
 
 std::string sub_volume_name(int k) {
   return "Sub-volume " + std::to_string(k + 1);

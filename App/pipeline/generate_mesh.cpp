@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "core/isolated_call.h"
+#include "core/progress.h"
 #include "grid/grid_mesh.h"
 #include "io/named_groups.h"
 #include "mesh/assemble.h"
@@ -26,13 +27,8 @@
 namespace vorohex::pipeline {
 namespace {
 
-void append(std::vector<core::Diagnostic>& to, const std::vector<core::Diagnostic>& from) {
-  to.insert(to.end(), from.begin(), from.end());
-}
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
+using core::append;
+using core::seconds_since;
 
 // Seconds the tetrahedral fallback may take when the grid mesher's mesh was invalid.
 constexpr double kSecondChanceSeconds = 60;

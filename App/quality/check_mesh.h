@@ -66,4 +66,9 @@ CheckReport check_mesh(const core::HexMesh& mesh, const occ::Solid* cad,
                        const CheckOptions& options = {},
                        std::vector<double>* scaled_jacobian = nullptr);
 
+// The mesh's topology only (what moving nodes cannot change): node indices, quads shared by
+// more than two hexahedra, a closed boundary (and, as check_mesh counts them, overlapping
+// quads). No element quality, no CAD; `valid` stays false, the counts and errors are set.
+CheckReport check_topology(const core::HexMesh& mesh);
+
 }  // namespace vorohex::quality

@@ -12,6 +12,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/progress.h"
 #include "quality/detail/parallel.h"
 #include "quality/quality_stats.h"
 #include "quality/scaled_jacobian.h"
@@ -29,9 +30,7 @@ using core::NodeClass;
 using core::Vec3;
 using detail::IncidentHex;
 
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
+using core::seconds_since;
 
 // Valid hexes may fall to this scaled Jacobian (no lower) while inverted ones are untangled.
 constexpr double kUntangleFloor = 1e-3;

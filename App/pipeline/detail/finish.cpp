@@ -3,23 +3,16 @@
 #include <chrono>
 #include <sstream>
 
+#include "core/progress.h"
 #include "io/named_groups.h"
 #include "io/second_order.h"
 #include "quality/check_mesh.h"
 #include "smooth/smooth_mesh.h"
 
 namespace vorohex::pipeline::detail {
-namespace {
 
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-void append(std::vector<core::Diagnostic>& to, const std::vector<core::Diagnostic>& from) {
-  to.insert(to.end(), from.begin(), from.end());
-}
-
-}  // namespace
+using core::append;
+using core::seconds_since;
 
 std::string type_of_scheme(const std::string& scheme) {
   if (scheme == "sweep" || scheme == "multisweep") return "Vs";
@@ -51,7 +44,7 @@ void finish(MeshResult& result, const occ::Solid& solid, const MeshOptions& opti
   bool smoothing =
       options.smoothing.laplacian_iterations > 0 || options.smoothing.optimisation_passes > 0;
   if (smoothing && result.mesh.num_hexes() > 0) {
-    const quality::CheckReport topology = quality::check_mesh(result.mesh, nullptr);
+    const quality::CheckReport topology = quality::check_topology(result.mesh);
     if (topology.open_boundary_edges > 0 || topology.non_manifold_quads > 0) {
       smoothing = false;
       std::ostringstream s;
@@ -59,8 +52,6 @@ void finish(MeshResult& result, const occ::Solid& solid, const MeshOptions& opti
         << " open edges and " << topology.non_manifold_quads
         << " quads are shared by more than two hexahedra, which moving nodes cannot mend.";
       result.diagnostics.push_back(core::make_info("smoothing_skipped", s.str()));
-      result.stats.min_sj_before_smoothing = topology.scaled_jacobian.min;
-      result.stats.mean_sj_before_smoothing = topology.scaled_jacobian.mean;
     }
   }
   if (smoothing) {
@@ -96,7 +87,7 @@ void finish(MeshResult& result, const occ::Solid& solid, const MeshOptions& opti
   progress.report("check", 0.0);
   const auto t1 = std::chrono::steady_clock::now();
   result.check = quality::check_mesh(result.mesh, &solid, options.check, &result.scaled_jacobian);
-  if (options.smoothing.laplacian_iterations == 0 && options.smoothing.optimisation_passes == 0) {
+  if (!smoothing) {  // not smoothed: "before smoothing" is the mesh as checked
     result.stats.min_sj_before_smoothing = result.check.scaled_jacobian.min;
     result.stats.mean_sj_before_smoothing = result.check.scaled_jacobian.mean;
   }

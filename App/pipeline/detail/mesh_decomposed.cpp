@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/progress.h"
 #include "mesh/mesh_sub_volumes.h"
 #include "pipeline/detail/decompose_isolated.h"
 #include "quality/check_mesh.h"
@@ -28,9 +29,7 @@ std::string joined_schemes(const std::vector<std::string>& schemes) {
 
 namespace {
 
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
+using core::seconds_since;
 
 // Nodes of the mesh's boundary that restore_topology made interior: they lie on a cut, so
 // the sub-volumes' meshes leave a gap inside the solid there (the join check, made against

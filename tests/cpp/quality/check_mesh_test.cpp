@@ -141,6 +141,24 @@ TEST(CheckMesh, DuplicatedHexIsNonManifold) {
   EXPECT_NE(find(r, "open_boundary"), nullptr);
 }
 
+// The topology alone (what smoothing cannot change) counts the same as the whole check,
+// and sees nothing of element quality: an inverted hex is not its business.
+TEST(CheckMesh, TopologyAloneCountsWhatTheCheckCounts) {
+  HexMesh m = structured_grid(3, 2, 1);
+  m.add_hex(m.hexes()[0]);
+  const CheckReport whole = check_mesh(m, nullptr), topology = check_topology(m);
+  EXPECT_EQ(topology.non_manifold_quads, whole.non_manifold_quads);
+  EXPECT_EQ(topology.open_boundary_edges, whole.open_boundary_edges);
+  EXPECT_EQ(topology.boundary_quads, whole.boundary_quads);
+  EXPECT_NE(find(topology, "open_boundary"), nullptr);
+  HexMesh inverted = structured_grid(2, 1, 1);
+  inverted.set_point(core::NodeId(0), Vec3(1.5, 0.5, 0.5));
+  const CheckReport sound = check_topology(inverted);
+  EXPECT_EQ(sound.open_boundary_edges, 0u);
+  EXPECT_EQ(sound.non_manifold_quads, 0u);
+  EXPECT_TRUE(sound.diagnostics.empty());
+}
+
 TEST(CheckMesh, RepeatedNodeIsDegenerate) {
   HexMesh m = structured_grid(2, 1, 1);
   core::HexNodes n = m.hexes()[1];
