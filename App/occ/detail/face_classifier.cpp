@@ -1,10 +1,13 @@
 #include "occ/detail/face_classifier.h"
 
 #include <BRepAdaptor_Surface.hxx>
+#include <BRepBuilderAPI_Copy.hxx>
+#include <BRepLib.hxx>
 #include <BRepTools.hxx>
 #include <BRepTopAdaptor_FClass2d.hxx>
 #include <BRep_Tool.hxx>
 #include <Geom2d_Curve.hxx>
+#include <Geom_Plane.hxx>
 #include <Standard_Failure.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopoDS.hxx>
@@ -78,10 +81,40 @@ class Rasteriser {
   long pieces_ = 0;
 };
 
+// The face, FORWARD, with a stored pcurve on every edge. An edge on a plane often has none
+// (STEP and OCCT's own booleans leave them out), and OCCT then projects its 3D curve onto the
+// plane each time one is asked for (BRep_Tool::CurveOnPlane): its exact classifier, which
+// answers the points near the boundary, asks for every edge's pcurve on every call. That was
+// a quarter of the tet split's smoothing on HexMe i03 (perf). The pcurves stored are the ones
+// it would project (the same answers), on a copy: the caller's shape is left as it was.
+TopoDS_Face with_stored_pcurves(const TopoDS_Face& face) {
+  const TopoDS_Face forward = TopoDS::Face(face.Oriented(TopAbs_FORWARD));
+  TopLoc_Location location;
+  const Handle(Geom_Surface) surface = BRep_Tool::Surface(forward, location);
+  if (surface.IsNull() || !surface->IsKind(STANDARD_TYPE(Geom_Plane))) return forward;
+  bool missing = false;
+  for (TopExp_Explorer ex(forward, TopAbs_EDGE); ex.More() && !missing; ex.Next()) {
+    Standard_Boolean stored = Standard_True;
+    double first = 0, last = 0;
+    BRep_Tool::CurveOnSurface(TopoDS::Edge(ex.Current()), forward, first, last, &stored);
+    missing = !stored;
+  }
+  if (!missing) return forward;
+  try {
+    BRepBuilderAPI_Copy copy(forward, /*copyGeom=*/false, /*copyMesh=*/false);
+    const TopoDS_Face copied = TopoDS::Face(copy.Shape());
+    for (TopExp_Explorer ex(copied, TopAbs_EDGE); ex.More(); ex.Next())
+      BRepLib::BuildPCurveForEdgeOnPlane(TopoDS::Edge(ex.Current()), copied);
+    return copied;
+  } catch (const Standard_Failure&) {
+    return forward;  // OCCT projects them on each call, as before
+  }
+}
+
 }  // namespace
 
 FaceClassifier::FaceClassifier(const TopoDS_Face& face, double tolerance, int resolution)
-    : face_(TopoDS::Face(face.Oriented(TopAbs_FORWARD))),
+    : face_(with_stored_pcurves(face)),
       tolerance_(tolerance),
       resolution_(std::max(resolution, 4)),
       occt_(std::make_unique<BRepTopAdaptor_FClass2d>(face_, tolerance)) {}

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepBuilderAPI_MakePolygon.hxx>
 #include <BRepTools.hxx>
 #include <BRepTopAdaptor_FClass2d.hxx>
 #include <BRep_Tool.hxx>
@@ -92,6 +94,61 @@ TEST(FaceClassifier, AgreesWithOcctOnHexMeParts) {
     EXPECT_GT(a.rastered, a.faces * 9 / 10) << model;
     EXPECT_GT(a.known, 0.5) << model;
   }
+}
+
+// Edges on a plane often carry no pcurve (a face made from a 3D polygon, STEP, OCCT's
+// booleans): OCCT projects each 3D curve onto the plane whenever one is asked for. The
+// classifier answers from its own copy of the face with the pcurves stored - the same
+// answers as OCCT's on the face as it is - and leaves the caller's face without them.
+TEST(FaceClassifier, APlaneWithoutStoredPcurvesAnswersAsOcctAndIsLeftAsItWas) {
+  BRepBuilderAPI_MakePolygon polygon;
+  for (const auto& [x, y] :
+       std::vector<std::pair<double, double>>{{0, 0}, {4, 0}, {4, 1}, {1.5, 1.2}, {1, 3}, {0, 3}})
+    polygon.Add(gp_Pnt(x, y, 0.5 * x));
+  polygon.Close();
+  const TopoDS_Face face = BRepBuilderAPI_MakeFace(polygon.Wire(), /*OnlyPlane=*/true).Face();
+  auto stored_pcurves = [&] {
+    int stored = 0;
+    for (TopExp_Explorer ex(face, TopAbs_EDGE); ex.More(); ex.Next()) {
+      Standard_Boolean is_stored = Standard_False;
+      double first, last;
+      BRep_Tool::CurveOnSurface(TopoDS::Edge(ex.Current()), face, first, last, &is_stored);
+      stored += is_stored ? 1 : 0;
+    }
+    return stored;
+  };
+  ASSERT_EQ(stored_pcurves(), 0);  // the case itself: OCCT would project on every call
+
+  const double tolerance = std::max(BRep_Tool::Tolerance(face), 1e-9);
+  const FaceClassifier fast(face, tolerance, 256);
+  const BRepTopAdaptor_FClass2d occt(face, tolerance);
+  EXPECT_EQ(stored_pcurves(), 0);  // the caller's face is left as it was
+  double u0, u1, v0, v1;
+  BRepTools::UVBounds(face, u0, u1, v0, v1);
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> unit(0, 1), offset(-1, 1);
+  long points = 0, differ = 0, on = 0;
+  for (TopExp_Explorer ex(face, TopAbs_EDGE); ex.More(); ex.Next()) {
+    double first, last;
+    const Handle(Geom2d_Curve) c =
+        BRep_Tool::CurveOnSurface(TopoDS::Edge(ex.Current()), face, first, last);
+    ASSERT_FALSE(c.IsNull());
+    // On the boundary and just off it (OCCT's exact classifier answers these), 600 times:
+    // past the questions after which the raster is built, so both paths are compared.
+    for (int k = 0; k < 100; ++k) {
+      const gp_Pnt2d p = c->Value(first + (last - first) * unit(random));
+      // Half within OCCT's tolerance of the boundary (ON), half up to 1e-4 of the box away.
+      const double away = k % 2 ? 0.5 * tolerance : 1e-4 * std::max(u1 - u0, v1 - v0);
+      const gp_Pnt2d q(p.X() + offset(random) * away, p.Y() + offset(random) * away);
+      const TopAbs_State expected = occt.Perform(q, false);
+      ++points;
+      on += expected == TopAbs_ON;
+      differ += fast.perform(q.X(), q.Y(), false) != expected;
+    }
+  }
+  EXPECT_EQ(differ, 0) << "of " << points;
+  EXPECT_GT(on, points / 4);  // the ones within the tolerance on the boundary, as meant
+  EXPECT_TRUE(fast.rastered());
 }
 
 }  // namespace
