@@ -18,8 +18,9 @@ std::string type_of_scheme(const std::string& scheme);
 
 // Smooths result.mesh (options.smoothing, graded by `sizes`) and checks it against `solid`:
 // result.check, result.groups, result.ok and the stats' smoothing and checking figures. A
-// mesh with open boundary edges or quads shared by more than two hexahedra is not smoothed
-// (info smoothing_skipped); the check names what is wrong. Cancelled: error `cancelled`.
+// mesh with open boundary edges or quads shared by more than two hexahedra is not smoothed,
+// nor a tet split's mesh whose volume is off by several times what the check allows (info
+// smoothing_skipped); the check names what is wrong. Cancelled: error `cancelled`.
 void finish(MeshResult& result, const occ::Solid& solid, const MeshOptions& options,
             const core::Progress& progress, const core::SizeField& sizes);
 
