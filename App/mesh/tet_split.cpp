@@ -10,6 +10,7 @@
 
 #include "core/isolated_call.h"
 #include "core/option_checks.h"
+#include "mesh/detail/boundary_labels.h"
 #include "mesh/detail/cgal_tets.h"
 #include "mesh/detail/tet_to_hex.h"
 #include "occ/tessellate.h"
@@ -25,6 +26,8 @@ namespace {
 
 using core::NodeClass;
 using core::Vec3;
+using detail::boundary_labels;
+using detail::BoundaryLabels;
 
 // The boundary triangulation as one closed surface, each triangle's patch the model face
 // it approximates (nodes shared between faces are merged: tessellate() shares them).
@@ -389,19 +392,12 @@ TetSplitResult tet_split(const occ::Solid& solid, const TetSplitOptions& options
   const std::vector<int>& dimension = tm.dimension;
   std::vector<std::array<int, 4>> tets = std::move(tm.tets);
   const EdgeSet feature_edges(tm.feature_edges.begin(), tm.feature_edges.end());
-  // The model face of every boundary triangle (its surface patch), and through them of
-  // boundary tetrahedron edges and nodes.
-  FacetFaces facet_face;
-  EdgeFaces edge_face;
-  std::vector<int> node_face(r.mesh.num_nodes(), 0);
-  for (std::size_t i = 0; i < tm.facets.size(); ++i) {
-    const std::array<int, 3>& k = tm.facets[i];
-    const int face = tm.facet_patch[i];
-    if (face < 1 || face > solid.num_faces()) continue;
-    facet_face[k] = face;
-    edge_face[{k[0], k[1]}] = edge_face[{k[1], k[2]}] = edge_face[{k[0], k[2]}] = face;
-    for (int j = 0; j < 3; ++j) node_face[k[j]] = face;
-  }
+  // The model face of every boundary facet of the tetrahedra, and through them of their
+  // boundary edges and nodes.
+  BoundaryLabels labels = boundary_labels(tets, tm.points, tm.facets, tm.facet_patch, solid);
+  FacetFaces& facet_face = labels.facet_face;
+  EdgeFaces& edge_face = labels.edge_face;
+  const std::vector<int>& node_face = labels.node_face;
   // Until none is left: leaving one out can expose a neighbour that is a cap in turn.
   std::size_t caps = 0;
   for (std::size_t removed = 1; removed > 0;) {
