@@ -779,6 +779,16 @@ DecompositionResult decompose(const occ::Solid& solid, const voronoi::VoronoiRes
   const double tol = options.tolerance * solid.diagonal();
   const detail::ModelRelations rel(*voronoi.model);
   classify_all(g, rel, options.sharp_angle * kPi / 180, r);
+  if (options.stop_at_open_gap)
+    for (const core::Diagnostic& d : r.diagnostics)
+      if (d.code == "open_vertex_gap") {
+        r.diagnostics.push_back(
+            core::make_error("open_gap_stop",
+                             d.message + ": stopped before the split (its sub-volumes there "
+                                         "cannot all be closed)",
+                             d.entities));
+        return finish(r, t0);
+      }
   build_quads(solid, g, options.polyline_tolerance * solid.diagonal(), progress, r);
   if (progress.cancelled()) return stopped(r, progress, "projecting the Voronoi edges", t0);
   snap_coplanar(solid, r.quads, options.plane_snap * solid.diagonal());

@@ -49,6 +49,12 @@ struct DecomposeOptions {
   // seconds (0: no limit), fails the decomposition instead of growing without bound.
   int max_quads_per_face = 40;
   double split_time_limit = 30;
+  // Fail before the split where the vertex rules leave a gap open (error open_gap_stop,
+  // naming the Voronoi vertex): the decomposition is partial then, and on HexMe none of the
+  // 14 models with such a gap gave sub-volumes that all have a scheme, while their splits
+  // took up to the split's limit. The mesh pipeline's choice (its fallback waits for the
+  // decomposition); `vorohex decompose` shows the whole.
+  bool stop_at_open_gap = false;
   // Empty if valid, else the reason.
   std::string validate() const;
 };
@@ -169,10 +175,10 @@ std::vector<ClassifiedEdge> classify_edges(const voronoi::VoronoiResult& voronoi
 // `voronoi` must be the graph of `solid` (its model gives the governors' relations).
 // partial: some sub-volume has no scheme, some vertex gap stayed open, a Voronoi edge was
 // unusable, or some decomposition face is not a quadrilateral between two sub-volumes
-// (diagnostics say which); failed: invalid options, no model, too many quads, OCCT could
-// not split (or not in time), or the final self-check found the sub-volumes not closed,
-// overlapping or not summing to the solid's volume (1e-9 relative).
-// `progress` gets stage "decompose" (fractions) and bounds the whole: the split and the
+// (diagnostics say which); failed: invalid options, no model, an open gap with
+// stop_at_open_gap, too many quads, OCCT could not split (or not in time), or the final self-check
+// found the sub-volumes not closed, overlapping or not summing to the solid's volume (1e-9
+// relative). `progress` gets stage "decompose" (fractions) and bounds the whole: the split and the
 // merge pass get at most the time left before its deadline. Cancelled, the decomposition
 // fails with error `cancelled` naming the step; past the deadline before the split has
 // given sub-volumes, with error `time_limit` naming the step. Past it after, the merge pass

@@ -38,14 +38,18 @@ std::string voronoi_decomposition(const occ::Solid& solid, const MeshOptions& me
   reports.report("voronoi", 1.0);
   decompose::DecomposeOptions options;
   options.sharp_angle = mesh_options.sharp_angle;
+  options.stop_at_open_gap = true;
   const decompose::DecompositionResult d = decompose::decompose(solid, graph, options, deadline);
   if (!d.ok()) {
-    for (const core::Diagnostic& diag : d.diagnostics)
-      if (diag.severity != core::Severity::info) {
-        std::string m = diag.message;
-        if (!m.empty() && m.back() == '.') m.pop_back();
-        throw std::runtime_error("its decomposition failed (" + m + ")");
-      }
+    // Why it failed: its first error (a warning before it, such as an open vertex gap, is
+    // no reason: HexMe i03 named one while its split had run out of time), else a warning.
+    for (const core::Severity severity : {core::Severity::error, core::Severity::warning})
+      for (const core::Diagnostic& diag : d.diagnostics)
+        if (diag.severity == severity) {
+          std::string m = diag.message;
+          if (!m.empty() && m.back() == '.') m.pop_back();
+          throw std::runtime_error("its decomposition failed (" + m + ")");
+        }
     throw std::runtime_error("its decomposition failed");
   }
   // A partial decomposition (an open gap, an unusable Voronoi edge, a decomposition face
