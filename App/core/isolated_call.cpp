@@ -200,6 +200,7 @@ IsolatedResult IsolatedJob::take(const Progress& progress, const IsolatedCallOpt
   std::string bytes, lines;
   std::string stage(options.stage);  // the latest report: stage and fraction
   double fraction = 0;
+  std::string forwarded;  // the stage of the child's latest report passed on ("": none yet)
   bool cancelled = false;
   char buffer[1 << 16];
   for (int tick = 0;; ++tick) {
@@ -209,19 +210,32 @@ IsolatedResult IsolatedJob::take(const Progress& progress, const IsolatedCallOpt
       const ssize_t n = ::read(reports, buffer, sizeof buffer);
       if (n > 0) {
         lines.append(buffer, static_cast<std::size_t>(n));
-        // Only the latest complete line counts.
-        const std::size_t end = lines.rfind('\n');
-        if (end != std::string::npos) {
-          const std::size_t before = end == 0 ? std::string::npos : lines.rfind('\n', end - 1);
-          const std::size_t begin = before == std::string::npos ? 0 : before + 1;
-          const std::string last = lines.substr(begin, end - begin);
-          lines.erase(0, end + 1);
-          const std::size_t tab = last.find('\t');
-          if (tab != std::string::npos) {
-            stage = last.substr(0, tab);
-            fraction = std::strtod(last.c_str() + tab + 1, nullptr);
+        // Of the complete lines read at once, the latest counts, and the first of each new
+        // stage too: a stage's start is not lost behind its next reports (the Voronoi
+        // decomposition's 0 %, followed within milliseconds by a report per edge, was at
+        // times; a caller saw the stage begin at 15 %).
+        std::size_t begin = 0, end = 0;
+        std::string latest_stage;
+        double latest = 0;
+        bool pending = false;
+        while ((end = lines.find('\n', begin)) != std::string::npos) {
+          const std::string line = lines.substr(begin, end - begin);
+          begin = end + 1;
+          const std::size_t tab = line.find('\t');
+          if (tab == std::string::npos) continue;
+          latest_stage = line.substr(0, tab);
+          latest = std::strtod(line.c_str() + tab + 1, nullptr);
+          pending = true;
+          if (latest_stage != forwarded) {
+            forwarded = stage = latest_stage, fraction = latest;
             progress.report(stage, fraction);
+            pending = false;
           }
+        }
+        lines.erase(0, begin);
+        if (pending) {
+          forwarded = stage = latest_stage, fraction = latest;
+          progress.report(stage, fraction);
         }
       } else if (n == 0 || errno != EINTR) {
         ::close(reports);
