@@ -233,6 +233,14 @@ TEST(IsolatedJob, TakeReportsCancelAndFailureLikeIsolatedCall) {
 // The child's progress reaches the caller while it takes the result: the stages the work
 // reports, in order, ending with the last; reports made while nobody takes are not waited
 // for (the work does not block on them).
+// The reports a caller hears while it takes the job's result, in order.
+using Heard = std::vector<std::pair<std::string, double>>;
+IsolatedResult take_listening(IsolatedJob& job, Heard& heard) {
+  return job.take(Progress([&](std::string_view stage, double fraction) {
+    heard.emplace_back(std::string(stage), fraction);
+  }));
+}
+
 TEST(IsolatedJob, TheChildsProgressReachesTheCaller) {
   IsolatedJob job([](const Progress& p) {
     for (int i = 0; i < 20000; ++i) p.report("early", i / 20000.0);  // more than a pipe holds
@@ -244,10 +252,8 @@ TEST(IsolatedJob, TheChildsProgressReachesTheCaller) {
     return std::string("done");
   });
   std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  std::vector<std::pair<std::string, double>> heard;
-  const IsolatedResult r = job.take(Progress([&](std::string_view stage, double fraction) {
-    heard.emplace_back(std::string(stage), fraction);
-  }));
+  Heard heard;
+  const IsolatedResult r = take_listening(job, heard);
   ASSERT_TRUE(r.ok()) << r.message;
   EXPECT_EQ(r.data, "done");
   ASSERT_FALSE(heard.empty());
@@ -269,10 +275,8 @@ TEST(IsolatedJob, TheFirstReportOfEachStageIsNotLost) {
     return std::string("done");
   });
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
-  std::vector<std::pair<std::string, double>> heard;
-  const IsolatedResult r = job.take(Progress([&](std::string_view stage, double fraction) {
-    heard.emplace_back(std::string(stage), fraction);
-  }));
+  Heard heard;
+  const IsolatedResult r = take_listening(job, heard);
   ASSERT_TRUE(r.ok()) << r.message;
   for (const char* stage : {"voronoi", "decompose", "merge"}) {
     const auto first =
