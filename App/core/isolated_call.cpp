@@ -200,7 +200,7 @@ IsolatedResult IsolatedJob::take(const Progress& progress, const IsolatedCallOpt
   std::string bytes, lines;
   std::string stage(options.stage);  // the latest report: stage and fraction
   double fraction = 0;
-  std::string forwarded;  // the stage of the child's latest report passed on ("": none yet)
+  bool heard = false;  // whether the child has reported yet
   bool cancelled = false;
   char buffer[1 << 16];
   for (int tick = 0;; ++tick) {
@@ -214,29 +214,21 @@ IsolatedResult IsolatedJob::take(const Progress& progress, const IsolatedCallOpt
         // stage too: a stage's start is not lost behind its next reports (the Voronoi
         // decomposition's 0 %, followed within milliseconds by a report per edge, was at
         // times; a caller saw the stage begin at 15 %).
-        std::size_t begin = 0, end = 0;
-        std::string latest_stage;
-        double latest = 0;
-        bool pending = false;
-        while ((end = lines.find('\n', begin)) != std::string::npos) {
+        bool last_passed_on = true;
+        std::size_t begin = 0;
+        for (std::size_t end; (end = lines.find('\n', begin)) != std::string::npos;
+             begin = end + 1) {
           const std::string line = lines.substr(begin, end - begin);
-          begin = end + 1;
           const std::size_t tab = line.find('\t');
           if (tab == std::string::npos) continue;
-          latest_stage = line.substr(0, tab);
-          latest = std::strtod(line.c_str() + tab + 1, nullptr);
-          pending = true;
-          if (latest_stage != forwarded) {
-            forwarded = stage = latest_stage, fraction = latest;
-            progress.report(stage, fraction);
-            pending = false;
-          }
+          const bool new_stage = !heard || line.compare(0, tab, stage) != 0;
+          stage = line.substr(0, tab), fraction = std::strtod(line.c_str() + tab + 1, nullptr);
+          heard = true;
+          last_passed_on = new_stage;
+          if (new_stage) progress.report(stage, fraction);
         }
         lines.erase(0, begin);
-        if (pending) {
-          forwarded = stage = latest_stage, fraction = latest;
-          progress.report(stage, fraction);
-        }
+        if (!last_passed_on) progress.report(stage, fraction);
       } else if (n == 0 || errno != EINTR) {
         ::close(reports);
         reports = -1;

@@ -47,9 +47,10 @@ IsolatedResult isolated_call(const std::function<std::string()>& work,
 // killed when the job is destroyed or cancelled untaken. `work` gets a Progress with
 // `limits`' deadline (not its cancel flag: the caller kills the child on cancel) whose
 // reports cross to the caller through a second pipe: take() passes the latest on to its
-// own progress, and the first report of each stage (a stage's start is never lost). Without fork (or when the fork fails), `work` runs in take() instead, with
-// take()'s progress. `nice` (0-19) lowers the child's scheduling priority: work that may be
-// thrown away then takes only what the caller's other processes leave of the cores.
+// own progress, and the first report of each stage (a stage's start is never lost).
+// Without fork (or when the fork fails), `work` runs in take() instead, with take()'s
+// progress. `nice` (0-19) lowers the child's scheduling priority: work that may be thrown
+// away then takes only what the caller's other processes leave of the cores.
 class IsolatedJob {
  public:
   using Work = std::function<std::string(const Progress&)>;

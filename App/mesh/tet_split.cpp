@@ -28,6 +28,7 @@ using core::NodeClass;
 using core::Vec3;
 using detail::boundary_labels;
 using detail::BoundaryLabels;
+using detail::facet_of;
 
 // The boundary triangulation as one closed surface, each triangle's patch the model face
 // it approximates (nodes shared between faces are merged: tessellate() shares them).
@@ -96,14 +97,6 @@ std::string open_boundary(const occ::Tessellation& t, const detail::TetSurface& 
 using FacetFaces = std::map<std::array<int, 3>, int>;
 using EdgeFaces = std::map<std::array<int, 2>, int>;
 using EdgeSet = std::set<std::array<int, 2>>;
-
-std::array<int, 3> facet_of(const std::array<int, 4>& t, int skip) {
-  std::array<int, 3> k;
-  for (int j = 0, n = 0; j < 4; ++j)
-    if (j != skip) k[n++] = t[j];
-  std::sort(k.begin(), k.end());
-  return k;
-}
 
 // Two boundary facets k1, k2 of a tet on one model face, sharing an edge (the crease):
 // the split puts a hex corner at the crease's midpoint, framed by an end of the crease and

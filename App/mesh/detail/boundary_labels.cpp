@@ -4,19 +4,21 @@
 
 namespace vorohex::mesh::detail {
 
+std::array<int, 3> facet_of(const std::array<int, 4>& t, int skip) {
+  std::array<int, 3> k;
+  for (int j = 0, n = 0; j < 4; ++j)
+    if (j != skip) k[n++] = t[j];
+  std::sort(k.begin(), k.end());
+  return k;
+}
+
 BoundaryLabels boundary_labels(const std::vector<std::array<int, 4>>& tets,
                                const std::vector<core::Vec3>& points,
                                const std::vector<std::array<int, 3>>& surface_facets,
                                const std::vector<int>& surface_patch, const occ::Solid& solid) {
   std::map<std::array<int, 3>, int> uses;
   for (const auto& t : tets)
-    for (int skip = 0; skip < 4; ++skip) {
-      std::array<int, 3> k;
-      for (int j = 0, n = 0; j < 4; ++j)
-        if (j != skip) k[n++] = t[j];
-      std::sort(k.begin(), k.end());
-      ++uses[k];
-    }
+    for (int skip = 0; skip < 4; ++skip) ++uses[facet_of(t, skip)];
   BoundaryLabels out;
   out.node_face.assign(points.size(), 0);
   auto label = [&](const std::array<int, 3>& k, int face) {

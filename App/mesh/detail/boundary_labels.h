@@ -23,6 +23,9 @@ struct BoundaryLabels {
   std::vector<int> node_face;                    // per point; 0: not on the boundary
 };
 
+// The sorted nodes of tetrahedron t's facet opposite its corner `skip` (0-3).
+std::array<int, 3> facet_of(const std::array<int, 4>& t, int skip);
+
 // tets: node indices into points; surface_facets (sorted nodes) with surface_patch, the
 // model face of each (out-of-range patches are ignored). Where a node or edge lies on
 // facets of several faces, the last facet named wins (CGAL's order, then the unnamed ones).
