@@ -19,6 +19,7 @@ import argparse
 import ast
 import json
 import os
+import re
 import subprocess
 import sys
 
@@ -58,6 +59,46 @@ def previous_columns(path, first, last):
     except OSError:
         pass
     return out
+
+
+def previous_rows(path):
+    """The rows of an existing table, read back (for --only: the models not measured again
+    keep their row, so a partial run never drops the others)."""
+    rows, across = {}, {}
+    try:
+        with open(path) as fh:
+            lines = fh.read().split("\n")
+    except OSError:
+        return rows
+    for line in lines:
+        if line.startswith("Valid meshes with boundary quads"):
+            for model, count in re.findall(r"(\w+) (\d+) \(", line.split("there):", 1)[-1]):
+                across[model] = int(count)
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        if len(cells) != 14 or cells[0] in ("model", "---") or not line.startswith("|"):
+            continue
+
+        def num(text, kind=float):
+            try:
+                return kind(text)
+            except ValueError:
+                return None
+
+        row = {"model": cells[0], "v": cells[1], "g_kept": cells[6:12], "d": cells[12],
+               "d_sec": num(cells[13]), "v_sec": num(cells[5])}
+        if num(cells[2], int) is not None:
+            row["v_hexes"] = num(cells[2], int)
+        if " -> " in cells[3]:
+            row["v_min_before"], row["v_min"] = (float(x) for x in cells[3].split(" -> "))
+        if " -> " in cells[4]:
+            row["v_mean_before"], row["v_mean"] = (float(x) for x in cells[4].split(" -> "))
+        elif num(cells[4]) is not None:
+            row["v_mean"] = num(cells[4])
+        if cells[0].split("_")[0] in across:
+            row["v_across"] = across[cells[0].split("_")[0]]
+        row = {k: v for k, v in row.items() if v is not None}
+        rows[cells[0]] = row
+    return rows
 
 
 def main():
@@ -196,6 +237,14 @@ def main():
                 os.remove(msh)
         rows.append(row)
         print(row, flush=True)
+    if args.only:
+        # A partial run: the other models keep their rows (measured at an earlier commit,
+        # which the header names with this one).
+        measured = {r["model"] for r in rows}
+        kept_rows = [r for m, r in previous_rows(table).items() if m not in measured]
+        for r in kept_rows:
+            r["kept"] = True
+        rows = sorted(rows + kept_rows, key=lambda r: r["model"])
     write_table(rows)
 
 
@@ -271,7 +320,9 @@ def write_table(rows):
         "OCCT's split does not return; 3 GB limit), with its median and worst time below.",
         "",
         "VoroHex meshes %d of %d models today (VoroHex columns measured at commit %s%s)." % (
-            valid, len(rows), BUILT_FROM,
+            valid, len(rows), BUILT_FROM + ("" if not any(r.get("kept") for r in rows) else
+                                            " for %s, the other models' rows kept from the previous table" % ", ".join(
+                                                r["model"].split("_")[0] for r in rows if not r.get("kept"))),
             ("; Gmsh columns kept from the previous table" if any("g_kept" in r for r in rows) else "")
             + ("; decomposition columns kept from the previous table"
                if any("d_kept" in r for r in rows) else "")),
