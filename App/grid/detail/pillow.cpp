@@ -13,40 +13,66 @@ constexpr int kCorner[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
 
 PillowMesh pillow_mesh(const GridFrame& frame, const CoreCells& core,
                        const core::MeshDomain& solid) {
-  PillowMesh out;
   const int n0 = frame.nodes(0), n1 = frame.nodes(1);
-  std::unordered_map<std::size_t, std::int32_t> node_of;  // grid node -> mesh node
-  auto mesh_node = [&](int i, int j, int k) {
+  std::vector<core::Vec3> points;
+  std::unordered_map<std::size_t, std::int32_t> node_of;  // grid node -> point
+  auto point = [&](int i, int j, int k) {
     const std::size_t g = std::size_t(i) + std::size_t(n0) * (std::size_t(j) + std::size_t(n1) * k);
-    auto [it, fresh] = node_of.try_emplace(g, 0);
-    if (fresh) it->second = out.mesh.add_node(frame.point(i, j, k)).value();
+    auto [it, fresh] = node_of.try_emplace(g, std::int32_t(points.size()));
+    if (fresh) points.push_back(frame.point(i, j, k));
     return it->second;
   };
-  struct Quad {
-    std::array<std::int32_t, 4> nodes;
-  };
-  std::vector<Quad> quads;
+  std::vector<std::array<std::int32_t, 8>> hexes;
   for (int k = 0; k < core.cells[2]; ++k)
     for (int j = 0; j < core.cells[1]; ++j)
       for (int i = 0; i < core.cells[0]; ++i) {
         if (!core.at(i, j, k)) continue;
-        core::HexNodes h;
+        std::array<std::int32_t, 8> h;
         for (int b = 0; b < 8; ++b)
-          h[b] = mesh_node(i + kCorner[b][0], j + kCorner[b][1], k + kCorner[b][2]);
-        out.mesh.add_hex(h, 1);
-        ++out.core_hexes;
-        for (const auto& f : core::kHexFaces) {
-          // The face's neighbour: the axis all four corners agree on.
-          int nb[3] = {i, j, k};
-          for (int a = 0; a < 3; ++a) {
-            const int v = kCorner[f[0]][a];
-            if (kCorner[f[1]][a] == v && kCorner[f[2]][a] == v && kCorner[f[3]][a] == v)
-              nb[a] += v ? 1 : -1;
-          }
-          if (core.at(nb[0], nb[1], nb[2])) continue;
-          quads.push_back({{h[f[0]], h[f[1]], h[f[2]], h[f[3]]}});
-        }
+          h[b] = point(i + kCorner[b][0], j + kCorner[b][1], k + kCorner[b][2]);
+        hexes.push_back(h);
       }
+  return pillow_mesh(points, hexes, frame.axes, solid);
+}
+
+PillowMesh pillow_mesh(const std::vector<core::Vec3>& points,
+                       const std::vector<std::array<std::int32_t, 8>>& hexes,
+                       const std::array<core::Vec3, 3>& axes, const core::MeshDomain& solid) {
+  PillowMesh out;
+  std::unordered_map<std::int32_t, std::int32_t> node_of;  // point -> mesh node
+  auto mesh_node = [&](std::int32_t p) {
+    auto [it, fresh] = node_of.try_emplace(p, 0);
+    if (fresh) it->second = out.mesh.add_node(points[p]).value();
+    return it->second;
+  };
+  // Faces of the core by their sorted points: a face used once is on the core's boundary.
+  auto face_key = [&](const std::array<std::int32_t, 8>& h, const std::array<int, 4>& f) {
+    std::array<std::int32_t, 4> k = {h[f[0]], h[f[1]], h[f[2]], h[f[3]]};
+    std::sort(k.begin(), k.end());
+    return k;
+  };
+  struct KeyHash {
+    std::size_t operator()(const std::array<std::int32_t, 4>& k) const {
+      std::size_t h = 0;
+      for (std::int32_t v : k) h = h * 0x9E3779B97F4A7C15ull + std::size_t(v);
+      return h;
+    }
+  };
+  std::unordered_map<std::array<std::int32_t, 4>, int, KeyHash> uses;
+  for (const auto& h : hexes)
+    for (const auto& f : core::kHexFaces) ++uses[face_key(h, f)];
+  struct Quad {
+    std::array<std::int32_t, 4> nodes;
+  };
+  std::vector<Quad> quads;
+  for (const auto& hp : hexes) {
+    core::HexNodes h;
+    for (int b = 0; b < 8; ++b) h[b] = mesh_node(hp[b]);
+    out.mesh.add_hex(h, 1);
+    ++out.core_hexes;
+    for (const auto& f : core::kHexFaces)
+      if (uses[face_key(hp, f)] == 1) quads.push_back({{h[f[0]], h[f[1]], h[f[2]], h[f[3]]}});
+  }
   // Outer nodes. A node's outward direction n is the mean of the normals of its boundary
   // quads; its outer node is the closest boundary point to p + 2 d n (d: its distance to
   // the boundary), which for a core corner or edge opposite a model vertex or edge is that
@@ -65,7 +91,7 @@ PillowMesh pillow_mesh(const GridFrame& frame, const CoreCells& core,
     // corner's many quads on one side would otherwise outweigh the others).
     int dir = 0;
     for (int a = 0; a < 3; ++a)
-      if (std::abs(n.dot(frame.axes[a])) > 0.5) dir = 1 << (2 * a + (n.dot(frame.axes[a]) > 0));
+      if (std::abs(n.dot(axes[a])) > 0.5) dir = 1 << (2 * a + (n.dot(axes[a]) > 0));
     for (std::int32_t v : q.nodes) {
       auto [it, fresh] = normal_of.try_emplace(v, core::Vec3::Zero());
       int& seen = directions_of[v];

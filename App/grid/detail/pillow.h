@@ -27,4 +27,12 @@ struct PillowMesh {
 PillowMesh pillow_mesh(const GridFrame& frame, const CoreCells& core,
                        const core::MeshDomain& solid);
 
+// The same on any core of hexahedra (a refined grid's, grid/detail/refine.h): `hexes` index
+// `points` (VTK order, positive), the core's boundary a closed manifold; mesh nodes are
+// numbered in the order the hexahedra first use them. `axes`: the grid's, each of the six
+// directions counted once in a node's outward direction.
+PillowMesh pillow_mesh(const std::vector<core::Vec3>& points,
+                       const std::vector<std::array<std::int32_t, 8>>& hexes,
+                       const std::array<core::Vec3, 3>& axes, const core::MeshDomain& solid);
+
 }  // namespace vorohex::grid::detail
