@@ -2,10 +2,12 @@
 
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
 #include "core/progress.h"
+#include "grid/detail/adaptive_core.h"
 #include "grid/detail/core_cells.h"
 #include "grid/detail/features.h"
 #include "grid/detail/grid_frame.h"
@@ -41,6 +43,8 @@ void GridOptions::validate() const {
   if (!(quality_target > 0 && quality_target <= 1))
     bad("quality_target must be in (0, 1]", quality_target);
   if (max_refinements < 0) bad("max_refinements must be >= 0", max_refinements);
+  if (max_levels < 0 || max_levels > 4) bad("max_levels must be in [0, 4]", max_levels);
+  if (max_local_cells == 0) bad("max_local_cells must be at least 1", 0);
   if (max_refined_cells == 0) bad("max_refined_cells must be at least 1", 0);
   if (!(min_core_share >= 0 && min_core_share <= 1))
     bad("min_core_share must be in [0, 1]", min_core_share);
@@ -71,6 +75,43 @@ GridResult grid_mesh(const occ::Solid& solid, const GridOptions& options,
 
   detail::GridFrame frame;
   detail::CoreCells core;
+  double share = 0, left_out = 0;
+  bool split = false;
+  std::vector<core::Diagnostic> uniform_notes;  // the uniform refinements' warnings
+  const double solid_volume = std::max(std::abs(solid.volume()), 1e-300);
+  // A core still thin or split after the uniform refinements: the grid refined locally, from
+  // the size asked for, instead (used when its core holds more of the volume).
+  std::optional<detail::AdaptiveCore> local;
+  auto try_local = [&]() {
+    detail::AdaptiveCoreOptions ao;
+    ao.size = options.size;
+    ao.margin = options.core_margin;
+    ao.deflection = to.linear_deflection;
+    ao.max_level = options.max_levels;
+    ao.max_cells = options.max_local_cells;
+    const detail::GridFrame f0 = detail::grid_frame(solid, boundary, options.size);
+    detail::AdaptiveCore a = detail::adaptive_core(f0, solid, tess, ao, progress);
+    if (progress.cancelled()) return true;
+    const double a_share = a.core_volume / solid_volume, a_left = a.left_out_volume / solid_volume;
+    std::ostringstream s;
+    s << "The uniform grid's core holds " << std::lround(100 * share) << "% of the volume at size "
+      << size << (split ? " and falls apart into pieces" : "") << "; refined locally by thirds "
+      << "near walls thinner than about two cells (up to " << a.levels_used << " times, cells "
+      << "down to " << options.size / std::pow(3.0, a.levels_used) << "), its core holds "
+      << std::lround(100 * a_share) << "% (" << a.core.size() << " hexahedra"
+      << (a.budget_reached ? ", refinement stopped at max_local_cells" : "") << ")";
+    if (a.core.size() > 0 && a_share > share && a_left <= std::max(0.01, left_out)) {
+      s << ": the locally refined grid is used.";
+      r.diagnostics.push_back(core::make_info("grid_refined_locally", s.str()));
+      frame = f0;
+      size = options.size / std::pow(3.0, a.levels_used);
+      local = std::move(a);
+      return true;
+    }
+    s << ": the uniform grid is kept.";
+    r.diagnostics.push_back(core::make_info("grid_refined_locally", s.str()));
+    return false;
+  };
   for (int attempt = 0;; ++attempt) {
     frame = detail::grid_frame(solid, boundary, size);
     const double cells = double(frame.cells(0)) * frame.cells(1) * frame.cells(2);
@@ -97,36 +138,47 @@ GridResult grid_mesh(const occ::Solid& solid, const GridOptions& options,
               core_volume += (frame.lines[0][i + 1] - frame.lines[0][i]) *
                              (frame.lines[1][j + 1] - frame.lines[1][j]) *
                              (frame.lines[2][k + 1] - frame.lines[2][k]);
-    const double share = core_volume / std::max(std::abs(solid.volume()), 1e-300);
+    share = core_volume / solid_volume;
     // Pieces joined by thin walls: the smaller ones are left out, and their volume with
     // them; past about 1% of the solid the volume check fails (HexMe i14: 150 cells left
     // out, 2.5%, volume error 12%), so the grid is refined as for a thin core.
-    const double left_out = double(core.removed_components) * size * size * size /
-                            std::max(std::abs(solid.volume()), 1e-300);
-    const bool split = core.removed_components > core.core / 4 || left_out > 0.01;
-    if ((share >= options.min_core_share && !split) || attempt >= options.max_refinements) break;
-    if (8.0 * cells > std::min(4.0 * double(options.max_hexes), double(options.max_refined_cells)))
+    left_out = double(core.removed_components) * size * size * size / solid_volume;
+    split = core.removed_components > core.core / 4 || left_out > 0.01;
+    const bool thin = share < options.min_core_share || split;
+    if (!thin) break;
+    if (attempt >= options.max_refinements ||
+        8.0 * cells >
+            std::min(4.0 * double(options.max_hexes), double(options.max_refined_cells))) {
+      if (options.max_levels > 0) try_local();
       break;
+    }
     std::ostringstream s;
     s << "The grid's core at size " << size << " holds " << std::lround(100 * share)
       << "% of the volume (walls thinner than about three cells); the grid was refined to size "
       << size / 2 << ".";
-    r.diagnostics.push_back(core::make_warning("size_reduced", s.str()));
+    uniform_notes.push_back(core::make_warning("size_reduced", s.str()));
     size /= 2;
   }
+  if (progress.cancelled()) {
+    r.diagnostics.push_back(core::make_error("cancelled", "Meshing was cancelled."));
+    return r;
+  }
+  if (!local) r.diagnostics.insert(r.diagnostics.end(), uniform_notes.begin(), uniform_notes.end());
   r.stats.size_used = size;
-  r.stats.grid_cells = core.cells;
+  r.stats.local_levels = local ? local->levels_used : 0;
+  r.stats.grid_cells =
+      local ? std::array<int, 3>{frame.cells(0), frame.cells(1), frame.cells(2)} : core.cells;
   r.stats.axes_from = frame.how;
-  r.stats.classifier_calls = core.classifier_calls;
-  r.stats.removed_for_manifold = core.removed_for_manifold;
+  r.stats.classifier_calls = core.classifier_calls + (local ? local->classifier_calls : 0);
+  r.stats.removed_for_manifold = local ? local->removed_for_manifold : core.removed_for_manifold;
   r.stats.seconds_core = seconds_since(t0);
-  if (core.core == 0) {
+  if (!local && core.core == 0) {
     r.diagnostics.push_back(core::make_error(
         "grid_no_core", "No grid cell lies well inside the solid, even at size " +
                             std::to_string(size) + ": it is too thin for the grid mesher."));
     return r;
   }
-  if (core.removed_components > 0) {
+  if (!local && core.removed_components > 0) {
     std::ostringstream s;
     s << "The grid's core falls apart into pieces joined only by walls thinner than about two "
       << "cells; " << core.removed_components << " cells away from the largest piece were "
@@ -136,7 +188,9 @@ GridResult grid_mesh(const occ::Solid& solid, const GridOptions& options,
   progress.report("grid", 0.3);
 
   t0 = std::chrono::steady_clock::now();
-  detail::PillowMesh pillow = detail::pillow_mesh(frame, core, solid);
+  detail::PillowMesh pillow =
+      local ? detail::pillow_mesh(local->grid.points, local->core, frame.axes, solid)
+            : detail::pillow_mesh(frame, core, solid);
   r.stats.core_hexes = pillow.core_hexes;
   r.stats.pillow_hexes = pillow.pillow_hexes;
   r.stats.seconds_pillow = seconds_since(t0);
@@ -222,13 +276,15 @@ GridResult grid_mesh(const occ::Solid& solid, const GridOptions& options,
   progress.report("grid", 1.0);
 
   std::ostringstream s;
-  s << "Grid of " << core.cells[0] << " x " << core.cells[1] << " x " << core.cells[2]
-    << " cells of size " << size << " along the part's " << frame.how << ": " << r.stats.core_hexes
-    << " core hexahedra and " << r.stats.pillow_hexes << " in the pillow layer; captured "
-    << r.stats.vertices_captured << "/" << r.stats.vertices << " vertices, "
-    << r.stats.edges_captured << "/" << r.stats.edges << " edges, " << r.stats.faces_captured << "/"
-    << r.stats.faces << " faces; min scaled Jacobian " << r.stats.min_sj_before_optimisation
-    << " -> " << r.stats.min_sj << " after optimisation.";
+  s << "Grid of " << r.stats.grid_cells[0] << " x " << r.stats.grid_cells[1] << " x "
+    << r.stats.grid_cells[2] << " cells of size " << (local ? options.size : size);
+  if (local) s << " refined locally " << local->levels_used << " times (down to " << size << ")";
+  s << " along the part's " << frame.how << ": " << r.stats.core_hexes << " core hexahedra and "
+    << r.stats.pillow_hexes << " in the pillow layer; captured " << r.stats.vertices_captured << "/"
+    << r.stats.vertices << " vertices, " << r.stats.edges_captured << "/" << r.stats.edges
+    << " edges, " << r.stats.faces_captured << "/" << r.stats.faces
+    << " faces; min scaled Jacobian " << r.stats.min_sj_before_optimisation << " -> "
+    << r.stats.min_sj << " after optimisation.";
   r.diagnostics.push_back(core::make_info("grid", s.str()));
   r.mesh = std::move(pillow.mesh);
   const bool optimised = options.laplacian_iterations > 0 || options.optimisation_passes > 0;

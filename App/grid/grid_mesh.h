@@ -42,12 +42,19 @@ struct GridOptions {
   int max_refinements = 2;
   double min_core_share = 0.25;
   std::size_t max_refined_cells = 250'000;
+  // Where the core is still thin or split after that: the grid refined locally by thirds,
+  // up to max_levels times (0: never), near the walls thinner than about two cells
+  // (grid/detail/adaptive_core.h), as long as the levels hold at most max_local_cells cells
+  // in all; used when its core holds more of the volume.
+  int max_levels = 2;
+  std::size_t max_local_cells = 150'000;
   std::size_t max_hexes = 50'000'000;  // more is refused before the core is built (> 0)
   void validate() const;               // throws std::invalid_argument naming the bad field
 };
 
 struct GridStats {
-  double size_used = 0;             // after refinements
+  double size_used = 0;             // after refinements (the smallest cells')
+  int local_levels = 0;             // local refinements by thirds used (0: a uniform grid)
   std::array<int, 3> grid_cells{};  // per axis
   std::string axes_from;            // "planar faces", "axis of revolution", "world axes"
   std::size_t core_hexes = 0, pillow_hexes = 0;

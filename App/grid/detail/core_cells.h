@@ -30,6 +30,22 @@ struct CoreCells {
   }
 };
 
+// Distance from p to the triangle abc.
+double point_triangle_distance(const core::Vec3& p, const core::Vec3& a, const core::Vec3& b,
+                               const core::Vec3& c);
+
+struct UnionFind {
+  std::vector<std::size_t> parent;
+  explicit UnionFind(std::size_t n) : parent(n) {
+    for (std::size_t i = 0; i < n; ++i) parent[i] = i;
+  }
+  std::size_t find(std::size_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  }
+  void unite(std::size_t a, std::size_t b) { parent[find(a)] = find(b); }
+};
+
 // Unsigned distance of each grid node to the tessellated boundary, capped at `cap`
 // (nodes farther away get `cap`). Node index i + n0 * (j + n1 * k).
 std::vector<double> node_distances(const GridFrame& frame, const occ::Tessellation& t, double cap);

@@ -180,7 +180,8 @@ core::Vec3 lattice_point(const GridFrame& frame, std::int64_t unit, const Lattic
   return out;
 }
 
-RefinedGrid refine_grid(const GridFrame& frame, int max_level, const RefineChoice& choose) {
+RefinedGrid refine_grid(const GridFrame& frame, int max_level, const RefineChoice& choose,
+                        std::size_t max_hexes) {
   if (max_level < 0 || max_level > 6)
     throw std::invalid_argument("refine_grid: max_level must be in [0, 6]");
   RefinedGrid g;
@@ -281,6 +282,13 @@ RefinedGrid refine_grid(const GridFrame& frame, int max_level, const RefineChoic
         changed = true;
       }
     }
+    // The hexahedra this refinement would give at least (the next level's cells whole).
+    std::size_t at_least = g.hexes.size();
+    for (const LevelCell& cell : cells) {
+      const int m = mask_of(cell);
+      at_least += m == 255 ? 27 : m == 0 ? 1 : t.hexes[t.choice[m].kind].size();
+    }
+    if (at_least > max_hexes) marked.clear(), g.budget_reached = true;
     std::vector<LevelCell> next;
     for (const LevelCell& cell : cells) {
       const int m = mask_of(cell);

@@ -41,6 +41,7 @@ struct RefinedGrid {
   std::vector<std::array<std::int32_t, 8>> hexes;  // VTK order, positive
   std::vector<std::int8_t> level;                  // per hexahedron: its cell's level
   std::array<std::size_t, 4> templates{};  // transition cells by marked corners: 1, 2, 4; refined
+  bool budget_reached = false;             // a level was left unrefined: it would pass max_hexes
 };
 
 // Chooses, for the cells of level `level` (0: the base grid), which to refine (one entry
@@ -48,8 +49,11 @@ struct RefinedGrid {
 // is refined.
 using RefineChoice = std::function<std::vector<char>(int level, const std::vector<LevelCell>&)>;
 
-// The base grid of `frame` refined up to max_level times (0 <= max_level <= 6).
-RefinedGrid refine_grid(const GridFrame& frame, int max_level, const RefineChoice& choose);
+// The base grid of `frame` refined up to max_level times (0 <= max_level <= 6). A level
+// whose refinement (after the closure) would make the grid pass max_hexes hexahedra is
+// not refined (its cells stay whole).
+RefinedGrid refine_grid(const GridFrame& frame, int max_level, const RefineChoice& choose,
+                        std::size_t max_hexes = std::size_t(-1));
 
 // World coordinates of a lattice point.
 core::Vec3 lattice_point(const GridFrame& frame, std::int64_t unit, const LatticePoint& p);

@@ -371,6 +371,14 @@ TEST(GridMesh, OptionsAreValidated) {
   o.core_margin = 0.5;
   o.quality_target = 2;
   EXPECT_THROW(o.validate(), std::invalid_argument);
+  o.quality_target = 0.5;
+  o.max_levels = 5;
+  EXPECT_THROW(o.validate(), std::invalid_argument);
+  o.max_levels = 2;
+  o.max_local_cells = 0;
+  EXPECT_THROW(o.validate(), std::invalid_argument);
+  o.max_local_cells = 1000;
+  EXPECT_NO_THROW(o.validate());
 }
 
 TEST(GridMesh, TooManyHexesIsRefusedBeforeMeshing) {
