@@ -8,6 +8,7 @@
 
 #include "core/hex_mesh.h"
 #include "grid/detail/core_cells.h"
+#include "grid/detail/pillow.h"
 #include "occ/classify_points.h"
 
 namespace vorohex::grid::detail {
@@ -15,15 +16,6 @@ namespace {
 
 using core::Vec3;
 using Hex = std::array<std::int32_t, 8>;
-
-struct LatticeHash {
-  std::size_t operator()(const LatticePoint& p) const {
-    std::size_t h = std::size_t(p[0]) * 0x9E3779B97F4A7C15ull;
-    h ^= std::size_t(p[1]) + 0x7F4A7C159E3779B9ull + (h << 6) + (h >> 2);
-    h ^= std::size_t(p[2]) + 0x94D049BB133111EBull + (h << 6) + (h >> 2);
-    return h;
-  }
-};
 
 // The tessellation's triangles bucketed by the base grid's cells (frame coordinates), for
 // distances capped at a few cells.
@@ -130,34 +122,19 @@ double hex_volume(const std::vector<Vec3>& p, const Hex& h) {
   return v;
 }
 
-struct FaceHash {
-  std::size_t operator()(const std::array<std::int32_t, 4>& k) const {
-    std::size_t h = 0;
-    for (std::int32_t v : k) h = h * 0x9E3779B97F4A7C15ull + std::size_t(v);
-    return h;
-  }
-};
-
-std::array<std::int32_t, 4> face_key(const Hex& h, int f) {
-  const auto& c = core::kHexFaces[f];
-  std::array<std::int32_t, 4> k = {h[c[0]], h[c[1]], h[c[2]], h[c[3]]};
-  std::sort(k.begin(), k.end());
-  return k;
-}
-
 // Nodes where the boundary of the hexahedra `keep` marks is not a manifold: an edge of
 // other than two boundary quads, or a node whose boundary quads are not one fan.
 std::vector<std::int32_t> pinched_nodes(const std::vector<Hex>& hexes,
                                         const std::vector<char>& keep) {
-  std::unordered_map<std::array<std::int32_t, 4>, int, FaceHash> uses;
+  std::unordered_map<QuadKey, int, QuadKeyHash> uses;
   for (std::size_t h = 0; h < hexes.size(); ++h)
     if (keep[h])
-      for (int f = 0; f < 6; ++f) ++uses[face_key(hexes[h], f)];
+      for (int f = 0; f < 6; ++f) ++uses[quad_key(hexes[h], f)];
   std::vector<std::array<std::int32_t, 4>> quads;
   for (std::size_t h = 0; h < hexes.size(); ++h)
     if (keep[h])
       for (int f = 0; f < 6; ++f)
-        if (uses[face_key(hexes[h], f)] == 1) {
+        if (uses[quad_key(hexes[h], f)] == 1) {
           const auto& c = core::kHexFaces[f];
           quads.push_back({hexes[h][c[0]], hexes[h][c[1]], hexes[h][c[2]], hexes[h][c[3]]});
         }
@@ -324,11 +301,11 @@ AdaptiveCore adaptive_core(const GridFrame& frame, const occ::Solid& solid,
   }
   // The largest face-connected part.
   UnionFind uf(nh);
-  std::unordered_map<std::array<std::int32_t, 4>, std::size_t, FaceHash> owner;
+  std::unordered_map<QuadKey, std::size_t, QuadKeyHash> owner;
   for (std::size_t h = 0; h < nh; ++h)
     if (keep[h])
       for (int f = 0; f < 6; ++f) {
-        auto [it, fresh] = owner.try_emplace(face_key(g.hexes[h], f), h);
+        auto [it, fresh] = owner.try_emplace(quad_key(g.hexes[h], f), h);
         if (!fresh) uf.unite(h, it->second);
       }
   std::unordered_map<std::size_t, double> part_volume;

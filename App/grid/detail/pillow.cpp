@@ -11,6 +11,13 @@ constexpr int kCorner[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
                                {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
 }  // namespace
 
+QuadKey quad_key(const std::array<std::int32_t, 8>& hex, int face) {
+  const auto& c = core::kHexFaces[face];
+  QuadKey k = {hex[c[0]], hex[c[1]], hex[c[2]], hex[c[3]]};
+  std::sort(k.begin(), k.end());
+  return k;
+}
+
 PillowMesh pillow_mesh(const GridFrame& frame, const CoreCells& core,
                        const core::MeshDomain& solid) {
   const int n0 = frame.nodes(0), n1 = frame.nodes(1);
@@ -46,21 +53,9 @@ PillowMesh pillow_mesh(const std::vector<core::Vec3>& points,
     return it->second;
   };
   // Faces of the core by their sorted points: a face used once is on the core's boundary.
-  auto face_key = [&](const std::array<std::int32_t, 8>& h, const std::array<int, 4>& f) {
-    std::array<std::int32_t, 4> k = {h[f[0]], h[f[1]], h[f[2]], h[f[3]]};
-    std::sort(k.begin(), k.end());
-    return k;
-  };
-  struct KeyHash {
-    std::size_t operator()(const std::array<std::int32_t, 4>& k) const {
-      std::size_t h = 0;
-      for (std::int32_t v : k) h = h * 0x9E3779B97F4A7C15ull + std::size_t(v);
-      return h;
-    }
-  };
-  std::unordered_map<std::array<std::int32_t, 4>, int, KeyHash> uses;
+  std::unordered_map<QuadKey, int, QuadKeyHash> uses;
   for (const auto& h : hexes)
-    for (const auto& f : core::kHexFaces) ++uses[face_key(h, f)];
+    for (int f = 0; f < 6; ++f) ++uses[quad_key(h, f)];
   struct Quad {
     std::array<std::int32_t, 4> nodes;
   };
@@ -70,8 +65,11 @@ PillowMesh pillow_mesh(const std::vector<core::Vec3>& points,
     for (int b = 0; b < 8; ++b) h[b] = mesh_node(hp[b]);
     out.mesh.add_hex(h, 1);
     ++out.core_hexes;
-    for (const auto& f : core::kHexFaces)
-      if (uses[face_key(hp, f)] == 1) quads.push_back({{h[f[0]], h[f[1]], h[f[2]], h[f[3]]}});
+    for (int fi = 0; fi < 6; ++fi)
+      if (uses[quad_key(hp, fi)] == 1) {
+        const auto& f = core::kHexFaces[fi];
+        quads.push_back({{h[f[0]], h[f[1]], h[f[2]], h[f[3]]}});
+      }
   }
   // Outer nodes. A node's outward direction n is the mean of the normals of its boundary
   // quads; its outer node is the closest boundary point to p + 2 d n (d: its distance to

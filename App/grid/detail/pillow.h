@@ -15,6 +15,17 @@
 
 namespace vorohex::grid::detail {
 
+// A hexahedron's face by its sorted node indices (faces of two hexahedra match when equal).
+using QuadKey = std::array<std::int32_t, 4>;
+struct QuadKeyHash {
+  std::size_t operator()(const QuadKey& k) const {
+    std::size_t h = 0;
+    for (std::int32_t v : k) h = h * 0x9E3779B97F4A7C15ull + std::size_t(v);
+    return h;
+  }
+};
+QuadKey quad_key(const std::array<std::int32_t, 8>& hex, int face);  // face: kHexFaces index
+
 struct PillowMesh {
   core::HexMesh mesh;
   std::vector<std::int32_t> outer_nodes;                 // nodes on the CAD boundary

@@ -153,15 +153,6 @@ bool allowed(int mask) {
   return mask == 0 || mask == 255 || templates().choice[mask].kind >= 0;
 }
 
-struct Key {
-  std::size_t operator()(const LatticePoint& p) const {
-    std::size_t h = std::size_t(p[0]) * 0x9E3779B97F4A7C15ull;
-    h ^= std::size_t(p[1]) + 0x7F4A7C159E3779B9ull + (h << 6) + (h >> 2);
-    h ^= std::size_t(p[2]) + 0x94D049BB133111EBull + (h << 6) + (h >> 2);
-    return h;
-  }
-};
-
 LatticePoint corner_of(const LevelCell& c, int b) {
   return {c.origin[0] + c.extent * (b & 1), c.origin[1] + c.extent * ((b >> 1) & 1),
           c.origin[2] + c.extent * (b >> 2)};
@@ -189,7 +180,7 @@ RefinedGrid refine_grid(const GridFrame& frame, int max_level, const RefineChoic
   for (int l = 0; l < max_level; ++l) g.unit *= 3;
   const std::array<std::int64_t, 3> box = {frame.cells(0) * g.unit, frame.cells(1) * g.unit,
                                            frame.cells(2) * g.unit};
-  std::unordered_map<LatticePoint, std::int32_t, Key> node_of;
+  std::unordered_map<LatticePoint, std::int32_t, LatticeHash> node_of;
   auto node = [&](const LatticePoint& p) {
     auto [it, fresh] = node_of.try_emplace(p, std::int32_t(g.lattice.size()));
     if (fresh) g.lattice.push_back(p), g.points.push_back(lattice_point(frame, g.unit, p));
@@ -229,7 +220,7 @@ RefinedGrid refine_grid(const GridFrame& frame, int max_level, const RefineChoic
     want.resize(cells.size(), 0);
     const std::int64_t e = cells.front().extent;
     // Corners on the border of this level's region (level > 0) are never marked.
-    std::unordered_set<LatticePoint, Key> active;
+    std::unordered_set<LatticePoint, LatticeHash> active;
     if (level > 0)
       for (const LevelCell& c : cells) active.insert(c.origin);
     auto border = [&](const LatticePoint& v) {
@@ -242,7 +233,7 @@ RefinedGrid refine_grid(const GridFrame& frame, int max_level, const RefineChoic
       }
       return false;
     };
-    std::unordered_set<LatticePoint, Key> marked, banned;
+    std::unordered_set<LatticePoint, LatticeHash> marked, banned;
     for (std::size_t c = 0; c < cells.size(); ++c)
       if (want[c])
         for (int b = 0; b < 8; ++b) {

@@ -27,6 +27,15 @@ namespace vorohex::grid::detail {
 // along each axis (base cell (i, j, k) spans [i, i + 1] * unit on the first axis, ...).
 using LatticePoint = std::array<std::int64_t, 3>;
 
+struct LatticeHash {
+  std::size_t operator()(const LatticePoint& p) const {
+    std::size_t h = std::size_t(p[0]) * 0x9E3779B97F4A7C15ull;
+    h ^= std::size_t(p[1]) + 0x7F4A7C159E3779B9ull + (h << 6) + (h >> 2);
+    h ^= std::size_t(p[2]) + 0x94D049BB133111EBull + (h << 6) + (h >> 2);
+    return h;
+  }
+};
+
 // A cell of one level: its lowest corner and its edge length, in lattice units.
 struct LevelCell {
   LatticePoint origin{};
