@@ -77,7 +77,7 @@ class Triangles {
 
 // Inside the solid, for points far from the boundary: points joined by segments that
 // cannot cross it (the sum of their distances exceeds the length, chord error allowed)
-// share one answer, the majority of up to three of the farthest of them classified.
+// share one answer (vote_inside).
 std::vector<char> inside(const occ::Solid& solid, const std::vector<Vec3>& points,
                          const std::vector<double>& dist,
                          const std::vector<std::pair<std::size_t, std::size_t>>& segments,
@@ -88,29 +88,9 @@ std::vector<char> inside(const occ::Solid& solid, const std::vector<Vec3>& point
     if (dist[a] > far && dist[b] > far &&
         dist[a] + dist[b] > (points[a] - points[b]).norm() + 2 * deflection)
       uf.unite(a, b);
-  std::vector<std::vector<std::size_t>> reps(n);
-  for (std::size_t a = 0; a < n; ++a) {
-    if (dist[a] <= far) continue;
-    auto& r = reps[uf.find(a)];
-    r.push_back(a);
-    std::sort(r.begin(), r.end(), [&](std::size_t x, std::size_t y) { return dist[x] > dist[y]; });
-    if (r.size() > 3) r.pop_back();
-  }
-  std::vector<Vec3> query;
-  std::vector<std::size_t> owner;
-  for (std::size_t a = 0; a < n; ++a)
-    for (std::size_t r : reps[a]) query.push_back(points[r]), owner.push_back(a);
-  const std::vector<occ::PointState> states =
-      occ::classify_points(solid, query, std::max(solid.tolerance(), 1e-9 * solid.diagonal()));
-  calls += query.size();
-  std::vector<int> votes(n, 0);
-  for (std::size_t q = 0; q < query.size(); ++q)
-    votes[owner[q]] += states[q] == occ::PointState::inside    ? 1
-                       : states[q] == occ::PointState::outside ? -1
-                                                               : 0;
-  std::vector<char> out(n, 0);
-  for (std::size_t a = 0; a < n; ++a) out[a] = dist[a] > far && votes[uf.find(a)] > 0;
-  return out;
+  return vote_inside(
+      solid, uf, dist, far, [&](std::size_t i) { return points[i]; },
+      std::max(solid.tolerance(), 1e-9 * solid.diagonal()), calls);
 }
 
 double hex_volume(const std::vector<Vec3>& p, const Hex& h) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <numeric>
 
 #include "occ/classify_points.h"
@@ -71,6 +72,36 @@ double point_triangle_distance(const Vec3& p, const Vec3& a, const Vec3& b, cons
   return (p - (a + ab * v + ac * w)).norm();
 }
 
+std::vector<char> vote_inside(const occ::Solid& solid, UnionFind& uf,
+                              const std::vector<double>& dist, double far,
+                              const std::function<Vec3(std::size_t)>& point, double tolerance,
+                              std::size_t& calls) {
+  const std::size_t n = dist.size();
+  // Representatives: up to three per set (the farthest from the boundary), majority vote.
+  std::vector<std::vector<std::size_t>> reps(n);
+  for (std::size_t a = 0; a < n; ++a) {
+    if (dist[a] <= far) continue;
+    auto& r = reps[uf.find(a)];
+    r.push_back(a);
+    std::sort(r.begin(), r.end(), [&](std::size_t x, std::size_t y) { return dist[x] > dist[y]; });
+    if (r.size() > 3) r.pop_back();
+  }
+  std::vector<Vec3> query;
+  std::vector<std::size_t> owner;
+  for (std::size_t a = 0; a < n; ++a)
+    for (std::size_t r : reps[a]) query.push_back(point(r)), owner.push_back(a);
+  const std::vector<occ::PointState> states = occ::classify_points(solid, query, tolerance);
+  calls += query.size();
+  std::vector<int> votes(n, 0);
+  for (std::size_t q = 0; q < query.size(); ++q)
+    votes[owner[q]] += states[q] == occ::PointState::inside    ? 1
+                       : states[q] == occ::PointState::outside ? -1
+                                                               : 0;
+  std::vector<char> out(n, 0);
+  for (std::size_t a = 0; a < n; ++a) out[a] = dist[a] > far && votes[uf.find(a)] > 0;
+  return out;
+}
+
 std::vector<double> node_distances(const GridFrame& frame, const occ::Tessellation& t, double cap) {
   const int n0 = frame.nodes(0), n1 = frame.nodes(1), n2 = frame.nodes(2);
   std::vector<double> d(std::size_t(n0) * n1 * n2, cap);
@@ -125,41 +156,23 @@ CoreCells core_cells(const GridFrame& frame, const occ::Solid& solid, const occ:
           if (dist[b] > far && dist[a] + dist[b] > len + 2 * deflection) uf.unite(a, b);
         }
       }
-  // Representatives: up to three per set (the farthest from the boundary), majority vote.
-  std::vector<std::vector<std::size_t>> reps(nn);
-  for (std::size_t a = 0; a < nn; ++a) {
-    if (dist[a] <= far) continue;
-    auto& r = reps[uf.find(a)];
-    r.push_back(a);
-    std::sort(r.begin(), r.end(), [&](std::size_t x, std::size_t y) { return dist[x] > dist[y]; });
-    if (r.size() > 3) r.pop_back();
-  }
-  std::vector<Vec3> points;
-  std::vector<std::size_t> owner;
-  for (std::size_t a = 0; a < nn; ++a)
-    for (std::size_t r : reps[a]) {
-      const int i = int(r % n0), j = int((r / n0) % n1), k = int(r / (std::size_t(n0) * n1));
-      points.push_back(frame.point(i, j, k));
-      owner.push_back(a);
-    }
-  const std::vector<occ::PointState> states =
-      occ::classify_points(solid, points, std::max(solid.tolerance(), 1e-9 * size));
-  std::vector<int> votes(nn, 0);
-  for (std::size_t p = 0; p < points.size(); ++p)
-    votes[owner[p]] += states[p] == occ::PointState::inside    ? 1
-                       : states[p] == occ::PointState::outside ? -1
-                                                               : 0;
+  std::size_t calls = 0;
+  const std::vector<char> in = vote_inside(
+      solid, uf, dist, far,
+      [&](std::size_t r) {
+        return frame.point(int(r % n0), int((r / n0) % n1), int(r / (std::size_t(n0) * n1)));
+      },
+      std::max(solid.tolerance(), 1e-9 * size), calls);
   CoreCells c;
-  c.classifier_calls = points.size();
+  c.classifier_calls = calls;
   c.cells = {frame.cells(0), frame.cells(1), frame.cells(2)};
   c.in_core.assign(std::size_t(c.cells[0]) * c.cells[1] * c.cells[2], 0);
-  auto inside = [&](std::size_t a) { return dist[a] > far && votes[uf.find(a)] > 0; };
   for (int k = 0; k < c.cells[2]; ++k)
     for (int j = 0; j < c.cells[1]; ++j)
       for (int i = 0; i < c.cells[0]; ++i) {
         bool all = true;
         for (int b = 0; b < 8 && all; ++b)
-          all = inside(node(i + (b & 1), j + ((b >> 1) & 1), k + (b >> 2)));
+          all = in[node(i + (b & 1), j + ((b >> 1) & 1), k + (b >> 2))];
         c.in_core[c.index(i, j, k)] = all;
       }
 

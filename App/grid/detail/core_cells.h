@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstddef>
+#include <functional>
 #include <vector>
 
 #include "grid/detail/grid_frame.h"
@@ -45,6 +46,15 @@ struct UnionFind {
   }
   void unite(std::size_t a, std::size_t b) { parent[find(a)] = find(b); }
 };
+
+// Inside the solid, for the points farther than `far` from its boundary (dist: per point):
+// the sets `uf` joins (points joined by segments that cannot cross the boundary: the sum
+// of their distances exceeds the length) share one answer, the majority of up to three of
+// their farthest points classified by OCCT (`point(i)`: point i; `calls` counts them).
+std::vector<char> vote_inside(const occ::Solid& solid, UnionFind& uf,
+                              const std::vector<double>& dist, double far,
+                              const std::function<core::Vec3(std::size_t)>& point, double tolerance,
+                              std::size_t& calls);
 
 // Unsigned distance of each grid node to the tessellated boundary, capped at `cap`
 // (nodes farther away get `cap`). Node index i + n0 * (j + n1 * k).
