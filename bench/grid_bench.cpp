@@ -1,9 +1,11 @@
-// The grid mesher alone on one solid (no pipeline, no second chance by the tet split): its
-// diagnostics, the check's verdict and the time of each stage. For looking at why a model
-// falls through to the tet split, and at what local refinement changes.
+// The grid mesher alone on one solid, called directly (grid::grid_mesh with its own
+// optimisation, not the pipeline's smoothing): its diagnostics, the check's verdict and the
+// seconds of each stage (core, pillow, features, optimisation), with the local refinement's
+// levels as an argument. (bench/run_grid.py measures the pipeline's grid scheme on every
+// HexMe model: `vorohex mesh --schemes grid --no-decompose`.)
 //
 //   cmake --build build --target grid_bench
-//   build/grid_bench MODEL.step [SIZE [MAX_LEVELS [OUT.vtu]]]
+//   build/bench/grid_bench MODEL.step [SIZE [MAX_LEVELS [OUT.vtu]]]
 // SIZE: default diagonal / 20; MAX_LEVELS: GridOptions::max_levels (default 2; 0 = the
 // uniform grid only).
 #include <chrono>
