@@ -82,6 +82,7 @@ GridResult grid_mesh(const occ::Solid& solid, const GridOptions& options,
   // A core still thin or split after the uniform refinements: the grid refined locally, from
   // the size asked for, instead (used when its core holds more of the volume).
   std::optional<detail::AdaptiveCore> local;
+  detail::GridFrame first_frame;  // at the size asked for, where local refinement starts
   auto try_local = [&]() {
     detail::AdaptiveCoreOptions ao;
     ao.size = options.size;
@@ -89,31 +90,27 @@ GridResult grid_mesh(const occ::Solid& solid, const GridOptions& options,
     ao.deflection = to.linear_deflection;
     ao.max_level = options.max_levels;
     ao.max_cells = options.max_local_cells;
-    const detail::GridFrame f0 = detail::grid_frame(solid, boundary, options.size);
-    detail::AdaptiveCore a = detail::adaptive_core(f0, solid, tess, ao, progress);
-    if (progress.cancelled()) return true;
+    detail::AdaptiveCore a = detail::adaptive_core(first_frame, solid, tess, ao, progress);
+    if (progress.cancelled()) return;
     const double a_share = a.core_volume / solid_volume, a_left = a.left_out_volume / solid_volume;
+    const bool use = a.core.size() > 0 && a_share > share && a_left <= std::max(0.01, left_out);
     std::ostringstream s;
     s << "The uniform grid's core holds " << std::lround(100 * share) << "% of the volume at size "
       << size << (split ? " and falls apart into pieces" : "") << "; refined locally by thirds "
       << "near walls thinner than about two cells (up to " << a.levels_used << " times, cells "
       << "down to " << options.size / std::pow(3.0, a.levels_used) << "), its core holds "
       << std::lround(100 * a_share) << "% (" << a.core.size() << " hexahedra"
-      << (a.budget_reached ? ", refinement stopped at max_local_cells" : "") << ")";
-    if (a.core.size() > 0 && a_share > share && a_left <= std::max(0.01, left_out)) {
-      s << ": the locally refined grid is used.";
-      r.diagnostics.push_back(core::make_info("grid_refined_locally", s.str()));
-      frame = f0;
-      size = options.size / std::pow(3.0, a.levels_used);
-      local = std::move(a);
-      return true;
-    }
-    s << ": the uniform grid is kept.";
+      << (a.budget_reached ? ", refinement stopped at max_local_cells" : "") << ")"
+      << (use ? ": the locally refined grid is used." : ": the uniform grid is kept.");
     r.diagnostics.push_back(core::make_info("grid_refined_locally", s.str()));
-    return false;
+    if (!use) return;
+    frame = first_frame;
+    size = options.size / std::pow(3.0, a.levels_used);
+    local = std::move(a);
   };
   for (int attempt = 0;; ++attempt) {
     frame = detail::grid_frame(solid, boundary, size);
+    if (attempt == 0) first_frame = frame;
     const double cells = double(frame.cells(0)) * frame.cells(1) * frame.cells(2);
     if (cells > 4.0 * double(options.max_hexes)) {
       std::ostringstream s;

@@ -10,6 +10,7 @@
 #include "grid/detail/core_cells.h"
 #include "grid/detail/pillow.h"
 #include "occ/classify_points.h"
+#include "quality/scaled_jacobian.h"
 
 namespace vorohex::grid::detail {
 namespace {
@@ -93,15 +94,6 @@ std::vector<char> inside(const occ::Solid& solid, const std::vector<Vec3>& point
       std::max(solid.tolerance(), 1e-9 * solid.diagonal()), calls);
 }
 
-double hex_volume(const std::vector<Vec3>& p, const Hex& h) {
-  static constexpr int kTets[6][3] = {{1, 2, 6}, {2, 3, 6}, {3, 7, 6},
-                                      {7, 4, 6}, {4, 5, 6}, {5, 1, 6}};
-  double v = 0;
-  for (const auto& t : kTets)
-    v += (p[h[t[0]]] - p[h[0]]).dot((p[h[t[1]]] - p[h[0]]).cross(p[h[t[2]]] - p[h[0]])) / 6;
-  return v;
-}
-
 // Nodes where the boundary of the hexahedra `keep` marks is not a manifold: an edge of
 // other than two boundary quads, or a node whose boundary quads are not one fan.
 std::vector<std::int32_t> pinched_nodes(const std::vector<Hex>& hexes,
@@ -170,11 +162,10 @@ AdaptiveCore adaptive_core(const GridFrame& frame, const occ::Solid& solid,
   std::int64_t unit = 6;
   for (int l = 0; l < o.max_level; ++l) unit *= 3;
   auto size_at = [&](int level) { return o.size / std::pow(3.0, level); };
-  auto distance = [&](const LatticePoint& p, double cap) {
-    auto [it, fresh] = dist_memo.try_emplace(p, std::pair<double, double>(0, -1));
-    auto& [d, cap_used] = it->second;
+  auto distance = [&](const LatticePoint& p, const Vec3& world, double cap) {
+    auto& [d, cap_used] = dist_memo.try_emplace(p, 0.0, -1.0).first->second;
     if (cap_used < cap && d >= cap_used) {
-      d = triangles.distance(frame.to_frame(lattice_point(frame, unit, p)), cap);
+      d = triangles.distance(frame.to_frame(world), cap);
       cap_used = cap;
     }
     return std::min(d, cap);
@@ -198,8 +189,10 @@ AdaptiveCore adaptive_core(const GridFrame& frame, const occ::Solid& solid,
                                 cells[c].origin[1] + cells[c].extent * ((b >> 1) & 1),
                                 cells[c].origin[2] + cells[c].extent * (b >> 2)};
         auto [it, fresh] = index.try_emplace(p, points.size());
-        if (fresh)
-          points.push_back(lattice_point(frame, unit, p)), dist.push_back(distance(p, cap));
+        if (fresh) {
+          points.push_back(lattice_point(frame, unit, p));
+          dist.push_back(distance(p, points.back(), cap));
+        }
         corners[c][b] = it->second;
       }
     std::vector<std::pair<std::size_t, std::size_t>> segments;
@@ -250,7 +243,8 @@ AdaptiveCore adaptive_core(const GridFrame& frame, const occ::Solid& solid,
   for (std::size_t h = 0; h < nh; ++h)
     for (std::int32_t v : g.hexes[h]) finest[v] = std::max<int>(finest[v], g.level[h]);
   std::vector<double> dist(nn);
-  for (std::size_t v = 0; v < nn; ++v) dist[v] = distance(g.lattice[v], 3 * size_at(finest[v]));
+  for (std::size_t v = 0; v < nn; ++v)
+    dist[v] = distance(g.lattice[v], g.points[v], 3 * size_at(finest[v]));
   std::vector<std::pair<std::size_t, std::size_t>> segments;
   for (const Hex& h : g.hexes)
     for (const auto& e : core::kHexEdges)
@@ -288,10 +282,16 @@ AdaptiveCore adaptive_core(const GridFrame& frame, const occ::Solid& solid,
         auto [it, fresh] = owner.try_emplace(quad_key(g.hexes[h], f), h);
         if (!fresh) uf.unite(h, it->second);
       }
+  auto corners_of = [&](const Hex& hex) {
+    std::array<Vec3, 8> c;
+    for (int b = 0; b < 8; ++b) c[b] = g.points[hex[b]];
+    return c;
+  };
   std::unordered_map<std::size_t, double> part_volume;
   std::vector<double> volume(nh, 0);
   for (std::size_t h = 0; h < nh; ++h)
-    if (keep[h]) volume[h] = hex_volume(g.points, g.hexes[h]), part_volume[uf.find(h)] += volume[h];
+    if (keep[h])
+      volume[h] = quality::hex_volume(corners_of(g.hexes[h])), part_volume[uf.find(h)] += volume[h];
   std::size_t largest = 0;
   double best = -1;
   for (const auto& [root, v] : part_volume)
@@ -303,7 +303,6 @@ AdaptiveCore adaptive_core(const GridFrame& frame, const occ::Solid& solid,
       continue;
     }
     out.core.push_back(g.hexes[h]);
-    out.core_level.push_back(g.level[h]);
     out.core_volume += volume[h];
     out.levels_used = std::max<int>(out.levels_used, g.level[h]);
   }

@@ -33,7 +33,6 @@ struct AdaptiveCoreOptions {
 struct AdaptiveCore {
   RefinedGrid grid;
   std::vector<std::array<std::int32_t, 8>> core;  // the core's hexahedra (grid.points)
-  std::vector<std::int8_t> core_level;            // per core hexahedron
   double core_volume = 0;
   double left_out_volume = 0;  // core hexahedra away from the largest part, dropped
   std::size_t removed_for_manifold = 0, removed_components = 0;
