@@ -104,6 +104,31 @@ void relax(core::HexMesh& mesh, const Surface& s, const core::MeshDomain& solid,
 
 }  // namespace
 
+std::size_t uncross(const std::vector<Vec3>& targets, std::vector<Vec3>& positions,
+                    std::vector<std::int32_t>& nodes, double reach) {
+  std::size_t swaps = 0;
+  const double eps = 1e-12 * reach * reach;
+  bool swapped = true;
+  for (int round = 0; swapped && round < 10; ++round) {
+    swapped = false;
+    for (std::size_t i = 0; i < targets.size(); ++i)
+      for (std::size_t j = i + 1; j < targets.size(); ++j) {
+        if ((targets[i] - targets[j]).norm() > reach) continue;
+        const double kept =
+            (positions[i] - targets[i]).squaredNorm() + (positions[j] - targets[j]).squaredNorm();
+        const double crossed =
+            (positions[j] - targets[i]).squaredNorm() + (positions[i] - targets[j]).squaredNorm();
+        if (crossed < kept - eps) {
+          std::swap(positions[i], positions[j]);
+          std::swap(nodes[i], nodes[j]);
+          swapped = true;
+          ++swaps;
+        }
+      }
+  }
+  return swaps;
+}
+
 // How far from a model edge, in cells, the outer nodes of its chain may lie. Along a
 // curve the grid does not follow, the core's staircase keeps its outer nodes up to about
 // the margin plus a cell's diagonal (0.5 + 1.41 cells) from the curve: with 1.5 the band of
@@ -195,6 +220,7 @@ FeatureCapture capture_features(core::HexMesh& mesh,
             faces_of_vertex[v.value()].end())
           faces_of_vertex[v.value()].push_back(f);
   std::vector<std::int32_t> vertex_node(solid.num_vertices() + 1, -1);
+  std::vector<core::VertexId> taken;  // captured, in the order they chose
   for (core::VertexId v : solid.vertices()) {
     if (all_edges[v.value()] == 0) continue;
     ++r.vertices;
@@ -221,9 +247,24 @@ FeatureCapture capture_features(core::HexMesh& mesh,
     }
     vertex_node[v.value()] = n;
     on_feature.insert(n);
-    mesh.set_point(NodeId(n), p);
-    mesh.set_node_class(NodeId(n), NodeClass::on(v));
+    taken.push_back(v);
     ++r.vertices_captured;
+  }
+  {
+    std::vector<Vec3> targets, positions;
+    std::vector<std::int32_t> nodes;
+    for (core::VertexId v : taken) {
+      targets.push_back(solid.vertex_point(v));
+      nodes.push_back(vertex_node[v.value()]);
+      positions.push_back(mesh.point(NodeId(nodes.back())));
+    }
+    uncross(targets, positions, nodes, 4 * size);
+    for (std::size_t i = 0; i < taken.size(); ++i) vertex_node[taken[i].value()] = nodes[i];
+  }
+  for (core::VertexId v : taken) {
+    const std::int32_t n = vertex_node[v.value()];
+    mesh.set_point(NodeId(n), solid.vertex_point(v));
+    mesh.set_node_class(NodeId(n), NodeClass::on(v));
   }
 
   // 2. Edges: chains through the nodes nearest to points along the curve.

@@ -29,6 +29,15 @@ struct FeatureCapture {
   std::vector<std::string> absorbed;
 };
 
+// Vertices take their nodes nearest first, one after another, and can cross: three vertices
+// on one line, closer than two cells, took their nodes out of order (HexMe i21: the quad
+// through them doubled back along the edge, a hexahedron inverted). Swaps the nodes (and
+// their positions) of two targets closer than `reach` while that lowers the sum of squared
+// distances from each target to its node, which keeps the order of targets on a line.
+// Returns the swaps made.
+std::size_t uncross(const std::vector<core::Vec3>& targets, std::vector<core::Vec3>& positions,
+                    std::vector<std::int32_t>& nodes, double reach);
+
 // normals[i]: the outward direction of outer_nodes[i]'s core node (PillowMesh): where
 // several nodes are as near to a feature, the one whose direction matches the feature's
 // (the mean outward normal of its faces) takes it, so a chain follows the core's edge.
