@@ -1,6 +1,7 @@
 #include "grid/detail/refine.h"
 
 #include <algorithm>
+#include <bitset>
 #include <stdexcept>
 #include <unordered_map>
 #include <unordered_set>
@@ -153,6 +154,23 @@ bool allowed(int mask) {
   return mask == 0 || mask == 255 || templates().choice[mask].kind >= 0;
 }
 
+// The smallest set of corners containing `mask` that a template fits (all eight when
+// none smaller does): three corners of a face complete the face, not the cell.
+int completion(int mask) {
+  static const std::array<int, 256> table = [] {
+    std::array<int, 256> out{};
+    for (int m = 0; m < 256; ++m) {
+      int best = 255;
+      for (int s = 0; s < 256; ++s)
+        if ((s & m) == m && allowed(s) && std::bitset<8>(s).count() < std::bitset<8>(best).count())
+          best = s;
+      out[m] = best;
+    }
+    return out;
+  }();
+  return table[mask];
+}
+
 LatticePoint corner_of(const LevelCell& c, int b) {
   return {c.origin[0] + c.extent * (b & 1), c.origin[1] + c.extent * ((b >> 1) & 1),
           c.origin[2] + c.extent * (b >> 2)};
@@ -249,16 +267,18 @@ RefinedGrid refine_grid(const GridFrame& frame, int max_level, const RefineChoic
       for (int b = 0; b < 8; ++b) m |= int(marked.count(corner_of(c, b)) != 0) << b;
       return m;
     };
-    // Closure: a cell whose marked corners fit no template is refined whole, unless one of
-    // its corners may not be marked; then its marks go (and those corners stay unmarked).
+    // Closure: a cell whose marked corners fit no template gets the fewest more marks that
+    // make one fit (all eight: it is refined whole), unless one of those corners may not be
+    // marked; then its marks go (and those corners stay unmarked).
     for (bool changed = !marked.empty(); changed;) {
       changed = false;
       for (const LevelCell& c : cells) {
         const int m = mask_of(c);
         if (allowed(m)) continue;
+        const int full = completion(m);
         bool blocked = false;
         for (int b = 0; b < 8 && !blocked; ++b)
-          if (!(m >> b & 1)) {
+          if (!(m >> b & 1) && (full >> b & 1)) {
             const LatticePoint v = corner_of(c, b);
             blocked = banned.count(v) || border(v);
           }
@@ -266,7 +286,7 @@ RefinedGrid refine_grid(const GridFrame& frame, int max_level, const RefineChoic
           const LatticePoint v = corner_of(c, b);
           if (blocked) {
             if (marked.erase(v)) banned.insert(v);
-          } else if (!(m >> b & 1)) {
+          } else if (!(m >> b & 1) && (full >> b & 1)) {
             marked.insert(v);
           }
         }

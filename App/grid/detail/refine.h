@@ -5,7 +5,8 @@
 // template follows from which of its corners are marked (the corners of refined cells):
 // none (the cell), one (4 hexahedra), the two ends of an edge (11), the four corners of a
 // face (22) or all eight (27 children, the next level's cells); any other set of marked
-// corners is completed to all eight. A face or edge of a cell is therefore divided by its
+// corners is completed to the smallest that one of these fits (three corners of a face to
+// the face, two faces' corners to all eight). A face or edge of a cell is therefore divided by its
 // own marked corners alone, the same way from both sides. The refinement of one level
 // stays inside the cells refined at the level before (corners on the border of that
 // region are never marked), so a transition cell never meets a finer one.

@@ -85,6 +85,31 @@ TEST(Refine, MarkedCornersThatFitNoTemplateRefineTheirCell) {
   expect_valid(g, 24, "diagonal pair");
 }
 
+TEST(Refine, MarkedCornersAreCompletedToTheSmallestTemplateThatFits) {
+  // Cells (0, 0, 0) and (2, 2, 0) refined; (1, 1, 0) between them sees two opposite edges
+  // marked and is refined whole; the cell above it, (1, 1, 1), then has the four corners of
+  // its lower face marked (two of them by the first two cells alone, diagonal on that face).
+  // Completed to that face, not to the whole cell, it is one face template (22 hexahedra),
+  // not 27 children.
+  const GridFrame f = box_frame({{{0, 1, 2, 3}, {0, 1, 2, 3}, {0, 1, 2}}});
+  const RefinedGrid g = grid::detail::refine_grid(f, 1, refine_where([](int, const LevelCell& c) {
+                                                    const std::int64_t i = c.origin[0] / c.extent,
+                                                                       j = c.origin[1] / c.extent,
+                                                                       k = c.origin[2] / c.extent;
+                                                    return k == 0 && i == j && i != 1;
+                                                  }));
+  std::size_t inside = 0;
+  for (const auto& h : g.hexes) {
+    bool in = true;
+    for (std::int32_t n : h)
+      for (int a = 0; a < 3; ++a)
+        in = in && g.points[n][a] >= 1 - 1e-9 && g.points[n][a] <= 2 + 1e-9;
+    inside += in;
+  }
+  EXPECT_EQ(inside, 22u);
+  expect_valid(g, 18, "completed to a face");
+}
+
 TEST(Refine, BallsRefinedOverTwoLevelsStayConformingOnAnUnevenGrid) {
   // As a sizing field asks: the cells near a random point refined once, those nearer
   // refined again.
