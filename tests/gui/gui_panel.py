@@ -71,7 +71,9 @@ def button(mw, which):
     """The visible button of the task panel. PySide2 may hand back a stale wrapper for a
     closed panel's button (its C++ object deleted, its address reused): skip those, and
     look again once Qt has processed its pending deletions."""
-    for attempt in range(5):
+    # Up to 5 s: once (in a full ctest run, after a Stop in the decomposition) the panel's
+    # button was not found within the 1 s this allowed before.
+    for attempt in range(25):
         for box in mw.findChildren(QtGui.QDialogButtonBox):
             try:
                 b = box.button(which)
@@ -81,6 +83,16 @@ def button(mw, which):
                 continue
         QtCore.QCoreApplication.sendPostedEvents(None, QtCore.QEvent.DeferredDelete)
         pump(0.2)
+    seen = []
+    for box in mw.findChildren(QtGui.QDialogButtonBox):
+        try:
+            seen.append(", ".join("{} visible={}".format(b.text(), b.isVisible())
+                                  for b in box.buttons()) or "no buttons")
+        except RuntimeError:
+            seen.append("deleted")
+    modal = QtGui.QApplication.activeModalWidget()
+    log("no visible {} button; button boxes: [{}]; modal widget: {}".format(
+        which, " | ".join(seen), modal.windowTitle() if modal else None))
     return None
 
 
