@@ -206,12 +206,14 @@ GridResult grid_mesh(const occ::Solid& solid, const GridOptions& options,
   }
 
   t0 = std::chrono::steady_clock::now();
+  std::vector<std::string> joined;  // edges whose chain shares another edge's nodes
   if (options.capture_features) {
     r.absorbed = find_small_features(solid, tess, size);
     const detail::FeatureCapture fc =
         detail::capture_features(pillow.mesh, pillow.outer_quads, pillow.outer_nodes,
                                  pillow.outer_normals, solid, r.absorbed, size);
     r.absorbed_names = fc.absorbed;
+    joined = fc.joined;
     r.stats.vertices = fc.vertices, r.stats.vertices_captured = fc.vertices_captured;
     r.stats.edges = fc.edges, r.stats.edges_captured = fc.edges_captured;
     r.stats.faces = fc.faces, r.stats.faces_captured = fc.faces_captured;
@@ -279,9 +281,15 @@ GridResult grid_mesh(const occ::Solid& solid, const GridOptions& options,
   s << " along the part's " << frame.how << ": " << r.stats.core_hexes << " core hexahedra and "
     << r.stats.pillow_hexes << " in the pillow layer; captured " << r.stats.vertices_captured << "/"
     << r.stats.vertices << " vertices, " << r.stats.edges_captured << "/" << r.stats.edges
-    << " edges, " << r.stats.faces_captured << "/" << r.stats.faces
-    << " faces; min scaled Jacobian " << r.stats.min_sj_before_optimisation << " -> "
-    << r.stats.min_sj << " after optimisation.";
+    << " edges";
+  if (!joined.empty()) {
+    s << " (" << joined.size() << " sharing nodes of another edge's chain where the two run "
+      << "within a cell: ";
+    for (std::size_t i = 0; i < joined.size() && i < 4; ++i) s << (i ? ", " : "") << joined[i];
+    s << (joined.size() > 4 ? ", ...)" : ")");
+  }
+  s << ", " << r.stats.faces_captured << "/" << r.stats.faces << " faces; min scaled Jacobian "
+    << r.stats.min_sj_before_optimisation << " -> " << r.stats.min_sj << " after optimisation.";
   r.diagnostics.push_back(core::make_info("grid", s.str()));
   r.mesh = std::move(pillow.mesh);
   const bool optimised = options.laplacian_iterations > 0 || options.optimisation_passes > 0;

@@ -337,10 +337,31 @@ FeatureCapture capture_features(core::HexMesh& mesh,
     blocked.insert(reserved.begin(), reserved.end());
     for (std::int32_t t : targets) blocked.insert(t);
     bool ok = length > 0;
+    // Where no path avoids other chains, this one may use, within a cell of its curve, the
+    // nodes of other edges' chains (shared: they stay on their edge) and the turn nodes
+    // other chains left (taken: they go onto this edge). That is where two edges run closer
+    // than a cell: HexMe i20's quarter circles leave their vertices tangent to straight
+    // edges, and for the first cells both chains need the nodes along the line.
+    auto usable = [&](std::int32_t n) {
+      const NodeClass c = mesh.node_class(NodeId(n));
+      const bool other_chain = on_feature.count(n) && c.dim == 1 && c.id != e.value();
+      if (!other_chain && !reserved.count(n)) return false;
+      const Vec3 p = mesh.point(NodeId(n));
+      return (solid.project_to_edge(e, p) - p).norm() < size;
+    };
+    std::unordered_set<std::int32_t> shared;
     for (std::int32_t target : targets) {
       if (!ok) break;
-      const std::vector<std::int32_t> piece =
+      std::vector<std::int32_t> piece =
           shortest_path(mesh, s, chain.back(), target, blocked, off_curve);
+      if (piece.size() < 2) {
+        std::unordered_set<std::int32_t> relaxed;
+        for (std::int32_t n : blocked)
+          if (n == target || !usable(n)) relaxed.insert(n);
+        piece = shortest_path(mesh, s, chain.back(), target, relaxed, off_curve);
+        for (std::size_t k = 1; k + 1 < piece.size(); ++k)
+          if (on_feature.count(piece[k])) shared.insert(piece[k]);
+      }
       if (piece.size() < 2) {
         ok = false;
         break;
@@ -354,6 +375,7 @@ FeatureCapture capture_features(core::HexMesh& mesh,
       r.missed.push_back(core::entity_name(e));
       continue;
     }
+    if (!shared.empty()) r.joined.push_back(core::entity_name(e));
     // A chain that turns at a node has that node and its two chain neighbours in one quad,
     // which would end flat on the curve (an angle of 180 degrees: a hex of scaled Jacobian
     // about 0). The turn node leaves the chain instead, which then cuts that quad along its
@@ -369,7 +391,9 @@ FeatureCapture capture_features(core::HexMesh& mesh,
       std::vector<std::int32_t> kept{chain[0]};
       bool last_diagonal = false;  // kept.back() joins its predecessor across a quad
       for (std::size_t k = 1; k + 1 < chain.size(); ++k) {
-        const long q = last_diagonal ? -1 : quad_with(kept.back(), chain[k], chain[k + 1]);
+        const long q = last_diagonal || shared.count(chain[k])
+                           ? -1
+                           : quad_with(kept.back(), chain[k], chain[k + 1]);
         if (q >= 0 && !diagonal[q]) {
           diagonal[q] = 1;
           reserved.insert(chain[k]);
@@ -386,6 +410,7 @@ FeatureCapture capture_features(core::HexMesh& mesh,
     const int m = int(chain.size()) - 1;
     const std::vector<Vec3> points = solid.edge_points_by_length(e, m);
     for (int k = 1; k < m; ++k) {
+      if (shared.count(chain[k])) continue;
       mesh.set_point(NodeId(chain[k]), points[k]);
       mesh.set_node_class(NodeId(chain[k]), NodeClass::on(e));
       on_feature.insert(chain[k]);

@@ -394,3 +394,30 @@ TEST(GridMesh, TooManyHexesIsRefusedBeforeMeshing) {
 
 }  // namespace
 }  // namespace vorohex
+
+namespace vorohex {
+namespace {
+
+TEST(GridMesh, EdgesLeavingAVertexTangentToAnotherShareItsChainOnHexMeI20) {
+  // HexMe i20: four quarter circles (radius 40) leave their vertices tangent to straight
+  // edges. For the first cells both chains need the nodes along the line; the arcs were not
+  // captured, a pillow hexahedron straddled one of them and stayed inverted. Now an arc's
+  // chain shares the line's nodes there (they stay on the line) and the mesh is valid.
+  const occ::ReadResult in = occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/i20o_s25.step");
+  ASSERT_TRUE(in.ok()) << "HexMe model i20 not found in " << VOROHEX_HEXME_DIR;
+  grid::GridOptions o;
+  o.size = in.solid->diagonal() / 20;
+  const grid::GridResult g = grid::grid_mesh(*in.solid, o);
+  std::string info;
+  for (const core::Diagnostic& d : g.diagnostics)
+    if (d.code == "grid") info = d.message;
+  EXPECT_TRUE(g.ok) << info;
+  EXPECT_NE(info.find("sharing nodes of another edge's chain"), std::string::npos) << info;
+  EXPECT_GE(g.stats.edges_captured, g.stats.edges - 6) << info;
+  const quality::CheckReport c = quality::check_mesh(g.mesh, in.solid.get());
+  EXPECT_TRUE(c.valid);
+  EXPECT_GT(c.scaled_jacobian.min, 0.2);
+}
+
+}  // namespace
+}  // namespace vorohex
