@@ -23,9 +23,9 @@ struct FeatureCapture {
   std::size_t quads_moved = 0;         // quads of a region whose nodes first projected elsewhere
   std::size_t quads_across_edges = 0;  // quads a chain cuts along their diagonal (two faces)
   std::vector<std::string> missed;     // FreeCAD names of the entities not captured
-  // Edges captured with a chain that shares nodes of another edge's chain, where the two run
-  // closer than a cell (tangent edges at a vertex, a step narrower than a cell): there the
-  // face between them has no quads.
+  // Edges captured with a chain that shares nodes of another edge's chain, where the two
+  // leave a common vertex tangentially and run closer than a cell: there the face between
+  // them has no quads.
   std::vector<std::string> joined;
   // Entities smaller than a quarter of the size (short edges, faces narrower than that, the
   // faces they enclose, the edges and vertices of such faces): absorbed into composites
