@@ -145,7 +145,7 @@ FeatureCapture capture_features(core::HexMesh& mesh,
                                 const std::vector<std::int32_t>& outer_nodes,
                                 const std::vector<core::Vec3>& normals,
                                 const core::MeshDomain& solid, const SmallFeatures& small,
-                                double size) {
+                                double size, bool tangent_edges_last) {
   FeatureCapture r;
   std::unordered_map<std::int32_t, Vec3> normal_of;
   for (std::size_t i = 0; i < outer_nodes.size() && i < normals.size(); ++i)
@@ -297,7 +297,26 @@ FeatureCapture capture_features(core::HexMesh& mesh,
   };
   std::unordered_set<std::int32_t> reserved;       // turn nodes taken out of a chain
   std::set<std::pair<int, int>> captured_between;  // face pairs with a captured edge
+  // With tangent_edges_last, the edges along which the faces are tangent (a sphere on a
+  // cylinder of its radius, a fillet's rims) take their chains after the others: such a
+  // chain only tells two faces apart, and near a vertex it shares with a sharp edge its
+  // nodes can leave the sharp edge no path (HexMe s10: a dome on a cylinder, cut by two
+  // planes; the arcs where the planes meet the dome found the equator's chain in their way).
+  std::vector<core::EdgeId> order, tangent;
   for (core::EdgeId e : solid.edges()) {
+    const std::vector<core::FaceId> faces = solid.edge_faces(e);
+    bool smooth = tangent_edges_last && !solid.edge_is_degenerated(e) && faces.size() >= 2 &&
+                  faces[0] != faces[1];
+    if (smooth) {
+      const std::vector<Vec3> p = solid.edge_points_by_length(e, 4);
+      for (int k = 1; k <= 3 && smooth; ++k)
+        smooth = solid.face_normal(faces[0], p[k]).dot(solid.face_normal(faces[1], p[k])) >
+                 std::cos(M_PI / 18);
+    }
+    (smooth ? tangent : order).push_back(e);
+  }
+  order.insert(order.end(), tangent.begin(), tangent.end());
+  for (core::EdgeId e : order) {
     if (solid.edge_is_degenerated(e)) continue;
     const std::vector<core::FaceId> faces = solid.edge_faces(e);
     if (faces.size() < 2 || faces[0] == faces[1]) continue;  // a seam: no feature

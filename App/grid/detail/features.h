@@ -45,11 +45,13 @@ std::size_t uncross(const std::vector<core::Vec3>& targets, std::vector<core::Ve
 // normals[i]: the outward direction of outer_nodes[i]'s core node (PillowMesh): where
 // several nodes are as near to a feature, the one whose direction matches the feature's
 // (the mean outward normal of its faces) takes it, so a chain follows the core's edge.
+// Edges take their chains in the model's order, or with `tangent_edges_last` the edges
+// along which the two faces are tangent (normals within 10 degrees) after the others.
 FeatureCapture capture_features(core::HexMesh& mesh,
                                 const std::vector<std::array<std::int32_t, 4>>& outer_quads,
                                 const std::vector<std::int32_t>& outer_nodes,
                                 const std::vector<core::Vec3>& normals,
                                 const core::MeshDomain& solid, const SmallFeatures& small,
-                                double size);
+                                double size, bool tangent_edges_last = false);
 
 }  // namespace vorohex::grid::detail
