@@ -54,18 +54,23 @@ const std::string kMeshedByTheGrid = " Meshed by the grid mesher instead";
 
 // No structured scheme: the grid mesher (or, on request, tetrahedra split into
 // hexahedra), said so in a warning.
+// The grid mesher's grid halved extra_halvings more times than it would be; its stats go
+// to grid_stats when given.
 bool fallback(const occ::Solid& solid, const MeshOptions& options, double size,
               const std::string& why, const core::Progress& progress,
-              std::chrono::steady_clock::time_point t0, MeshResult& result) {
+              std::chrono::steady_clock::time_point t0, MeshResult& result, int extra_halvings = 0,
+              grid::GridStats* grid_stats = nullptr) {
   if (options.fallback_scheme == "grid") {
     result.stats.scheme = "grid";
     grid::GridOptions o;
     o.size = size;
     o.max_hexes = options.max_hexes;
+    o.extra_halvings = extra_halvings;
     // The optimisation is the global smoothing every result goes through (detail::finish).
     o.laplacian_iterations = 0;
     o.optimisation_passes = 0;
     grid::GridResult g = grid::grid_mesh(solid, o, progress);
+    if (grid_stats) *grid_stats = g.stats;
     append(result.diagnostics, g.diagnostics);
     result.stats.seconds_meshing = seconds_since(t0);
     if (!g.ok) return false;
@@ -100,6 +105,45 @@ void add_deviation(MeshResult& result, const occ::Solid& solid) {
   const grid::CompositeDeviation d = grid::composite_deviation(result.mesh, solid, result.absorbed);
   result.stats.absorbed_deviation = d.max;
   result.diagnostics.push_back(grid::deviation_diagnostic(result.absorbed, d));
+}
+
+// A grid mesh left invalid where the grid missed features - a part a few cells thin with no
+// core of its own, whose edges no chain reached (HexMe s08's cross cylinder, 2.7 cells
+// across: the volume there is cut off) - is made once more on a grid of half the size, when
+// that grid stays within the grid mesher's max_refined_cells, smoothed and checked, and
+// replaces `result` if it is valid (info `grid_halved`); else `result` stays, with the
+// second grid's errors in an info (`grid_halved_failed`).
+void finer_grid(const occ::Solid& solid, const MeshOptions& options, const core::SizeField& sizes,
+                const std::string& why, const core::Progress& progress,
+                std::chrono::steady_clock::time_point t0, const grid::GridStats& first,
+                MeshResult& result) {
+  if (result.ok || result.stats.scheme != "grid" || first.features_missed == 0 ||
+      !first.finer_fits || progress.cancelled() ||
+      has_diagnostic(result.diagnostics, "too_many_hexes"))
+    return;
+  MeshResult finer;
+  finer.stats.size_used = result.stats.size_used;
+  grid::GridStats second;
+  const bool made = fallback(solid, options, sizes.global(), why, progress, t0, finer, 1, &second);
+  if (made) {
+    detail::finish(finer, solid, options, progress, sizes);
+    add_deviation(finer, solid);
+  }
+  if (progress.cancelled()) return;
+  std::ostringstream s;
+  s << "The grid mesh at size " << first.size_used << " was invalid ("
+    << core::error_codes(result.diagnostics) << ") and missed " << first.features_missed
+    << " features; made again at size " << first.size_used / 2 << ", it misses "
+    << second.features_missed;
+  if (made && finer.ok) {
+    s << " and is valid: that mesh is used.";
+    finer.diagnostics.insert(finer.diagnostics.begin(), core::make_info("grid_halved", s.str()));
+    result = std::move(finer);
+    return;
+  }
+  s << " and is not valid either (" << core::error_codes(finer.diagnostics)
+    << "): the first mesh stands.";
+  result.diagnostics.push_back(core::make_info("grid_halved_failed", s.str()));
 }
 
 // What the fallback makes of a solid no structured scheme meshed: its mesh, smoothed and
@@ -153,7 +197,8 @@ FallbackOutcome run_fallback(const occ::Solid& solid, const MeshOptions& options
   // (nice 10): beside the decomposition, a third process on two cores, it slowed the cuts
   // until HexMe i22's merges ran into their limit, and the structured mesh was lost.
   core::IsolatedJob beside;
-  if (fallback(solid, options, size, why, progress, t0, result)) {
+  grid::GridStats grid_stats;
+  if (fallback(solid, options, size, why, progress, t0, result, 0, &grid_stats)) {
     for (const core::Diagnostic& d : result.diagnostics)
       if (d.code == "fallback") why_grid = d.message.substr(0, d.message.find(kMeshedByTheGrid));
     if (options.fallback_scheme == "grid" && options.fallback_beside &&
@@ -167,6 +212,7 @@ FallbackOutcome run_fallback(const occ::Solid& solid, const MeshOptions& options
           progress, kSecondChanceNice);
     detail::finish(result, solid, options, progress, sizes);
     add_deviation(result, solid);
+    finer_grid(solid, options, sizes, why, progress, t0, grid_stats, result);
   }
   const bool grid_invalid =
       result.stats.scheme == "grid" && has_diagnostic(result.diagnostics, "fallback") && !result.ok;
@@ -204,6 +250,9 @@ FallbackOutcome run_fallback(const occ::Solid& solid, const MeshOptions& options
     if (!sizes.uniform()) second.diagnostics.push_back(local_sizes_ignored("tet-split"));
     second.diagnostics.push_back(core::make_warning(
         "grid_invalid", "The grid mesher's mesh was invalid (" + grid_errors +
+                            (has_diagnostic(result.diagnostics, "grid_halved_failed")
+                                 ? "; and again on a grid of half the size"
+                                 : "") +
                             "); the tetrahedral fallback's mesh is valid and is used."));
     out.result = std::move(second);
     out.second_chance = true;
