@@ -238,7 +238,10 @@ FeatureCapture capture_features(core::HexMesh& mesh,
       if (on_feature.count(c)) continue;
       const double d = (mesh.point(NodeId(c)) - p).norm();
       if (d >= best) continue;
-      const double score = d + (m.allFinite() ? 2 * mismatch(c, m) : 0.0);
+      // A node with fewer outer edges than the vertex has feature edges leaves a chain no
+      // way out (HexMe n09: a pyramid's apex on a core corner, three edges for four chains).
+      const int lacking = std::max(0, live_edges[v.value()] - int(s.adjacent.at(c).size()));
+      const double score = d + (m.allFinite() ? 2 * mismatch(c, m) : 0.0) + lacking * size;
       if (score < best) best = score, n = c;
     }
     if (n < 0) {
