@@ -433,6 +433,22 @@ TEST(GridMesh, TangentEdgesTakeTheirChainsLastWhereTheyBlockASharpEdgeOnHexMeS10
   EXPECT_GT(g.stats.min_sj, 0.2);
 }
 
+TEST(GridMesh, VerticesTakeNodesWithAnOuterEdgeForEachOfTheirEdgesOnHexMeN15) {
+  // HexMe n15, an icosahedron: five edges at every vertex. A vertex on a core corner's
+  // outer node (three outer edges) left chains no way out: 24 of 30 edges captured, min
+  // 0.19. Nodes with as many outer edges as the vertex has edges are preferred: 26, 0.41.
+  const occ::ReadResult in =
+      occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/n15o_icosahedron.step");
+  ASSERT_TRUE(in.ok()) << "HexMe model n15 not found in " << VOROHEX_HEXME_DIR;
+  grid::GridOptions o;
+  o.size = in.solid->diagonal() / 20;
+  const grid::GridResult g = grid::grid_mesh(*in.solid, o);
+  expect_valid(*in.solid, g);
+  EXPECT_EQ(g.stats.vertices_captured, 12);
+  EXPECT_GE(g.stats.edges_captured, 26);
+  EXPECT_GT(g.stats.min_sj, 0.3);
+}
+
 TEST(GridMesh, ExtraHalvingsHalveTheUniformGridWithinItsBudget) {
   // HexMe s08: a cylinder crossed by one of half its radius, 2.7 cells across at the
   // default size: no core of its own, its end circles 4.5 cells from any outer node, not
