@@ -393,23 +393,37 @@ TEST(GridMesh, TooManyHexesIsRefusedBeforeMeshing) {
   EXPECT_EQ(r.diagnostics.back().code, "too_many_hexes");
 }
 
+// A model of tests/data/hexme and its grid mesh at the default size (diagonal / 20), with
+// the grid's info message; `in` is not ok when the file is missing.
+struct HexMeGrid {
+  occ::ReadResult in;
+  grid::GridResult mesh;
+  std::string info;
+};
+
+HexMeGrid hexme_grid(const std::string& file) {
+  HexMeGrid h;
+  h.in = occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/" + file);
+  if (!h.in.ok()) return h;
+  grid::GridOptions o;
+  o.size = h.in.solid->diagonal() / 20;
+  h.mesh = grid::grid_mesh(*h.in.solid, o);
+  for (const core::Diagnostic& d : h.mesh.diagnostics)
+    if (d.code == "grid") h.info = d.message;
+  return h;
+}
+
 TEST(GridMesh, EdgesLeavingAVertexTangentToAnotherShareItsChainOnHexMeI20) {
   // HexMe i20: four quarter circles (radius 40) leave their vertices tangent to straight
   // edges. For the first cells both chains need the nodes along the line; the arcs were not
   // captured, a pillow hexahedron straddled one of them and stayed inverted. Now an arc's
   // chain shares the line's nodes there (they stay on the line) and the mesh is valid.
-  const occ::ReadResult in = occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/i20o_s25.step");
-  ASSERT_TRUE(in.ok()) << "HexMe model i20 not found in " << VOROHEX_HEXME_DIR;
-  grid::GridOptions o;
-  o.size = in.solid->diagonal() / 20;
-  const grid::GridResult g = grid::grid_mesh(*in.solid, o);
-  std::string info;
-  for (const core::Diagnostic& d : g.diagnostics)
-    if (d.code == "grid") info = d.message;
-  expect_valid(*in.solid, g);
-  EXPECT_NE(info.find("sharing nodes of another edge's chain"), std::string::npos) << info;
-  EXPECT_GE(g.stats.edges_captured, g.stats.edges - 6) << info;
-  EXPECT_GT(g.stats.min_sj, 0.2);
+  const HexMeGrid h = hexme_grid("i20o_s25.step");
+  ASSERT_TRUE(h.in.ok()) << "HexMe model i20 not found in " << VOROHEX_HEXME_DIR;
+  expect_valid(*h.in.solid, h.mesh);
+  EXPECT_NE(h.info.find("sharing nodes of another edge's chain"), std::string::npos) << h.info;
+  EXPECT_GE(h.mesh.stats.edges_captured, h.mesh.stats.edges - 6) << h.info;
+  EXPECT_GT(h.mesh.stats.min_sj, 0.2);
 }
 
 TEST(GridMesh, TangentEdgesTakeTheirChainsLastWhereTheyBlockASharpEdgeOnHexMeS10) {
@@ -418,35 +432,25 @@ TEST(GridMesh, TangentEdgesTakeTheirChainsLastWhereTheyBlockASharpEdgeOnHexMeS10
   // arcs where the planes meet the dome needed at its vertices; the arcs were not captured
   // and the mesh cut 2.5 % of the volume off. With the tangent edges' chains made after the
   // others every feature is captured, and the mesh is valid.
-  const occ::ReadResult in =
-      occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/s10o_cyl_cutsphere.step");
-  ASSERT_TRUE(in.ok()) << "HexMe model s10 not found in " << VOROHEX_HEXME_DIR;
-  grid::GridOptions o;
-  o.size = in.solid->diagonal() / 20;
-  const grid::GridResult g = grid::grid_mesh(*in.solid, o);
-  std::string info;
-  for (const core::Diagnostic& d : g.diagnostics)
-    if (d.code == "grid") info = d.message;
-  expect_valid(*in.solid, g);
-  EXPECT_EQ(g.stats.features_missed, 0u) << info;
-  EXPECT_NE(info.find("tangent edges' chains made after the others"), std::string::npos) << info;
-  EXPECT_GT(g.stats.min_sj, 0.2);
+  const HexMeGrid h = hexme_grid("s10o_cyl_cutsphere.step");
+  ASSERT_TRUE(h.in.ok()) << "HexMe model s10 not found in " << VOROHEX_HEXME_DIR;
+  expect_valid(*h.in.solid, h.mesh);
+  EXPECT_EQ(h.mesh.stats.features_missed, 0u) << h.info;
+  EXPECT_NE(h.info.find("tangent edges' chains made after the others"), std::string::npos)
+      << h.info;
+  EXPECT_GT(h.mesh.stats.min_sj, 0.2);
 }
 
 TEST(GridMesh, VerticesTakeNodesWithAnOuterEdgeForEachOfTheirEdgesOnHexMeN15) {
   // HexMe n15, an icosahedron: five edges at every vertex. A vertex on a core corner's
   // outer node (three outer edges) left chains no way out: 24 of 30 edges captured, min
   // 0.19. Nodes with as many outer edges as the vertex has edges are preferred: 26, 0.41.
-  const occ::ReadResult in =
-      occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/n15o_icosahedron.step");
-  ASSERT_TRUE(in.ok()) << "HexMe model n15 not found in " << VOROHEX_HEXME_DIR;
-  grid::GridOptions o;
-  o.size = in.solid->diagonal() / 20;
-  const grid::GridResult g = grid::grid_mesh(*in.solid, o);
-  expect_valid(*in.solid, g);
-  EXPECT_EQ(g.stats.vertices_captured, 12);
-  EXPECT_GE(g.stats.edges_captured, 26);
-  EXPECT_GT(g.stats.min_sj, 0.3);
+  const HexMeGrid h = hexme_grid("n15o_icosahedron.step");
+  ASSERT_TRUE(h.in.ok()) << "HexMe model n15 not found in " << VOROHEX_HEXME_DIR;
+  expect_valid(*h.in.solid, h.mesh);
+  EXPECT_EQ(h.mesh.stats.vertices_captured, 12) << h.info;
+  EXPECT_GE(h.mesh.stats.edges_captured, 26) << h.info;
+  EXPECT_GT(h.mesh.stats.min_sj, 0.3);
 }
 
 TEST(GridMesh, ExtraHalvingsHalveTheUniformGridWithinItsBudget) {
@@ -454,13 +458,13 @@ TEST(GridMesh, ExtraHalvingsHalveTheUniformGridWithinItsBudget) {
   // default size: no core of its own, its end circles 4.5 cells from any outer node, not
   // captured, and the mesh cuts 13 % of the volume off. Halved once more the grid captures
   // them (the pipeline's second grid, GenerateMesh.AnInvalidGridMeshThatMissedFeatures...).
-  const occ::ReadResult in =
-      occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/s08o_cross_cyls_dr.step");
-  ASSERT_TRUE(in.ok()) << "HexMe model s08 not found in " << VOROHEX_HEXME_DIR;
+  const HexMeGrid h = hexme_grid("s08o_cross_cyls_dr.step");
+  ASSERT_TRUE(h.in.ok()) << "HexMe model s08 not found in " << VOROHEX_HEXME_DIR;
+  const occ::ReadResult& in = h.in;
+  const grid::GridResult& first = h.mesh;
+  ASSERT_TRUE(first.ok);
   grid::GridOptions o;
   o.size = in.solid->diagonal() / 20;
-  const grid::GridResult first = grid::grid_mesh(*in.solid, o);
-  ASSERT_TRUE(first.ok);
   EXPECT_GT(first.stats.features_missed, 2u);
   EXPECT_TRUE(first.stats.finer_fits);
   EXPECT_GT(quality::check_mesh(first.mesh, in.solid.get()).volume_rel_error, 0.05);
