@@ -5,9 +5,9 @@
 // HexMe model: `vorohex mesh --schemes grid --no-decompose`.)
 //
 //   cmake --build build --target grid_bench
-//   build/bench/grid_bench MODEL.step [SIZE [MAX_LEVELS [OUT.vtu [EXTRA_HALVINGS]]]]
+//   build/bench/grid_bench MODEL.step [SIZE [MAX_LEVELS [OUT.vtu]]]
 // SIZE: default diagonal / 20; MAX_LEVELS: GridOptions::max_levels (default 2; 0 = the
-// uniform grid only); EXTRA_HALVINGS: GridOptions::extra_halvings (default 0).
+// uniform grid only).
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -33,7 +33,6 @@ int main(int argc, char** argv) {
   grid::GridOptions o;
   o.size = argc > 2 && std::atof(argv[2]) > 0 ? std::atof(argv[2]) : solid.diagonal() / 20;
   if (argc > 3) o.max_levels = std::atoi(argv[3]);
-  if (argc > 5) o.extra_halvings = std::atoi(argv[5]);
   const auto t0 = std::chrono::steady_clock::now();
   const grid::GridResult g = grid::grid_mesh(solid, o);
   const double seconds =
@@ -43,12 +42,10 @@ int main(int argc, char** argv) {
   const quality::CheckReport c = quality::check_mesh(g.mesh, &solid);
   std::printf(
       "ok %d, valid %d: %zu hexahedra, min SJ %.3f, %zu inverted, volume error %.2e; %.1f s "
-      "(core %.1f, pillow %.1f, features %.1f, optimisation %.1f); %zu features missed, "
-      "finer grid fits %d\n",
+      "(core %.1f, pillow %.1f, features %.1f, optimisation %.1f); %zu features missed\n",
       int(g.ok), int(c.valid), g.mesh.num_hexes(), c.scaled_jacobian.min, c.non_positive,
       c.volume_rel_error, seconds, g.stats.seconds_core, g.stats.seconds_pillow,
-      g.stats.seconds_features, g.stats.seconds_optimisation, g.stats.features_missed,
-      int(g.stats.finer_fits));
+      g.stats.seconds_features, g.stats.seconds_optimisation, g.stats.features_missed);
   for (const core::Diagnostic& d : c.diagnostics)
     std::printf("  check %s: %s\n", d.code.c_str(), d.message.c_str());
   std::string error;

@@ -43,8 +43,6 @@ void GridOptions::validate() const {
   if (!(quality_target > 0 && quality_target <= 1))
     bad("quality_target must be in (0, 1]", quality_target);
   if (max_refinements < 0) bad("max_refinements must be >= 0", max_refinements);
-  if (extra_halvings < 0 || extra_halvings > 4)
-    bad("extra_halvings must be in [0, 4]", extra_halvings);
   if (max_levels < 0 || max_levels > 4) bad("max_levels must be in [0, 4]", max_levels);
   if (max_local_cells == 0) bad("max_local_cells must be at least 1", 0);
   if (max_refined_cells == 0) bad("max_refined_cells must be at least 1", 0);
@@ -110,7 +108,6 @@ GridResult grid_mesh(const occ::Solid& solid, const GridOptions& options,
     size = options.size / std::pow(3.0, a.levels_used);
     local = std::move(a);
   };
-  int extra_done = 0;  // of options.extra_halvings
   for (int attempt = 0;; ++attempt) {
     frame = detail::grid_frame(solid, boundary, size);
     if (attempt == 0) first_frame = frame;
@@ -145,20 +142,10 @@ GridResult grid_mesh(const occ::Solid& solid, const GridOptions& options,
     left_out = double(core.removed_components) * size * size * size / solid_volume;
     split = core.removed_components > core.core / 4 || left_out > 0.01;
     const bool thin = share < options.min_core_share || split;
-    const bool fits =
-        8.0 * cells <= std::min(4.0 * double(options.max_hexes), double(options.max_refined_cells));
-    if (!thin) {
-      r.stats.finer_fits = fits;
-      if (extra_done >= options.extra_halvings || !fits) break;
-      ++extra_done;
-      std::ostringstream s;
-      s << "The grid at size " << size << " was halved once more, to " << size / 2
-        << " (extra_halvings).";
-      uniform_notes.push_back(core::make_info("size_halved", s.str()));
-      size /= 2;
-      continue;
-    }
-    if (attempt >= options.max_refinements || !fits) {
+    if (!thin) break;
+    if (attempt >= options.max_refinements ||
+        8.0 * cells >
+            std::min(4.0 * double(options.max_hexes), double(options.max_refined_cells))) {
       if (options.max_levels > 0) try_local();
       break;
     }

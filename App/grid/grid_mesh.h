@@ -48,10 +48,6 @@ struct GridOptions {
   // in all; used when its core holds more of the volume.
   int max_levels = 2;
   std::size_t max_local_cells = 150'000;
-  // Times the uniform grid is halved beyond what the rule above asks, within
-  // max_refined_cells (the pipeline's second grid, where the first one's mesh missed
-  // features and was invalid: a part a few cells thin with no core of its own).
-  int extra_halvings = 0;
   std::size_t max_hexes = 50'000'000;  // more is refused before the core is built (> 0)
   void validate() const;               // throws std::invalid_argument naming the bad field
 };
@@ -69,9 +65,6 @@ struct GridStats {
   double min_sj_before_optimisation = 0, min_sj = 0, mean_sj = 0;
   std::size_t inverted_before_optimisation = 0, inverted = 0;
   std::size_t features_missed = 0;  // vertices, edges and faces not captured
-  // The uniform grid could be halved once more within max_refined_cells (false when the
-  // grid was refined locally).
-  bool finer_fits = false;
   double seconds_core = 0, seconds_pillow = 0, seconds_features = 0, seconds_optimisation = 0;
   // Largest deviation of the boundary on the composites from the real surface (after the
   // optimisation; -1 when not measured: no composite, or step 4 off).

@@ -54,18 +54,16 @@ const std::string kMeshedByTheGrid = " Meshed by the grid mesher instead";
 
 // No structured scheme: the grid mesher (or, on request, tetrahedra split into
 // hexahedra), said so in a warning.
-// The grid mesher's grid halved extra_halvings more times than it would be; its stats go
-// to grid_stats when given.
+// The grid mesher's stats go to grid_stats when given.
 bool fallback(const occ::Solid& solid, const MeshOptions& options, double size,
               const std::string& why, const core::Progress& progress,
-              std::chrono::steady_clock::time_point t0, MeshResult& result, int extra_halvings = 0,
+              std::chrono::steady_clock::time_point t0, MeshResult& result,
               grid::GridStats* grid_stats = nullptr) {
   if (options.fallback_scheme == "grid") {
     result.stats.scheme = "grid";
     grid::GridOptions o;
     o.size = size;
     o.max_hexes = options.max_hexes;
-    o.extra_halvings = extra_halvings;
     // The optimisation is the global smoothing every result goes through (detail::finish).
     o.laplacian_iterations = 0;
     o.optimisation_passes = 0;
@@ -107,49 +105,59 @@ void add_deviation(MeshResult& result, const occ::Solid& solid) {
   result.diagnostics.push_back(grid::deviation_diagnostic(result.absorbed, d));
 }
 
-// A grid mesh left invalid where the grid missed features - a part a few cells thin with no
-// core of its own, whose edges no chain reached (HexMe s08's cross cylinder, 2.7 cells
-// across: the volume there is cut off) - is made once more on a grid of half the size, when
-// that grid stays within the grid mesher's max_refined_cells, smoothed and checked, and
-// replaces `result` if it is valid (info `grid_halved`); else `result` stays, with the
-// second grid's errors in an info (`grid_halved_failed`).
-// Only while the second mesh stays small (about 8 times the first's hexahedra, at most
-// kFinerGridHexes): on HexMe's industrial models the second grid was no more valid than
-// the first and cost the time of a larger mesh (i17: 2,987 hexahedra, then 29,483 as
-// invalid; the run took 28 s instead of 6).
-constexpr std::size_t kFinerGridHexes = 20'000;
+// A grid mesh left invalid is made once more on a finer uniform grid - a third of the
+// grid's size, or half where that grid would pass kFinerGridCells cells - made at that size
+// from the start (tessellation included), smoothed and checked within kFinerGridSeconds,
+// and replaces `result` if it is valid (warning `grid_refined`: the mesh is finer than
+// asked); else `result` stays, with the second grid's errors in an info
+// (`grid_refined_failed`). On HexMe: i21 valid (min 0.398, 445,248 hexahedra, 18 s; it had
+// no valid mesh), i02 (0.313) and i23 (0.396) valid where the tet split gave 0.153 and
+// 0.099, s08 (a cross cylinder 2.7 cells across, its end circles cut off) 0.5; i04, i07,
+// i13, i17 and i19 keep 2 to 5 inverted hexahedra at a third of the size.
+// Not after local refinement (its cells are already finer where walls are thin).
+constexpr double kFinerGridCells = 3'000'000;
+constexpr double kFinerGridSeconds = 30;
 
 void finer_grid(const occ::Solid& solid, const MeshOptions& options, const core::SizeField& sizes,
                 const std::string& why, const core::Progress& progress,
                 std::chrono::steady_clock::time_point t0, const grid::GridStats& first,
                 MeshResult& result) {
-  if (result.ok || result.stats.scheme != "grid" || first.features_missed == 0 ||
-      !first.finer_fits || 8 * result.mesh.num_hexes() > kFinerGridHexes || progress.cancelled() ||
-      has_diagnostic(result.diagnostics, "too_many_hexes"))
+  if (result.ok || result.stats.scheme != "grid" || first.local_levels > 0 ||
+      progress.cancelled() || has_diagnostic(result.diagnostics, "too_many_hexes"))
     return;
+  const double cells =
+      double(first.grid_cells[0]) * double(first.grid_cells[1]) * double(first.grid_cells[2]);
+  const int factor = 27 * cells <= kFinerGridCells ? 3 : 8 * cells <= kFinerGridCells ? 2 : 1;
+  if (factor == 1) return;
+  const core::Progress budget = progress.with_time_limit(kFinerGridSeconds);
   MeshResult finer;
   finer.stats.size_used = result.stats.size_used;
   grid::GridStats second;
-  const bool made = fallback(solid, options, sizes.global(), why, progress, t0, finer, 1, &second);
+  const bool made =
+      fallback(solid, options, first.size_used / factor, why, budget, t0, finer, &second);
   if (made) {
-    detail::finish(finer, solid, options, progress, sizes);
+    detail::finish(finer, solid, options, budget, sizes);
     add_deviation(finer, solid);
   }
   if (progress.cancelled()) return;
   std::ostringstream s;
-  s << "The grid mesh at size " << first.size_used << " was invalid ("
-    << core::error_codes(result.diagnostics) << ") and missed " << first.features_missed
-    << " features; made again at size " << first.size_used / 2 << ", it misses "
-    << second.features_missed;
+  s << "The grid mesh at size " << first.size_used << " (" << result.mesh.num_hexes()
+    << " hexahedra) was invalid (" << core::error_codes(result.diagnostics) << "); made again "
+    << "on a grid " << factor << " times finer, size " << first.size_used / factor;
   if (made && finer.ok) {
-    s << " and is valid: that mesh is used.";
-    finer.diagnostics.insert(finer.diagnostics.begin(), core::make_info("grid_halved", s.str()));
+    s << ", it is valid: that mesh is used, with " << finer.mesh.num_hexes()
+      << " hexahedra, finer than the size asked for.";
+    finer.diagnostics.insert(finer.diagnostics.begin(),
+                             core::make_warning("grid_refined", s.str()));
     result = std::move(finer);
     return;
   }
-  s << " and is not valid either (" << core::error_codes(finer.diagnostics)
-    << "): the first mesh stands.";
-  result.diagnostics.push_back(core::make_info("grid_halved_failed", s.str()));
+  if (budget.timed_out())
+    s << ", it was stopped at its limit of " << int(kFinerGridSeconds) << " s";
+  else
+    s << ", it is not valid either (" << core::error_codes(finer.diagnostics) << ")";
+  s << ": the first mesh stands.";
+  result.diagnostics.push_back(core::make_info("grid_refined_failed", s.str()));
 }
 
 // What the fallback makes of a solid no structured scheme meshed: its mesh, smoothed and
@@ -204,7 +212,7 @@ FallbackOutcome run_fallback(const occ::Solid& solid, const MeshOptions& options
   // until HexMe i22's merges ran into their limit, and the structured mesh was lost.
   core::IsolatedJob beside;
   grid::GridStats grid_stats;
-  if (fallback(solid, options, size, why, progress, t0, result, 0, &grid_stats)) {
+  if (fallback(solid, options, size, why, progress, t0, result, &grid_stats)) {
     for (const core::Diagnostic& d : result.diagnostics)
       if (d.code == "fallback") why_grid = d.message.substr(0, d.message.find(kMeshedByTheGrid));
     if (options.fallback_scheme == "grid" && options.fallback_beside &&
@@ -256,8 +264,8 @@ FallbackOutcome run_fallback(const occ::Solid& solid, const MeshOptions& options
     if (!sizes.uniform()) second.diagnostics.push_back(local_sizes_ignored("tet-split"));
     second.diagnostics.push_back(core::make_warning(
         "grid_invalid", "The grid mesher's mesh was invalid (" + grid_errors +
-                            (has_diagnostic(result.diagnostics, "grid_halved_failed")
-                                 ? "; and again on a grid of half the size"
+                            (has_diagnostic(result.diagnostics, "grid_refined_failed")
+                                 ? "; and again on a finer grid"
                                  : "") +
                             "); the tetrahedral fallback's mesh is valid and is used."));
     out.result = std::move(second);

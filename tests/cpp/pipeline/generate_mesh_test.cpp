@@ -470,16 +470,19 @@ TEST(GenerateMesh, TheFallbackMeshesWhatNoSchemeAcceptsAndSaysSo) {
 }
 
 // Where the grid mesher's mesh is invalid (HexMe i02 at the default size: inverted hexes
-// and volume lost at thin walls; a cube with a square pyramid pit was the example until the
-// grid at half the size meshed it) the tetrahedral fallback gets a second chance and
-// its valid mesh is used, said so in a warning naming the grid's errors. The grid as a
-// scheme of its own gets no second chance and is never reported a success when invalid.
+// and volume lost at thin walls), and so is the finer grid's - here refused by max_hexes
+// (at a third of the size i02's grid mesh is valid) - the tetrahedral fallback gets a
+// second chance and its valid mesh is used, said so in a warning naming the grid's errors.
+// (A cube with a square pyramid pit was the example until a finer grid meshed it.) The
+// grid as a scheme of its own gets no second chance and is never reported a success when
+// invalid.
 TEST(GenerateMesh, AnInvalidGridMeshGivesTheTetSplitASecondChance) {
   const occ::ReadResult i02 = occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/i02o_m2.step");
   ASSERT_TRUE(i02.ok()) << "HexMe model i02 not found in " << VOROHEX_HEXME_DIR;
   const occ::Solid& part = *i02.solid;
   MeshOptions opt;
   opt.decompose = false;
+  opt.max_hexes = 20'000;  // the tet split's 15,004, not the finer grid's
   const MeshResult r = generate_mesh(part, opt);
   ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
   EXPECT_EQ(r.stats.scheme, "tet-split");
@@ -488,6 +491,7 @@ TEST(GenerateMesh, AnInvalidGridMeshGivesTheTetSplitASecondChance) {
   ASSERT_NE(d, nullptr);
   EXPECT_EQ(d->severity, core::Severity::warning);
   EXPECT_NE(d->message.find("inverted_elements"), std::string::npos) << d->message;
+  EXPECT_NE(d->message.find("and again on a finer grid"), std::string::npos) << d->message;
   // Each error code once, though the smoothing and the check both report inverted hexes.
   EXPECT_EQ(d->message.find("inverted_elements, inverted_elements"), std::string::npos)
       << d->message;
@@ -507,11 +511,11 @@ TEST(GenerateMesh, AnInvalidGridMeshGivesTheTetSplitASecondChance) {
   EXPECT_EQ(grid.ok, grid.check.valid);
 }
 
-// A grid mesh that is invalid where the grid missed features is made again on a grid of
-// half the size and used when valid: HexMe s08's cross cylinder is 2.7 cells across at the
-// default size, has no core of its own, and its end circles were cut off (13 % of the
-// volume); the tet split's second chance meshed it (min 0.25). Now the grid does, finer.
-TEST(GenerateMesh, AnInvalidGridMeshThatMissedFeaturesIsMadeAgainAtHalfTheSize) {
+// An invalid grid mesh is made again on a grid a third of the size and used when valid,
+// said so in a warning: HexMe s08's cross cylinder is 2.7 cells across at the default size,
+// has no core of its own, and its end circles were cut off (13 % of the volume); the tet
+// split's second chance meshed it (min 0.25). Now the finer grid does (min 0.5).
+TEST(GenerateMesh, AnInvalidGridMeshIsMadeAgainOnAFinerGrid) {
   const occ::ReadResult s08 =
       occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/s08o_cross_cyls_dr.step");
   ASSERT_TRUE(s08.ok()) << "HexMe model s08 not found in " << VOROHEX_HEXME_DIR;
@@ -522,16 +526,19 @@ TEST(GenerateMesh, AnInvalidGridMeshThatMissedFeaturesIsMadeAgainAtHalfTheSize) 
   EXPECT_EQ(r.stats.scheme, "grid");
   EXPECT_TRUE(r.check.valid);
   EXPECT_GT(r.check.scaled_jacobian.min, 0.2);
-  const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "grid_halved");
+  const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "grid_refined");
   ASSERT_NE(d, nullptr);
+  EXPECT_EQ(d->severity, core::Severity::warning);
   EXPECT_NE(d->message.find("volume_mismatch"), std::string::npos) << d->message;
+  EXPECT_NE(d->message.find("3 times finer"), std::string::npos) << d->message;
+  EXPECT_GT(r.mesh.num_hexes(), 20 * 280u);  // the first grid's mesh had 280
   EXPECT_NE(testing::find_diagnostic(r.diagnostics, "fallback"), nullptr);
   EXPECT_EQ(testing::find_diagnostic(r.diagnostics, "grid_invalid"), nullptr);
   // The grid as a scheme of its own: its first mesh, invalid, no second grid.
   opt.schemes = {"grid"};
   const MeshResult grid = generate_mesh(*s08.solid, opt);
   EXPECT_FALSE(grid.ok);
-  EXPECT_EQ(testing::find_diagnostic(grid.diagnostics, "grid_halved"), nullptr);
+  EXPECT_EQ(testing::find_diagnostic(grid.diagnostics, "grid_refined"), nullptr);
   EXPECT_NE(testing::find_diagnostic(grid.diagnostics, "volume_mismatch"), nullptr);
 }
 
