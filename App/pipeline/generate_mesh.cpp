@@ -114,13 +114,17 @@ void add_deviation(MeshResult& result, const occ::Solid& solid) {
 // no valid mesh), i02 (0.313) and i23 (0.396) valid where the tet split gave 0.153 and
 // 0.099, s08 (a cross cylinder 2.7 cells across, its end circles cut off) 0.5; i04, i07,
 // i13, i17 and i19 keep 2 to 5 inverted hexahedra at a third of the size.
-// Not after local refinement (its cells are already finer where walls are thin).
+// Not after local refinement (its cells are already finer where walls are thin), nor where
+// the first grid's core holds less than kFinerGridCore of the volume (walls far thinner
+// than its cells: HexMe i08, 3 %, blades about 1 mm thick at a size of 2.6; its finer grid
+// ran out of time beside the decomposition and made the run 60 -> 94 s).
 // Its time: at most kFinerGridSeconds, and only what is left of kFinerGridDeadline since
 // meshing started (none under 5 s): a finer grid that does not end valid costs its time
-// (HexMe i04 26 -> 64 s, i08 60 -> 90 s with 30 s each, for nothing).
+// (HexMe i04 26 -> 64 s, i08 60 -> 90 s with 30 s each and 45 s, for nothing).
 constexpr double kFinerGridCells = 3'000'000;
 constexpr double kFinerGridSeconds = 30;
-constexpr double kFinerGridDeadline = 45;
+constexpr double kFinerGridDeadline = 30;
+constexpr double kFinerGridCore = 0.1;
 
 void finer_grid(const occ::Solid& solid, const MeshOptions& options, const core::SizeField& sizes,
                 const std::string& why, const core::Progress& progress,
@@ -133,7 +137,9 @@ void finer_grid(const occ::Solid& solid, const MeshOptions& options, const core:
       double(first.grid_cells[0]) * double(first.grid_cells[1]) * double(first.grid_cells[2]);
   const int factor = 27 * cells <= kFinerGridCells ? 3 : 8 * cells <= kFinerGridCells ? 2 : 1;
   const double seconds = std::min(kFinerGridSeconds, kFinerGridDeadline - seconds_since(t0));
-  if (factor == 1 || seconds < 5) return;
+  const double core_share = double(first.core_hexes) * std::pow(first.size_used, 3) /
+                            std::max(std::abs(solid.volume()), 1e-300);
+  if (factor == 1 || seconds < 5 || core_share < kFinerGridCore) return;
   const core::Progress budget = progress.with_time_limit(seconds);
   MeshResult finer;
   finer.stats.size_used = result.stats.size_used;
