@@ -110,14 +110,15 @@ void add_deviation(MeshResult& result, const occ::Solid& solid) {
 // from the start (tessellation included), smoothed and checked within kFinerGridSeconds,
 // and replaces `result` if it is valid (warning `grid_refined`: the mesh is finer than
 // asked); else `result` stays, with the second grid's errors in an info
-// (`grid_refined_failed`). On HexMe: i21 valid (min 0.398, 445,248 hexahedra, 18 s; it had
-// no valid mesh), i02 (0.313) and i23 (0.396) valid where the tet split gave 0.153 and
-// 0.099, s08 (a cross cylinder 2.7 cells across, its end circles cut off) 0.5; i04, i07,
-// i13, i17 and i19 keep 2 to 5 inverted hexahedra at a third of the size.
+// (`grid_refined_failed`). On HexMe: i21 valid (min 0.398, 445,248 hexahedra, 19 s; it had
+// no valid mesh), i02 valid (0.313) where the tet split gave 0.153, s08 (a cross cylinder
+// 2.7 cells across, its end circles cut off) 0.5; i23 is valid at a third of the size
+// (0.396) but its first grid ends after the deadline below; i04, i07, i13, i17 and i19 keep
+// 2 to 5 inverted hexahedra at a third of the size.
 // Not after local refinement (its cells are already finer where walls are thin), nor where
 // the first grid's core holds less than kFinerGridCore of the volume (walls far thinner
-// than its cells: HexMe i08, 3 %, blades about 1 mm thick at a size of 2.6; its finer grid
-// ran out of time beside the decomposition and made the run 60 -> 94 s).
+// than its cells: HexMe i08, 3 %; its finer grid ran out of time beside the decomposition
+// and made the run 60 -> 94 s).
 // Its time: at most kFinerGridSeconds, and only what is left of kFinerGridDeadline since
 // meshing started (none under 5 s): a finer grid that does not end valid costs its time
 // (HexMe i04 26 -> 64 s, i08 60 -> 90 s with 30 s each and 45 s, for nothing).
