@@ -305,20 +305,18 @@ FeatureCapture capture_features(core::HexMesh& mesh,
   // chain only tells two faces apart, and near a vertex it shares with a sharp edge its
   // nodes can leave the sharp edge no path (HexMe s10: a dome on a cylinder, cut by two
   // planes; the arcs where the planes meet the dome found the equator's chain in their way).
-  std::vector<core::EdgeId> order, tangent;
-  for (core::EdgeId e : solid.edges()) {
-    const std::vector<core::FaceId> faces = solid.edge_faces(e);
-    bool smooth = tangent_edges_last && !solid.edge_is_degenerated(e) && faces.size() >= 2 &&
-                  faces[0] != faces[1];
-    if (smooth) {
+  std::vector<core::EdgeId> order = solid.edges();
+  if (tangent_edges_last)
+    std::stable_partition(order.begin(), order.end(), [&](core::EdgeId e) {
+      const std::vector<core::FaceId> faces = solid.edge_faces(e);
+      if (solid.edge_is_degenerated(e) || faces.size() < 2 || faces[0] == faces[1]) return true;
       const std::vector<Vec3> p = solid.edge_points_by_length(e, 4);
-      for (int k = 1; k <= 3 && smooth; ++k)
-        smooth = solid.face_normal(faces[0], p[k]).dot(solid.face_normal(faces[1], p[k])) >
-                 std::cos(M_PI / 18);
-    }
-    (smooth ? tangent : order).push_back(e);
-  }
-  order.insert(order.end(), tangent.begin(), tangent.end());
+      for (int k = 1; k <= 3; ++k)
+        if (solid.face_normal(faces[0], p[k]).dot(solid.face_normal(faces[1], p[k])) <=
+            std::cos(M_PI / 18))
+          return true;  // sharp somewhere: first
+      return false;
+    });
   for (core::EdgeId e : order) {
     if (solid.edge_is_degenerated(e)) continue;
     const std::vector<core::FaceId> faces = solid.edge_faces(e);
