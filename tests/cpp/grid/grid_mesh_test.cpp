@@ -453,6 +453,22 @@ TEST(GridMesh, VerticesTakeNodesWithAnOuterEdgeForEachOfTheirEdgesOnHexMeN15) {
   EXPECT_GT(h.mesh.stats.min_sj, 0.3);
 }
 
+TEST(GridMesh, AVertexWhereAFloorsAngleIsReflexTakesANodeWithAQuadMoreOnHexMeI17) {
+  // HexMe i17 at a third of its grid's size (the pipeline's finer grid): walls meet a floor
+  // at vertices where the floor's interior angle is 191 degrees. Such a vertex on a core
+  // corner's node (three quads: one per wall, one for the floor) left the floor's quad bent
+  // inside out there, and two hexahedra stayed inverted. A node with a quad more for the
+  // reflex angle is preferred: the mesh is valid.
+  const auto in = occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/i17o_s20.step");
+  ASSERT_TRUE(in.ok()) << "HexMe model i17 not found in " << VOROHEX_HEXME_DIR;
+  grid::GridOptions o;
+  o.size = in.solid->diagonal() / 120;  // the default size / 2 (the grid halves it) / 3
+  const grid::GridResult r = grid::grid_mesh(*in.solid, o);
+  expect_valid(*in.solid, r);
+  EXPECT_EQ(r.stats.features_missed, 0u);
+  EXPECT_GT(r.stats.min_sj, 0.3);
+}
+
 TEST(GridMesh, AFinerGridCapturesTheThinCrossCylinderOfHexMeS08) {
   // HexMe s08: a cylinder crossed by one of half its radius, 2.7 cells across at the
   // default size: no core of its own, its end circles 4.5 cells from any outer node, not
