@@ -142,7 +142,11 @@ constexpr double kTargetReach = 1.5;
 // A face's interior angle at a vertex above kReflex is split into quads of at most
 // kQuadAngle (see quads_needed below).
 constexpr double kReflex = 185 * M_PI / 180;
-constexpr double kQuadAngle = 160 * M_PI / 180;
+// At most kQuadAngle: a face's 267 degrees at a vertex of HexMe i19 (at a third of its size)
+// in three quads rather than two leaves its finer grid valid (two inverted hexahedra
+// before); n06's pit rim, 252 degrees of the top face, keeps two (in three its minimum fell
+// from 0.40 to 0.14). 120 and 160 degrees were measured: each loses one of them.
+constexpr double kQuadAngle = 130 * M_PI / 180;
 // A candidate vertex node's cost per quad it lacks for such an angle, in cells (half a
 // lacking chain's: with a whole cell HexMe n06's pit rim vertices, 252 degrees of the top
 // face, moved to nodes farther away and its minimum fell from 0.40 to 0.15).
