@@ -152,6 +152,28 @@ constexpr double kQuadAngle = 130 * M_PI / 180;
 // face, moved to nodes farther away and its minimum fell from 0.40 to 0.15).
 constexpr double kBentWeight = 0.5;
 
+int quads_for_angle(double alpha) {
+  return alpha > kReflex ? int(std::ceil(alpha / kQuadAngle)) : 1;
+}
+
+int region_face(const std::map<int, int>& votes, const std::set<int>& around,
+                const std::function<bool(int, int)>& borders) {
+  if (votes.empty()) return -1;
+  auto borders_all = [&](int f) {
+    for (int x : around)
+      if (!borders(f, x)) return false;
+    return true;
+  };
+  const int winner = std::max_element(votes.begin(), votes.end(), [](auto& x, auto& y) {
+                       return x.second < y.second;
+                     })->first;
+  if (borders_all(winner)) return winner;
+  int best = winner, best_votes = 0;
+  for (const auto& [f, n] : votes)
+    if (n > best_votes && borders_all(f)) best = f, best_votes = n;
+  return best;
+}
+
 FeatureCapture capture_features(core::HexMesh& mesh,
                                 const std::vector<std::array<std::int32_t, 4>>& outer_quads,
                                 const std::vector<std::int32_t>& outer_nodes,
@@ -264,8 +286,7 @@ FeatureCapture capture_features(core::HexMesh& mesh,
               const Vec3 t_out = out.forward ? Vec3(b[1] - b[0]) : Vec3(b[nb - 2] - b[nb - 1]);
               const Vec3 normal = solid.face_normal(f, solid.vertex_point(v));
               const double turn = std::atan2(t_in.cross(t_out).dot(normal), t_in.dot(t_out));
-              const double alpha = M_PI - turn;  // the face's interior angle at v
-              if (alpha > kReflex) quads = int(std::ceil(alpha / kQuadAngle));
+              quads = quads_for_angle(M_PI - turn);  // the face's interior angle at v
             }
           }
           quads_needed[v.value()] += quads;
@@ -566,38 +587,23 @@ FeatureCapture capture_features(core::HexMesh& mesh,
         if (c.dim == 2 && free_nodes.insert(n).second) ++votes[host_of(c.id)];
       }
     if (votes.empty()) continue;
-    int face = std::max_element(votes.begin(), votes.end(), [](auto& x, auto& y) {
-                 return x.second < y.second;
-               })->first;
     // A region lies on a face every chain around it borders. Where the vote names another
     // (a narrow region with a node or two, first projected across its edge: HexMe i13's
     // strip between two edges of a small slanted face, whose one free node had landed on
     // the border of the next face and stayed on the line of the edge, a hexahedron flat),
-    // the face that borders them all and has the most votes, if one has any.
-    {
-      std::set<int> around;
-      for (std::size_t q : members)
-        for (int c = 0; c < 4; ++c) {
-          const auto it =
-              model_edge_of.find(edge_key(outer_quads[q][c], outer_quads[q][(c + 1) % 4]));
-          if (it != model_edge_of.end() && it->second >= 0) around.insert(it->second);
-        }
-      auto borders_all = [&](int f) {
-        for (int x : around) {
-          bool borders = false;
-          for (core::FaceId g : solid.edge_faces(core::EdgeId(x)))
-            borders = borders || host_of(g.value()) == f;
-          if (!borders) return false;
-        }
-        return true;
-      };
-      if (!borders_all(face)) {
-        int best = -1, best_votes = 0;
-        for (const auto& [f, n] : votes)
-          if (n > best_votes && borders_all(f)) best = f, best_votes = n;
-        if (best >= 0) face = best;
+    // the face that borders them all and has the most votes (region_face).
+    std::set<int> around;
+    for (std::size_t q : members)
+      for (int c = 0; c < 4; ++c) {
+        const auto it =
+            model_edge_of.find(edge_key(outer_quads[q][c], outer_quads[q][(c + 1) % 4]));
+        if (it != model_edge_of.end() && it->second >= 0) around.insert(it->second);
       }
-    }
+    const int face = region_face(votes, around, [&](int f, int x) {
+      for (core::FaceId g : solid.edge_faces(core::EdgeId(x)))
+        if (host_of(g.value()) == f) return true;
+      return false;
+    });
     face_used[face] = 1;
     for (std::size_t q : members) {
       bool moved = false;

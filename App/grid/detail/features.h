@@ -7,6 +7,9 @@
 #pragma once
 
 #include <array>
+#include <functional>
+#include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -41,6 +44,18 @@ struct FeatureCapture {
 // Returns the swaps made.
 std::size_t uncross(const std::vector<core::Vec3>& targets, std::vector<core::Vec3>& positions,
                     std::vector<std::int32_t>& nodes, double reach);
+
+// The outer quads a face needs around a vertex's node, given its interior angle there
+// (radians): one, or where the angle is reflex (over 185 degrees: a quad's corner there
+// would be bent inside out) enough to split it into quads of at most 130 degrees.
+int quads_for_angle(double alpha);
+
+// The face a region of outer quads goes on: the one with the most votes (its free nodes'
+// first faces), unless that face does not border every model edge whose chain bounds the
+// region (`around`) and another with votes does - then the one of those with the most.
+// borders(face, edge): the face is one of the edge's faces.
+int region_face(const std::map<int, int>& votes, const std::set<int>& around,
+                const std::function<bool(int face, int edge)>& borders);
 
 // normals[i]: the outward direction of outer_nodes[i]'s core node (PillowMesh): where
 // several nodes are as near to a feature, the one whose direction matches the feature's
