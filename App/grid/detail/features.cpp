@@ -349,15 +349,16 @@ FeatureCapture capture_features(core::HexMesh& mesh,
   }
 
   // 2. Edges: chains through the nodes nearest to points along the curve.
-  std::unordered_set<std::int64_t> feature_edges;
-  std::unordered_map<std::int64_t, int> model_edge_of;  // a chain's mesh edge: its model edge
+  // The mesh edges the regions of faces stop at (chains, and the sides of quads a chain cuts
+  // diagonally), each with the model edge it belongs to.
+  std::unordered_map<std::int64_t, int> feature_edges;
   std::unordered_map<std::int64_t, std::vector<std::size_t>> quads_of_edge;
   for (std::size_t q = 0; q < outer_quads.size(); ++q)
     for (int c = 0; c < 4; ++c)
       quads_of_edge[edge_key(outer_quads[q][c], outer_quads[q][(c + 1) % 4])].push_back(q);
-  // Quads a chain cuts diagonally (see below): in no face region, their edges barriers.
-  std::vector<char> diagonal(outer_quads.size(), 0);
-  std::vector<int> diagonal_edge(outer_quads.size(), -1);  // the model edge that cut it
+  // Quads a chain cuts diagonally (see below): the model edge whose chain cut it, or -1. In
+  // no face region, their edges barriers.
+  std::vector<int> cut_by(outer_quads.size(), -1);
   // Two edges leaving a common vertex in nearly the same direction (within 20 degrees:
   // tangent, as a circle leaving a straight edge's end along it). Elsewhere (the edges of a
   // pyramid's apex) sharing chains distorts the hexahedra more than cutting across does:
@@ -515,9 +516,8 @@ FeatureCapture capture_features(core::HexMesh& mesh,
         const long q = last_diagonal || shared.count(chain[k])
                            ? -1
                            : quad_with(kept.back(), chain[k], chain[k + 1]);
-        if (q >= 0 && !diagonal[q]) {
-          diagonal[q] = 1;
-          diagonal_edge[q] = e.value();
+        if (q >= 0 && cut_by[q] < 0) {
+          cut_by[q] = e.value();
           reserved.insert(chain[k]);
           ++r.quads_across_edges;
           last_diagonal = true;
@@ -537,10 +537,7 @@ FeatureCapture capture_features(core::HexMesh& mesh,
       mesh.set_node_class(NodeId(chain[k]), NodeClass::on(e));
       on_feature.insert(chain[k]);
     }
-    for (int k = 0; k < m; ++k) {
-      feature_edges.insert(edge_key(chain[k], chain[k + 1]));
-      model_edge_of.emplace(edge_key(chain[k], chain[k + 1]), e.value());
-    }
+    for (int k = 0; k < m; ++k) feature_edges.emplace(edge_key(chain[k], chain[k + 1]), e.value());
     captured_between.insert({std::min(faces[0].value(), faces[1].value()),
                              std::max(faces[0].value(), faces[1].value())});
     ++r.edges_captured;
@@ -552,24 +549,25 @@ FeatureCapture capture_features(core::HexMesh& mesh,
   int regions = 0;
   std::vector<char> face_used(solid.num_faces() + 1, 0);
   for (std::size_t q = 0; q < outer_quads.size(); ++q)
-    if (diagonal[q])
-      for (int c = 0; c < 4; ++c) {
-        const std::int64_t k = edge_key(outer_quads[q][c], outer_quads[q][(c + 1) % 4]);
-        feature_edges.insert(k);
-        model_edge_of.emplace(k, diagonal_edge[q]);
-      }
+    if (cut_by[q] >= 0)
+      for (int c = 0; c < 4; ++c)
+        feature_edges.emplace(edge_key(outer_quads[q][c], outer_quads[q][(c + 1) % 4]), cut_by[q]);
   for (std::size_t seed = 0; seed < outer_quads.size(); ++seed) {
-    if (region[seed] >= 0 || diagonal[seed]) continue;
+    if (region[seed] >= 0 || cut_by[seed] >= 0) continue;
     std::vector<std::size_t> members{seed}, stack{seed};
+    std::set<int> around;  // the model edges of the chains around the region
     region[seed] = regions;
     while (!stack.empty()) {
       const std::size_t q = stack.back();
       stack.pop_back();
       for (int c = 0; c < 4; ++c) {
         const std::int64_t k = edge_key(outer_quads[q][c], outer_quads[q][(c + 1) % 4]);
-        if (feature_edges.count(k)) continue;
+        if (const auto it = feature_edges.find(k); it != feature_edges.end()) {
+          around.insert(it->second);
+          continue;
+        }
         for (std::size_t o : quads_of_edge[k])
-          if (region[o] < 0 && !diagonal[o])
+          if (region[o] < 0 && cut_by[o] < 0)
             region[o] = regions, stack.push_back(o), members.push_back(o);
       }
     }
@@ -592,13 +590,6 @@ FeatureCapture capture_features(core::HexMesh& mesh,
     // strip between two edges of a small slanted face, whose one free node had landed on
     // the border of the next face and stayed on the line of the edge, a hexahedron flat),
     // the face that borders them all and has the most votes (region_face).
-    std::set<int> around;
-    for (std::size_t q : members)
-      for (int c = 0; c < 4; ++c) {
-        const auto it =
-            model_edge_of.find(edge_key(outer_quads[q][c], outer_quads[q][(c + 1) % 4]));
-        if (it != model_edge_of.end() && it->second >= 0) around.insert(it->second);
-      }
     const int face = region_face(votes, around, [&](int f, int x) {
       for (core::FaceId g : solid.edge_faces(core::EdgeId(x)))
         if (host_of(g.value()) == f) return true;
