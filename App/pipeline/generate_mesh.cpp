@@ -134,11 +134,22 @@ constexpr double kFinerGridCore = 0.1;
 // A first grid mesh whose volume is off by more than this before smoothing (run_fallback).
 constexpr double kTangledVolume = 0.1;
 
-// How many times finer the finer grid below would be (3 or 2), or 0 where it is not made
-// (after local refinement, too many cells or hexahedra, too little core). `hexes`: the first
-// grid mesh's; the finer one has about factor^3 times its core and factor^2 its pillow layer.
+// A valid grid mesh whose minimum scaled Jacobian is below this is made again on a grid half
+// its size, and the finer mesh used where it is valid and better (finer_grid). On HexMe the
+// grid mesher alone at half the default size: s05 (a cube with a spherical pit) 0.169 ->
+// 0.500, n07 (a cube with a pyramid on it) 0.123 -> 0.500 (at a third of the size n07 has 2
+// inverted hexahedra, hence half); the finer meshes of i03, i13 and i19, valid but poor, are
+// not made finer again (at half their first size instead of a third: i03 0.041 and 0.021,
+// i13 and i19 invalid).
+constexpr double kPoorGridQuality = 0.2;
+constexpr int kPoorGridFactor = 2;
+
+// How many times finer the finer grid below would be (3 or 2, or only `only` if given), or 0
+// where it is not made (after local refinement, too many cells or hexahedra, too little
+// core). `hexes`: the first grid mesh's; the finer one has about factor^3 times its core and
+// factor^2 its pillow layer.
 int finer_factor(const occ::Solid& solid, const grid::GridStats& first, std::size_t hexes,
-                 std::size_t max_hexes) {
+                 std::size_t max_hexes, int only = 0) {
   if (first.local_levels > 0) return 0;
   const double core_share = double(first.core_hexes) * std::pow(first.size_used, 3) /
                             std::max(std::abs(solid.volume()), 1e-300);
@@ -148,7 +159,7 @@ int finer_factor(const occ::Solid& solid, const grid::GridStats& first, std::siz
   const double core = double(first.core_hexes);
   const double pillow = std::max(0.0, double(hexes) - core);
   for (int factor : {3, 2})
-    if (factor * factor * factor * cells <= kFinerGridCells &&
+    if ((only == 0 || factor == only) && factor * factor * factor * cells <= kFinerGridCells &&
         factor * factor * (factor * core + pillow) <= double(max_hexes))
       return factor;
   return 0;
@@ -158,10 +169,14 @@ void finer_grid(const occ::Solid& solid, const MeshOptions& options, const core:
                 const std::string& why, const core::Progress& progress,
                 std::chrono::steady_clock::time_point t0, const grid::GridStats& first,
                 MeshResult& result) {
-  if (result.ok || result.stats.scheme != "grid" || progress.cancelled() ||
+  if (result.stats.scheme != "grid" || progress.cancelled() ||
       has_diagnostic(result.diagnostics, "too_many_hexes"))
     return;
-  const int factor = finer_factor(solid, first, result.mesh.num_hexes(), options.max_hexes);
+  const double first_min = result.check.scaled_jacobian.min;
+  const bool poor = result.ok && result.check.valid && first_min < kPoorGridQuality;
+  if (result.ok && !poor) return;
+  const int factor = finer_factor(solid, first, result.mesh.num_hexes(), options.max_hexes,
+                                  poor ? kPoorGridFactor : 0);
   const double seconds = std::min(kFinerGridSeconds, kFinerGridDeadline - seconds_since(t0));
   if (factor == 0 || seconds < 5) return;
   const core::Progress budget = progress.with_time_limit(seconds);
@@ -181,10 +196,18 @@ void finer_grid(const occ::Solid& solid, const MeshOptions& options, const core:
     << (has_diagnostic(result.diagnostics, "smoothing_skipped")
             ? ", not smoothed: its volume far off the solid's"
             : "")
-    << ") was invalid (" << core::error_codes(result.diagnostics) << "); made again "
-    << "on a grid " << factor << " times finer, size " << first.size_used / factor;
-  if (made && finer.ok) {
-    s << ", it is valid: that mesh is used, with " << finer.mesh.num_hexes()
+    << ") was ";
+  if (poor)
+    s << "valid but poor (min scaled Jacobian " << std::setprecision(3) << first_min << ", below "
+      << kPoorGridQuality << ")";
+  else
+    s << "invalid (" << core::error_codes(result.diagnostics) << ")";
+  s << "; made again on a grid " << factor << " times finer, size " << first.size_used / factor;
+  const double finer_min = finer.check.scaled_jacobian.min;
+  if (made && finer.ok && (!poor || (finer.check.valid && finer_min > first_min))) {
+    s << ", it is valid";
+    if (poor) s << " (min scaled Jacobian " << finer_min << ")";
+    s << ": that mesh is used, with " << finer.mesh.num_hexes()
       << " hexahedra, finer than the size asked for.";
     finer.diagnostics.insert(finer.diagnostics.begin(),
                              core::make_warning("grid_refined", s.str()));
@@ -193,8 +216,11 @@ void finer_grid(const occ::Solid& solid, const MeshOptions& options, const core:
   }
   if (budget.timed_out())
     s << ", it was stopped at its time limit (" << std::lround(seconds) << " s)";
+  else if (poor && made && finer.ok)
+    s << ", it is not better (min scaled Jacobian " << finer_min << ")";
   else
-    s << ", it is not valid either (" << core::error_codes(finer.diagnostics) << ")";
+    s << ", it is not valid" << (poor ? "" : " either") << " ("
+      << core::error_codes(finer.diagnostics) << ")";
   s << ": the first mesh stands.";
   result.diagnostics.push_back(core::make_info("grid_refined_failed", s.str()));
 }

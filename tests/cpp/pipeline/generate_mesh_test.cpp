@@ -547,6 +547,41 @@ TEST(GenerateMesh, AnInvalidGridMeshIsMadeAgainOnAFinerGrid) {
   EXPECT_NE(testing::find_diagnostic(grid.diagnostics, "volume_mismatch"), nullptr);
 }
 
+// A valid grid mesh below min SJ 0.2 is made again on a grid half its size, and the finer
+// mesh used where it is valid and better: HexMe s05 (a cube with a spherical pit) is valid
+// at 0.169 at the default size, 0.5 at half of it. The warning says why and what it gave.
+TEST(GenerateMesh, APoorValidGridMeshIsMadeAgainOnAFinerGridWhenThatIsBetter) {
+  const occ::ReadResult s05 =
+      occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/s05o_cube_sphere.step");
+  ASSERT_TRUE(s05.ok()) << "HexMe model s05 not found in " << VOROHEX_HEXME_DIR;
+  MeshOptions opt;
+  opt.decompose = false;
+  opt.schemes = {"grid"};  // the grid as a scheme of its own: the mesh at the size asked
+  const MeshResult first = generate_mesh(*s05.solid, opt);
+  ASSERT_TRUE(first.ok);
+  ASSERT_LT(first.check.scaled_jacobian.min, 0.2);
+  opt.schemes = MeshOptions{}.schemes;  // the fallback (s05 has no scheme of its own)
+  const MeshResult r = generate_mesh(*s05.solid, opt);
+  ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
+  EXPECT_EQ(r.stats.scheme, "grid");
+  EXPECT_TRUE(r.check.valid);
+  EXPECT_GE(r.check.scaled_jacobian.min, 0.2);
+  EXPECT_GT(r.check.scaled_jacobian.min, first.check.scaled_jacobian.min);
+  EXPECT_GT(r.mesh.num_hexes(), 4 * first.mesh.num_hexes());
+  const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "grid_refined");
+  ASSERT_NE(d, nullptr);
+  EXPECT_EQ(d->severity, core::Severity::warning);
+  EXPECT_NE(d->message.find("valid but poor"), std::string::npos) << d->message;
+  EXPECT_NE(d->message.find("2 times finer"), std::string::npos) << d->message;
+  EXPECT_EQ(testing::find_diagnostic(r.diagnostics, "grid_refined_failed"), nullptr);
+  // Where the finer mesh would pass max_hexes it is not made: the first mesh stands.
+  opt.max_hexes = 4 * first.mesh.num_hexes();
+  const MeshResult capped = generate_mesh(*s05.solid, opt);
+  ASSERT_TRUE(capped.ok);
+  EXPECT_EQ(capped.mesh.num_hexes(), first.mesh.num_hexes());
+  EXPECT_EQ(testing::find_diagnostic(capped.diagnostics, "grid_refined"), nullptr);
+}
+
 // On two cores the fallback runs beside the decomposition (MeshOptions::fallback_beside):
 // a solid neither meshes gets the same result as with the fallback after it - the same
 // mesh, node for node, the same diagnostics (the reason, with the decomposition's failure,
