@@ -55,7 +55,7 @@ struct MeshOptions {
   // graph (paper §4) and mesh those into one conforming mesh (§5); the fallback (if on)
   // takes what that cannot mesh. The exact cuts at concave edges, then the graph and its
   // cut, run in a child process stopped after decomposition_time_limit seconds (> 0), the
-  // cuts with at most half of it, the graph's a quarter (detail::voronoi_share).
+  // cuts with at most half of it, the graph's a tenth (detail::voronoi_share).
   bool decompose = true;
   double decomposition_time_limit = 60;
   voronoi::VoronoiOptions graph;  // the Voronoi graph the decomposition cuts along
