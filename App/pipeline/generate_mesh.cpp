@@ -119,7 +119,8 @@ void add_deviation(MeshResult& result, const occ::Solid& solid) {
 // ended after the deadline below (ending by 50 s instead, i23's finer grid was still
 // stopped and i04's and i07's, not valid, made them 36 -> 51 s); i04 keeps 7 inverted
 // hexahedra at a third of the size, and i07's (valid, 721,111 hexahedra) takes 53 s on its
-// own.
+// own. A valid mesh below kPoorGridQuality is made again too, at half the size, and
+// replaced only by a valid mesh with a higher minimum.
 // Not after local refinement (its cells are already finer where walls are thin), nor where
 // the first grid's core holds less than kFinerGridCore of the volume (walls far thinner
 // than its cells: HexMe i08, 3 %; its finer grid ran out of time beside the decomposition
