@@ -400,6 +400,9 @@ GeomAPI_ProjectPointOnSurf& projector(const FaceCache& c) {
     if (cache.size() >= 4096) cache.clear();  // bounded: solids come and go
     auto proj = std::make_unique<GeomAPI_ProjectPointOnSurf>();
     proj->Init(c.surface, c.umin, c.umax, c.vmin, c.vmax, Extrema_ExtAlgo_Tree);
+    // Minima only: a maximum of the distance is never a face's nearest point, and OCCT's
+    // search for the maxima (over all the samples) cost as much as for the minima.
+    proj->SetExtremaFlag(Extrema_ExtFlag_MIN);
     it = cache.emplace(key, Entry{c.surface, std::move(proj)}).first;
   }
   return *it->second.projector;

@@ -1,15 +1,21 @@
 #include "occ/solid.h"
 
 #include <gtest/gtest.h>
+#include <BRepBuilderAPI_NurbsConvert.hxx>
+#include <BRepPrimAPI_MakeCylinder.hxx>
+#include <TopoDS.hxx>
+#include <gp_Ax2.hxx>
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <functional>
 #include <random>
 
 #include "occ/primitives.h"
+#include "occ/solid_impl.h"
 
 namespace vorohex::occ {
 namespace {
@@ -248,6 +254,41 @@ TEST(Solid, CurvedFaceDistanceIsExact) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   EXPECT_LT(worst, 1e-9);
   std::printf("cylinder face distance: %.2f us per query\n", seconds / n * 1e6);
+}
+
+// The same on a cylinder given as B-splines (as STEP files from other CAD often are): OCCT's
+// search for the nearest point of such a surface looks for minima only (a maximum of the
+// distance is never a face's nearest point), and finds them exactly, rims included.
+TEST(Solid, BSplineFaceDistanceIsExact) {
+  const double r = 1, h = 4;
+  BRepBuilderAPI_NurbsConvert convert(
+      BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), r, h).Solid());
+  const Solid cyl = make_solid(TopoDS::Solid(convert.Shape()));
+  FaceId lateral;
+  for (FaceId f : cyl.faces())
+    if (cyl.area(f) > 2 * M_PI * r * r) lateral = f;
+  ASSERT_GT(lateral.value(), 0);
+  ASSERT_EQ(cyl.surface_info(lateral).kind, core::SurfaceKind::other);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-3, 3), z(-2, 6);
+  const int n = 5000;
+  double worst = 0, worst_normal = 0;
+  const auto t0 = std::chrono::steady_clock::now();
+  for (int i = 0; i < n; ++i) {
+    const Vec3 p(u(rng), u(rng), z(rng));
+    const double radial = std::hypot(p.x(), p.y()) - r;
+    const double axial = std::max({0.0, -p.z(), p.z() - h});
+    worst = std::max(worst, std::abs(cyl.distance_to_face(lateral, p) - std::hypot(radial, axial)));
+    if (axial == 0 && std::abs(radial) > 0.01) {
+      const Vec3 out = Vec3(p.x(), p.y(), 0).normalized();
+      worst_normal = std::max(worst_normal, (cyl.face_normal(lateral, p) - out).norm());
+    }
+  }
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  EXPECT_LT(worst, 1e-7);
+  EXPECT_LT(worst_normal, 1e-7);
+  std::printf("B-spline cylinder face distance: %.2f us per query\n", seconds / n * 1e6);
 }
 
 }  // namespace
