@@ -248,6 +248,16 @@ class Smoother {
       sj_[topology_.node_hexes.items[k] / 8] = trial[i++];
   }
 
+  // The normal of face f at node n's point x: kept per node for as long as the node stays
+  // at x on f (a line search asks for it at each of its trial steps, and each is a CAD
+  // projection; the same value, so the same mesh).
+  Vec3 face_normal(std::size_t n, int f, const Vec3& x) const {
+    if (normals_.size() != mesh_.points().size()) normals_.assign(mesh_.points().size(), {});
+    KnownNormal& k = normals_[n];
+    if (k.face != f || k.at != x) k = {f, x, solid_.face_normal(FaceId(f), x)};
+    return k.normal;
+  }
+
   // Moves node n from x by d on its entity: a tangent step then a projection for face nodes,
   // a projection for edge nodes. False when the projection jumps far from the step.
   bool constrained_move(std::size_t n, const Vec3& x, Vec3 d, Vec3& y) const {
@@ -258,7 +268,7 @@ class Smoother {
     }
     const double step = d.norm();
     if (c.dim == 2) {
-      const Vec3 normal = solid_.face_normal(FaceId(c.id), x);
+      const Vec3 normal = face_normal(n, c.id, x);
       d -= d.dot(normal) * normal;
       y = solid_.project_to_face(FaceId(c.id), x + d);
     } else {
@@ -276,7 +286,7 @@ class Smoother {
     const NodeClass c = mesh_.node_classes()[n];
     if (!constrained_move(n, x, d, y)) return false;
     if (c.dim != 2) return true;
-    const Vec3 normal = solid_.face_normal(FaceId(c.id), x);
+    const Vec3 normal = face_normal(n, c.id, x);
     const Vec3 target = x + d - d.dot(normal) * normal;
     const double held = (y - target).norm();
     if (!(held > 0.25 * d.norm())) return true;
@@ -474,7 +484,7 @@ class Smoother {
   Vec3 feasible_direction(std::size_t n, const Vec3& x, Vec3 d) const {
     const NodeClass c = mesh_.node_classes()[n];
     if (c.dim == 2) {
-      const Vec3 normal = solid_.face_normal(FaceId(c.id), x);
+      const Vec3 normal = face_normal(n, c.id, x);
       d -= d.dot(normal) * normal;
     } else if (c.dim == 1) {
       const auto& nb = topology_.neighbours;
@@ -820,6 +830,13 @@ class Smoother {
   std::vector<std::pair<int, int>> face_pairs_;  // faces sharing an edge, (lower, higher)
   double floor_ = 0;
   double input_min_ = 0;  // the input's minimum, which no hex may fall below
+  // face_normal()'s values: only face nodes ask, and they move one at a time.
+  struct KnownNormal {
+    int face = 0;
+    Vec3 at = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
+    Vec3 normal = Vec3::Zero();
+  };
+  mutable std::vector<KnownNormal> normals_;
 };
 
 }  // namespace
