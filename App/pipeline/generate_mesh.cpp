@@ -299,7 +299,8 @@ FallbackOutcome run_fallback(const occ::Solid& solid, const MeshOptions& options
     if (result.stats.scheme == "grid" &&
         finer_factor(solid, grid_stats, result.mesh.num_hexes(), options.max_hexes) > 0 &&
         !has_diagnostic(result.diagnostics, "too_many_hexes")) {
-      const double off = quality::check_mesh(result.mesh, &solid, options.check).volume_rel_error;
+      const double cad = std::max(std::abs(solid.volume()), 1e-300);
+      const double off = std::abs(quality::mesh_volume(result.mesh) - solid.volume()) / cad;
       if (off > kTangledVolume) {
         first_options.smoothing.laplacian_iterations = 0;
         first_options.smoothing.optimisation_passes = 0;

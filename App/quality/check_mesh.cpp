@@ -648,17 +648,7 @@ CheckReport check_mesh(const HexMesh& mesh, const occ::Solid* cad, const CheckOp
   }
 
   // Volume (always reported; compared with the CAD when there is one).
-  {
-    std::vector<double> partial(detail::num_chunks(hexes.size(), 20000), 0.0);
-    detail::parallel_chunks(
-        hexes.size(), 20000, [&](std::size_t chunk, std::size_t b, std::size_t e) {
-          double sum = 0;
-          for (std::size_t h = b; h < e; ++h)
-            sum += hex_volume(mesh.corners(core::HexId(static_cast<std::int32_t>(h))));
-          partial[chunk] = sum;
-        });
-    report.mesh_volume = std::accumulate(partial.begin(), partial.end(), 0.0);
-  }
+  report.mesh_volume = mesh_volume(mesh);
   if (cad) {
     try {
       check_against_cad(mesh, *cad, options, boundary, class_ok, report);
@@ -670,6 +660,18 @@ CheckReport check_mesh(const HexMesh& mesh, const occ::Solid* cad, const CheckOp
 
   report.valid = !core::has_error(diags);
   return report;
+}
+
+double mesh_volume(const HexMesh& mesh) {
+  const std::size_t hexes = mesh.num_hexes();
+  std::vector<double> partial(detail::num_chunks(hexes, 20000), 0.0);
+  detail::parallel_chunks(hexes, 20000, [&](std::size_t chunk, std::size_t b, std::size_t e) {
+    double sum = 0;
+    for (std::size_t h = b; h < e; ++h)
+      sum += hex_volume(mesh.corners(core::HexId(static_cast<std::int32_t>(h))));
+    partial[chunk] = sum;
+  });
+  return std::accumulate(partial.begin(), partial.end(), 0.0);
 }
 
 CheckReport check_topology(const HexMesh& mesh) {

@@ -66,6 +66,9 @@ CheckReport check_mesh(const core::HexMesh& mesh, const occ::Solid* cad,
                        const CheckOptions& options = {},
                        std::vector<double>* scaled_jacobian = nullptr);
 
+// The sum of the hexahedra's volumes (as their corners give them: check_mesh's mesh_volume).
+double mesh_volume(const core::HexMesh& mesh);
+
 // The mesh's topology only (what moving nodes cannot change): node indices, quads shared by
 // more than two hexahedra, a closed boundary (and, as check_mesh counts them, overlapping
 // quads). No element quality, no CAD; `valid` stays false, the counts and errors are set.
