@@ -36,12 +36,13 @@ struct GridOptions {
   double quality_target = 0.5;  // scaled Jacobian the optimisation aims for, in (0, 1]
   // Times the size is halved while the core holds less than min_core_share of the volume
   // (walls thinner than about three cells; min_core_share in [0, 1]) or falls apart into
-  // pieces (a quarter of it or more left out), as long as the refined grid has at most
-  // max_refined_cells cells (a larger grid is not worth the time on parts that need local
-  // refinement, which is not done).
+  // pieces (a quarter of it or more left out), as long as the refined grid has about
+  // max_refined_cells cells inside the solid (its volume over a cell's) and at most
+  // max_grid_cells in its bounding box (the classification's arrays).
   int max_refinements = 2;
   double min_core_share = 0.25;
-  std::size_t max_refined_cells = 250'000;
+  std::size_t max_refined_cells = 500'000;
+  std::size_t max_grid_cells = 8'000'000;
   // Where the core is still thin or split after that: the grid refined locally by thirds,
   // up to max_levels times (0: never), near the walls thinner than about two cells
   // (grid/detail/adaptive_core.h), as long as the levels hold at most max_local_cells cells

@@ -121,10 +121,16 @@ void add_deviation(MeshResult& result, const occ::Solid& solid) {
 // hexahedra at a third of the size, and i07's (valid, 721,111 hexahedra) takes 53 s on its
 // own. A valid mesh below kPoorGridQuality is made again too, at half the size, and
 // replaced only by a valid mesh with a higher minimum.
-// Not after local refinement (its cells are already finer where walls are thin), nor where
-// the first grid's core holds less than kFinerGridCore of the volume (walls far thinner
-// than its cells: HexMe i08, 3 %; its finer grid ran out of time beside the decomposition
-// and made the run 60 -> 94 s).
+// Not after local refinement (its cells are already finer where walls are thin). Where the
+// first grid's core holds less than kFinerGridCore of the volume (walls far thinner than its
+// cells, still after the grid mesher's own halvings), the finer grid is at half the size, and
+// the grid mesher halves it again while its core is thin: HexMe i09 (walls a sixteenth of the
+// size asked for), invalid at a quarter of the size, is valid at a sixteenth (360,424
+// hexahedra, min 0.001). It is made only where it would end in time, predicted as
+// kThinGridGrowth times the first grid's time (the cells grow eight times per halving, more
+// than the time of their pillow layer and features): HexMe i08 (3 % core at a quarter of the
+// size, 3.8 s; at an eighth 59 s and still invalid) is not made again, as before (its finer
+// grid ran out of time beside the decomposition and made the run 37 -> 66 s).
 // Its time: at most kFinerGridSeconds, and only what is left of kFinerGridDeadline since
 // meshing started (none under 5 s): a finer grid that does not end valid costs its time
 // (HexMe i04 26 -> 64 s, i08 60 -> 90 s with 30 s each and 45 s, for nothing).
@@ -132,6 +138,7 @@ constexpr double kFinerGridCells = 3'000'000;
 constexpr double kFinerGridSeconds = 30;
 constexpr double kFinerGridDeadline = 30;
 constexpr double kFinerGridCore = 0.1;
+constexpr double kThinGridGrowth = 8;
 // A first grid mesh whose volume is off by more than this before smoothing (run_fallback).
 constexpr double kTangledVolume = 0.1;
 
@@ -145,18 +152,32 @@ constexpr double kTangledVolume = 0.1;
 constexpr double kPoorGridQuality = 0.2;
 constexpr int kPoorGridFactor = 2;
 
+// The finer grid's time: at most kFinerGridSeconds, and only what is left of
+// kFinerGridDeadline since meshing started at t0.
+double finer_seconds(std::chrono::steady_clock::time_point t0) {
+  return std::min(kFinerGridSeconds, kFinerGridDeadline - seconds_since(t0));
+}
+
 // How many times finer the finer grid below would be (3 or 2, or only `only` if given), or 0
-// where it is not made (after local refinement, too many cells or hexahedra, too little
-// core). `hexes`: the first grid mesh's; the finer one has about factor^3 times its core and
-// factor^2 its pillow layer.
+// where it is not made (after local refinement, too many cells or hexahedra, a thin core's
+// finer grid predicted to take longer than `seconds`). `hexes`: the first grid mesh's; the finer
+// one has about factor^3 times its core and factor^2 its pillow layer.
 int finer_factor(const occ::Solid& solid, const grid::GridStats& first, std::size_t hexes,
-                 std::size_t max_hexes, int only = 0) {
+                 std::size_t max_hexes, double seconds, int only = 0) {
   if (first.local_levels > 0) return 0;
-  const double core_share = double(first.core_hexes) * std::pow(first.size_used, 3) /
-                            std::max(std::abs(solid.volume()), 1e-300);
-  if (core_share < kFinerGridCore) return 0;
+  const double volume = std::max(std::abs(solid.volume()), 1e-300);
+  const double core_share = double(first.core_hexes) * std::pow(first.size_used, 3) / volume;
   const double cells =
       double(first.grid_cells[0]) * double(first.grid_cells[1]) * double(first.grid_cells[2]);
+  if (core_share < kFinerGridCore) {  // thin walls: half the size, the grid halves on itself
+    const double inside = 8 * volume / std::pow(first.size_used, 3);
+    const double predicted =
+        kThinGridGrowth * (first.seconds_core + first.seconds_pillow + first.seconds_features);
+    return (only == 0 || only == 2) && inside <= std::min(kFinerGridCells, double(max_hexes)) &&
+                   predicted <= seconds
+               ? 2
+               : 0;
+  }
   const double core = double(first.core_hexes);
   const double pillow = std::max(0.0, double(hexes) - core);
   for (int factor : {3, 2})
@@ -176,9 +197,9 @@ void finer_grid(const occ::Solid& solid, const MeshOptions& options, const core:
   const double first_min = result.check.scaled_jacobian.min;
   const bool poor = result.ok && result.check.valid && first_min < kPoorGridQuality;
   if (result.ok && !poor) return;
-  const int factor = finer_factor(solid, first, result.mesh.num_hexes(), options.max_hexes,
+  const double seconds = finer_seconds(t0);
+  const int factor = finer_factor(solid, first, result.mesh.num_hexes(), options.max_hexes, seconds,
                                   poor ? kPoorGridFactor : 0);
-  const double seconds = std::min(kFinerGridSeconds, kFinerGridDeadline - seconds_since(t0));
   if (factor == 0 || seconds < 5) return;
   const core::Progress budget = progress.with_time_limit(seconds);
   MeshResult finer;
@@ -204,6 +225,8 @@ void finer_grid(const occ::Solid& solid, const MeshOptions& options, const core:
   else
     s << "invalid (" << core::error_codes(result.diagnostics) << ")";
   s << "; made again on a grid " << factor << " times finer, size " << first.size_used / factor;
+  if (made && second.size_used < 0.99 * first.size_used / factor)
+    s << " (halved to " << second.size_used << " where its core was thin)";
   const double finer_min = finer.check.scaled_jacobian.min;
   if (made && finer.ok && (!poor || (finer.check.valid && finer_min > first_min))) {
     s << ", it is valid";
@@ -297,7 +320,8 @@ FallbackOutcome run_fallback(const occ::Solid& solid, const MeshOptions& options
     // 5.5 % off before smoothing (n01), the ones above kTangledVolume all end invalid.
     MeshOptions first_options = options;
     if (result.stats.scheme == "grid" &&
-        finer_factor(solid, grid_stats, result.mesh.num_hexes(), options.max_hexes) > 0 &&
+        finer_factor(solid, grid_stats, result.mesh.num_hexes(), options.max_hexes,
+                     finer_seconds(t0)) > 0 &&
         !has_diagnostic(result.diagnostics, "too_many_hexes")) {
       const double cad = std::max(std::abs(solid.volume()), 1e-300);
       const double off = std::abs(quality::mesh_volume(result.mesh) - solid.volume()) / cad;
