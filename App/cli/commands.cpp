@@ -48,7 +48,7 @@ const char* const kMeshUsage =
     "  --no-decompose  do not cut a solid no single scheme meshes into sub-volumes along its\n"
     "                  Voronoi graph (by default its sub-volumes are meshed into one mesh)\n"
     "  --decomposition-time-limit S  seconds the decomposition may take (default 60; the\n"
-    "                  exact cuts at most a half, the Voronoi graph's a quarter), then the\n"
+    "                  exact cuts at most a half, the Voronoi graph's a tenth), then the\n"
     "                  fallback takes over\n"
     "  --sharp-angle A dihedral angle (degrees, default 60) below which the decomposition\n"
     "                  cuts along both faces of a model edge ([1s] edges)\n"
