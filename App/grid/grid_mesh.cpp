@@ -152,8 +152,10 @@ GridResult grid_mesh(const occ::Solid& solid, const GridOptions& options,
     split = core.removed_components > core.core / 4 || left_out > 0.01;
     const bool thin = share < options.min_core_share || split;
     if (!thin) break;
+    // No core at all gives no mesh: halved on, past max_refinements, within the cells.
     const double inside = 8.0 * solid_volume / (size * size * size);
-    if (attempt >= options.max_refinements || inside > double(options.max_refined_cells) ||
+    if ((attempt >= options.max_refinements && core.core > 0) ||
+        inside > double(options.max_refined_cells) ||
         8.0 * cells > std::min(4.0 * double(options.max_hexes), double(options.max_grid_cells))) {
       if (options.max_levels > 0) try_local();
       break;

@@ -38,7 +38,8 @@ struct GridOptions {
   // (walls thinner than about three cells; min_core_share in [0, 1]) or falls apart into
   // pieces (a quarter of it or more left out), as long as the refined grid has about
   // max_refined_cells cells inside the solid (its volume over a cell's) and at most
-  // max_grid_cells in its bounding box (the classification's arrays).
+  // max_grid_cells in its bounding box (the classification's arrays). A grid with no core
+  // cell at all (no mesh) is halved on past max_refinements, within those cells.
   int max_refinements = 2;
   double min_core_share = 0.25;
   std::size_t max_refined_cells = 500'000;

@@ -547,31 +547,6 @@ TEST(GenerateMesh, AnInvalidGridMeshIsMadeAgainOnAFinerGrid) {
   EXPECT_NE(testing::find_diagnostic(grid.diagnostics, "volume_mismatch"), nullptr);
 }
 
-// A grid whose core stays thin after the grid mesher's own halvings (walls far thinner than
-// its cells) is made again at half its size, and the grid mesher halves that again while its
-// core is thin: HexMe i09 (a thin-walled part, walls about a sixteenth of the size asked
-// for; its first grid, at a quarter, holds 1 % of the volume) is valid at a sixteenth. The
-// boundary is tessellated again at each halving: with the first size's chord error the core
-// fell apart into pieces and the mesh was invalid.
-TEST(GenerateMesh, AThinWalledPartsGridIsMadeAgainFinerUntilItsCoreHoldsTheWalls) {
-  const occ::ReadResult i09 = occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/i09o_m9.step");
-  ASSERT_TRUE(i09.ok()) << "HexMe model i09 not found in " << VOROHEX_HEXME_DIR;
-  MeshOptions opt;
-  opt.decompose = false;
-  const MeshResult r = generate_mesh(*i09.solid, opt);
-  ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
-  EXPECT_EQ(r.stats.scheme, "grid");
-  EXPECT_TRUE(r.check.valid);
-  EXPECT_GT(r.check.scaled_jacobian.min, 0);
-  EXPECT_LT(r.check.volume_rel_error, 1e-3);
-  const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "grid_refined");
-  ASSERT_NE(d, nullptr);
-  EXPECT_NE(d->message.find("2 times finer"), std::string::npos) << d->message;
-  EXPECT_NE(d->message.find("where its core was thin"), std::string::npos) << d->message;
-  EXPECT_GT(r.mesh.num_hexes(), 100'000u);  // the first grid's mesh had 125
-  EXPECT_EQ(testing::find_diagnostic(r.diagnostics, "grid_invalid"), nullptr);
-}
-
 // A valid grid mesh below min SJ 0.2 is made again on a grid half its size, and the finer
 // mesh used where it is valid and better: HexMe s05 (a cube with a spherical pit) is valid
 // at 0.169 at the default size, 0.5 at half of it. The warning says why and what it gave.
