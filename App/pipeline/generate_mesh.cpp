@@ -126,11 +126,15 @@ void add_deviation(MeshResult& result, const occ::Solid& solid) {
 // cells, still after the grid mesher's own halvings), the finer grid is at half the size, and
 // the grid mesher halves it again while its core is thin: HexMe i09 (walls a sixteenth of the
 // size asked for), invalid at a quarter of the size, is valid at a sixteenth (360,424
-// hexahedra, min 0.001). It is made only where it would end in time, predicted as
-// kThinGridGrowth times the first grid's time (the cells grow eight times per halving, more
-// than the time of their pillow layer and features): HexMe i08 (3 % core at a quarter of the
-// size, 3.8 s; at an eighth 59 s and still invalid) is not made again, as before (its finer
-// grid ran out of time beside the decomposition and made the run 37 -> 66 s).
+// hexahedra, min 0.001; its finer grid, halved twice, smoothed and checked, takes 12 to 15
+// times the first grid's time). It gets kThinGridSeconds within kThinGridDeadline of the
+// start of meshing (with 30 s, the finer grid's usual time, i09 was valid in one run of the
+// benchmark and stopped at its limit in the next: it needs about 21-24 s beside the
+// decomposition), and is made only where it is predicted to end in time, kThinGridGrowth
+// times the first grid's own time (core, pillow, features): HexMe i08 (3 % core at a quarter
+// of the size, 3.8 s, so 61 s predicted; at an eighth 52-59 s alone and still invalid) is not
+// made again, as before (its finer grid ran to its limit beside the decomposition and the tet
+// split, and the run went 37 -> 66 s).
 // Its time: at most kFinerGridSeconds, and only what is left of kFinerGridDeadline since
 // meshing started (none under 5 s): a finer grid that does not end valid costs its time
 // (HexMe i04 26 -> 64 s, i08 60 -> 90 s with 30 s each and 45 s, for nothing).
@@ -138,7 +142,9 @@ constexpr double kFinerGridCells = 3'000'000;
 constexpr double kFinerGridSeconds = 30;
 constexpr double kFinerGridDeadline = 30;
 constexpr double kFinerGridCore = 0.1;
-constexpr double kThinGridGrowth = 8;
+constexpr double kThinGridGrowth = 16;
+constexpr double kThinGridSeconds = 40;
+constexpr double kThinGridDeadline = 45;
 // A first grid mesh whose volume is off by more than this before smoothing (run_fallback).
 constexpr double kTangledVolume = 0.1;
 
@@ -152,10 +158,18 @@ constexpr double kTangledVolume = 0.1;
 constexpr double kPoorGridQuality = 0.2;
 constexpr int kPoorGridFactor = 2;
 
+// Whether the first grid's core holds less than kFinerGridCore of the volume.
+bool thin_core(const occ::Solid& solid, const grid::GridStats& first) {
+  const double volume = std::max(std::abs(solid.volume()), 1e-300);
+  return double(first.core_hexes) * std::pow(first.size_used, 3) / volume < kFinerGridCore;
+}
+
 // The finer grid's time: at most kFinerGridSeconds, and only what is left of
-// kFinerGridDeadline since meshing started at t0.
-double finer_seconds(std::chrono::steady_clock::time_point t0) {
-  return std::min(kFinerGridSeconds, kFinerGridDeadline - seconds_since(t0));
+// kFinerGridDeadline since meshing started at t0 (for a thin core kThinGridSeconds and
+// kThinGridDeadline).
+double finer_seconds(std::chrono::steady_clock::time_point t0, bool thin) {
+  return thin ? std::min(kThinGridSeconds, kThinGridDeadline - seconds_since(t0))
+              : std::min(kFinerGridSeconds, kFinerGridDeadline - seconds_since(t0));
 }
 
 // How many times finer the finer grid below would be (3 or 2, or only `only` if given), or 0
@@ -166,10 +180,9 @@ int finer_factor(const occ::Solid& solid, const grid::GridStats& first, std::siz
                  std::size_t max_hexes, double seconds, int only = 0) {
   if (first.local_levels > 0) return 0;
   const double volume = std::max(std::abs(solid.volume()), 1e-300);
-  const double core_share = double(first.core_hexes) * std::pow(first.size_used, 3) / volume;
   const double cells =
       double(first.grid_cells[0]) * double(first.grid_cells[1]) * double(first.grid_cells[2]);
-  if (core_share < kFinerGridCore) {  // thin walls: half the size, the grid halves on itself
+  if (thin_core(solid, first)) {  // thin walls: half the size, the grid halves on itself
     const double inside = 8 * volume / std::pow(first.size_used, 3);
     const double predicted =
         kThinGridGrowth * (first.seconds_core + first.seconds_pillow + first.seconds_features);
@@ -197,7 +210,7 @@ void finer_grid(const occ::Solid& solid, const MeshOptions& options, const core:
   const double first_min = result.check.scaled_jacobian.min;
   const bool poor = result.ok && result.check.valid && first_min < kPoorGridQuality;
   if (result.ok && !poor) return;
-  const double seconds = finer_seconds(t0);
+  const double seconds = finer_seconds(t0, thin_core(solid, first));
   const int factor = finer_factor(solid, first, result.mesh.num_hexes(), options.max_hexes, seconds,
                                   poor ? kPoorGridFactor : 0);
   if (factor == 0 || seconds < 5) return;
@@ -321,7 +334,7 @@ FallbackOutcome run_fallback(const occ::Solid& solid, const MeshOptions& options
     MeshOptions first_options = options;
     if (result.stats.scheme == "grid" &&
         finer_factor(solid, grid_stats, result.mesh.num_hexes(), options.max_hexes,
-                     finer_seconds(t0)) > 0 &&
+                     finer_seconds(t0, thin_core(solid, grid_stats))) > 0 &&
         !has_diagnostic(result.diagnostics, "too_many_hexes")) {
       const double cad = std::max(std::abs(solid.volume()), 1e-300);
       const double off = std::abs(quality::mesh_volume(result.mesh) - solid.volume()) / cad;
