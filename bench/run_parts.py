@@ -85,6 +85,9 @@ def build_parts(work):
         box(24, 30, 6, (13, 0, 14)))
     parts["tube with a cross hole"] = cyl(10, 50, (0, 0, 0)).cut(cyl(7, 50, (0, 0, 0))).cut(
         cyl(3, 30, (-15, 0, 25), (1, 0, 0)))
+    # A thin-walled tube (wall 1 of radius 20: a seventieth of its diagonal) with a cross hole.
+    parts["thin-walled tube with a cross hole"] = cyl(20, 40, (0, 0, 0)).cut(
+        cyl(19, 40, (0, 0, 0))).cut(cyl(5, 50, (-25, 0, 20), (1, 0, 0)))
     # Parts prismatic along two axes (a feature across the main body's axis).
     plate = box(100, 60, 10)
     for x, y in [(10, 10), (10, 50), (70, 10), (70, 50)]:
