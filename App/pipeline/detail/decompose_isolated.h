@@ -36,7 +36,7 @@ struct IsolatedDecomposition {
 // its time there.
 enum class DecompositionMethods {
   plane_cuts_then_voronoi,  // the cuts (with at most half the time), else the Voronoi one
-                            // (with at most a quarter)
+                            // (with at most a tenth)
   voronoi,                  // only the Voronoi decomposition (the pipeline's last try,
                             // when the cuts' sub-volumes did not mesh together)
   tangent_plane_cuts,       // only the cuts with tangent planes instead of the cylinders
