@@ -179,11 +179,8 @@ double finer_seconds(std::chrono::steady_clock::time_point t0, bool thin) {
 int finer_factor(const occ::Solid& solid, const grid::GridStats& first, std::size_t hexes,
                  std::size_t max_hexes, double seconds, int only = 0) {
   if (first.local_levels > 0) return 0;
-  const double volume = std::max(std::abs(solid.volume()), 1e-300);
-  const double cells =
-      double(first.grid_cells[0]) * double(first.grid_cells[1]) * double(first.grid_cells[2]);
   if (thin_core(solid, first)) {  // thin walls: half the size, the grid halves on itself
-    const double inside = 8 * volume / std::pow(first.size_used, 3);
+    const double inside = 8 * std::abs(solid.volume()) / std::pow(first.size_used, 3);
     const double predicted =
         kThinGridGrowth * (first.seconds_core + first.seconds_pillow + first.seconds_features);
     return (only == 0 || only == 2) && inside <= std::min(kFinerGridCells, double(max_hexes)) &&
@@ -191,6 +188,8 @@ int finer_factor(const occ::Solid& solid, const grid::GridStats& first, std::siz
                ? 2
                : 0;
   }
+  const double cells =
+      double(first.grid_cells[0]) * double(first.grid_cells[1]) * double(first.grid_cells[2]);
   const double core = double(first.core_hexes);
   const double pillow = std::max(0.0, double(hexes) - core);
   for (int factor : {3, 2})

@@ -63,7 +63,7 @@ TEST(GridThinWalls, AThinTubeWithACrossHoleIsMeshedValidlyByThePipeline) {
 
 // HexMe i09 (a thin-walled part; the pipeline's finer grid asks for an eighth of the default
 // size, and the grid halves that once more): valid. With the first size's tessellation, at a
-// sixteenth of it the chord error was a third of a cell, the core left 1,093 cells out as
+// sixteenth of it the chord error was 0.8 of a cell, the core left 1,093 cells out as
 // separate pieces and the mesh had 31 inverted hexahedra.
 TEST(GridThinWalls, TheBoundaryIsTessellatedAgainAtEachHalving) {
   const occ::ReadResult i09 = occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/i09o_m9.step");
