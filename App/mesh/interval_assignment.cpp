@@ -1,6 +1,7 @@
 #include "mesh/interval_assignment.h"
 
 #include <CbcModel.hpp>
+#include <CglGomory.hpp>
 #include <CoinPackedMatrix.hpp>
 #include <CoinPackedVector.hpp>
 #include <OsiClpSolverInterface.hpp>
@@ -121,6 +122,12 @@ Solution solve(const IntervalProblem& p, const IntervalOptions& o, const Selecti
   model.setLogLevel(0);
   model.messageHandler()->setLogLevel(0);
   model.setMaximumSeconds(o.time_limit);
+  // Gomory cuts close the gap the even sums' integer halves leave in the LP relaxation:
+  // without them CBC's strong branching took 3.8-5.8 s to prove the optimum of HexMe i18's
+  // ten sub-volumes (188 curves, 149 equal and 58 even sums), with them 0.15 s, the same
+  // deviation (bench/results/hexme.md).
+  CglGomory gomory;
+  model.addCutGenerator(&gomory, -1, "Gomory");
   model.setNumberThreads(0);
   model.branchAndBound();
   Solution s;
