@@ -9,6 +9,7 @@
 #include "core/option_checks.h"
 #include "mesh/detail/refine.h"
 #include "mesh/detail/tet_to_hex.h"
+#include "quality/scaled_jacobian.h"
 
 namespace vorohex::mesh {
 
@@ -168,16 +169,135 @@ HexMesh per_vertex_cells(const Polyhedron& p) {
   return m;
 }
 
-// Cones from the centre over each face's fan of triangles, each tetrahedron into four
-// hexahedra (corner, three edge midpoints, three face centroids, tetrahedron centroid).
-HexMesh tetrahedral_cells(const Polyhedron& p) {
+// A face's vertices in order around it.
+std::vector<int> face_cycle(const Polyhedron& p, int f) {
+  const std::vector<int>& fe = p.face_edges[f];
+  std::vector<int> cycle{p.edge[fe[0]][0], p.edge[fe[0]][1]};
+  std::vector<char> used(fe.size(), 0);
+  used[0] = 1;
+  for (bool grew = true; grew && cycle.size() < fe.size();) {
+    grew = false;
+    for (std::size_t i = 1; i < fe.size() && !grew; ++i) {
+      if (used[i]) continue;
+      const auto [a, b] = p.edge[fe[i]];
+      const int prev = cycle[cycle.size() - 2];
+      if (a == cycle.back() && b != prev)
+        cycle.push_back(b), used[i] = grew = true;
+      else if (b == cycle.back() && a != prev)
+        cycle.push_back(a), used[i] = grew = true;
+    }
+  }
+  return cycle;
+}
+
+// The smallest scaled Jacobian of the four hexahedra a tetrahedron splits into.
+double split_quality(const std::array<Vec3, 4>& corners) {
   HexMesh m;
-  const CoarseBase b = add_base_nodes(p, m);
+  for (const Vec3& c : corners) m.add_node(c);
+  detail::split_tetrahedra(m, {{0, 1, 2, 3}});
+  const std::vector<double> sj = quality::scaled_jacobians(m);
+  return *std::min_element(sj.begin(), sj.end());
+}
+
+// A way to cut the cell into tetrahedra (indices into the cell's points: its vertices, then
+// `extra`), the smallest scaled Jacobian of their hexahedra, and what it is.
+struct Tetrahedra {
   std::vector<std::array<int, 4>> tets;
-  for (std::size_t f = 0; f < p.face_edges.size(); ++f)
-    for (int e : p.face_edges[f])
-      tets.push_back({b.centre, b.face_node[f], p.edge[e][0], p.edge[e][1]});
-  detail::split_tetrahedra(m, tets);
+  std::vector<Vec3> extra;  // points added to the vertices (centres), in node order
+  std::vector<NodeClass> extra_class;
+  double quality = -1;
+  std::string name;
+};
+
+// Cones from `apex` (a point index) over every face not containing it, each face cut into a
+// fan of triangles from the vertex that gives its tetrahedra's hexahedra the best minimum.
+void add_cones(const Polyhedron& p, const std::vector<Vec3>& points, int apex, Tetrahedra& t) {
+  t.quality = 1;
+  for (std::size_t f = 0; f < p.face_edges.size(); ++f) {
+    const std::vector<int> cycle = face_cycle(p, static_cast<int>(f));
+    if (std::find(cycle.begin(), cycle.end(), apex) != cycle.end()) continue;
+    const int k = static_cast<int>(cycle.size());
+    double best = -2;
+    std::vector<std::array<int, 4>> chosen;
+    for (int root = 0; root < k; ++root) {
+      std::vector<std::array<int, 4>> fan;
+      double q = 1;
+      for (int i = 1; i + 1 < k; ++i) {
+        const std::array<int, 4> tet{apex, cycle[root], cycle[(root + i) % k],
+                                     cycle[(root + i + 1) % k]};
+        fan.push_back(tet);
+        q = std::min(
+            q, split_quality({points[tet[0]], points[tet[1]], points[tet[2]], points[tet[3]]}));
+      }
+      if (q > best + 1e-12) best = q, chosen = fan;
+    }
+    t.tets.insert(t.tets.end(), chosen.begin(), chosen.end());
+    t.quality = std::min(t.quality, best);
+  }
+}
+
+// The tetrahedra the cell is cut into: of the cell centre, a face centre and an edge (every
+// face in triangles around its centre), of the cell centre over each face's fan of
+// triangles, or cones from one vertex over the faces away from it - whichever gives the
+// hexahedra the best minimum (a square pyramid: 0.17, 0.44, 0.5 - two tetrahedra, split
+// along a diagonal of the base; an icosahedron: 0.30, 0.69, 0.26).
+Tetrahedra best_tetrahedra(const Polyhedron& p, const CoarseBase& base, const HexMesh& nodes) {
+  const int nv = static_cast<int>(p.vertex.size());
+  std::vector<Vec3> points(p.vertex.begin(), p.vertex.end());
+  const Vec3 centre = nodes.point(core::NodeId(base.centre));
+  // Of the centre, a face centre and an edge.
+  Tetrahedra best;
+  {
+    std::vector<Vec3> pts = points;
+    best.extra.push_back(centre);
+    best.extra_class.push_back(NodeClass::interior());
+    pts.push_back(centre);
+    best.quality = 1;
+    for (std::size_t f = 0; f < p.face_edges.size(); ++f) {
+      const int c = static_cast<int>(pts.size());
+      pts.push_back(nodes.point(core::NodeId(base.face_node[f])));
+      best.extra.push_back(pts.back());
+      best.extra_class.push_back(NodeClass::on(fid(static_cast<int>(f))));
+      for (int e : p.face_edges[f]) {
+        best.tets.push_back({nv, c, p.edge[e][0], p.edge[e][1]});
+        best.quality = std::min(
+            best.quality, split_quality({centre, pts[c], pts[p.edge[e][0]], pts[p.edge[e][1]]}));
+      }
+    }
+    best.name = "four hexahedra per tetrahedron of centre, face centre and edge";
+  }
+  {
+    Tetrahedra t;
+    std::vector<Vec3> pts = points;
+    pts.push_back(centre);
+    t.extra = {centre};
+    t.extra_class = {NodeClass::interior()};
+    add_cones(p, pts, nv, t);
+    t.name = "four hexahedra per tetrahedron of the centre over each face's triangles";
+    if (t.quality > best.quality + 1e-9) best = std::move(t);
+  }
+  for (int v = 0; v < nv; ++v) {
+    Tetrahedra t;
+    add_cones(p, points, v, t);
+    t.name = "four hexahedra per tetrahedron of the cones from " + core::entity_name(vid(v)) +
+             " over the faces away from it";
+    if (t.quality > best.quality + 1e-9) best = std::move(t);
+  }
+  return best;
+}
+
+// The cell cut into tetrahedra (best_tetrahedra), each into four hexahedra (corner, three
+// edge midpoints, three face centroids, tetrahedron centroid).
+HexMesh tetrahedral_cells(const Polyhedron& p, std::string& name) {
+  HexMesh all;
+  const CoarseBase b = add_base_nodes(p, all);
+  const Tetrahedra t = best_tetrahedra(p, b, all);
+  name = t.name;
+  HexMesh m;  // the vertices, then only the centres the tetrahedra use
+  for (std::size_t v = 0; v < p.vertex.size(); ++v)
+    m.add_node(p.vertex[v], NodeClass::on(vid(static_cast<int>(v))));
+  for (std::size_t i = 0; i < t.extra.size(); ++i) m.add_node(t.extra[i], t.extra_class[i]);
+  detail::split_tetrahedra(m, t.tets);
   return m;
 }
 
@@ -224,6 +344,7 @@ struct Plan {
   Polyhedron poly;
   HexMesh coarse;
   bool per_vertex = false;
+  std::string variant;
   int n = 0;
   std::string error;
 };
@@ -234,7 +355,8 @@ Plan plan(const core::MeshDomain& solid, const MidpointOptions& options) {
   pl.error = read_polyhedron(solid, pl.poly);
   if (!pl.error.empty()) return pl;
   pl.per_vertex = every_vertex_has_three_edges(pl.poly);
-  pl.coarse = pl.per_vertex ? per_vertex_cells(pl.poly) : tetrahedral_cells(pl.poly);
+  pl.coarse = pl.per_vertex ? per_vertex_cells(pl.poly) : tetrahedral_cells(pl.poly, pl.variant);
+  if (pl.per_vertex) pl.variant = "one hexahedron per vertex";
   const double n = std::max(1.0, std::round(mean_edge_length(pl.coarse) / options.size));
   if (n > options.max_intervals) {
     std::ostringstream s;
@@ -278,6 +400,7 @@ MidpointResult midpoint_subdivide(const core::MeshDomain& solid, const MidpointO
     return r;
   }
   r.per_vertex = pl.per_vertex;
+  r.variant = pl.variant;
   r.subdivisions = pl.n;
   r.mesh = detail::refine_uniformly(pl.coarse, pl.n);
   // Coarse vertex, edge-midpoint and face-centre nodes are classified already only in the

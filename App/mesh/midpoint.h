@@ -2,12 +2,16 @@
 // model vertices, a midpoint per edge, a centre per face and the cell centre. Where every
 // vertex has three edges (tetrahedron, cube, dodecahedron, prisms) each vertex gets one
 // hexahedron (vertex, its three edge midpoints, its three face centres, the cell centre);
-// otherwise the cell is split into tetrahedra (cell centre, face centre, one edge) and each
-// tetrahedron into four hexahedra. The coarse hexahedra are then refined n x n x n by
+// otherwise the cell is split into tetrahedra and each tetrahedron into four hexahedra: of
+// the cell centre, a face centre and an edge; of the cell centre over each face's fan of
+// triangles; or cones from one vertex over the faces away from it - whichever gives the
+// best minimum scaled Jacobian (a square pyramid, two tetrahedra along a base diagonal: 0.5
+// instead of 0.17). The coarse hexahedra are then refined n x n x n by
 // trilinear interpolation to reach the target size (one n for all, so the mesh conforms).
 #pragma once
 
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include "core/diagnostic.h"
@@ -38,6 +42,7 @@ MidpointEstimate midpoint_evaluate(const core::MeshDomain& solid, const Midpoint
 struct MidpointResult {
   core::HexMesh mesh;
   bool per_vertex = false;
+  std::string variant;  // how the cell was cut into coarse hexahedra, in words
   int subdivisions = 0;
   bool ok = false;
   std::vector<core::Diagnostic> diagnostics;

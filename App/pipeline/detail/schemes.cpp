@@ -200,11 +200,8 @@ class MidpointScheme : public Scheme {
     if (r.ok) {
       m.mesh = std::move(r.mesh);
       m.summary = core::make_info(
-          "midpoint",
-          std::string("Midpoint subdivision of a convex polyhedron (") +
-              (r.per_vertex ? "one hexahedron per vertex"
-                            : "four hexahedra per tetrahedron of centre, face centre and edge") +
-              "), refined " + std::to_string(r.subdivisions) + " times per direction.");
+          "midpoint", std::string("Midpoint subdivision of a convex polyhedron (") + r.variant +
+                          "), refined " + std::to_string(r.subdivisions) + " times per direction.");
     }
     return m;
   }
