@@ -292,6 +292,7 @@ def write_table(rows):
         return fmt % v if isinstance(v, (int, float)) else (v if v is not None else "")
 
     valid = sum(1 for r in rows if r.get("v", "").startswith("valid"))
+    good = sum(1 for r in rows if r.get("v", "").startswith("valid") and r.get("v_min", -1) >= 0.2)
     structured = [r["model"].split("_")[0] for r in rows
                   if r.get("v", "").startswith("valid") and "tet-split" not in r["v"]
                   and "grid" not in r["v"]
@@ -319,8 +320,9 @@ def write_table(rows):
         "`vorohex decompose` on its own (`--time-limit 30`: it stops itself, 10 % later where",
         "OCCT's split does not return; 3 GB limit), with its median and worst time below.",
         "",
-        "VoroHex meshes %d of %d models today (VoroHex columns measured at commit %s%s)." % (
-            valid, len(rows), BUILT_FROM + ("" if not any(r.get("kept") for r in rows) else
+        "VoroHex meshes %d of %d models today, %d of them at min SJ >= 0.2 (VoroHex columns"
+        " measured at commit %s%s)." % (
+            valid, len(rows), good, BUILT_FROM + ("" if not any(r.get("kept") for r in rows) else
                                             " for %s, the other models' rows kept from the previous table" % ", ".join(
                                                 r["model"].split("_")[0] for r in rows if not r.get("kept"))),
             ("; Gmsh columns kept from the previous table" if any("g_kept" in r for r in rows) else "")
