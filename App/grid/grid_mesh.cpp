@@ -227,17 +227,17 @@ GridResult grid_mesh(const occ::Solid& solid, const GridOptions& options,
   if (options.capture_features) {
     r.absorbed = find_small_features(solid, tess, size);
     core::HexMesh before = pillow.mesh;
-    detail::FeatureCapture fc =
-        detail::capture_features(pillow.mesh, pillow.outer_quads, pillow.outer_nodes,
-                                 pillow.outer_normals, solid, r.absorbed, size);
+    detail::FeatureCapture fc = detail::capture_features(
+        pillow.mesh, pillow.outer_quads, pillow.outer_nodes, pillow.outer_normals, solid,
+        r.absorbed, size, false, options.share_cusps);
     // Missed features: once more with the tangent edges' chains last, kept if it misses
     // fewer, or as many with fewer inverted hexahedra (HexMe s10). Not always last: that lowered
     // the minima of HexMe i14's, i18's and n03's grid meshes, which miss nothing in the model's
     // order (n03's inverted).
     if (!fc.missed.empty()) {
-      detail::FeatureCapture again =
-          detail::capture_features(before, pillow.outer_quads, pillow.outer_nodes,
-                                   pillow.outer_normals, solid, r.absorbed, size, true);
+      detail::FeatureCapture again = detail::capture_features(
+          before, pillow.outer_quads, pillow.outer_nodes, pillow.outer_normals, solid, r.absorbed,
+          size, true, options.share_cusps);
       double m0, m1, mean;
       std::size_t i0, i1;
       measure(pillow.mesh, m0, mean, i0);
@@ -249,6 +249,7 @@ GridResult grid_mesh(const occ::Solid& solid, const GridOptions& options,
         tangent_last = true;
       }
     }
+    for (core::VertexId v : fc.cusps) r.stats.cusp_points.push_back(solid.vertex_point(v));
     r.absorbed_names = fc.absorbed;
     joined = fc.joined;
     r.stats.vertices = fc.vertices, r.stats.vertices_captured = fc.vertices_captured;

@@ -30,6 +30,12 @@ struct GridOptions {
   // Core cells keep every corner farther than core_margin * size from the boundary (> 0).
   double core_margin = 0.5;
   bool capture_features = true;  // false: outer nodes stay at their closest points
+  // Where two edges of one face leave a vertex tangentially (a cusp), their chains share
+  // nodes while within 0.3 cells of each other (grid/detail/features.h); the face's tip
+  // narrower than that gets no quads. Off by default: on HexMe it raises i03's minimum
+  // (0.001 -> 0.26) and breaks i19's and i09's meshes (docs/meshing.md), so the pipeline
+  // uses it only to make a poor grid mesh again whose worst hexahedron is at a cusp.
+  bool share_cusps = false;
   // Step 4 (smooth::SmoothOptions of the same names); 0 and 0 skip it.
   int laplacian_iterations = 20;
   int optimisation_passes = 10;
@@ -71,6 +77,8 @@ struct GridStats {
   // Largest deviation of the boundary on the composites from the real surface (after the
   // optimisation; -1 when not measured: no composite, or step 4 off).
   double absorbed_deviation = -1;
+  // Where the model's cusps are (vertices at which two edges of one face leave tangentially).
+  std::vector<core::Vec3> cusp_points;
 };
 
 struct GridResult {

@@ -152,6 +152,10 @@ constexpr double kQuadAngle = 130 * M_PI / 180;
 // face, moved to nodes farther away and its minimum fell from 0.40 to 0.15).
 constexpr double kBentWeight = 0.5;
 
+// With share_cusps: how close (in cells) another edge's chain node must be to this edge's
+// curve, at a cusp, for the chains to share it.
+constexpr double kCuspShare = 0.3;
+
 int quads_for_angle(double alpha) {
   return alpha > kReflex ? int(std::ceil(alpha / kQuadAngle)) : 1;
 }
@@ -179,7 +183,7 @@ FeatureCapture capture_features(core::HexMesh& mesh,
                                 const std::vector<std::int32_t>& outer_nodes,
                                 const std::vector<core::Vec3>& normals,
                                 const core::MeshDomain& solid, const SmallFeatures& small,
-                                double size, bool tangent_edges_last) {
+                                double size, bool tangent_edges_last, bool share_cusps) {
   FeatureCapture r;
   std::unordered_map<std::int32_t, Vec3> normal_of;
   for (std::size_t i = 0; i < outer_nodes.size() && i < normals.size(); ++i)
@@ -379,6 +383,31 @@ FeatureCapture capture_features(core::HexMesh& mesh,
         it->second = it->second || direction(x, v).dot(direction(y, v)) > std::cos(20 * M_PI / 180);
     return it->second;
   };
+  // A cusp: two edges of one face leaving a common vertex tangentially (the face's angle
+  // there is zero; a circle tangent to a line: HexMe i03's Face10 at Vertex71, i13's Face49).
+  auto cusp = [&](core::EdgeId x, core::EdgeId y) {
+    if (!tangent_at_common_vertex(x, y)) return false;
+    for (core::FaceId f : solid.edge_faces(x))
+      for (core::FaceId g : solid.edge_faces(y))
+        if (f == g) return true;
+    return false;
+  };
+  {
+    std::vector<std::vector<core::EdgeId>> edges_at(solid.num_vertices() + 1);
+    for (core::EdgeId e : solid.edges())
+      if (const std::vector<core::FaceId> f = solid.edge_faces(e); !solid.edge_is_degenerated(e) &&
+                                                                   !absorbed_edge[e.value()] &&
+                                                                   f.size() == 2 && f[0] != f[1])
+        for (core::VertexId v : {solid.edge_first_vertex(e), solid.edge_last_vertex(e)})
+          edges_at[v.value()].push_back(e);
+    for (core::VertexId v : solid.vertices()) {
+      const std::vector<core::EdgeId>& at = edges_at[v.value()];
+      bool found = false;
+      for (std::size_t i = 0; i < at.size() && !found; ++i)
+        for (std::size_t j = i + 1; j < at.size() && !found; ++j) found = cusp(at[i], at[j]);
+      if (found) r.cusps.push_back(v);
+    }
+  }
   std::unordered_set<std::int32_t> reserved;       // turn nodes taken out of a chain
   std::set<std::pair<int, int>> captured_between;  // face pairs with a captured edge
   // With tangent_edges_last, the edges along which the faces are tangent (a sphere on a
@@ -472,10 +501,31 @@ FeatureCapture capture_features(core::HexMesh& mesh,
       return (solid.project_to_edge(e, p) - p).norm() < size;
     };
     std::unordered_set<std::int32_t> shared;
+    // With share_cusps, the chain nodes of an edge this one forms a cusp with, within
+    // kCuspShare cells of this curve, are open to it first (shared: the tip of the face
+    // between them, narrower than that, gets no quads).
+    std::unordered_set<std::int32_t> at_cusp;
+    if (share_cusps)
+      for (std::int32_t n : blocked) {
+        const NodeClass c = mesh.node_class(NodeId(n));
+        if (!on_feature.count(n) || c.dim != 1 || c.id == e.value() || !cusp(e, core::EdgeId(c.id)))
+          continue;
+        const Vec3 p = mesh.point(NodeId(n));
+        if ((solid.project_to_edge(e, p) - p).norm() < kCuspShare * size) at_cusp.insert(n);
+      }
     for (std::int32_t target : targets) {
       if (!ok) break;
-      std::vector<std::int32_t> piece =
-          shortest_path(mesh, s, chain.back(), target, blocked, off_curve);
+      std::vector<std::int32_t> piece;
+      if (!at_cusp.empty()) {
+        std::unordered_set<std::int32_t> open;
+        for (std::int32_t n : blocked)
+          if (n == target || !at_cusp.count(n)) open.insert(n);
+        piece = shortest_path(mesh, s, chain.back(), target, open, off_curve);
+        for (std::size_t k = 1; k + 1 < piece.size(); ++k)
+          if (at_cusp.count(piece[k])) shared.insert(piece[k]);
+      }
+      if (piece.size() < 2)
+        piece = shortest_path(mesh, s, chain.back(), target, blocked, off_curve);
       if (piece.size() < 2) {
         std::unordered_set<std::int32_t> relaxed;
         for (std::int32_t n : blocked)

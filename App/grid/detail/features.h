@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/hex_mesh.h"
+#include "core/ids.h"
 #include "core/mesh_domain.h"
 #include "grid/composites.h"
 
@@ -34,6 +35,8 @@ struct FeatureCapture {
   // faces they enclose, the edges and vertices of such faces): absorbed into composites
   // (grid/composites.h), not captured, on purpose.
   std::vector<std::string> absorbed;
+  // Vertices where two edges of one face leave tangentially (the face comes to a point).
+  std::vector<core::VertexId> cusps;
 };
 
 // Vertices take their nodes nearest first, one after another, and can cross: three vertices
@@ -61,12 +64,15 @@ int region_face(const std::map<int, int>& votes, const std::set<int>& around,
 // several nodes are as near to a feature, the one whose direction matches the feature's
 // (the mean outward normal of its faces) takes it, so a chain follows the core's edge.
 // Edges take their chains in the model's order, or with `tangent_edges_last` the edges
-// along which the two faces are tangent (normals within 10 degrees) after the others.
+// along which the two faces are tangent (normals within 10 degrees) after the others. With
+// `share_cusps`, where two edges of one face leave a vertex tangentially (a cusp), the chain
+// made second shares the first's nodes while they lie within 0.3 cells of its curve.
 FeatureCapture capture_features(core::HexMesh& mesh,
                                 const std::vector<std::array<std::int32_t, 4>>& outer_quads,
                                 const std::vector<std::int32_t>& outer_nodes,
                                 const std::vector<core::Vec3>& normals,
                                 const core::MeshDomain& solid, const SmallFeatures& small,
-                                double size, bool tangent_edges_last = false);
+                                double size, bool tangent_edges_last = false,
+                                bool share_cusps = false);
 
 }  // namespace vorohex::grid::detail

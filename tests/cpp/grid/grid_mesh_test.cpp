@@ -469,6 +469,29 @@ TEST(GridMesh, AVertexWhereAFloorsAngleIsReflexTakesANodeWithAQuadMoreOnHexMeI17
   EXPECT_GT(r.stats.min_sj, 0.3);
 }
 
+TEST(GridMesh, ChainsAtACuspShareNodesOnHexMeI03) {
+  // HexMe i03 at a third of its grid's size (the pipeline's finer grid): its planar Face10
+  // comes to a point at Vertex71, where the circle Edge80 leaves the line Edge87 tangentially,
+  // and the two run within a cell of each other for several cells. With a chain along each,
+  // the quads between them were flat (min 0.001). Sharing nodes while the chains lie within
+  // 0.3 cells of each other leaves that tip of the face without quads: min 0.26.
+  const auto in = occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/i03o_m3.step");
+  ASSERT_TRUE(in.ok()) << "HexMe model i03 not found in " << VOROHEX_HEXME_DIR;
+  grid::GridOptions o;
+  o.size = in.solid->diagonal() / 240;  // the default size / 4 (the grid halves it twice) / 3
+  o.share_cusps = true;
+  const grid::GridResult r = grid::grid_mesh(*in.solid, o);
+  expect_valid(*in.solid, r);
+  const core::Vec3 vertex71(35.0, 17.613959659231, -73.12379288883);
+  EXPECT_TRUE(std::any_of(r.stats.cusp_points.begin(), r.stats.cusp_points.end(),
+                          [&](const core::Vec3& p) { return (p - vertex71).norm() < 1e-6; }));
+  std::string info;
+  for (const core::Diagnostic& d : r.diagnostics)
+    if (d.code == "grid") info = d.message;
+  EXPECT_NE(info.find("sharing nodes of another edge's chain"), std::string::npos) << info;
+  EXPECT_GT(r.stats.min_sj, 0.2);
+}
+
 TEST(GridMesh, AFinerGridCapturesTheThinCrossCylinderOfHexMeS08) {
   // HexMe s08: a cylinder crossed by one of half its radius, 2.7 cells across at the
   // default size: no core of its own, its end circles 4.5 cells from any outer node, not
