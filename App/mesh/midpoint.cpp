@@ -211,10 +211,11 @@ struct Tetrahedra {
 
 // Cones from `apex` (a point index) over every face not containing it, each face cut into a
 // fan of triangles from the vertex that gives its tetrahedra's hexahedra the best minimum.
-void add_cones(const Polyhedron& p, const std::vector<Vec3>& points, int apex, Tetrahedra& t) {
+// cycles: each face's vertices in order around it (face_cycle).
+void add_cones(const std::vector<std::vector<int>>& cycles, const std::vector<Vec3>& points,
+               int apex, Tetrahedra& t) {
   t.quality = 1;
-  for (std::size_t f = 0; f < p.face_edges.size(); ++f) {
-    const std::vector<int> cycle = face_cycle(p, static_cast<int>(f));
+  for (const std::vector<int>& cycle : cycles) {
     if (std::find(cycle.begin(), cycle.end(), apex) != cycle.end()) continue;
     const int k = static_cast<int>(cycle.size());
     double best = -2;
@@ -245,6 +246,9 @@ Tetrahedra best_tetrahedra(const Polyhedron& p, const CoarseBase& base, const He
   const int nv = static_cast<int>(p.vertex.size());
   std::vector<Vec3> points(p.vertex.begin(), p.vertex.end());
   const Vec3 centre = nodes.point(core::NodeId(base.centre));
+  std::vector<std::vector<int>> cycles;
+  for (std::size_t f = 0; f < p.face_edges.size(); ++f)
+    cycles.push_back(face_cycle(p, static_cast<int>(f)));
   // Of the centre, a face centre and an edge.
   Tetrahedra best;
   {
@@ -272,13 +276,13 @@ Tetrahedra best_tetrahedra(const Polyhedron& p, const CoarseBase& base, const He
     pts.push_back(centre);
     t.extra = {centre};
     t.extra_class = {NodeClass::interior()};
-    add_cones(p, pts, nv, t);
+    add_cones(cycles, pts, nv, t);
     t.name = "four hexahedra per tetrahedron of the centre over each face's triangles";
     if (t.quality > best.quality + 1e-9) best = std::move(t);
   }
   for (int v = 0; v < nv; ++v) {
     Tetrahedra t;
-    add_cones(p, points, v, t);
+    add_cones(cycles, points, v, t);
     t.name = "four hexahedra per tetrahedron of the cones from " + core::entity_name(vid(v)) +
              " over the faces away from it";
     if (t.quality > best.quality + 1e-9) best = std::move(t);

@@ -200,6 +200,7 @@ int finer_factor(const occ::Solid& solid, const grid::GridStats& first, std::siz
   return 0;
 }
 
+// `first`: the stats of the grid that made `result`; the finer grid's once it replaces it.
 void finer_grid(const occ::Solid& solid, const MeshOptions& options, const core::SizeField& sizes,
                 const std::string& why, const core::Progress& progress,
                 std::chrono::steady_clock::time_point t0, grid::GridStats& first,

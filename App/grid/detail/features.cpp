@@ -383,15 +383,10 @@ FeatureCapture capture_features(core::HexMesh& mesh,
         it->second = it->second || direction(x, v).dot(direction(y, v)) > std::cos(20 * M_PI / 180);
     return it->second;
   };
-  // A cusp: two edges of one face leaving a common vertex tangentially (the face's angle
-  // there is zero; a circle tangent to a line: HexMe i03's Face10 at Vertex71, i13's Face49).
-  auto cusp = [&](core::EdgeId x, core::EdgeId y) {
-    if (!tangent_at_common_vertex(x, y)) return false;
-    for (core::FaceId f : solid.edge_faces(x))
-      for (core::FaceId g : solid.edge_faces(y))
-        if (f == g) return true;
-    return false;
-  };
+  // Cusps: two edges of one face leaving a common vertex tangentially (the face's angle
+  // there is zero; a circle tangent to a line: HexMe i03's Face10 at Vertex71). Per edge
+  // (by id value), the edges it forms one with.
+  std::vector<std::set<int>> cusp_partners(solid.num_edges() + 1);
   {
     std::vector<std::vector<core::EdgeId>> edges_at(solid.num_vertices() + 1);
     for (core::EdgeId e : solid.edges())
@@ -403,8 +398,17 @@ FeatureCapture capture_features(core::HexMesh& mesh,
     for (core::VertexId v : solid.vertices()) {
       const std::vector<core::EdgeId>& at = edges_at[v.value()];
       bool found = false;
-      for (std::size_t i = 0; i < at.size() && !found; ++i)
-        for (std::size_t j = i + 1; j < at.size() && !found; ++j) found = cusp(at[i], at[j]);
+      for (std::size_t i = 0; i < at.size(); ++i)
+        for (std::size_t j = i + 1; j < at.size(); ++j) {
+          const std::vector<core::FaceId> fi = solid.edge_faces(at[i]);
+          const std::vector<core::FaceId> fj = solid.edge_faces(at[j]);
+          if (std::find_first_of(fi.begin(), fi.end(), fj.begin(), fj.end()) == fi.end() ||
+              !tangent_at_common_vertex(at[i], at[j]))
+            continue;
+          cusp_partners[at[i].value()].insert(at[j].value());
+          cusp_partners[at[j].value()].insert(at[i].value());
+          found = true;
+        }
       if (found) r.cusps.push_back(v);
     }
   }
@@ -505,11 +509,10 @@ FeatureCapture capture_features(core::HexMesh& mesh,
     // kCuspShare cells of this curve, are open to it first (shared: the tip of the face
     // between them, narrower than that, gets no quads).
     std::unordered_set<std::int32_t> at_cusp;
-    if (share_cusps)
+    if (share_cusps && !cusp_partners[e.value()].empty())
       for (std::int32_t n : blocked) {
         const NodeClass c = mesh.node_class(NodeId(n));
-        if (!on_feature.count(n) || c.dim != 1 || c.id == e.value() || !cusp(e, core::EdgeId(c.id)))
-          continue;
+        if (!on_feature.count(n) || c.dim != 1 || !cusp_partners[e.value()].count(c.id)) continue;
         const Vec3 p = mesh.point(NodeId(n));
         if ((solid.project_to_edge(e, p) - p).norm() < kCuspShare * size) at_cusp.insert(n);
       }
