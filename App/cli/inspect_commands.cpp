@@ -214,6 +214,9 @@ int run_plane_cuts(const std::string& input, const std::string& brep_path, doubl
   if (!along.empty()) std::cout << "  cut along: " << along << "\n";
   if (const std::string left_out = decompose::left_out_text(cut); !left_out.empty())
     std::cout << "  left out (OCCT's cut along them with the others failed): " << left_out << "\n";
+  if (cut.merges_checked_each)
+    std::cout << "  merged again with each merge's neighbours checked (merged without, a piece "
+                 "had no scheme once glued)\n";
   if (cut.knife_edges)
     std::cout << "  knife edges: pieces meet a planar face that touches a cylinder cut along at "
                  "an angle near zero; where they do not mesh, the mesher cuts with "

@@ -229,6 +229,7 @@ std::string plane_cuts_json(const PlaneCutResult& cut, const PlaneCutSchemes& sc
                                 {"volume", cut.pieces[i].volume()}});
   }
   j["knife_edges"] = cut.knife_edges;
+  j["merges_checked_each"] = cut.merges_checked_each;
   j["cut_surfaces"] = json::array();
   for (std::size_t i = 0; i < cut.surfaces.size(); ++i) {
     const CutSurface& c = cut.surfaces[i];

@@ -60,6 +60,10 @@ struct PlaneCutResult {
   // of the solid (a knife), and a cylinder cut along is touched tangently by a planar face:
   // the cut with PlaneCutOptions::tangent_planes may do better.
   bool knife_edges = false;
+  // The merging, run first without checking each merge's neighbours (the whole checked at the
+  // end), did not end meshable and was run again from the cut with each merge's
+  // neighbourhood checked.
+  bool merges_checked_each = false;
   bool ok = false;
   std::string why_not;  // when not ok: a sentence fragment
 };

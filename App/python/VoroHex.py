@@ -750,7 +750,9 @@ class Decomposition:
     "face" (the model face it extends, "Face7"), "concave_edges" (where it is taken,
     ["Edge12", ...]) and "used" (False: left out); knife_edges: pieces meet at an angle near
     zero where a planar face touches a cylinder cut along (the mesher then tries
-    tangent_planes=True where they do not mesh).
+    tangent_planes=True where they do not mesh); merges_checked_each: the merging, run first
+    without checking each merge's neighbours, left a piece without a scheme and was run
+    again checking them.
     """
 
     def __init__(self, data, shapes):
@@ -764,6 +766,7 @@ class Decomposition:
         self.method = data.get("method", "voronoi")
         self.cut_surfaces = data.get("cut_surfaces", [])
         self.knife_edges = data.get("knife_edges", False)
+        self.merges_checked_each = data.get("merges_checked_each", False)
 
     ok = property(lambda self: self.status != "failed",
                   doc="False when the solid could not be cut (see diagnostics)")

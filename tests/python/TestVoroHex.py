@@ -234,6 +234,10 @@ class TestVoroHexApi(unittest.TestCase):
         self.assertEqual(d.counts["cylinders"], 1)
         self.assertEqual(d.counts["sub_volumes_before_merge"], 3)
         self.assertEqual(sorted(sv["scheme"] for sv in d.sub_volumes), ["multisweep", "sweep"])
+        # Merged without checking each merge's neighbours, the post and the piece under it
+        # become one cylinder, which the plate's top circle splits once glued (no sweep): the
+        # merging ran again checking each merge.
+        self.assertTrue(d.merges_checked_each)
         # Why the cuts are where they are: the plate's top plane and the post's cylinder,
         # both taken at the circle where the post stands on the plate.
         self.assertEqual([c["kind"] for c in d.cut_surfaces], ["plane", "cylinder"])

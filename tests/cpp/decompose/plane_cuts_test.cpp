@@ -118,6 +118,9 @@ TEST(PlaneCuts, RoundPostOnPlateIsCutAroundAndUnderThePost) {
   EXPECT_EQ(r.cylinders, 1);
   EXPECT_EQ(r.pieces_before_merge, 3);
   EXPECT_EQ(r.pieces.size(), 3u);  // post + column is a cylinder, but split by the plate's circle
+  // Merged without checking each merge's neighbours, the post and the column became that
+  // cylinder, no sweep once the plate is glued to it: merged again, checking each merge.
+  EXPECT_TRUE(r.merges_checked_each);
   // The cylinder at the plate's corner (a quarter of it over the plate): cut as well.
   std::unique_ptr<occ::Solid> corner =
       occ::fuse_solids(occ::make_box(4, 4, 1), occ::make_cylinder(1, 3));
@@ -261,6 +264,22 @@ TEST(PlaneCuts, FusingTwoPiecesLeavesTheOthersAsTheyWere) {
             << "piece " << k + 1 << " after fusing pieces " << a + 1 << " and " << b + 1;
     }
   EXPECT_EQ(fused, 40);
+}
+
+// The merging runs first without checking each merge's neighbourhood (gluing two rings of
+// pieces: most of its time), the whole checked once at the end. HexMe i22: its 80 pieces merge
+// into four multisweeps that way (each neighbourhood check passed before too), 20 -> 5 s.
+TEST(PlaneCuts, MergesRunWithoutNeighbourChecksWhereTheWholeStaysMeshable) {
+  const occ::ReadResult in = occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/i22o_s27.step");
+  ASSERT_TRUE(in.ok()) << "HexMe model i22 not found in " << VOROHEX_HEXME_DIR;
+  PlaneCutOptions o;
+  o.time_limit = 120;  // not the limit under test: ctest runs two at once
+  const PlaneCutResult r = cut_at_concave_edges(*in.solid, o);
+  ASSERT_TRUE(r.ok) << r.why_not;
+  EXPECT_EQ(r.pieces_before_merge, 80);
+  EXPECT_EQ(r.pieces.size(), 4u);
+  EXPECT_FALSE(r.merges_checked_each);
+  expect_fill_with_schemes(*in.solid, r);
 }
 
 // HexMe i18: OCCT's splitter cuts it along each of its 10 planes and 4 cylinders on its own,
