@@ -77,10 +77,9 @@ constexpr double kThinGridSeconds = 40;
 constexpr double kThinGridDeadline = 45;
 constexpr double kCuspGridDeadline = 50;
 // The jittered grid (jittered_grid): its size against the mesh's, its deadline since the start
-// of meshing, the least time it is started with.
+// of meshing.
 constexpr double kJitterFactor = 0.93;
 constexpr double kJitterDeadline = 50;
-constexpr double kJitterMinSeconds = 8;
 // A first grid mesh whose volume is off by more than this before smoothing (run_fallback).
 constexpr double kTangledVolume = 0.1;
 
@@ -199,6 +198,26 @@ void finer_grid(const occ::Solid& solid, const MeshOptions& options, const core:
   result.diagnostics.push_back(core::make_info("grid_refined_failed", s.str()));
 }
 
+// What making the grid mesh `used` describes again takes: its grid (tessellation, core,
+// pillow layer, capture) and the smoothing and check of its mesh (`result`).
+double grid_seconds(const grid::GridStats& used, const MeshResult& result) {
+  return used.seconds_core + used.seconds_pillow + used.seconds_features +
+         result.stats.seconds_smoothing + result.stats.seconds_checking;
+}
+
+// Whether a retry predicted to take `predicted` seconds fits in the `seconds` left; if not,
+// an info says so (`what` begins its sentence: "... not made again"). HexMe i09, whose worst
+// hexahedron lies at a cusp: its cusp retry, given the 20 s left, was stopped at that limit
+// (the run 40 -> 52 s, for nothing); a grid mesh like its own takes about 25 s.
+bool in_time(const std::string& what, double predicted, double seconds, MeshResult& result) {
+  if (predicted <= seconds) return true;
+  std::ostringstream s;
+  s << what << " not made again: that would take about " << std::lround(predicted) << " s, and "
+    << std::max(0L, std::lround(seconds)) << " s are left.";
+  result.diagnostics.push_back(core::make_info("grid_retry_skipped", s.str()));
+  return false;
+}
+
 // A valid grid mesh below kPoorGridQuality whose worst hexahedron lies within six cells of
 // a cusp (two edges of one face leaving a vertex tangentially) is made again on its grid with
 // the chains at cusps sharing nodes (grid::GridOptions::share_cusps) within what is left of
@@ -220,7 +239,10 @@ void cusp_grid(const occ::Solid& solid, const MeshOptions& options, const core::
       std::find_if(used.cusp_points.begin(), used.cusp_points.end(),
                    [&](const core::Vec3& p) { return (p - worst).norm() < 6 * used.size_used; });
   const double seconds = std::min(kFinerGridSeconds, kCuspGridDeadline - seconds_since(t0));
-  if (near == used.cusp_points.end() || seconds < 5) return;
+  if (near == used.cusp_points.end()) return;
+  if (!in_time("The grid mesh's worst hexahedron lies at a cusp of the model, but it is",
+               grid_seconds(used, result), seconds, result))
+    return;
   const core::Progress budget = progress.with_time_limit(seconds);
   MeshResult again;
   again.stats.size_used = result.stats.size_used;
@@ -344,8 +366,11 @@ void jittered_grid(const occ::Solid& solid, const MeshOptions& options,
   const double size = used.size_used * kJitterFactor;
   const double cells = double(used.grid_cells[0]) * double(used.grid_cells[1]) *
                        double(used.grid_cells[2]) / std::pow(kJitterFactor, 3);
-  if (seconds < kJitterMinSeconds || cells > kFinerGridCells ||
+  if (cells > kFinerGridCells ||
       double(result.mesh.num_hexes()) / std::pow(kJitterFactor, 3) > double(options.max_hexes))
+    return;
+  if (!in_time("The poor grid mesh, whose grid left model features uncaptured, is",
+               grid_seconds(used, result) / std::pow(kJitterFactor, 3), seconds, result))
     return;
   const core::Progress budget = progress.with_time_limit(seconds);
   MeshResult again;
