@@ -539,9 +539,13 @@ std::string left_out_text(const PlaneCutResult& cut) {
 
 namespace {
 
-// Merges neighbouring pieces while the union is a block, a sweep or prismatic (and, when
-// `careful`, every piece around it stays so once glued: merge_keeps_meshable), each merge
-// taking one piece away, until none is left or the time is up. `volume`: per piece.
+std::vector<const occ::Solid*> pointers(const std::vector<occ::Solid>& v) {
+  std::vector<const occ::Solid*> out;
+  for (const occ::Solid& s : v) out.push_back(&s);
+  return out;
+}
+
+// Copies sharing the same OCCT shapes.
 std::vector<occ::Solid> clones(const std::vector<occ::Solid>& v) {
   std::vector<occ::Solid> out;
   out.reserve(v.size());
@@ -549,15 +553,13 @@ std::vector<occ::Solid> clones(const std::vector<occ::Solid>& v) {
   return out;
 }
 
+// Merges neighbouring pieces while the union is a block, a sweep or prismatic (and, when
+// `careful`, every piece around it stays so once glued: merge_keeps_meshable), each merge
+// taking one piece away, until none is left or the time is up. `volume`: per piece.
 template <class Seconds>
 void merge_neighbours(std::vector<occ::Solid>& pieces, std::vector<double>& volume,
                       const PlaneCutOptions& options, bool careful, double cut_into,
                       const Seconds& seconds, const core::Progress& progress) {
-  auto pointers = [](const std::vector<occ::Solid>& v) {
-    std::vector<const occ::Solid*> out;
-    for (const occ::Solid& s : v) out.push_back(&s);
-    return out;
-  };
   Touching touch = touching(pointers(pieces));
   // Pairs whose union is no block, sweep or prismatic part (or no union) stay so: they are
   // not fused again after each merge (ids: a merged piece gets a new one).
@@ -651,11 +653,6 @@ PlaneCutResult cut_along(const occ::Solid& solid, std::vector<Plane> planes,
                 std::to_string(options.max_pieces);
     return r;
   }
-  auto pointers = [](const std::vector<occ::Solid>& v) {
-    std::vector<const occ::Solid*> out;
-    for (const occ::Solid& s : v) out.push_back(&s);
-    return out;
-  };
   // Gluing many pieces is slow (HexMe i23's 89: 43 s); past kGlueFirst pieces, each must
   // have a scheme on its own before they are glued (gluing imprints edges on a piece, which
   // seldom gives it a scheme it had not).

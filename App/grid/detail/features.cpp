@@ -516,14 +516,18 @@ FeatureCapture capture_features(core::HexMesh& mesh,
         const Vec3 p = mesh.point(NodeId(n));
         if ((solid.project_to_edge(e, p) - p).norm() < kCuspShare * size) at_cusp.insert(n);
       }
+    // `blocked` without those (kept alongside it; a target among them stays blocked).
+    std::unordered_set<std::int32_t> open;
+    if (!at_cusp.empty())
+      for (std::int32_t n : blocked)
+        if (!at_cusp.count(n)) open.insert(n);
     for (std::int32_t target : targets) {
       if (!ok) break;
       std::vector<std::int32_t> piece;
       if (!at_cusp.empty()) {
-        std::unordered_set<std::int32_t> open;
-        for (std::int32_t n : blocked)
-          if (n == target || !at_cusp.count(n)) open.insert(n);
+        const bool blocked_too = at_cusp.count(target) && open.insert(target).second;
         piece = shortest_path(mesh, s, chain.back(), target, open, off_curve);
+        if (blocked_too) open.erase(target);
         for (std::size_t k = 1; k + 1 < piece.size(); ++k)
           if (at_cusp.count(piece[k])) shared.insert(piece[k]);
       }
@@ -544,6 +548,7 @@ FeatureCapture capture_features(core::HexMesh& mesh,
       for (std::size_t k = 1; k < piece.size(); ++k) {
         chain.push_back(piece[k]);
         blocked.insert(piece[k]);
+        if (!at_cusp.empty() && !at_cusp.count(piece[k])) open.insert(piece[k]);
       }
     }
     if (!ok || chain.size() < 2 || chain.back() != b) {

@@ -200,13 +200,12 @@ void finer_grid(const occ::Solid& solid, const MeshOptions& options, const core:
 
 // What making the grid mesh `used` describes again takes: its grid (tessellation, core,
 // pillow layer, capture) and the smoothing and check of its mesh (`result`).
-double grid_seconds(const grid::GridStats& used, const MeshResult& result) {
-  return used.seconds_core + used.seconds_pillow + used.seconds_features +
-         result.stats.seconds_smoothing + result.stats.seconds_checking;
-}
 // Its grid alone.
 double grid_seconds(const grid::GridStats& used) {
   return used.seconds_core + used.seconds_pillow + used.seconds_features;
+}
+double grid_seconds(const grid::GridStats& used, const MeshResult& result) {
+  return grid_seconds(used) + result.stats.seconds_smoothing + result.stats.seconds_checking;
 }
 
 // Whether a retry predicted to take `predicted` seconds fits in the `seconds` left; if not,
@@ -228,7 +227,7 @@ bool in_time(const std::string& what, double predicted, double seconds, MeshResu
 // kCuspGridDeadline, and used if valid and better. HexMe i03: 0.001 -> 0.26 (its worst 3.6
 // cells from the point). Not always: sharing broke HexMe i19 and i09 and lowered i21. Within
 // kFinerGridDeadline, as the finer grid, it needs 12-16 s and got 8-14 s on i03: stopped in
-// three of six runs; by 50 s it ends in time (i03 about 40-45 s in all).
+// three of six runs; by 50 s it ends in time (i03 in 28-36 s in all).
 void cusp_grid(const occ::Solid& solid, const MeshOptions& options, const core::SizeField& sizes,
                const std::string& why, const core::Progress& progress,
                std::chrono::steady_clock::time_point t0, const grid::GridStats& used,
@@ -279,69 +278,6 @@ void cusp_grid(const occ::Solid& solid, const MeshOptions& options, const core::
     s << ", it is not valid (" << core::error_codes(again.diagnostics) << ")";
   s << ": the first mesh stands.";
   result.diagnostics.push_back(core::make_info("grid_cusps_failed", s.str()));
-}
-
-}  // namespace
-
-// The grid mesher's composites: how far the final boundary strays from the real surface.
-void add_deviation(MeshResult& result, const occ::Solid& solid) {
-  if (result.absorbed.empty() || result.mesh.num_hexes() == 0) return;
-  const grid::CompositeDeviation d = grid::composite_deviation(result.mesh, solid, result.absorbed);
-  result.stats.absorbed_deviation = d.max;
-  result.diagnostics.push_back(grid::deviation_diagnostic(result.absorbed, d));
-}
-
-core::Diagnostic local_sizes_ignored(const std::string& scheme) {
-  return core::make_warning("local_sizes_ignored",
-                            "The " + scheme +
-                                " scheme meshes at the global size: the local sizes are not "
-                                "applied to this solid.");
-}
-
-// No structured scheme: the grid mesher (or, on request, tetrahedra split into
-// hexahedra), said so in a warning.
-// The grid mesher's stats go to grid_stats when given.
-bool fallback(const occ::Solid& solid, const MeshOptions& options, double size,
-              const std::string& why, const core::Progress& progress,
-              std::chrono::steady_clock::time_point t0, MeshResult& result,
-              grid::GridStats* grid_stats, bool share_cusps) {
-  if (options.fallback_scheme == "grid") {
-    result.stats.scheme = "grid";
-    grid::GridOptions o;
-    o.size = size;
-    o.share_cusps = share_cusps;
-    o.max_hexes = options.max_hexes;
-    // The optimisation is the global smoothing every result goes through (detail::finish).
-    o.laplacian_iterations = 0;
-    o.optimisation_passes = 0;
-    grid::GridResult g = grid::grid_mesh(solid, o, progress);
-    if (grid_stats) *grid_stats = g.stats;
-    append(result.diagnostics, g.diagnostics);
-    result.stats.seconds_meshing = seconds_since(t0);
-    if (!g.ok) return false;
-    result.mesh = std::move(g.mesh);
-    result.absorbed = std::move(g.absorbed);
-    result.diagnostics.push_back(core::make_warning(
-        "fallback", why + kMeshedByTheGrid +
-                        " (core grid, one pillow layer to the CAD, features captured); expect "
-                        "poorer elements at the boundary than a structured mesh."));
-    return true;
-  }
-  result.stats.scheme = "tet-split";
-  mesh::TetSplitOptions tet_options;
-  tet_options.size = size;
-  tet_options.max_hexes = options.max_hexes;
-  mesh::TetSplitResult split = mesh::tet_split(solid, tet_options, progress);
-  append(result.diagnostics, split.diagnostics);
-  result.stats.seconds_meshing = seconds_since(t0);
-  if (!split.ok) return false;
-  result.mesh = std::move(split.mesh);
-  result.diagnostics.push_back(core::make_warning(
-      "fallback",
-      why + " Meshed by the tetrahedral fallback instead: " + std::to_string(split.tetrahedra) +
-          " tetrahedra, each split into four hexahedra; expect poorer elements than a "
-          "structured mesh."));
-  return true;
 }
 
 // A grid mesh still valid but below kPoorGridQuality after the finer grid and the cusp retry,
@@ -422,6 +358,69 @@ void jittered_grid(const occ::Solid& solid, const MeshOptions& options,
     s << ", it is not valid (" << core::error_codes(again.diagnostics) << ")";
   s << ": the mesh before stands.";
   result.diagnostics.push_back(core::make_info("grid_jittered_failed", s.str()));
+}
+
+}  // namespace
+
+// The grid mesher's composites: how far the final boundary strays from the real surface.
+void add_deviation(MeshResult& result, const occ::Solid& solid) {
+  if (result.absorbed.empty() || result.mesh.num_hexes() == 0) return;
+  const grid::CompositeDeviation d = grid::composite_deviation(result.mesh, solid, result.absorbed);
+  result.stats.absorbed_deviation = d.max;
+  result.diagnostics.push_back(grid::deviation_diagnostic(result.absorbed, d));
+}
+
+core::Diagnostic local_sizes_ignored(const std::string& scheme) {
+  return core::make_warning("local_sizes_ignored",
+                            "The " + scheme +
+                                " scheme meshes at the global size: the local sizes are not "
+                                "applied to this solid.");
+}
+
+// No structured scheme: the grid mesher (or, on request, tetrahedra split into
+// hexahedra), said so in a warning.
+// The grid mesher's stats go to grid_stats when given.
+bool fallback(const occ::Solid& solid, const MeshOptions& options, double size,
+              const std::string& why, const core::Progress& progress,
+              std::chrono::steady_clock::time_point t0, MeshResult& result,
+              grid::GridStats* grid_stats, bool share_cusps) {
+  if (options.fallback_scheme == "grid") {
+    result.stats.scheme = "grid";
+    grid::GridOptions o;
+    o.size = size;
+    o.share_cusps = share_cusps;
+    o.max_hexes = options.max_hexes;
+    // The optimisation is the global smoothing every result goes through (detail::finish).
+    o.laplacian_iterations = 0;
+    o.optimisation_passes = 0;
+    grid::GridResult g = grid::grid_mesh(solid, o, progress);
+    if (grid_stats) *grid_stats = g.stats;
+    append(result.diagnostics, g.diagnostics);
+    result.stats.seconds_meshing = seconds_since(t0);
+    if (!g.ok) return false;
+    result.mesh = std::move(g.mesh);
+    result.absorbed = std::move(g.absorbed);
+    result.diagnostics.push_back(core::make_warning(
+        "fallback", why + kMeshedByTheGrid +
+                        " (core grid, one pillow layer to the CAD, features captured); expect "
+                        "poorer elements at the boundary than a structured mesh."));
+    return true;
+  }
+  result.stats.scheme = "tet-split";
+  mesh::TetSplitOptions tet_options;
+  tet_options.size = size;
+  tet_options.max_hexes = options.max_hexes;
+  mesh::TetSplitResult split = mesh::tet_split(solid, tet_options, progress);
+  append(result.diagnostics, split.diagnostics);
+  result.stats.seconds_meshing = seconds_since(t0);
+  if (!split.ok) return false;
+  result.mesh = std::move(split.mesh);
+  result.diagnostics.push_back(core::make_warning(
+      "fallback",
+      why + " Meshed by the tetrahedral fallback instead: " + std::to_string(split.tetrahedra) +
+          " tetrahedra, each split into four hexahedra; expect poorer elements than a "
+          "structured mesh."));
+  return true;
 }
 
 FallbackOutcome run_fallback(const occ::Solid& solid, const MeshOptions& options,
