@@ -46,8 +46,8 @@ const char* const kDecomposeUsage =
     "                         cuts along the planes and cylinders of the faces at concave\n"
     "                         edges, neighbours merged while the union has a scheme; the\n"
     "                         pieces are written also when one has no scheme (exit 1);\n"
-    "                         with it, only -o, --time-limit and --quiet (the options\n"
-    "                         below are the Voronoi one's)\n"
+    "                         with it, only -o, --no-merge, --time-limit and --quiet (the\n"
+    "                         options below are the Voronoi one's)\n"
     "  --tangent-planes       with --plane-cuts: a cylinder that a planar face touches\n"
     "                         tangently is replaced by the plane tangent to it across its\n"
     "                         concave edges (what the mesher tries where the pieces have\n"
@@ -61,7 +61,9 @@ const char* const kDecomposeUsage =
     "                         with type (Vs/Ve), scheme and reason, counts before/after merging\n"
     "  --vtp FILE             the decomposition faces as VTK PolyData for ParaView\n"
     "  --sharp-angle DEG      dihedral angle below which a [1] edge becomes [1s] (60)\n"
-    "  --no-merge             keep the sub-volumes of the first split\n" VOROHEX_GRAPH_OPTIONS_HELP
+    "  --no-merge             keep the sub-volumes of the first split (with --plane-cuts:\n"
+    "                         the pieces of the cut, each checked for a "
+    "scheme)\n" VOROHEX_GRAPH_OPTIONS_HELP
     "exit: 0 written, 1 decomposition failed (the report, if asked for, says why), 2 bad input\n";
 
 #undef VOROHEX_GRAPH_OPTIONS_HELP
@@ -181,13 +183,14 @@ int run_voronoi(const std::vector<std::string>& args) {
 // vorohex decompose --plane-cuts: the pieces, each with the scheme it gets once glued to the
 // others (or why it has none).
 int run_plane_cuts(const std::string& input, const std::string& brep_path, double time_limit,
-                   bool tangent_planes, const core::Progress& progress) {
+                   bool tangent_planes, bool merge, const core::Progress& progress) {
   occ::ReadResult read = occ::read_solid(input);
   print_problems(read.diagnostics);
   if (!read.ok()) return kExitBadInput;
   decompose::PlaneCutOptions options;
   options.time_limit = time_limit;
   options.tangent_planes = tangent_planes;
+  options.merge = merge;
   const decompose::PlaneCutResult cut =
       decompose::cut_at_concave_edges(*read.solid, options, progress.with_time_limit(time_limit));
   if (cut.pieces.empty()) {
@@ -268,7 +271,8 @@ int run_decompose(const std::vector<std::string>& args) {
     return parse_number(s, &options.sharp_angle);
   };
   t.flags["--no-merge"] = [&] { options.merge = false; };
-  // Every option but -o is the Voronoi decomposition's: noted, to refuse it with --plane-cuts.
+  // Every option but -o and --no-merge is the Voronoi decomposition's: noted, to refuse it
+  // with --plane-cuts.
   std::string voronoi_option;
   for (auto& [name, handler] : t.values)
     if (name != "-o" && name != "--output")
@@ -277,10 +281,11 @@ int run_decompose(const std::vector<std::string>& args) {
         return inner(v);
       };
   for (auto& [name, handler] : t.flags)
-    handler = [&, name = name, inner = handler] {
-      voronoi_option = name;
-      inner();
-    };
+    if (name != "--no-merge")
+      handler = [&, name = name, inner = handler] {
+        voronoi_option = name;
+        inner();
+      };
   bool plane_cuts = false, tangent_planes = false, quiet = false;
   double time_limit = 30;
   t.flags["--plane-cuts"] = [&] { plane_cuts = true; };
@@ -298,9 +303,9 @@ int run_decompose(const std::vector<std::string>& args) {
     if (!voronoi_option.empty())
       return usage_error(voronoi_option +
                              " is an option of the Voronoi decomposition; --plane-cuts takes "
-                             "only -o, --time-limit and --quiet",
+                             "only -o, --no-merge, --time-limit and --quiet",
                          kDecomposeUsage);
-    return run_plane_cuts(input, brep_path, time_limit, tangent_planes, progress);
+    return run_plane_cuts(input, brep_path, time_limit, tangent_planes, options.merge, progress);
   }
   if (tangent_planes)
     return usage_error("--tangent-planes is an option of --plane-cuts", kDecomposeUsage);

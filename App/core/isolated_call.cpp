@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <csignal>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -19,6 +20,9 @@
 #endif
 #ifdef __linux__
 #include <sys/prctl.h>
+#endif
+#ifdef VOROHEX_HAVE_FORK
+#include <sys/socket.h>
 #endif
 
 namespace vorohex::core {
@@ -74,9 +78,171 @@ bool write_all(int fd, const char* p, std::size_t n) {
   ::close(fd);
   ::_exit(written ? 0 : 3);
 }
+
+bool read_all(int fd, char* p, std::size_t n) {
+  while (n > 0) {
+    const ssize_t r = ::read(fd, p, n);
+    if (r < 0 && errno == EINTR) continue;
+    if (r <= 0) return false;
+    p += r;
+    n -= static_cast<std::size_t>(r);
+  }
+  return true;
+}
+
+// Writes to a socket without SIGPIPE when the other end is gone (false instead).
+bool send_all(int fd, const char* p, std::size_t n) {
+  while (n > 0) {
+    const ssize_t w = ::send(fd, p, n, MSG_NOSIGNAL);
+    if (w < 0 && errno == EINTR) continue;
+    if (w <= 0) return false;
+    p += w;
+    n -= static_cast<std::size_t>(w);
+  }
+  return true;
+}
+
+// A message: its length (8 bytes, this machine's order: both ends are one program), then it.
+bool send_message(int fd, const std::string& m) {
+  const std::uint64_t n = m.size();
+  return send_all(fd, reinterpret_cast<const char*>(&n), sizeof n) && send_all(fd, m.data(), n);
+}
+
+// The server's child: requests in, results out (kResult or kException first), until the
+// caller closes its end.
+[[noreturn]] void serve(int fd, const IsolatedServer::Handler& handler, pid_t parent) {
+#ifdef __linux__
+  ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+  if (::getppid() != parent) ::_exit(4);
+#else
+  (void)parent;
+#endif
+  for (;;) {
+    std::uint64_t n = 0;
+    if (!read_all(fd, reinterpret_cast<char*>(&n), sizeof n)) ::_exit(0);
+    std::string request(n, '\0');
+    if (!read_all(fd, request.data(), n)) ::_exit(0);
+    std::string out;
+    try {
+      out = kResult + handler(request);
+    } catch (const std::exception& ex) {
+      out = kException + std::string(ex.what());
+    } catch (...) {
+      out = kException + std::string("unknown exception");
+    }
+    if (!send_message(fd, out)) ::_exit(3);
+  }
+}
 #endif
 
 }  // namespace
+
+bool IsolatedServer::start() {
+#ifdef VOROHEX_HAVE_FORK
+  int fds[2];
+  if (::socketpair(AF_UNIX, SOCK_STREAM, 0, fds) != 0) return false;
+  const pid_t parent = ::getpid();
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    ::close(fds[0]);
+    serve(fds[1], handler_, parent);
+  }
+  ::close(fds[1]);
+  if (pid < 0) {
+    ::close(fds[0]);
+    return false;
+  }
+  pid_ = pid, fd_ = fds[0];
+  ++forks_;
+  return true;
+#else
+  return false;
+#endif
+}
+
+void IsolatedServer::stop() {
+#ifdef VOROHEX_HAVE_FORK
+  if (pid_ > 0) {
+    ::close(fd_);  // the child reads the end of its requests and exits
+    ::kill(pid_, SIGKILL);
+    int status = 0;
+    while (::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
+    }
+  }
+#endif
+  pid_ = fd_ = -1;
+}
+
+IsolatedResult IsolatedServer::call(const std::string& request, const Progress& progress) {
+#ifdef VOROHEX_HAVE_FORK
+  IsolatedResult r;
+  // A child that died since the last call (its end closed) fails the send: started anew once.
+  bool sent = (pid_ > 0 || start()) && send_message(fd_, request);
+  if (!sent && pid_ > 0) {
+    stop();
+    sent = start() && send_message(fd_, request);
+  }
+  if (!sent) {
+    stop();
+    return run_here([&] { return handler_(request); });
+  }
+  std::string bytes;
+  std::uint64_t length = 0;
+  bool have_length = false;
+  char buffer[1 << 16];
+  for (;;) {
+    pollfd p{fd_, POLLIN, 0};
+    const int ready = ::poll(&p, 1, 50);
+    if (ready > 0) {
+      const ssize_t n = ::read(fd_, buffer, sizeof buffer);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) break;  // the child died
+      bytes.append(buffer, static_cast<std::size_t>(n));
+      if (!have_length && bytes.size() >= sizeof length) {
+        std::memcpy(&length, bytes.data(), sizeof length);
+        bytes.erase(0, sizeof length);
+        have_length = true;
+      }
+      if (have_length && bytes.size() >= length) break;
+      continue;
+    }
+    if (progress.cancelled()) {
+      stop();
+      r.status = IsolatedResult::Status::cancelled;
+      r.message = progress.timed_out() ? "the time limit was reached" : "cancelled";
+      return r;
+    }
+  }
+  if (!have_length || bytes.size() < length || bytes.empty()) {
+    // Ended without a whole result: a crash (its signal, once reaped).
+    const pid_t pid = pid_;
+    ::close(fd_);
+    int status = 0;
+    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    }
+    pid_ = fd_ = -1;
+    r.status = IsolatedResult::Status::crashed;
+    if (WIFSIGNALED(status)) {
+      r.signal = WTERMSIG(status);
+      r.message = "the computation crashed with " + signal_name(r.signal);
+    } else {
+      r.message = "the computation ended without a result";
+    }
+    return r;
+  }
+  if (bytes[0] == kException) {
+    r.status = IsolatedResult::Status::failed;
+    r.message = bytes.substr(1);
+    return r;
+  }
+  r.status = IsolatedResult::Status::ok;
+  r.data = bytes.substr(1);
+  return r;
+#else
+  (void)progress;
+  return run_here([&] { return handler_(request); });
+#endif
+}
 
 std::string signal_name(int signal) {
   switch (signal) {

@@ -591,6 +591,7 @@ void merge_pass(const occ::Solid& solid, const VoronoiGraph& g, double tol, doub
                 const core::Progress& progress, DecompositionResult& r) {
   std::set<std::vector<const occ::Solid*>> rejected;
   const auto start = Clock::now();
+  occ::Fuser fuser;  // the unions' unifications in one child process
   for (bool merged = true; merged;) {
     merged = false;
     const int n = int(r.sub_volumes.size());
@@ -639,15 +640,14 @@ void merge_pass(const occ::Solid& solid, const VoronoiGraph& g, double tol, doub
         u = std::make_unique<occ::Solid>(solid.clone());
       } else {
         // OCCT's face unification in a fuse can run without end: with a limit, it gets
-        // the time left (occ::fuse_solids).
+        // the time left (occ::Fuser).
         auto left = [&] {
           const double spent = std::chrono::duration<double>(Clock::now() - start).count();
           return time_limit > 0 ? std::max(0.5, time_limit - spent) : 0.0;
         };
-        u = occ::fuse_solids(*r.sub_volumes[group[0]].solid, *r.sub_volumes[group[1]].solid,
-                             left());
+        u = fuser.fuse(*r.sub_volumes[group[0]].solid, *r.sub_volumes[group[1]].solid, left());
         for (std::size_t k = 2; u && k < group.size(); ++k)
-          u = occ::fuse_solids(*u, *r.sub_volumes[group[k]].solid, left());
+          u = fuser.fuse(*u, *r.sub_volumes[group[k]].solid, left());
       }
       if (!u || !mesh::sweep_applicable(*u).ok) {
         rejected.insert(key);

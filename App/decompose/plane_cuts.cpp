@@ -65,23 +65,31 @@ bool meshable(const occ::Solid& s, bool multisweep) {
          (multisweep && mesh::multisweep_applicable(s).ok);
 }
 
-// Each part of the glued pieces a block, a sweep or prismatic (gluing imprints a
+// The pieces glued (imprinting each other's edges where they touch).
+occ::ReadResult glued(const std::vector<const occ::Solid*>& pieces) {
+  return occ::glue_solids(pieces, "The plane cut", touching_only());
+}
+
+// Each part of the glued pieces `g` a block, a sweep or prismatic (gluing imprints a
 // neighbour's edges); `why` (when given) names the first that is none.
-bool all_meshable(const std::vector<const occ::Solid*>& pieces, bool multisweep,
-                  std::string* why = nullptr) {
-  const occ::ReadResult r = occ::glue_solids(pieces, "The plane cut", touching_only());
-  if (!r.ok()) {
-    if (why) *why = r.diagnostics.empty() ? "they do not glue" : r.diagnostics[0].message;
+bool all_meshable(const occ::ReadResult& g, bool multisweep, std::string* why = nullptr) {
+  if (!g.ok()) {
+    if (why) *why = g.diagnostics.empty() ? "they do not glue" : g.diagnostics[0].message;
     return false;
   }
   if (!why) {
-    for (int k = 0; k < r.solid->num_solids(); ++k)
-      if (!meshable(r.solid->part(k), multisweep)) return false;
+    for (int k = 0; k < g.solid->num_solids(); ++k)
+      if (!meshable(g.solid->part(k), multisweep)) return false;
     return true;
   }
-  const mesh::SubVolumePlan plan = mesh::plan_sub_volumes(*r.solid, multisweep);
+  const mesh::SubVolumePlan plan = mesh::plan_sub_volumes(*g.solid, multisweep);
   *why = plan.why_not;
   return plan.ok;
+}
+
+bool all_meshable(const std::vector<const occ::Solid*>& pieces, bool multisweep,
+                  std::string* why = nullptr) {
+  return all_meshable(glued(pieces), multisweep, why);
 }
 
 // The same cylinder (axis line and radius within `tol`).
@@ -337,13 +345,13 @@ int piece_of(const occ::Solid& part, const std::vector<core::BoundingBox>& boxes
 
 // Which pieces touch once glued (share a vertex, so also those sharing an edge or a face);
 // a piece whose glued part cannot be told by its box touches every piece its box touches.
+// `r`: the pieces glued.
 using Touching = std::vector<std::vector<char>>;
-Touching touching(const std::vector<const occ::Solid*>& pieces) {
+Touching touching(const std::vector<const occ::Solid*>& pieces, const occ::ReadResult& r) {
   const std::size_t n = pieces.size();
   Touching t(n, std::vector<char>(n, 0));
   std::vector<char> known(n, 0);
   const std::vector<core::BoundingBox> boxes = boxes_of(pieces);
-  const occ::ReadResult r = occ::glue_solids(pieces, "The plane cut", touching_only());
   if (r.ok()) {
     std::map<int, std::vector<std::size_t>> at_vertex;
     for (int k = 0; k < r.solid->num_solids(); ++k) {
@@ -555,18 +563,18 @@ std::vector<occ::Solid> clones(const std::vector<occ::Solid>& v) {
 
 // Merges neighbouring pieces while the union is a block, a sweep or prismatic (and, when
 // `careful`, every piece around it stays so once glued: merge_keeps_meshable), each merge
-// taking one piece away, until none is left or the time is up. `volume`: per piece.
+// taking one piece away, until none is left or the time is up. `volume`, `touch`: per piece.
 template <class Seconds>
-void merge_neighbours(std::vector<occ::Solid>& pieces, std::vector<double>& volume,
+void merge_neighbours(std::vector<occ::Solid>& pieces, std::vector<double>& volume, Touching touch,
                       const PlaneCutOptions& options, bool careful, double cut_into,
                       const Seconds& seconds, const core::Progress& progress) {
-  Touching touch = touching(pointers(pieces));
   // Pairs whose union is no block, sweep or prismatic part (or no union) stay so: they are
   // not fused again after each merge (ids: a merged piece gets a new one).
   std::vector<int> id(pieces.size());
   for (std::size_t k = 0; k < id.size(); ++k) id[k] = int(k);
   int next_id = int(id.size());
   std::set<std::pair<int, int>> no_union;
+  occ::Fuser fuser;
   for (bool merged = true; merged && pieces.size() > 1 && seconds() < options.time_limit;) {
     // The second half: the merges, each taking one piece away.
     progress.report("plane_cuts", 0.5 + 0.5 * (1 - double(pieces.size()) / cut_into));
@@ -578,8 +586,8 @@ void merge_neighbours(std::vector<occ::Solid>& pieces, std::vector<double>& volu
         // OCCT's face unification in the fuse can run without end (HexMe i15's cuts, with
         // the caps raised): it gets the time left.
         std::unique_ptr<occ::Solid> u =
-            occ::fuse_solids(pieces[a], pieces[b], std::max(0.5, options.time_limit - seconds()),
-                             /*split_faces_if_unification_fails=*/true);
+            fuser.fuse(pieces[a], pieces[b], std::max(0.5, options.time_limit - seconds()),
+                       /*split_faces_if_unification_fails=*/true);
         // A union OCCT turned inside out, or that lost volume, is no union.
         const double both = volume[a] + volume[b], uv = u ? u->volume() : 0;
         if (!u || !(uv > 0) || std::abs(uv - both) > kVolumeTolerance * both ||
@@ -667,7 +675,10 @@ PlaneCutResult cut_along(const occ::Solid& solid, std::vector<Plane> planes,
         return r;
       }
   std::string why;
-  if (!all_meshable(pointers(pieces), options.multisweep, &why)) {
+  // Glued once: whether every piece has a scheme, and which touch (both merge passes start
+  // from it; gluing HexMe i22's 80 pieces takes about a second).
+  const occ::ReadResult cut_glued = glued(pointers(pieces));
+  if (!all_meshable(cut_glued, options.multisweep, &why)) {
     r.why_not = "the surfaces of its concave edges cut it into " + std::to_string(pieces.size()) +
                 " pieces: " + why;
     r.pieces = std::move(pieces);
@@ -680,17 +691,27 @@ PlaneCutResult cut_along(const occ::Solid& solid, std::vector<Plane> planes,
   // whole checked once at the end; where that fails, again from the cut with each merge's
   // neighbours checked. HexMe i22 (80 pieces, 76 merges, each of whose checks passed): the
   // merges 18 -> 6 s.
+  if (!options.merge) {
+    progress.report("plane_cuts", 1.0);
+    r.pieces = std::move(pieces);
+    r.ok = r.pieces.size() >= 2;
+    if (!r.ok) r.why_not = "its cuts leave it in one piece";
+    return r;
+  }
   const std::vector<occ::Solid> cut = clones(pieces);
   const std::vector<double> cut_volume = volume;
+  const Touching cut_touch = touching(pointers(pieces), cut_glued);
   const double cut_into = double(pieces.size());
-  merge_neighbours(pieces, volume, options, /*careful=*/false, cut_into, seconds, progress);
+  merge_neighbours(pieces, volume, cut_touch, options, /*careful=*/false, cut_into, seconds,
+                   progress);
   bool fills = volumes_fill(pieces, whole, volume, r.why_not);
   bool meshes = fills && all_meshable(pointers(pieces), options.multisweep, &why);
   if (!meshes && seconds() < options.time_limit) {
     r.merges_checked_each = true;
     pieces = clones(cut);
     volume = cut_volume;
-    merge_neighbours(pieces, volume, options, /*careful=*/true, cut_into, seconds, progress);
+    merge_neighbours(pieces, volume, cut_touch, options, /*careful=*/true, cut_into, seconds,
+                     progress);
     fills = volumes_fill(pieces, whole, volume, r.why_not);
     // The merges were checked on their neighbourhoods; the whole is checked once more.
     meshes = fills && all_meshable(pointers(pieces), options.multisweep, &why);

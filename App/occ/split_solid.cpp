@@ -146,42 +146,77 @@ double unification_bound(std::size_t solids) {
   return 2.0 + 0.1 * double(solids);
 }
 
+// Each solid unified, in order (a solid may become several), into one compound.
+TopoDS_Compound unified_solids(const std::vector<TopoDS_Solid>& solids, bool or_as_is) {
+  BRep_Builder b;
+  TopoDS_Compound c;
+  b.MakeCompound(c);
+  for (const TopoDS_Solid& s : solids) {
+    const TopoDS_Shape u = unified(s, or_as_is);
+    for (TopExp_Explorer ex(u, TopAbs_SOLID); ex.More(); ex.Next()) b.Add(c, ex.Current());
+  }
+  return c;
+}
+
+// The solids of a shape, in order.
+std::vector<TopoDS_Solid> solids_of(const TopoDS_Shape& c) {
+  std::vector<TopoDS_Solid> out;
+  for (TopExp_Explorer ex(c, TopAbs_SOLID); ex.More(); ex.Next())
+    out.push_back(TopoDS::Solid(ex.Current()));
+  return out;
+}
+
+// A unification as bytes for a server's child (core::IsolatedServer): with or_as_is ('1' or
+// '0') first, then the solids as a BREP compound; its result the unified compound.
+std::string unification_request(const std::vector<TopoDS_Solid>& solids, bool or_as_is) {
+  BRep_Builder b;
+  TopoDS_Compound c;
+  b.MakeCompound(c);
+  for (const TopoDS_Solid& s : solids) b.Add(c, s);
+  std::ostringstream text;
+  text << (or_as_is ? '1' : '0');
+  BRepTools::Write(c, text);
+  return text.str();
+}
+
+std::string serve_unification(const std::string& request) {
+  if (request.empty()) throw std::runtime_error("an empty unification request");
+  std::istringstream in(request.substr(1));
+  TopoDS_Shape c;
+  BRep_Builder b;
+  BRepTools::Read(c, in, b);
+  if (c.IsNull()) throw std::runtime_error("the unification's solids did not arrive");
+  std::ostringstream text;
+  BRepTools::Write(unified_solids(solids_of(c), request[0] == '1'), text);
+  return text.str();
+}
+
 // Each solid unified, in order (a solid may become several). OCCT's unification takes no
 // progress indicator and can loop without end: HexMe i02's plane cuts leave a piece (planes
 // and cylinders crossing, B-spline intersection edges) on which ShapeUpgrade_UnifySameDomain
 // still ran after 12 min, with every face kept or none. So with a time limit (`seconds` > 0,
 // and at most unification_bound) it runs in a child process, stopped at the limit
-// (`timed_out`). "" when done, else why not.
+// (`timed_out`): `server`'s when given (serve_unification), else one of its own. "" when
+// done, else why not.
 std::string unified_within(const std::vector<TopoDS_Solid>& solids, double seconds,
-                           std::vector<TopoDS_Solid>& out, bool& timed_out, bool or_as_is = false) {
-  auto unify_all = [&solids, or_as_is] {
-    BRep_Builder b;
-    TopoDS_Compound c;
-    b.MakeCompound(c);
-    for (const TopoDS_Solid& s : solids) {
-      const TopoDS_Shape u = unified(s, or_as_is);
-      for (TopExp_Explorer ex(u, TopAbs_SOLID); ex.More(); ex.Next()) b.Add(c, ex.Current());
-    }
-    return c;
-  };
-  auto solids_of = [&out](const TopoDS_Shape& c) {
-    out.clear();
-    for (TopExp_Explorer ex(c, TopAbs_SOLID); ex.More(); ex.Next())
-      out.push_back(TopoDS::Solid(ex.Current()));
-  };
+                           std::vector<TopoDS_Solid>& out, bool& timed_out, bool or_as_is = false,
+                           core::IsolatedServer* server = nullptr) {
   if (seconds <= 0) {
-    solids_of(unify_all());
+    out = solids_of(unified_solids(solids, or_as_is));
     return "";
   }
   const bool bounded = seconds > unification_bound(solids.size());
   seconds = std::min(seconds, unification_bound(solids.size()));
-  const core::IsolatedResult run = core::isolated_call(
-      [&] {
-        std::ostringstream text;
-        BRepTools::Write(unify_all(), text);
-        return text.str();
-      },
-      core::Progress().with_time_limit(seconds));
+  const core::Progress limit = core::Progress().with_time_limit(seconds);
+  const core::IsolatedResult run =
+      server ? server->call(unification_request(solids, or_as_is), limit)
+             : core::isolated_call(
+                   [&] {
+                     std::ostringstream text;
+                     BRepTools::Write(unified_solids(solids, or_as_is), text);
+                     return text.str();
+                   },
+                   limit);
   // Stopped at the bound, the unification failed; at the caller's limit, time ran out.
   const bool stopped = run.status == core::IsolatedResult::Status::cancelled;
   timed_out = stopped && !bounded;
@@ -200,7 +235,7 @@ std::string unified_within(const std::vector<TopoDS_Solid>& solids, double secon
   BRep_Builder b;
   BRepTools::Read(c, in, b);
   if (c.IsNull()) return "the split's pieces did not come back from merging their faces";
-  solids_of(c);
+  out = solids_of(c);
   return "";
 }
 
@@ -372,10 +407,10 @@ bool run_boolean(Operation& op, const Solid& a, const Solid& b) {
   return op.IsDone() && !op.HasErrors();
 }
 
-}  // namespace
-
-std::unique_ptr<Solid> fuse_solids(const Solid& a, const Solid& b, double time_limit,
-                                   bool split_faces_if_unification_fails) {
+// fuse_solids, its unification in `server`'s child when given.
+std::unique_ptr<Solid> fused_pair(const Solid& a, const Solid& b, double time_limit,
+                                  bool split_faces_if_unification_fails,
+                                  core::IsolatedServer* server) {
   try {
     BRepAlgoAPI_Fuse fuse;
     if (!run_boolean(fuse, a, b)) return nullptr;
@@ -384,7 +419,7 @@ std::unique_ptr<Solid> fuse_solids(const Solid& a, const Solid& b, double time_l
       fused.push_back(TopoDS::Solid(ex.Current()));
     if (fused.size() != 1) return nullptr;  // apart, or touching along an edge
     bool timed_out = false;
-    if (!unified_within(fused, time_limit, u, timed_out, split_faces_if_unification_fails)
+    if (!unified_within(fused, time_limit, u, timed_out, split_faces_if_unification_fails, server)
              .empty() ||
         u.size() != 1)
       return nullptr;
@@ -392,6 +427,26 @@ std::unique_ptr<Solid> fuse_solids(const Solid& a, const Solid& b, double time_l
   } catch (const Standard_Failure&) {
     return nullptr;
   }
+}
+
+}  // namespace
+
+std::unique_ptr<Solid> fuse_solids(const Solid& a, const Solid& b, double time_limit,
+                                   bool split_faces_if_unification_fails) {
+  return fused_pair(a, b, time_limit, split_faces_if_unification_fails, nullptr);
+}
+
+Fuser::Fuser() : server_(std::make_unique<core::IsolatedServer>(serve_unification)) {}
+
+Fuser::~Fuser() = default;
+
+std::unique_ptr<Solid> Fuser::fuse(const Solid& a, const Solid& b, double time_limit,
+                                   bool split_faces_if_unification_fails) {
+  return fused_pair(a, b, time_limit, split_faces_if_unification_fails, server_.get());
+}
+
+int Fuser::children() const {
+  return server_->forks();
 }
 
 std::unique_ptr<Solid> cut_solids(const Solid& a, const Solid& b) {

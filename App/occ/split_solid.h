@@ -10,6 +10,10 @@
 #include "core/diagnostic.h"
 #include "occ/solid.h"
 
+namespace vorohex::core {
+class IsolatedServer;
+}
+
 namespace vorohex::occ {
 
 struct SplitResult {
@@ -70,6 +74,23 @@ std::vector<FaceSample> sample_faces(const Solid& solid);
 // instead of being null (the plane cuts' merging: HexMe i14's tube, i18).
 std::unique_ptr<Solid> fuse_solids(const Solid& a, const Solid& b, double time_limit = 0,
                                    bool split_faces_if_unification_fails = false);
+
+// Unions made one after another (the plane cuts' merges), each as fuse_solids with a time
+// limit, the unifications all in one child process kept for them (core::IsolatedServer)
+// instead of a child forked per union: HexMe i22's 76 merges 5.2 -> 1.5 s.
+class Fuser {
+ public:
+  Fuser();
+  ~Fuser();
+  Fuser(const Fuser&) = delete;
+  Fuser& operator=(const Fuser&) = delete;
+  std::unique_ptr<Solid> fuse(const Solid& a, const Solid& b, double time_limit,
+                              bool split_faces_if_unification_fails = false);
+  int children() const;  // child processes forked so far (one, or more after a stop)
+
+ private:
+  std::unique_ptr<core::IsolatedServer> server_;
+};
 
 // The difference a - b as one solid with unified faces, or null if it is not one solid.
 std::unique_ptr<Solid> cut_solids(const Solid& a, const Solid& b);

@@ -805,7 +805,8 @@ def decompose(shape, sharp_angle=None, merge=True, vtp=None, eps=None, delta=Non
     (time_limit and progress it takes). tangent_planes=True (plane cuts only): each
     cylinder that a planar face touches tangently is replaced by the plane tangent to it
     across its concave edges (vorohex decompose --plane-cuts --tangent-planes; what the
-    mesher tries where the cut's pieces have knife edges and do not mesh)."""
+    mesher tries where the cut's pieces have knife edges and do not mesh). merge=False
+    with it: the pieces as cut, each with its scheme (--plane-cuts --no-merge)."""
     import tempfile
     if method not in ("voronoi", "plane-cuts"):
         raise ValueError("VoroHex: option 'method' must be 'voronoi' or 'plane-cuts', got "
@@ -814,6 +815,8 @@ def decompose(shape, sharp_angle=None, merge=True, vtp=None, eps=None, delta=Non
     if not isinstance(tangent_planes, bool):
         raise TypeError("VoroHex: option 'tangent_planes' must be True or False, got "
                         "{!r}".format(tangent_planes))
+    if not isinstance(merge, bool):
+        raise TypeError("VoroHex: option 'merge' must be True or False, got {!r}".format(merge))
     if tangent_planes and method != "plane-cuts":
         raise ValueError("VoroHex: option 'tangent_planes' is an option of "
                          "method='plane-cuts'")
@@ -821,22 +824,18 @@ def decompose(shape, sharp_angle=None, merge=True, vtp=None, eps=None, delta=Non
         given = dict(sharp_angle=sharp_angle, vtp=vtp, eps=eps, delta=delta,
                      max_depth=max_depth, linear_tolerance=linear_tolerance)
         named = sorted(k for k, v in given.items() if v is not None)
-        if merge is not True:
-            named.append("merge")
         if named:
             raise ValueError("VoroHex: option '{}' is an option of the Voronoi decomposition; "
                              "method='plane-cuts' takes none".format(named[0]))
         solid = _read_solid(check_shape(shape))
         with tempfile.TemporaryDirectory(prefix="vorohex-") as tmp:
             brep = os.path.join(tmp, "pieces.brep")
-            text = _core.plane_cuts_json(solid, brep, progress, limit, tangent_planes)
+            text = _core.plane_cuts_json(solid, brep, progress, limit, tangent_planes, merge)
             shapes = []
             if os.path.exists(brep):
                 import Part
                 shapes = list(Part.read(brep).Solids)
         return Decomposition(json.loads(text), shapes)
-    if not isinstance(merge, bool):
-        raise TypeError("VoroHex: option 'merge' must be True or False, got {!r}".format(merge))
     angle = 60.0 if sharp_angle is None else _number("sharp_angle", sharp_angle)
     if not 0 < angle <= 180:
         raise ValueError("VoroHex: option 'sharp_angle' must be in (0, 180], got {}".format(

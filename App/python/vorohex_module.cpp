@@ -568,12 +568,13 @@ std::string decomposition_json(SolidPtr solid, const voronoi::VoronoiOptions& gr
 // (decomposition_io.h), each piece with the scheme it gets; writes the pieces as a BREP
 // compound where a path is given (also when the cuts failed: the pieces as cut).
 std::string plane_cuts_json(SolidPtr solid, const std::string& brep_path, py::object progress,
-                            double time_limit, bool tangent_planes) {
+                            double time_limit, bool tangent_planes, bool merge) {
   if (!solid) throw std::invalid_argument("no solid given");
   check_time_limit(time_limit);
   decompose::PlaneCutOptions options;
   options.time_limit = time_limit;
   options.tangent_planes = tangent_planes;
+  options.merge = merge;
   try {
     return run_isolated(
         [&](const core::Progress& in_child) {
@@ -638,9 +639,10 @@ PYBIND11_MODULE(_VoroHexCore, m) {
         "decomposition faces (VTP) where paths are given; time_limit: seconds for the whole");
   m.def("plane_cuts_json", &plane_cuts_json, py::arg("solid"), py::arg("brep_path") = "",
         py::arg("progress") = py::none(), py::arg("time_limit") = 30.0,
-        py::arg("tangent_planes") = false,
+        py::arg("tangent_planes") = false, py::arg("merge") = true,
         "the exact plane cuts at a solid's concave edges as JSON text, each piece with its "
-        "scheme; writes the pieces (BREP) where a path is given");
+        "scheme (merge=False: the pieces as cut); writes the pieces (BREP) where a path is "
+        "given");
   m.def("check_mesh", &check, py::arg("mesh"), py::arg("solid") = nullptr,
         py::arg("volume_rel_tol") = quality::CheckOptions{}.volume_rel_tol,
         py::arg("distance_rel_tol") = quality::CheckOptions{}.distance_rel_tol);

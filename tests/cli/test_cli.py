@@ -758,10 +758,19 @@ class InspectCommands(unittest.TestCase):
                               os.path.join(self.dir, "d.json"))
         self.assertEqual(code, 2)
         self.assertIn("--plane-cuts", stderr)
-        for option in (["--no-merge"], ["--sharp-angle", "30"], ["--eps", "0.02"]):
+        for option in (["--sharp-angle", "30"], ["--eps", "0.02"]):
             code, _, stderr = run("decompose", step, "-o", parts, "--plane-cuts", *option)
             self.assertEqual(code, 2, option)
             self.assertIn(option[0] + " is an option of the Voronoi decomposition", stderr)
+        # --no-merge: the pieces as cut, each with its scheme.
+        code, stdout, _ = run("decompose", step, "-o", parts, "--plane-cuts", "--no-merge",
+                              "--quiet")
+        self.assertEqual(code, 0, stdout)
+        cut = re.search(r"(\d+) pieces, (\d+) after merging", stdout)
+        self.assertIsNotNone(cut, stdout)
+        self.assertEqual(cut.group(1), cut.group(2))
+        self.assertGreater(int(cut.group(1)), 2)
+        self.assertEqual(len(Part.read(parts).Solids), int(cut.group(1)))
 
     def test_a_lug_as_wide_as_its_tube_is_cut_across_the_tube(self):
         # A tube with a lug as wide as the tube standing on it, a hole across the lug, built

@@ -250,6 +250,13 @@ class TestVoroHexApi(unittest.TestCase):
         self.assertTrue(all(c["used"] for c in d.cut_surfaces))
         self.assertEqual(len(d.shapes), 2)
         self.assertAlmostEqual(sum(s.Volume for s in d.shapes), solid.Volume, places=6)
+        # merge=False: the three pieces as cut, each with its scheme.
+        cut = VoroHex.decompose(solid, method="plane-cuts", merge=False)
+        self.assertTrue(cut.ok, cut.diagnostics)
+        self.assertEqual(len(cut.shapes), 3)
+        self.assertEqual(cut.counts["sub_volumes"], 3)
+        self.assertTrue(all(sv["scheme"] != "none" for sv in cut.sub_volumes))
+        self.assertAlmostEqual(sum(s.Volume for s in cut.shapes), solid.Volume, places=6)
         for sv, shape in zip(d.sub_volumes, d.shapes):
             self.assertAlmostEqual(sv["volume"], shape.Volume, places=6)
         # No concave edge: a clear failure, nothing to show.

@@ -289,5 +289,83 @@ TEST(IsolatedJob, TheFirstReportOfEachStageIsNotLost) {
   EXPECT_LT(heard.size(), 100u);  // coalesced, not every report
 }
 
+// The server's child serves call after call (one fork), each result its request's.
+TEST(IsolatedServer, ServesManyCallsFromOneChild) {
+  IsolatedServer server([](const std::string& request) {
+    return std::to_string(::getpid()) + ":" + request + request;
+  });
+  std::string child;
+  for (int k = 0; k < 20; ++k) {
+    const std::string request = "r" + std::to_string(k);
+    const IsolatedResult r = server.call(request);
+    ASSERT_TRUE(r.ok()) << r.message;
+    const std::size_t colon = r.data.find(':');
+    ASSERT_NE(colon, std::string::npos);
+    EXPECT_EQ(r.data.substr(colon + 1), request + request);
+    if (k == 0) child = r.data.substr(0, colon);
+    EXPECT_EQ(r.data.substr(0, colon), child) << "a new child at call " << k;
+  }
+  EXPECT_NE(child, std::to_string(::getpid()));
+  EXPECT_EQ(server.forks(), 1);
+}
+
+// Requests and results larger than a socket's buffer cross whole, zero bytes included.
+TEST(IsolatedServer, LargeRequestsAndResultsCrossWhole) {
+  IsolatedServer server([](const std::string& request) { return request + std::string(1, 'e'); });
+  std::string big(5 << 20, 'x');
+  big[777] = '\0';
+  const IsolatedResult r = server.call(big);
+  ASSERT_TRUE(r.ok()) << r.message;
+  EXPECT_EQ(r.data, big + "e");
+  const IsolatedResult empty = server.call("");
+  ASSERT_TRUE(empty.ok()) << empty.message;
+  EXPECT_EQ(empty.data, "e");
+}
+
+// An exception fails that call only; a crash or a call stopped at its time limit ends the
+// child, and the next call gets a new one.
+TEST(IsolatedServer, AfterAFailureACrashOrAStopTheNextCallIsServed) {
+  IsolatedServer server([](const std::string& request) -> std::string {
+    if (request == "throw") throw std::runtime_error("bad request");
+    if (request == "crash") std::raise(SIGSEGV);
+    if (request == "hang") std::this_thread::sleep_for(std::chrono::minutes(10));
+    return "ok " + request;
+  });
+  const IsolatedResult thrown = server.call("throw");
+  EXPECT_EQ(thrown.status, IsolatedResult::Status::failed);
+  EXPECT_EQ(thrown.message, "bad request");
+  EXPECT_EQ(server.call("a").data, "ok a");
+  EXPECT_EQ(server.forks(), 1);
+
+  const IsolatedResult crashed = server.call("crash");
+  EXPECT_EQ(crashed.status, IsolatedResult::Status::crashed);
+  EXPECT_EQ(crashed.signal, SIGSEGV);
+  EXPECT_EQ(server.call("b").data, "ok b");
+  EXPECT_EQ(server.forks(), 2);
+
+  const auto t0 = std::chrono::steady_clock::now();
+  const IsolatedResult stopped = server.call("hang", Progress().with_time_limit(0.3));
+  EXPECT_EQ(stopped.status, IsolatedResult::Status::cancelled);
+  EXPECT_EQ(stopped.message, "the time limit was reached");
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 5.0);
+  EXPECT_EQ(server.call("c").data, "ok c");
+  EXPECT_EQ(server.forks(), 3);
+}
+
+#ifdef __linux__
+// The child ends with the server: no process is left behind.
+TEST(IsolatedServer, TheChildEndsWithTheServer) {
+  int child = 0;
+  {
+    IsolatedServer server([](const std::string&) { return std::to_string(::getpid()); });
+    const IsolatedResult r = server.call("pid");
+    ASSERT_TRUE(r.ok()) << r.message;
+    child = std::stoi(r.data);
+    EXPECT_FALSE(gone(child));
+  }
+  EXPECT_TRUE(gone(child));
+}
+#endif
+
 }  // namespace
 }  // namespace vorohex::core

@@ -53,5 +53,28 @@ TEST(SplitSolid, PieceVolumesOfCurvedSolidsSumToTheExactVolume) {
   EXPECT_NEAR(sum, exact, 1e-9 * exact);
 }
 
+// A Fuser's unions, one child process for them all, are fuse_solids' own: a row of boxes
+// fused one by one into one box of six faces (its split faces unified), and a post on a plate.
+TEST(Fuser, UnionsInOneChildAreFuseSolidsOwn) {
+  Fuser fuser;
+  std::unique_ptr<Solid> row = std::make_unique<Solid>(make_box(1, 1, 1));
+  for (int k = 1; k < 6; ++k) {
+    row = fuser.fuse(*row, make_box(1, 1, 1, Vec3(k, 0, 0)), 10);
+    ASSERT_TRUE(row) << "union " << k;
+    EXPECT_EQ(row->num_faces(), 6) << "union " << k;
+    EXPECT_NEAR(row->volume(), k + 1.0, 1e-12);
+  }
+  const Solid plate = make_box(4, 4, 1);
+  const Solid post = make_cylinder(1, 3, Vec3(2, 2, 0), Vec3(0, 0, 1));
+  const std::unique_ptr<Solid> a = fuser.fuse(plate, post, 10);
+  const std::unique_ptr<Solid> b = fuse_solids(plate, post, 10);
+  ASSERT_TRUE(a && b);
+  EXPECT_EQ(a->num_faces(), b->num_faces());
+  EXPECT_NEAR(a->volume(), b->volume(), 1e-12 * b->volume());
+  EXPECT_EQ(fuser.children(), 1);
+  // Boxes meeting only along an edge are no one solid.
+  EXPECT_FALSE(fuser.fuse(make_box(1, 1, 1), make_box(1, 1, 1, Vec3(1, 1, 0)), 10));
+}
+
 }  // namespace
 }  // namespace vorohex::occ
