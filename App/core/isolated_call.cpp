@@ -108,6 +108,14 @@ bool send_message(int fd, const std::string& m) {
   return send_all(fd, reinterpret_cast<const char*>(&n), sizeof n) && send_all(fd, m.data(), n);
 }
 
+// What a child sent (kResult or kException first, then the bytes or the message).
+IsolatedResult decoded(const std::string& bytes) {
+  IsolatedResult r;
+  r.status = bytes[0] == kException ? IsolatedResult::Status::failed : IsolatedResult::Status::ok;
+  (r.ok() ? r.data : r.message) = bytes.substr(1);
+  return r;
+}
+
 // The server's child: requests in, results out (kResult or kException first), until the
 // caller closes its end.
 [[noreturn]] void serve(int fd, const IsolatedServer::Handler& handler, pid_t parent) {
@@ -230,14 +238,7 @@ IsolatedResult IsolatedServer::call(const std::string& request, const Progress& 
     }
     return r;
   }
-  if (bytes[0] == kException) {
-    r.status = IsolatedResult::Status::failed;
-    r.message = bytes.substr(1);
-    return r;
-  }
-  r.status = IsolatedResult::Status::ok;
-  r.data = bytes.substr(1);
-  return r;
+  return decoded(bytes);
 #else
   (void)progress;
   return run_here([&] { return handler_(request); });
@@ -438,13 +439,7 @@ IsolatedResult IsolatedJob::take(const Progress& progress, const IsolatedCallOpt
                 std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + ")";
     return r;
   }
-  if (bytes[0] == kException) {
-    r.status = IsolatedResult::Status::failed;
-    r.message = bytes.substr(1);
-    return r;
-  }
-  r.status = IsolatedResult::Status::ok;
-  r.data = bytes.substr(1);
+  r = decoded(bytes);
 #else
   (void)progress;
   (void)options;
