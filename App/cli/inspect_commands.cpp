@@ -210,7 +210,9 @@ int run_plane_cuts(const std::string& input, const std::string& brep_path, doubl
   };
   std::cout << "plane cuts of " << input << ": " << count(cut.planes, "plane") << ", "
             << count(cut.cylinders, "cylinder") << ", " << count(cut.pieces_before_merge, "piece")
-            << ", " << cut.pieces.size() << " after merging\n";
+            << (merge ? ", " + std::to_string(cut.pieces.size()) + " after merging"
+                      : " (not merged)")
+            << "\n";
   std::string along;
   for (const decompose::CutSurface& c : cut.surfaces)
     if (c.used) along += (along.empty() ? "" : ", ") + decompose::surface_text(c);
