@@ -168,17 +168,18 @@ bool IsolatedServer::start() {
 #endif
 }
 
-void IsolatedServer::stop() {
+int IsolatedServer::stop() {
+  int status = 0;
 #ifdef VOROHEX_HAVE_FORK
   if (pid_ > 0) {
-    ::close(fd_);  // the child reads the end of its requests and exits
-    ::kill(pid_, SIGKILL);
-    int status = 0;
+    ::close(fd_);
+    ::kill(pid_, SIGKILL);  // a child that died already keeps the status it died with
     while (::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
     }
   }
 #endif
   pid_ = fd_ = -1;
+  return status;
 }
 
 IsolatedResult IsolatedServer::call(const std::string& request, const Progress& progress) {
@@ -223,12 +224,7 @@ IsolatedResult IsolatedServer::call(const std::string& request, const Progress& 
   }
   if (!have_length || bytes.size() < length || bytes.empty()) {
     // Ended without a whole result: a crash (its signal, once reaped).
-    const pid_t pid = pid_;
-    ::close(fd_);
-    int status = 0;
-    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-    }
-    pid_ = fd_ = -1;
+    const int status = stop();
     r.status = IsolatedResult::Status::crashed;
     if (WIFSIGNALED(status)) {
       r.signal = WTERMSIG(status);

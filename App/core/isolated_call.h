@@ -96,7 +96,7 @@ class IsolatedServer {
 
  private:
   bool start();
-  void stop();
+  int stop();  // the child killed (if still running) and reaped: its wait status
   Handler handler_;
   int pid_ = -1, fd_ = -1, forks_ = 0;
 };

@@ -684,6 +684,13 @@ PlaneCutResult cut_along(const occ::Solid& solid, std::vector<Plane> planes,
     r.pieces = std::move(pieces);
     return r;
   }
+  if (!options.merge) {  // the pieces as cut, each with a scheme (checked above)
+    progress.report("plane_cuts", 1.0);
+    r.pieces = std::move(pieces);
+    r.ok = r.pieces.size() >= 2;
+    if (!r.ok) r.why_not = "its cuts leave it in one piece";
+    return r;
+  }
   progress.report("plane_cuts", 0.5);
   // Merge neighbours while the union is a block, a sweep or prismatic and all pieces stay so once
   // glued (a union must not leave a T-junction on a neighbour's face). First without checking
@@ -691,13 +698,6 @@ PlaneCutResult cut_along(const occ::Solid& solid, std::vector<Plane> planes,
   // whole checked once at the end; where that fails, again from the cut with each merge's
   // neighbours checked. HexMe i22 (80 pieces, 76 merges, each of whose checks passed): the
   // merges 18 -> 6 s.
-  if (!options.merge) {
-    progress.report("plane_cuts", 1.0);
-    r.pieces = std::move(pieces);
-    r.ok = r.pieces.size() >= 2;
-    if (!r.ok) r.why_not = "its cuts leave it in one piece";
-    return r;
-  }
   const std::vector<occ::Solid> cut = clones(pieces);
   const std::vector<double> cut_volume = volume;
   const Touching cut_touch = touching(pointers(pieces), cut_glued);

@@ -198,9 +198,8 @@ void finer_grid(const occ::Solid& solid, const MeshOptions& options, const core:
   result.diagnostics.push_back(core::make_info("grid_refined_failed", s.str()));
 }
 
-// What making the grid mesh `used` describes again takes: its grid (tessellation, core,
-// pillow layer, capture) and the smoothing and check of its mesh (`result`).
-// Its grid alone.
+// What making the grid mesh `used` describes again took: its grid alone (tessellation,
+// core, pillow layer, capture), or with the smoothing and check of its mesh (`result`).
 double grid_seconds(const grid::GridStats& used) {
   return used.seconds_core + used.seconds_pillow + used.seconds_features;
 }
