@@ -140,8 +140,11 @@ constexpr double kChainBand = 2.5;
 // waypoints may lie, in cells (within the band).
 constexpr double kTargetReach = 1.5;
 // A face's interior angle at a vertex above kReflex is split into quads of at most
-// kQuadAngle (see quads_needed below).
-constexpr double kReflex = 185 * M_PI / 180;
+// kQuadAngle (see quads_needed below). Flat angles count: an edge running on straight
+// through a vertex (HexMe i13's Vertex55, s10's Vertex2, where a third edge meets it) on a
+// core corner's node left the face one quad there with both chains along two of its sides,
+// flat (i13 0.023 -> 0.455, s10 0.236 -> 0.441 with two).
+constexpr double kReflex = 170 * M_PI / 180;
 // At most kQuadAngle: a face's 267 degrees at a vertex of HexMe i19 (at a third of its size)
 // in three quads rather than two leaves its finer grid valid (two inverted hexahedra
 // before); n06's pit rim, 252 degrees of the top face, keeps two (in three its minimum fell
@@ -258,13 +261,14 @@ FeatureCapture capture_features(core::HexMesh& mesh,
             faces_of_vertex[v.value()].end())
           faces_of_vertex[v.value()].push_back(f);
   // Per vertex: the outer quads it needs around its node: one per face, and where a face's
-  // interior angle there is reflex (over kReflex), enough to split that angle into quads of
+  // interior angle there is flat or reflex (over kReflex), enough to split that angle into quads of
   // at most kQuadAngle. A node with fewer bends a quad inside out at the vertex (HexMe i17
   // at a third of its size: a wall meeting a floor at a vertex where the floor's angle is
   // 191 degrees, on a core corner's node with three quads, the floor's one inverted; valid,
-  // min 0.42, on a node with four). Only reflex angles count: asking two quads wherever a
-  // face is flat at a vertex (a vertex splitting a straight edge, a circle leaving a line
-  // tangentially) lowered other grid meshes (HexMe i20 valid -> inverted).
+  // min 0.42, on a node with four); a flat angle likewise (kReflex). An angle next to an
+  // absorbed edge does not count: the composite has no corner there (HexMe i20's Edge41,
+  // 0.6 long, straight on from Edge42: asking two quads there drew Vertex31 and Vertex32 to
+  // nodes on the wrong faces, min 0.216 -> 0.144).
   std::vector<int> quads_needed(solid.num_vertices() + 1, 0);
   {
     std::unordered_map<int, std::vector<Vec3>> samples;
@@ -281,7 +285,8 @@ FeatureCapture capture_features(core::HexMesh& mesh,
           const core::VertexId v =
               out.forward ? solid.edge_first_vertex(out.edge) : solid.edge_last_vertex(out.edge);
           int quads = 1;
-          if (!solid.edge_is_degenerated(in.edge) && !solid.edge_is_degenerated(out.edge)) {
+          if (!solid.edge_is_degenerated(in.edge) && !solid.edge_is_degenerated(out.edge) &&
+              !absorbed_edge[in.edge.value()] && !absorbed_edge[out.edge.value()]) {
             const std::vector<Vec3>& a = points(in.edge);
             const std::vector<Vec3>& b = points(out.edge);
             const std::size_t na = a.size(), nb = b.size();

@@ -49,8 +49,9 @@ std::size_t uncross(const std::vector<core::Vec3>& targets, std::vector<core::Ve
                     std::vector<std::int32_t>& nodes, double reach);
 
 // The outer quads a face needs around a vertex's node, given its interior angle there
-// (radians): one, or where the angle is reflex (over 185 degrees: a quad's corner there
-// would be bent inside out) enough to split it into quads of at most 130 degrees.
+// (radians): one, or where the angle is flat or reflex (over 170 degrees: a quad's corner
+// there would be flat or bent inside out) enough to split it into quads of at most 130
+// degrees.
 int quads_for_angle(double alpha);
 
 // The face a region of outer quads goes on: the one with the most votes (its free nodes'

@@ -30,12 +30,16 @@ TEST(FeatureCapture, VerticesOnALineKeepTheirOrderOnTheirNodes) {
   EXPECT_EQ(far_nodes, (std::vector<std::int32_t>{1, 2, 3}));
 }
 
-TEST(FeatureCapture, AReflexAngleAtAVertexNeedsMoreThanOneQuad) {
+TEST(FeatureCapture, AFlatOrReflexAngleAtAVertexNeedsMoreThanOneQuad) {
   auto deg = [](double a) { return a * M_PI / 180; };
-  // A box's corner, a pyramid's apex, a face flat at a vertex: one quad per face.
+  // A box's corner, a pyramid's apex: one quad per face.
   EXPECT_EQ(grid::detail::quads_for_angle(deg(90)), 1);
   EXPECT_EQ(grid::detail::quads_for_angle(deg(30)), 1);
-  EXPECT_EQ(grid::detail::quads_for_angle(deg(180)), 1);
+  EXPECT_EQ(grid::detail::quads_for_angle(deg(165)), 1);
+  // A face flat at a vertex (an edge running on straight through it: HexMe i13, s10): two,
+  // or the one quad there would have both chains along two of its sides, flat.
+  EXPECT_EQ(grid::detail::quads_for_angle(deg(175)), 2);
+  EXPECT_EQ(grid::detail::quads_for_angle(deg(180)), 2);
   // A floor at 191 degrees where walls meet it (HexMe i17): one quad there would be bent
   // inside out. n06's pit rim (252) two, i19's 267 three, the floor around a boss's corner
   // (270) three, a slit's end (360) three.

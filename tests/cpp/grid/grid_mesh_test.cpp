@@ -441,6 +441,19 @@ TEST(GridMesh, TangentEdgesTakeTheirChainsLastWhereTheyBlockASharpEdgeOnHexMeS10
   EXPECT_GT(h.mesh.stats.min_sj, 0.2);
 }
 
+TEST(GridMesh, AVertexAnEdgeRunsStraightThroughTakesTwoQuadsOnTheFlatSideOnHexMeS10) {
+  // HexMe s10: the circle where the cylinder meets the dome runs on straight through
+  // Vertex2, where the plane cutting the quarter away meets it; the cylinder's angle there
+  // is 180 degrees. On a core corner's node (three quads, one per face) the cylinder's quad
+  // at the vertex had both chains along two of its sides, flat (min 0.24). Such an angle now
+  // asks for two quads, as a reflex one does: the vertex takes a node with four.
+  const HexMeGrid h = hexme_grid("s10o_cyl_cutsphere.step");
+  ASSERT_TRUE(h.in.ok()) << "HexMe model s10 not found in " << VOROHEX_HEXME_DIR;
+  expect_valid(*h.in.solid, h.mesh);
+  EXPECT_EQ(h.mesh.stats.features_missed, 0u) << h.info;
+  EXPECT_GT(h.mesh.stats.min_sj, 0.4) << h.info;
+}
+
 TEST(GridMesh, VerticesTakeNodesWithAnOuterEdgeForEachOfTheirEdgesOnHexMeN15) {
   // HexMe n15, an icosahedron: five edges at every vertex. A vertex on a core corner's
   // outer node (three outer edges) left chains no way out: 24 of 30 edges captured, min
