@@ -368,6 +368,7 @@ FeatureCapture capture_features(core::HexMesh& mesh,
   // Quads a chain cuts diagonally (see below): the model edge whose chain cut it, or -1. In
   // no face region, their edges barriers.
   std::vector<int> cut_by(outer_quads.size(), -1);
+  std::vector<std::int32_t> turn_of(outer_quads.size(), -1);  // its node left out of the chain
   // Two edges leaving a common vertex in nearly the same direction (within 20 degrees:
   // tangent, as a circle leaving a straight edge's end along it). Elsewhere (the edges of a
   // pyramid's apex) sharing chains distorts the hexahedra more than cutting across does:
@@ -581,6 +582,7 @@ FeatureCapture capture_features(core::HexMesh& mesh,
                            : quad_with(kept.back(), chain[k], chain[k + 1]);
         if (q >= 0 && cut_by[q] < 0) {
           cut_by[q] = e.value();
+          turn_of[q] = chain[k];
           reserved.insert(chain[k]);
           ++r.quads_across_edges;
           last_diagonal = true;
@@ -615,6 +617,22 @@ FeatureCapture capture_features(core::HexMesh& mesh,
     if (cut_by[q] >= 0)
       for (int c = 0; c < 4; ++c)
         feature_edges.emplace(edge_key(outer_quads[q][c], outer_quads[q][(c + 1) % 4]), cut_by[q]);
+  // Puts node n on face `to` (projected), unless that is far from the node: false then.
+  // Far (more than three cells), the face is not where the node is: the region leaked across an
+  // uncaptured edge onto another part of the model (HexMe i11: an end face's nodes sent 38 units,
+  // 16 cells, away to the edge of a cylinder, two hexes inverted per node). Moves of one or two
+  // cells are real (n05).
+  auto move_to = [&](std::int32_t n, int to) {
+    core::FaceId f(to);
+    const Vec3 p = small.project(solid, f, mesh.point(NodeId(n)), f);
+    if (!p.allFinite() || (p - mesh.point(NodeId(n))).norm() > 3 * size) return false;
+    mesh.set_point(NodeId(n), p);
+    mesh.set_node_class(NodeId(n), NodeClass::on(f));
+    return true;
+  };
+  auto between = [&](int f, int g) {
+    return captured_between.count({std::min(f, g), std::max(f, g)}) > 0;
+  };
   for (std::size_t seed = 0; seed < outer_quads.size(); ++seed) {
     if (region[seed] >= 0 || cut_by[seed] >= 0) continue;
     std::vector<std::size_t> members{seed}, stack{seed};
@@ -672,23 +690,50 @@ FeatureCapture capture_features(core::HexMesh& mesh,
     for (std::int32_t n : free_nodes) {
       const int own = mesh.node_class(NodeId(n)).id;
       if (small.same_composite(own, face)) continue;
-      if (!captured_between.count({std::min(own, face), std::max(own, face)})) {
-        face_used[own] = 1;
-        continue;
-      }
-      core::FaceId f(face);
-      const Vec3 p = small.project(solid, f, mesh.point(NodeId(n)), f);
-      // Far from the node (more than three cells), the region's face is not where the node
-      // is: the region leaked across an uncaptured edge onto another part of the model
-      // (HexMe i11: an end face's nodes sent 38 units, 16 cells, away to the edge of a
-      // cylinder, two hexes inverted per node). Moves of one or two cells are real (n05).
-      if (!p.allFinite() || (p - mesh.point(NodeId(n))).norm() > 3 * size) {
-        face_used[own] = 1;
-        continue;
-      }
-      mesh.set_point(NodeId(n), p);
-      mesh.set_node_class(NodeId(n), NodeClass::on(f));
+      if (!between(own, face) || !move_to(n, face)) face_used[own] = 1;
     }
+  }
+  // A quad a chain cuts diagonally lies on both faces of the chain's edge, a triangle on
+  // each: its two corners off the chain belong one to each face. Where both are on one face
+  // (a region that ran across an uncaptured edge keeps its nodes on the faces they first
+  // projected to: HexMe i09, both on the torus Face26, the turn node, outside the chain's
+  // turn, held at the torus's boundary on Edge94's curve and the quad flat along it, min
+  // 0.001), one held on the edge's curve (projected beyond its face) most of whose
+  // neighbours lie on the edge's other face goes there.
+  for (std::size_t q = 0; q < outer_quads.size(); ++q) {
+    if (cut_by[q] < 0 || turn_of[q] < 0) continue;
+    const auto& quad = outer_quads[q];
+    const long at = std::find(quad.begin(), quad.end(), turn_of[q]) - quad.begin();
+    if (at >= 4) continue;
+    const std::array<std::int32_t, 2> off{quad[std::size_t(at)], quad[std::size_t((at + 2) % 4)]};
+    const NodeClass c0 = mesh.node_class(NodeId(off[0])), c1 = mesh.node_class(NodeId(off[1]));
+    if (c0.dim != 2 || c1.dim != 2 || !small.same_composite(c0.id, c1.id)) continue;
+    int other = -1;
+    for (core::FaceId f : solid.edge_faces(core::EdgeId(cut_by[q])))
+      if (!small.same_composite(f.value(), c0.id)) other = f.value();
+    if (other < 0) continue;
+    // The share of an off node's face neighbours on the other face.
+    auto share = [&](std::int32_t n) {
+      int on_other = 0, all = 0;
+      for (std::int32_t m : s.adjacent.at(n)) {
+        const NodeClass c = mesh.node_class(NodeId(m));
+        if (c.dim != 2) continue;
+        ++all;
+        on_other += small.same_composite(c.id, other);
+      }
+      return all == 0 ? 0.0 : double(on_other) / all;
+    };
+    // A node inside its face stays: HexMe i19's finer grid, whose one such node, a quarter
+    // cell inside the cylinder Face21, went to the plane Face9, ended with four hexahedra
+    // inverted elsewhere (its smoothing's path changed).
+    auto on_curve = [&](std::int32_t n) {
+      const Vec3 p = mesh.point(NodeId(n));
+      return (solid.project_to_edge(core::EdgeId(cut_by[q]), p) - p).norm() < 0.01 * size;
+    };
+    const double s0 = on_curve(off[0]) ? share(off[0]) : 0.0;
+    const double s1 = on_curve(off[1]) ? share(off[1]) : 0.0;
+    const std::int32_t n = s1 > s0 ? off[1] : off[0];
+    if (std::max(s0, s1) > 0.7 && move_to(n, other)) face_used[other] = 1;
   }
   // 4. The surface evened out with every node on its entity (vertices stay, edge nodes
   // slide along their curve, face nodes on their face).
