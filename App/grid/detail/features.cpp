@@ -630,9 +630,6 @@ FeatureCapture capture_features(core::HexMesh& mesh,
     mesh.set_node_class(NodeId(n), NodeClass::on(f));
     return true;
   };
-  auto between = [&](int f, int g) {
-    return captured_between.count({std::min(f, g), std::max(f, g)}) > 0;
-  };
   for (std::size_t seed = 0; seed < outer_quads.size(); ++seed) {
     if (region[seed] >= 0 || cut_by[seed] >= 0) continue;
     std::vector<std::size_t> members{seed}, stack{seed};
@@ -690,7 +687,8 @@ FeatureCapture capture_features(core::HexMesh& mesh,
     for (std::int32_t n : free_nodes) {
       const int own = mesh.node_class(NodeId(n)).id;
       if (small.same_composite(own, face)) continue;
-      if (!between(own, face) || !move_to(n, face)) face_used[own] = 1;
+      if (!captured_between.count({std::min(own, face), std::max(own, face)}) || !move_to(n, face))
+        face_used[own] = 1;
     }
   }
   // A quad a chain cuts diagonally lies on both faces of the chain's edge, a triangle on
@@ -701,10 +699,9 @@ FeatureCapture capture_features(core::HexMesh& mesh,
   // 0.001), one held on the edge's curve (projected beyond its face) most of whose
   // neighbours lie on the edge's other face goes there.
   for (std::size_t q = 0; q < outer_quads.size(); ++q) {
-    if (cut_by[q] < 0 || turn_of[q] < 0) continue;
+    if (turn_of[q] < 0) continue;  // not cut (set with cut_by)
     const auto& quad = outer_quads[q];
-    const long at = std::find(quad.begin(), quad.end(), turn_of[q]) - quad.begin();
-    if (at >= 4) continue;
+    const long at = std::find(quad.begin(), quad.end(), turn_of[q]) - quad.begin();  // in it
     const std::array<std::int32_t, 2> off{quad[std::size_t(at)], quad[std::size_t((at + 2) % 4)]};
     const NodeClass c0 = mesh.node_class(NodeId(off[0])), c1 = mesh.node_class(NodeId(off[1]));
     if (c0.dim != 2 || c1.dim != 2 || !small.same_composite(c0.id, c1.id)) continue;
