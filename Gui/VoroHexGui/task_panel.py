@@ -102,7 +102,7 @@ class TaskPanel:
         self.form = FreeCADGui.PySideUic.loadUi(VoroHexGui.resource("ui", "HexMesh.ui"))
         self.form.setWindowIcon(QtGui.QIcon(VoroHexGui.resource("icons", "VoroHex.svg")))
         self.histogram = HistogramWidget(self.form.histogram_host)
-        self.form.histogram_host.layout().addWidget(self.histogram)
+        widgets.layout_of(self.form.histogram_host).addWidget(self.histogram)
         for name in ("le_volume_rel_tol", "le_distance_rel_tol"):
             v = QtGui.QDoubleValidator(0.0, 1.0, 15, self.form)
             v.setNotation(QtGui.QDoubleValidator.ScientificNotation)
@@ -135,7 +135,7 @@ class TaskPanel:
     # Layout ---------------------------------------------------------------------------
     def _build_advanced(self):
         """Everything but the size and the order, in collapsed sections after the result."""
-        layout = self.form.layout()
+        layout = widgets.layout_of(self.form)
         # The stages before meshing: the Voronoi graph, the decomposition (with a preview
         # of both and the edge-type legend).
         graph_box = QtGui.QWidget()
@@ -169,20 +169,21 @@ class TaskPanel:
         self.decomposition_time.setRange(1, 3600)
         self.decomposition_time.setSuffix(" s")
         dec_form.addRow("Time limit:", self.decomposition_time)
+        limits = widgets.layout_of(self.form.gb_limits)
         self.fallback = QtGui.QCheckBox("Fallback (grid mesher)")
         self.fallback.setObjectName("cb_fallback")
-        self.form.gb_limits.layout().addRow(self.fallback)
+        limits.addRow(self.fallback)
         self.schemes = QtGui.QLineEdit()
         self.schemes.setObjectName("le_schemes")
         self.schemes.setPlaceholderText(", ".join(VoroHex._core.MeshOptions().schemes))
         self.schemes.textChanged.connect(self._check_schemes)
-        self.form.gb_limits.layout().addRow("Schemes:", self.schemes)
+        limits.addRow("Schemes:", self.schemes)
         self.time_limit = QtGui.QDoubleSpinBox()
         self.time_limit.setObjectName("sb_time_limit")
         self.time_limit.setRange(0, 1e6)
         self.time_limit.setSuffix(" s")
         self.time_limit.setSpecialValueText("none")
-        self.form.gb_limits.layout().addRow("Time limit:", self.time_limit)
+        limits.addRow("Time limit:", self.time_limit)
         for w in (self.eps, self.delta, self.max_depth, self.decompose, self.sharp_angle,
                   self.decomposition_time, self.fallback, self.time_limit, self.schemes):
             option = next(o for o in VoroHex.OPTIONS if self._widget(o) is w)

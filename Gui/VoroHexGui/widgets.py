@@ -3,6 +3,20 @@
 import time
 
 from PySide import QtCore, QtGui
+import shiboken2
+
+
+def layout_of(widget):
+    """widget.layout(), never a stale wrapper. PySide2 5.15 can hand back the Python wrapper
+    of a layout deleted with a closed panel whose address Qt reused for this one: its every
+    call raises "Internal C++ object (QFormLayout) already deleted" (tests/gui/gui_panel.py,
+    about once in five runs, opening the panel again after Cancel). Such a wrapper is dropped
+    from PySide's table and the layout wrapped anew."""
+    layout = widget.layout()
+    if layout is not None and not shiboken2.isValid(layout):
+        shiboken2.invalidate(layout)
+        layout = widget.layout()
+    return layout
 
 
 class Section(QtGui.QWidget):
