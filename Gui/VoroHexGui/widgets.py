@@ -2,6 +2,7 @@
 # around a task panel, and a poll timer that drives a VoroHexJobs.Job from the GUI thread.
 import time
 
+import FreeCADGui
 from PySide import QtCore, QtGui
 import shiboken2
 
@@ -59,13 +60,15 @@ class Section(QtGui.QWidget):
 
 
 def scroll_area_of(widget):
-    """The QScrollArea a task panel sits in (FreeCAD's task view), or None."""
-    w = widget
-    while w is not None:
-        if isinstance(w, QtGui.QScrollArea):
-            return w
-        w = w.parentWidget()
-    return None
+    """The QScrollArea a task panel sits in (FreeCAD's task view), or None: the innermost
+    of the main window's scroll areas that hold `widget`. Not by walking up parentWidget():
+    the Python wrappers that walk made for FreeCAD's own widgets took the panel's form with
+    them when they were dropped (PySide2 5.15: `self.form` "already deleted" while the panel
+    was still shown), so a second Run in the same panel failed."""
+    areas = [a for a in FreeCADGui.getMainWindow().findChildren(QtGui.QScrollArea)
+             if a.isAncestorOf(widget)]
+    inner = [a for a in areas if not any(b is not a and a.isAncestorOf(b) for b in areas)]
+    return inner[0] if inner else None
 
 
 def scroll_to(widget):

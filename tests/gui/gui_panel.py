@@ -295,6 +295,16 @@ def main():
     bar = area.verticalScrollBar()
     check(bar.value() <= top <= bar.value() + area.viewport().height(),
           "the result is scrolled into view")
+    # Run again in the same panel with another size (the panel's own form stays usable
+    # after a run: scrolling the result into view once took it away).
+    w["size"].setValue(5)
+    pump(0.1)
+    w["run"].click()
+    check(wait_until(lambda: w["run"].isEnabled(), 30), "the second run ended")
+    check(mesh.Status == "ok" and mesh.HexCount == 64,
+          "meshed again at size 5: {} hexahedra ({})".format(mesh.HexCount, mesh.Message))
+    check("64 hexahedra" in w["status"].text(),
+          "the panel shows the new result: " + w["status"].text())
     from VoroHexGui import palette
     from VoroHexGui.histogram import HistogramWidget, bin_colour
 
