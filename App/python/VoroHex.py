@@ -309,6 +309,8 @@ def _read_solid(shape, several=False):
     solid, diags = _core.read_brep(shape.exportBrepToString(), several)
     if solid is None:
         msg = "; ".join(d.message for d in diags if d.severity == "error") or "unknown error"
+        # The core names its input "The BREP string": here it is the user's shape.
+        msg = msg.replace("The BREP string", "The shape")
         raise ShapeError("VoroHex: cannot read the solid: " + msg)
     return solid
 

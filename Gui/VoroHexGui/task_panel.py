@@ -59,6 +59,16 @@ def unstructured_parts(scheme):
     return [s for s in (scheme or "").split("+") if s in UNSTRUCTURED]
 
 
+# The properties a run sets besides the mesh and its figures: its outcome and messages
+# (a failed run keeps the previous mesh and sets only these).
+RUN_STATUS = ("Status", "Message", "Diagnostics", "DiagnosticEntities")
+
+
+def run_status(obj):
+    """The RUN_STATUS properties' values (those an object of an older version has)."""
+    return {p: getattr(obj, p) for p in RUN_STATUS if hasattr(obj, p)}
+
+
 def summary_text(obj):
     """Plain-text quality summary of a mesh object's result properties."""
     if obj.Status == "error":
@@ -120,10 +130,15 @@ class TaskPanel:
         self.form.pb_suggestion.clicked.connect(self.use_suggestion)
         self.form.sb_size.valueChanged.connect(self.update_estimate)
         self.form.sb_max_hexes.valueChanged.connect(self.update_estimate)
-        # Cancel puts the options back as they were when the panel opened (a stopped run
-        # with a tiny size must not stay behind to be recomputed later).
+        # Cancel puts the options back as they were when the panel opened, or as the last
+        # run that made the mesh had them: the mesh and its options stay together (a
+        # stopped run with a tiny size must not stay behind to be recomputed later, nor a
+        # size beside the mesh another size made). A run that failed is undone too (its
+        # error status and messages), and a mesh object never meshed goes again.
         self.initial = {o.prop: getattr(obj, o.prop) for o in VoroHex.OPTIONS}
         self.initially_touched = "Touched" in obj.State
+        self.initial_result = run_status(obj)
+        self.meshed = bool(obj.Status)  # a mesh (or an error) was made before or here
         self.load()
         self.show_result()
         if self.obj.Status:
@@ -439,6 +454,9 @@ class TaskPanel:
             return
         except RuntimeError as e:
             why = str(e).strip().splitlines()[-1] if str(e).strip() else "failed"
+            # The child's exception as its last line says it ("VoroHex.ShapeError: VoroHex:
+            # cannot read the solid: ..."): the message only.
+            why = re.sub(r"^(VoroHex: )?(VoroHex\.)?\w*Error: (VoroHex: )?", "", why)
             self.obj.Status, self.obj.Message = "error", why
             self.obj.purgeTouched()
             FreeCAD.Console.PrintError("VoroHex: {}: {}\n".format(self.obj.Label, why))
@@ -467,6 +485,11 @@ class TaskPanel:
         femmesh, self.builder = self.builder.femmesh, None
         self.obj.Proxy.apply(self.obj, self.payload, femmesh)
         self.obj.purgeTouched()  # this mesh is the one of these options: no recompute
+        # What Cancel keeps from now on: this mesh with the options that made it.
+        self.initial = {o.prop: getattr(self.obj, o.prop) for o in VoroHex.OPTIONS}
+        self.initially_touched = False
+        self.initial_result = run_status(self.obj)
+        self.meshed = True
         if self.obj.Part and self.obj.Part.ViewObject:
             self.obj.Part.ViewObject.Visibility = False  # so the mesh is seen
         if self.obj.ViewObject is not None:
@@ -704,8 +727,8 @@ class TaskPanel:
         if self.running:
             self.stop()
         self.stop_trials()
-        never_run = not self.obj.Status
-        for prop, value in self.initial.items():
+        never_run = not self.meshed
+        for prop, value in list(self.initial.items()) + list(self.initial_result.items()):
             if getattr(self.obj, prop) != value:
                 setattr(self.obj, prop, value)
         if not self.initially_touched and self.obj.Status == "ok":

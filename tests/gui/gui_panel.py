@@ -325,8 +325,16 @@ def main():
     big = doc.addObject("Part::Box", "Part90")
     big.Length, big.Width, big.Height = 90, 60, 30
     doc.recompute()
+    # Cancel keeps the mesh with the options that made it: the last run's size (5), not a
+    # size typed after it, nor the one the panel opened with.
+    w["size"].setValue(4)
+    pump(0.1)
     button(mw, QtGui.QDialogButtonBox.Cancel).click()
     pump(0.3)
+    check(abs(mesh.TargetSize.Value - 5) < 1e-9 and mesh.HexCount == 64 and
+          "Touched" not in mesh.State,
+          "Cancel after a run kept its mesh and its size ({}, {} hexahedra)".format(
+              mesh.TargetSize, mesh.HexCount))
     big_mesh = open_panel(mw, big)
     w = widgets_of(mw)
     w["size"].setValue(0.01)
@@ -347,6 +355,25 @@ def main():
     button(mw, QtGui.QDialogButtonBox.Cancel).click()
     pump(0.3)
     check(doc.getObject(name) is None, "Cancel on a never-run mesh removed it")
+    # A run that fails on a new mesh, then Cancel: the mesh object goes too (two boxes that
+    # overlap in a compound are refused by the meshing job, not before it).
+    a = doc.addObject("Part::Box", "OverlapA")
+    b = doc.addObject("Part::Box", "OverlapB")
+    b.Placement.Base = FreeCAD.Vector(5, 5, 5)
+    both = doc.addObject("Part::Compound", "Overlapping")
+    both.Links = [a, b]
+    doc.recompute()
+    failing = open_panel(mw, both)
+    w = widgets_of(mw)
+    w["run"].click()
+    check(wait_until(lambda: w["run"].isEnabled(), 30), "the failing run ended")
+    check(failing.Status == "error", "the overlapping boxes fail: " + failing.Message)
+    name = failing.Name
+    button(mw, QtGui.QDialogButtonBox.Cancel).click()
+    pump(0.3)
+    check(doc.getObject(name) is None, "Cancel after a failed first run removed the mesh")
+    for o in (a, b, both):
+        o.ViewObject.Visibility = False
 
     # A part that takes more than 10 s to mesh: the GUI never freezes; Stop within 1 s. A
     # long cylinder at size 0.38 is a sweep of about 1.9 million hexahedra (under the 2
