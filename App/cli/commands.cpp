@@ -10,6 +10,8 @@
 #include <optional>
 #include <stdexcept>
 
+#include <unistd.h>
+
 #include "cli/report.h"
 #include "io/mesh_io.h"
 #include "occ/shape_io.h"
@@ -236,6 +238,24 @@ bool known_mesh_extension(const std::string& path) {
   return ext == ".vtu" || ext == ".msh" || ext == ".inp";
 }
 
+// Checked before any work (a mesh of minutes must not end in "cannot open" for a folder
+// that does not exist): the file's folder exists and can be written to, and the path is
+// not a folder itself. Throws std::invalid_argument (exit 2, no usage text).
+void check_writable(const std::string& path, const char* option) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::is_directory(path, ec))
+    throw std::invalid_argument(std::string(option) + " '" + path + "' is a folder, not a file");
+  const fs::path folder = fs::path(path).parent_path();
+  const fs::path where = folder.empty() ? fs::path(".") : folder;
+  if (!fs::is_directory(where, ec))
+    throw std::invalid_argument(std::string(option) + " '" + path + "': the folder '" +
+                                where.string() + "' does not exist");
+  if (::access(where.c_str(), W_OK) != 0)
+    throw std::invalid_argument(std::string(option) + " '" + path + "': the folder '" +
+                                where.string() + "' is not writable");
+}
+
 int mesh_command(const std::vector<std::string>& argv) {
   const Args args =
       parse(argv,
@@ -254,6 +274,8 @@ int mesh_command(const std::vector<std::string>& argv) {
   if (out_path.empty()) throw UsageError("missing -o OUT (the mesh file to write)");
   if (!known_mesh_extension(out_path))
     throw UsageError("cannot write '" + out_path + "': use a .vtu, .msh or .inp file name");
+  check_writable(out_path, "-o");
+  if (args.values.count("--report")) check_writable(args.values.at("--report"), "--report");
 
   pipeline::MeshOptions options;
   if (args.values.count("--size"))
@@ -513,7 +535,7 @@ int guarded(F&& f, const std::vector<std::string>& args, const char* usage) {
   try {
     return f(args);
   } catch (const UsageError& e) {
-    std::cerr << "vorohex: " << e.what() << "\n" << usage;
+    std::cerr << "vorohex: " << e.what() << "\n" << usage_hint(usage);
     return kExitBadInput;
   } catch (const std::invalid_argument& e) {
     std::cerr << "vorohex: " << e.what() << "\n";

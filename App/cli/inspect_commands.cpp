@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "cli/commands.h"
+#include "cli/report.h"
 #include "core/isolated_call.h"
 #include "decompose/decompose.h"
 #include "decompose/decomposition_io.h"
@@ -126,7 +127,7 @@ void add_graph_options(OptionTable& t, voronoi::VoronoiOptions& o) {
 }
 
 int usage_error(const std::string& message, const char* usage) {
-  std::cerr << "vorohex: " << message << "\n" << usage;
+  std::cerr << "vorohex: " << message << "\n" << usage_hint(usage);
   return kExitBadInput;
 }
 

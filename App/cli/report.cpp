@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <fstream>
 #include <iomanip>
+#include <sstream>
 
 namespace vorohex::cli {
 
@@ -125,6 +126,13 @@ nlohmann::json groups_json(const std::vector<io::NamedGroup>& groups) {
                     {"element_faces", g.faces.size()},
                     {"mesh_edges", g.edges.size()}});
   return list;
+}
+
+std::string usage_hint(const char* usage) {
+  std::istringstream words(usage);
+  std::string usage_word, program, command;
+  words >> usage_word >> program >> command;
+  return "(`" + program + " " + command + " --help` lists the options)\n";
 }
 
 bool write_json(const nlohmann::json& j, const std::string& path, std::string* error) {

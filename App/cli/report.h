@@ -23,6 +23,11 @@ nlohmann::json diagnostics_json(const std::vector<core::Diagnostic>& diagnostics
 void print_groups(std::ostream& out, const std::vector<io::NamedGroup>& groups);
 nlohmann::json groups_json(const std::vector<io::NamedGroup>& groups);
 
+// The line after a usage error: where the options are listed ("vorohex mesh --help lists
+// the options"), from the command's usage text ("usage: vorohex mesh IN ..."). The whole
+// usage after each error pushed the error itself out of sight.
+std::string usage_hint(const char* usage);
+
 // Writes JSON to a file; false and *error on failure.
 bool write_json(const nlohmann::json& j, const std::string& path, std::string* error);
 

@@ -533,7 +533,11 @@ ReadResult read_solid(const std::string& path, const ReadOptions& options) {
   ReadResult r;
   struct stat st {};
   if (::stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) {
-    r.diagnostics.push_back(make_error("file_not_found", "The file " + path + " does not exist."));
+    r.diagnostics.push_back(make_error(
+        "file_not_found",
+        "The file " + path +
+            (::stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode) ? " is a folder, not a file."
+                                                                   : " does not exist.")));
     return r;
   }
   std::ifstream in(path, std::ios::binary);

@@ -160,6 +160,31 @@ class MeshCommand(unittest.TestCase):
         with open(unknown, "w") as f:
             f.write("v 0 0 0\n")
         self.expect_bad_input([unknown], "format")
+        self.expect_bad_input([self.dir], "is a folder, not a file")
+
+    def test_bad_output_paths_are_refused_before_meshing(self):
+        # A folder that does not exist, for the mesh or the report, and a folder given as
+        # the mesh file: exit 2 at once, naming the folder (not after the meshing, with the
+        # name of an internal temporary file); the usage is a hint, not the whole text.
+        step = os.path.join(EXAMPLES, "box_3x2x1.step")
+        missing = os.path.join(self.dir, "no_such_folder")
+        for args, phrase in (
+                (["-o", os.path.join(missing, "a.vtu")], "the folder '{}' does not exist"),
+                (["-o", os.path.join(self.dir, "a.vtu"), "--report",
+                  os.path.join(missing, "r.json")], "the folder '{}' does not exist"),
+                (["-o", os.path.join(self.dir, "folder.vtu")], "is a folder, not a file")):
+            os.makedirs(os.path.join(self.dir, "folder.vtu"), exist_ok=True)
+            code, stdout, stderr = run("mesh", step, *args)
+            self.assertEqual(code, 2, stdout + stderr)
+            self.assertIn(phrase.format(missing), stderr)
+            self.assertNotIn("[", stdout, "nothing was meshed: no progress lines")
+            self.assertFalse(os.path.exists(missing))
+        code, stdout, stderr = run("mesh", step, "-o", os.path.join(self.dir, "a.vtu"),
+                                   "--size", "abc")
+        self.assertEqual(code, 2, stdout + stderr)
+        self.assertIn("--size must be a number", stderr)
+        self.assertIn("`vorohex mesh --help` lists the options", stderr)
+        self.assertLess(len(stderr.splitlines()), 4, "the error stays in sight: " + stderr)
 
     def test_step_with_broken_presentation_entities_meshes_with_a_warning(self):
         # Point styles whose marker fails to load (as in Gmsh's benchmark universal joint)
