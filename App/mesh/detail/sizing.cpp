@@ -112,7 +112,33 @@ double closing_segment(const CuspSide& side, double from) {
 struct CuspEnd {
   double length = 0;     // the segment at the point; 0: no point at that end
   bool closing = false;  // shortened (closing_segment), and graded up from there
+  double second = 0;     // closing: the second node's distance from the point (0: graded)
 };
+
+// Where an edge closes the corner (closing_segment), the ladder's quad at the point has
+// this edge's first two nodes and the other edge's first: its corner at the first node is
+// nearly straight, 180 degrees less the turn of this edge's chords there (on a circle of
+// radius R, the second node's distance over 2 R). The second node goes as far as that turn
+// takes to reach kCuspAngle, at most `farthest` and 1.4 times the other edge's first node
+// (farther, the quad's corner at the second node closes). With segments graded from the
+// short first one, the turn stayed near 9 degrees: a plate's outline of radius 20 with a
+// boss of radius 10 inside, tangent to it, at size 2.3: hexahedra at 0.159 there.
+// 0 (graded as before) where the other edge ends before its first node opens the point to
+// kCuspAngle: that node is then all the quad reaches across, and a second node far along
+// this edge leaves the quad no positive corner (HexMe i11: the other edge ends 8 units from
+// the point, at a seam's vertex, and its face's quad mesh failed).
+double second_node(const CuspSide& side, double first, double farthest) {
+  const CuspSide other = side.other();
+  const double other_most = std::min(farthest, other.own_length());
+  double lo = std::min(2 * first, other_most);  // the other edge's first node, lengthened
+  while (lo < other_most && other.angle(lo, first) < kCuspAngle)
+    lo = std::min(other_most, 1.2 * lo);
+  if (other.angle(lo, first) < kCuspAngle) return 0;
+  const double most = std::min(farthest, 1.4 * lo);
+  double l = 2 * first;
+  while (l < most && -side.part(l) < kCuspAngle) l = std::min(most, 1.2 * l);
+  return l > 1.5 * first ? l : 0;
+}
 
 // How long the segment of edge e next to vertex v should be where a face of e comes to a
 // point there (core/face_cusp.h; 0 where none does): long enough that the chords from v along
@@ -124,9 +150,9 @@ struct CuspEnd {
 // `at_last`: at the edge's last vertex (a closed edge has the vertex at both ends; a wire
 // runs into a point along the edge that ends there and out along the one that starts there).
 CuspEnd cusp_segment(const core::MeshDomain& s, core::EdgeId e, bool at_last, double from,
-                     double most) {
+                     double most, double farthest) {
   const core::VertexId v = at_last ? s.edge_last_vertex(e) : s.edge_first_vertex(e);
-  double longest = 0, shortest = 0;  // 0: none asked for
+  double longest = 0, shortest = 0, second = 0;  // 0: none asked for
   for (core::FaceId f : s.edge_faces(e))
     for (const core::Cusp& c : core::cusps_at(s, f, v)) {
       const bool in = c.in.edge == e && c.in.forward == at_last;
@@ -135,6 +161,7 @@ CuspEnd cusp_segment(const core::MeshDomain& s, core::EdgeId e, bool at_last, do
       const CuspSide side(s, c, in);
       if (side.part(from) < 0) {
         const double l = closing_segment(side, from);
+        if (shortest <= 0 || l < shortest) second = second_node(side, l, farthest);
         shortest = shortest > 0 ? std::min(shortest, l) : l;
         continue;
       }
@@ -147,8 +174,8 @@ CuspEnd cusp_segment(const core::MeshDomain& s, core::EdgeId e, bool at_last, do
         l = std::min(most, 1.2 * l);
       longest = std::max(longest, l);
     }
-  if (shortest > 0) return {shortest, true};
-  return {longest, false};
+  if (shortest > 0) return {shortest, true, second};
+  return {longest, false, 0};
 }
 
 // `points` (n + 1 on edge e, first to last vertex) with the first and last segments
@@ -168,8 +195,9 @@ std::vector<Vec3> widened_at_cusps(const core::MeshDomain& s, core::EdgeId e,
   // mean length (with points at both ends, each end gets half of what is left for both).
   const double mean = length / n;
   const double most = std::min(3.0 * mean, length - 0.5 * (n - 1) * mean);
-  CuspEnd e0 = cusp_segment(s, e, false, u[1] * length, most);
-  CuspEnd e1 = cusp_segment(s, e, true, (1 - u[n - 1]) * length, most);
+  const double farthest = std::min(4.5 * mean, length - 0.5 * (n - 1) * mean);
+  CuspEnd e0 = cusp_segment(s, e, false, u[1] * length, most, farthest);
+  CuspEnd e1 = cusp_segment(s, e, true, (1 - u[n - 1]) * length, most, farthest);
   if (e0.length <= 0 && e1.length <= 0) return points;
   const double both = length - 0.5 * (n - 2) * mean;  // what the two end segments may have
   if (!e0.closing && !e1.closing && e0.length > 0 && e1.length > 0 &&
@@ -185,6 +213,7 @@ std::vector<Vec3> widened_at_cusps(const core::MeshDomain& s, core::EdgeId e,
     std::vector<double> at;
     if (c.length <= 0) return at;
     if (!c.closing) return std::vector<double>{c.length};
+    if (c.second > c.length && (n - 1) / 2 >= 2) return std::vector<double>{c.length, c.second};
     double segment = c.length, sum = 0;
     while (int(at.size()) < std::max(1, (n - 1) / 2)) {
       at.push_back(sum += segment);

@@ -197,3 +197,42 @@ TEST(Multisweep, TheSamePartBuiltTwoWaysMeshesTheSame) {
 
 }  // namespace
 }  // namespace vorohex::mesh
+
+namespace vorohex::mesh {
+namespace {
+
+// Faces that come to a point where a boss's circle is tangent to the outline from inside (a
+// crescent): the quad at the point has the outline's first two nodes and the boss's first;
+// its corner at the outline's first node turns by the chords' angle there, so the outline's
+// second node goes far enough for that to reach asin(0.3) (detail::edge_points). A plate of
+// radius 20 with a boss of radius 10 (as bench/run_parts.py builds it) at diagonal / 25:
+// 0.159 with the second node graded up by 1.5 from the first; a tube of radius 15 with a lug
+// whose round end (radius 25) is tangent to it: 0.122 at diagonal / 25, 0.199 at / 20.
+TEST(Multisweep, ACrescentsPointGetsQuadsAbove02) {
+  const occ::Solid plate = testing::fuse(occ::make_cylinder(20, 4, Vec3::Zero(), testing::kZ),
+                                         occ::make_cylinder(10, 12, Vec3(10, 0, 0), testing::kZ));
+  const Vec3 kX(1, 0, 0);
+  const occ::Solid lug = testing::cut(testing::fuse(occ::make_cylinder(25, 10, Vec3(0, 10, 0), kX),
+                                                    occ::make_box(10, 40, 50, Vec3(0, 10, -25))),
+                                      occ::make_cylinder(6, 10, Vec3(0, 40, 0), kX));
+  const occ::Solid tube =
+      testing::cut(testing::fuse(occ::make_cylinder(15, 60, Vec3::Zero(), kX), lug),
+                   occ::make_cylinder(9, 60, Vec3::Zero(), kX));
+  for (const auto& [name, solid] :
+       {std::pair<const char*, const occ::Solid*>{"plate", &plate}, {"tube with a lug", &tube}})
+    for (double divisions : {20.0, 25.0}) {
+      SCOPED_TRACE(std::string(name) + " at diagonal / " + std::to_string(int(divisions)));
+      pipeline::MeshOptions opt;
+      opt.size = solid->diagonal() / divisions;
+      opt.schemes = {"multisweep"};
+      opt.fallback = false;
+      opt.decompose = false;
+      const pipeline::MeshResult r = pipeline::generate_mesh(*solid, opt);
+      ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
+      EXPECT_EQ(r.stats.scheme, "multisweep");
+      EXPECT_GT(r.check.scaled_jacobian.min, 0.2);
+    }
+}
+
+}  // namespace
+}  // namespace vorohex::mesh
