@@ -128,9 +128,10 @@ class VoronoiGraph:
         as points; the f_s faces' triangles as properties the view draws); the error, or
         None."""
         graph = data["graph"]
+        note = VoroHexObjects.split_faces_note(obj.Part.Shape) if obj.Part else None
         if not graph.ok:
-            return "; ".join(d.get("message", "") for d in graph.diagnostics) or \
-                "the Voronoi graph could not be computed"
+            return ("; ".join(d.get("message", "") for d in graph.diagnostics) or
+                    "the Voronoi graph could not be computed") + (" " + note if note else "")
         unknown = [t for t in obj.ShownTypes if t not in TYPE_NAMES]
         if unknown:
             return "unknown edge type(s) {} in ShownTypes; known: {}".format(
@@ -177,6 +178,9 @@ class VoronoiGraph:
             obj.VertexCount, obj.EdgeCount,
             ", ".join("{} {}".format(n, t) for t, n in sorted(graph.type_counts().items())),
             obj.FaceCount, obj.FsFaceCount)
+        if note:
+            obj.Message += ". " + note
+            FreeCAD.Console.PrintWarning("VoroHex: {}: {}\n".format(obj.Label, note))
         return None
 
 

@@ -56,6 +56,25 @@ def record_diagnostics(obj, diagnostics):
     obj.DiagnosticEntities = [",".join(d.entities) for d in diagnostics]
 
 
+def split_faces_note(shape, what="graph"):
+    """A sentence when faces of `shape` lie on one surface with a neighbour (a Part boolean
+    without Refine: FreeCAD 0.20's default), else None. The Voronoi graph takes each such
+    face as a face of its own: the two are equally near along a whole region, which the graph
+    draws as a degenerate edge, and the decomposition follows it (an L bracket fused and cut
+    without Refine: no [1e] edge, one sub-volume without a scheme; refined: two [1e] edges,
+    a block and two sweeps). The hex mesh's own schemes do not depend on it."""
+    try:
+        extra = len(shape.Faces) - len(shape.removeSplitter().Faces)
+    except Exception:  # OCCT's unification failed: nothing to say
+        return None
+    if extra <= 0:
+        return None
+    return ("Note: {} face{} of this solid lie on the same surface as a neighbour (a Part "
+            "boolean without Refine), and the {} takes each as a face of its own; set "
+            "Refine to true on the boolean (or use Part > Create a copy > Refine shape) for "
+            "the {} of its real faces.").format(extra, "s" if extra > 1 else "", what, what)
+
+
 def source_error(part, several=False):
     """Why `part` cannot be used (a sentence), or None if it holds one solid (or, with
     `several`, one or more: the hex mesh takes several)."""

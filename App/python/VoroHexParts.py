@@ -120,8 +120,11 @@ class Decomposition:
         with its face roles; the error, or None."""
         d = data["decomposition"]
         if not d.ok or not data["solids"]:
-            return "; ".join(x.get("message", "") for x in d.diagnostics
-                             if x.get("severity") == "error") or "the decomposition failed"
+            note = VoroHexObjects.split_faces_note(obj.Part.Shape, "decomposition") \
+                if obj.Part else None
+            return ("; ".join(x.get("message", "") for x in d.diagnostics
+                              if x.get("severity") == "error") or "the decomposition failed") + \
+                (" " + note if note else "")
         self.data, self.key = data, cache_key(obj)
         solids = [Part.Shape() for _ in data["solids"]]
         for shape, text in zip(solids, data["solids"]):
@@ -141,6 +144,11 @@ class Decomposition:
         obj.Message = "{} sub-volumes ({}), {} before merging, {} decomposition faces".format(
             obj.SubVolumeCount, ", ".join("{} {}".format(n, s) for s, n in sorted(
                 schemes.items())), obj.SubVolumesBeforeMerge, obj.DecompositionFaceCount)
+        note = VoroHexObjects.split_faces_note(obj.Part.Shape, "decomposition") \
+            if obj.Part else None
+        if note:
+            obj.Message += ". " + note
+            FreeCAD.Console.PrintWarning("VoroHex: {}: {}\n".format(obj.Label, note))
         set_children(obj, solids, data["roles"])
         return None
 

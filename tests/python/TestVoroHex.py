@@ -758,6 +758,31 @@ class TestVoroHexObject(unittest.TestCase):
         obj = VoroHexParts.makeDecomposition(self.doc, part, progress=lambda stage, f: True)
         self.assertEqual((obj.Status, obj.SubVolumeCount), ("ok", 1))
 
+    def test_graph_and_decomposition_name_faces_split_on_one_surface(self):
+        # An L fused from two boxes without Refine (FreeCAD 0.20's default for Part
+        # booleans) keeps faces split where the boxes met; the graph and the decomposition
+        # take each as a face of its own, and their message says so and how to refine. The
+        # refined L has no such note.
+        fused = Part.makeBox(40, 10, 10).fuse(Part.makeBox(10, 10, 40))
+        refined = fused.removeSplitter()
+        self.assertGreater(len(fused.Faces), len(refined.Faces))
+        messages = {}
+        for name, shape in (("Unrefined", fused), ("Refined", refined)):
+            part = self.doc.addObject("Part::Feature", name)
+            part.Shape = shape
+            self.doc.recompute()
+            g = VoroHexGraph.makeVoronoiGraph(self.doc, part)
+            d = VoroHexParts.makeDecomposition(self.doc, part)
+            messages[name] = (g.Message, d.Message)
+        extra = len(fused.Faces) - len(refined.Faces)
+        for message, what in zip(messages["Unrefined"], ("graph", "decomposition")):
+            self.assertIn("{} faces of this solid lie on the same surface".format(extra),
+                          message)
+            self.assertIn("the {} takes each as a face of its own".format(what), message)
+            self.assertIn("Refine", message)
+        for message in messages["Refined"]:
+            self.assertNotIn("same surface", message)
+
     def test_voronoi_graph_object(self):
         pts = [(0, 0, 0), (4, 0, 0), (4, 1, 0), (1, 1, 0), (1, 3, 0), (0, 3, 0), (0, 0, 0)]
         l_shape = self.doc.addObject("Part::Feature", "L")
