@@ -456,8 +456,14 @@ class TaskPanel:
             why = str(e).strip().splitlines()[-1] if str(e).strip() else "failed"
             # The child's exception as its last line says it ("VoroHex.ShapeError: VoroHex:
             # cannot read the solid: ..."): the message only.
+            kind = re.match(r"^(?:VoroHex: )?(?:VoroHex\.)?(\w*Error): ", why)
             why = re.sub(r"^(VoroHex: )?(VoroHex\.)?\w*Error: (VoroHex: )?", "", why)
             self.obj.Status, self.obj.Message = "error", why
+            # In the Messages list too (it showed none for such a failure): its code from the
+            # exception's name (ShapeError: shape_error).
+            code = re.sub(r"(?<!^)([A-Z])", r"_\1", kind.group(1)).lower() if kind else "failed"
+            VoroHexObjects.record_diagnostics(
+                self.obj, [VoroHexObjects.Diagnostic("error", code, why, [])])
             self.obj.purgeTouched()
             FreeCAD.Console.PrintError("VoroHex: {}: {}\n".format(self.obj.Label, why))
             self.finished(None, "failed")

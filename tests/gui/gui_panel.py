@@ -368,6 +368,9 @@ def main():
     w["run"].click()
     check(wait_until(lambda: w["run"].isEnabled(), 30), "the failing run ended")
     check(failing.Status == "error", "the overlapping boxes fail: " + failing.Message)
+    check(failing.Message.startswith("cannot read the solid: The shape holds 2 solids") and
+          list(failing.Diagnostics) == ["error [shape_error] " + failing.Message],
+          "the message as said, and in the Messages list: {}".format(list(failing.Diagnostics)))
     name = failing.Name
     button(mw, QtGui.QDialogButtonBox.Cancel).click()
     pump(0.3)
