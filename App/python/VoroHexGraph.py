@@ -128,7 +128,8 @@ class VoronoiGraph:
         as points; the f_s faces' triangles as properties the view draws); the error, or
         None."""
         graph = data["graph"]
-        note = VoroHexObjects.split_faces_note(obj.Part.Shape) if obj.Part else None
+        merged = data.get("merged_faces", 0)
+        note = VoroHexObjects.merged_faces_note(merged) if merged else None
         if not graph.ok:
             return ("; ".join(d.get("message", "") for d in graph.diagnostics) or
                     "the Voronoi graph could not be computed") + (" " + note if note else "")
@@ -180,7 +181,6 @@ class VoronoiGraph:
             obj.FaceCount, obj.FsFaceCount)
         if note:
             obj.Message += ". " + note
-            FreeCAD.Console.PrintWarning("VoroHex: {}: {}\n".format(obj.Label, note))
         return None
 
 
@@ -192,7 +192,9 @@ def cache_key(obj):
 
 def compute(shape, sharp_angle, options, progress=None):
     """The graph of `shape` and the triangles of its f_s faces, as plain values (no
-    document access: it runs in a child process for the GUI); apply() draws them."""
+    document access: it runs in a child process for the GUI); apply() draws them. Faces
+    split on one surface are merged first (VoroHexObjects.merged_split_faces)."""
+    shape, merged = VoroHexObjects.merged_split_faces(shape)
     graph = VoroHex.voronoi_graph(shape, sharp_angle=sharp_angle, progress=progress, **options)
     fs = []
     if graph.ok:
@@ -204,7 +206,7 @@ def compute(shape, sharp_angle, options, progress=None):
             fs.append(VoroHexFaces.triangulate_face(
                 [by_id[i].get("polyline", []) for i in f.get("incident", [])
                  if by_id.get(i, {}).get("kind") == "edge"], scale, f.get("point")))
-    return {"graph": graph, "fs": fs}
+    return {"graph": graph, "fs": fs, "merged_faces": merged}
 
 
 def compute_work(report, brep, sharp_angle, options):

@@ -56,23 +56,37 @@ def record_diagnostics(obj, diagnostics):
     obj.DiagnosticEntities = [",".join(d.entities) for d in diagnostics]
 
 
-def split_faces_note(shape, what="graph"):
-    """A sentence when faces of `shape` lie on one surface with a neighbour (a Part boolean
-    without Refine: FreeCAD 0.20's default), else None. The Voronoi graph takes each such
-    face as a face of its own: the two are equally near along a whole region, which the graph
-    draws as a degenerate edge, and the decomposition follows it (an L bracket fused and cut
-    without Refine: no [1e] edge, one sub-volume without a scheme; refined: two [1e] edges,
-    a block and two sweeps). The hex mesh's own schemes do not depend on it."""
+def merged_split_faces(shape):
+    """(solid, n): `shape` with the faces that lie on one surface with a neighbour merged
+    (OCCT's unification, as Part > Refine shape), and how many faces that took away; (shape,
+    0) when none do or the unification fails. A Part boolean without Refine (FreeCAD 0.20's
+    default) keeps faces split where its operands met; the Voronoi graph takes each as a face
+    of its own, equally near as its neighbour along a whole region, drawn as a degenerate
+    edge, and the decomposition follows it (an L bracket fused and cut without Refine: no
+    [1e] edge and one sub-volume without a scheme; refined: two [1e] edges, a block and two
+    sweeps). So the graph and decomposition objects work on the merged solid. (The hex mesh's
+    schemes take such faces as they are.)"""
     try:
-        extra = len(shape.Faces) - len(shape.removeSplitter().Faces)
-    except Exception:  # OCCT's unification failed: nothing to say
-        return None
-    if extra <= 0:
-        return None
-    return ("Note: {} face{} of this solid lie on the same surface as a neighbour (a Part "
-            "boolean without Refine), and the {} takes each as a face of its own; set "
-            "Refine to true on the boolean (or use Part > Create a copy > Refine shape) for "
-            "the {} of its real faces.").format(extra, "s" if extra > 1 else "", what, what)
+        merged = shape.removeSplitter()
+        if merged.ShapeType != "Solid":
+            solids = merged.Solids
+            if len(solids) != 1:
+                return shape, 0
+            merged = solids[0]
+        n = len(shape.Faces) - len(merged.Faces)
+        if n <= 0 or not merged.isValid() or abs(merged.Volume - shape.Volume) > \
+                1e-9 * max(abs(shape.Volume), 1e-300):
+            return shape, 0
+        return merged, n
+    except Exception:  # OCCT's unification failed: the faces as they are
+        return shape, 0
+
+
+def merged_faces_note(n):
+    """What a graph or decomposition computed on merged_split_faces() says of it."""
+    return ("Computed with {} face{} merged into a neighbour on the same surface (a Part "
+            "boolean without Refine): face names refer to the refined solid.").format(
+                n, "s" if n > 1 else "")
 
 
 def source_error(part, several=False):

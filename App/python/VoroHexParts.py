@@ -119,9 +119,9 @@ class Decomposition:
         """Stores what compute() returned: the compound, one child object per sub-volume
         with its face roles; the error, or None."""
         d = data["decomposition"]
+        merged = data.get("merged_faces", 0)
+        note = VoroHexObjects.merged_faces_note(merged) if merged else None
         if not d.ok or not data["solids"]:
-            note = VoroHexObjects.split_faces_note(obj.Part.Shape, "decomposition") \
-                if obj.Part else None
             return ("; ".join(x.get("message", "") for x in d.diagnostics
                               if x.get("severity") == "error") or "the decomposition failed") + \
                 (" " + note if note else "")
@@ -144,11 +144,8 @@ class Decomposition:
         obj.Message = "{} sub-volumes ({}), {} before merging, {} decomposition faces".format(
             obj.SubVolumeCount, ", ".join("{} {}".format(n, s) for s, n in sorted(
                 schemes.items())), obj.SubVolumesBeforeMerge, obj.DecompositionFaceCount)
-        note = VoroHexObjects.split_faces_note(obj.Part.Shape, "decomposition") \
-            if obj.Part else None
         if note:
             obj.Message += ". " + note
-            FreeCAD.Console.PrintWarning("VoroHex: {}: {}\n".format(obj.Label, note))
         set_children(obj, solids, data["roles"])
         return None
 
@@ -162,14 +159,16 @@ def compute(shape, sharp_angle, merge, options, progress=None,
             time_limit=VoroHex.DECOMPOSITION_TIME_LIMIT):
     """The decomposition of `shape` as plain values (no document access: it runs in a child
     process for the GUI): the VoroHex.Decomposition without its shapes, each sub-volume as
-    a BREP string, and the role of each of its faces. apply() stores them."""
+    a BREP string, and the role of each of its faces. apply() stores them. Faces split on
+    one surface are merged first (VoroHexObjects.merged_split_faces)."""
+    shape, merged = VoroHexObjects.merged_split_faces(shape)
     d = VoroHex.decompose(shape, sharp_angle=sharp_angle, merge=merge, progress=progress,
                           time_limit=time_limit,
                           **options)
     roles = face_roles(d) if d.ok and d.shapes else []
     solids = [s.exportBrepToString() for s in d.shapes]
     d.shapes = []
-    return {"decomposition": d, "solids": solids, "roles": roles}
+    return {"decomposition": d, "solids": solids, "roles": roles, "merged_faces": merged}
 
 
 def compute_work(report, brep, sharp_angle, merge, options,

@@ -758,30 +758,36 @@ class TestVoroHexObject(unittest.TestCase):
         obj = VoroHexParts.makeDecomposition(self.doc, part, progress=lambda stage, f: True)
         self.assertEqual((obj.Status, obj.SubVolumeCount), ("ok", 1))
 
-    def test_graph_and_decomposition_name_faces_split_on_one_surface(self):
+    def test_graph_and_decomposition_merge_faces_split_on_one_surface(self):
         # An L fused from two boxes without Refine (FreeCAD 0.20's default for Part
-        # booleans) keeps faces split where the boxes met; the graph and the decomposition
-        # take each as a face of its own, and their message says so and how to refine. The
-        # refined L has no such note.
+        # booleans) keeps faces split where the boxes met. The graph and decomposition
+        # objects merge them first, as Part > Refine shape does: the same graph and
+        # sub-volumes as the refined L's, and their message says so. (On the split faces the
+        # API's graph has a degenerate edge where the boxes met.)
         fused = Part.makeBox(40, 10, 10).fuse(Part.makeBox(10, 10, 40))
         refined = fused.removeSplitter()
-        self.assertGreater(len(fused.Faces), len(refined.Faces))
-        messages = {}
+        extra = len(fused.Faces) - len(refined.Faces)
+        self.assertEqual(extra, 6)
+        self.assertIn("degenerate", VoroHex.voronoi_graph(fused).type_counts())
+        self.assertNotIn("degenerate", VoroHex.voronoi_graph(refined).type_counts())
+        objects = {}
         for name, shape in (("Unrefined", fused), ("Refined", refined)):
             part = self.doc.addObject("Part::Feature", name)
             part.Shape = shape
             self.doc.recompute()
-            g = VoroHexGraph.makeVoronoiGraph(self.doc, part)
-            d = VoroHexParts.makeDecomposition(self.doc, part)
-            messages[name] = (g.Message, d.Message)
-        extra = len(fused.Faces) - len(refined.Faces)
-        for message, what in zip(messages["Unrefined"], ("graph", "decomposition")):
-            self.assertIn("{} faces of this solid lie on the same surface".format(extra),
-                          message)
-            self.assertIn("the {} takes each as a face of its own".format(what), message)
-            self.assertIn("Refine", message)
-        for message in messages["Refined"]:
-            self.assertNotIn("same surface", message)
+            objects[name] = (VoroHexGraph.makeVoronoiGraph(self.doc, part),
+                             VoroHexParts.makeDecomposition(self.doc, part))
+        (g, d), (g_ref, d_ref) = objects["Unrefined"], objects["Refined"]
+        self.assertEqual(dict(g.EdgeTypeCounts), dict(g_ref.EdgeTypeCounts))
+        self.assertNotIn("degenerate", dict(g.EdgeTypeCounts))
+        self.assertEqual((list(d.Schemes), d.SubVolumeCount),
+                         (list(d_ref.Schemes), d_ref.SubVolumeCount))
+        note = "Computed with {} faces merged into a neighbour on the same surface".format(extra)
+        for obj in (g, d):
+            self.assertEqual(obj.Status, "ok", obj.Message)
+            self.assertIn(note, obj.Message)
+        for obj in (g_ref, d_ref):
+            self.assertNotIn("merged", obj.Message)
 
     def test_voronoi_graph_object(self):
         pts = [(0, 0, 0), (4, 0, 0), (4, 1, 0), (1, 1, 0), (1, 3, 0), (0, 3, 0), (0, 0, 0)]
