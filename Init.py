@@ -2,4 +2,5 @@
 # `import VoroHex` and `import VoroHexObjects` work because this folder is on sys.path.
 import FreeCAD
 
-FreeCAD.__unit_test__ += ["TestVoroHex", "TestVoroHexFea", "TestVoroHexSizes"]
+FreeCAD.__unit_test__ += [
+    "TestVoroHex", "TestVoroHexDocument", "TestVoroHexFea", "TestVoroHexSizes"]
