@@ -447,8 +447,8 @@ class TaskPanel:
         try:
             payload = job.result()
         except VoroHexJobs.Cancelled:
-            self.finished("Stopped by the user after {:.1f} s; the previous mesh is kept."
-                          .format(job.elapsed), "stopped")
+            self.finished("Stopped by the user after {:.1f} s; {}.".format(
+                job.elapsed, self.kept_text()), "stopped")
             FreeCAD.Console.PrintMessage("VoroHex: meshing {} stopped by the user\n".format(
                 self.obj.Label))
             return
@@ -517,13 +517,17 @@ class TaskPanel:
             if progress_text == "done":
                 self._close()
 
+    def kept_text(self):
+        """What a stopped run leaves: the mesh before, or none."""
+        return "the previous mesh is kept" if self.obj.Status == "ok" else "nothing was meshed"
+
     def stop(self):
         """Stop: the child process is killed at once, whatever stage it is in."""
         if self.runner is not None:
             self.runner.stop()
         elif self.builder is not None:  # meshed, the FemMesh still being built
             self.builder = None
-            self.finished("Stopped by the user; the previous mesh is kept.", "stopped")
+            self.finished("Stopped by the user; {}.".format(self.kept_text()), "stopped")
             FreeCAD.Console.PrintMessage("VoroHex: meshing {} stopped by the user\n".format(
                 self.obj.Label))
         self.stop_trials()
@@ -716,18 +720,27 @@ class TaskPanel:
         return int(QtGui.QDialogButtonBox.Ok | QtGui.QDialogButtonBox.Cancel)
 
     def accept(self):
+        """OK: the mesh of the options shown. Runs (and closes when done) unless the mesh is
+        already theirs: the options differ from those of the mesh (a Run stopped or refused
+        has stored its options already, so what store() changes now is not enough to tell),
+        or the last run failed. A run refused keeps the panel open: it says why."""
         if self.running:
             return False
-        if self.store() or self.obj.Status != "ok":
+        self.store()
+        if self.options_differ() or self.obj.Status != "ok":
             self.close_when_done = True  # closes when the run is done
             self.run()
             if self.running:
                 return False
             self.close_when_done = False
-            if self.obj.Status != "ok":
-                return False  # refused: the panel says why
+            if self.obj.Status != "ok" or self.options_differ():
+                return False  # refused or failed: the panel says why
         self._close()
         return True
+
+    def options_differ(self):
+        """Whether the object's options differ from those of its mesh (self.initial)."""
+        return any(getattr(self.obj, prop) != value for prop, value in self.initial.items())
 
     def reject(self):
         if self.running:

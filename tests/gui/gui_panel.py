@@ -325,6 +325,19 @@ def main():
     big = doc.addObject("Part::Box", "Part90")
     big.Length, big.Width, big.Height = 90, 60, 30
     doc.recompute()
+    # OK after a refused Run (the run stored its size): not closed with a size beside the
+    # mesh another size made - OK runs that size, which is refused again, and the panel
+    # stays open saying why.
+    w["size"].setValue(0.0001)
+    pump(0.1)
+    w["run"].click()
+    pump(0.2)
+    check("refused" in w["progress"].format(), "size 0.0001 refused: " + w["progress"].format())
+    button(mw, QtGui.QDialogButtonBox.Ok).click()
+    pump(0.3)
+    check(bool(Gui.Control.activeDialog()) and w["banner"].isVisible() and
+          mesh.HexCount == 64, "OK after a refused Run keeps the panel open: " +
+          w["banner"].text())
     # Cancel keeps the mesh with the options that made it: the last run's size (5), not a
     # size typed after it, nor the one the panel opened with.
     w["size"].setValue(4)
