@@ -26,6 +26,15 @@ class TestVoroHexObject(unittest.TestCase):
     def tearDown(self):
         FreeCAD.closeDocument(self.doc.Name)
 
+    def make_l(self):
+        """An L-shaped extrusion (4 x 3, legs 1 thick, 3 deep) as a document object."""
+        pts = [(0, 0, 0), (4, 0, 0), (4, 1, 0), (1, 1, 0), (1, 3, 0), (0, 3, 0), (0, 0, 0)]
+        l_shape = self.doc.addObject("Part::Feature", "L")
+        l_shape.Shape = Part.Face(Part.makePolygon([FreeCAD.Vector(*p) for p in pts])).extrude(
+            FreeCAD.Vector(0, 0, 3))
+        self.doc.recompute()
+        return l_shape
+
     def make_mesh(self, size=5):
         obj = VoroHexObjects.makeHexMesh(self.doc, self.box, size=size)
         self.doc.recompute()
@@ -76,11 +85,7 @@ class TestVoroHexObject(unittest.TestCase):
             self.assertNotIn("merged", obj.Message)
 
     def test_voronoi_graph_object(self):
-        pts = [(0, 0, 0), (4, 0, 0), (4, 1, 0), (1, 1, 0), (1, 3, 0), (0, 3, 0), (0, 0, 0)]
-        l_shape = self.doc.addObject("Part::Feature", "L")
-        l_shape.Shape = Part.Face(Part.makePolygon([FreeCAD.Vector(*p) for p in pts])).extrude(
-            FreeCAD.Vector(0, 0, 3))
-        self.doc.recompute()
+        l_shape = self.make_l()
         g = VoroHexGraph.makeVoronoiGraph(self.doc, l_shape)
         self.assertTrue(g.isValid(), g.getStatusString())
         self.assertEqual(g.Status, "ok")
@@ -150,11 +155,7 @@ class TestVoroHexObject(unittest.TestCase):
             VoroHexGraph.makeVoronoiGraph(self.doc, None)
 
     def test_decomposition_object(self):
-        pts = [(0, 0, 0), (4, 0, 0), (4, 1, 0), (1, 1, 0), (1, 3, 0), (0, 3, 0), (0, 0, 0)]
-        l_shape = self.doc.addObject("Part::Feature", "L")
-        l_shape.Shape = Part.Face(Part.makePolygon([FreeCAD.Vector(*p) for p in pts])).extrude(
-            FreeCAD.Vector(0, 0, 3))
-        self.doc.recompute()
+        l_shape = self.make_l()
         d = VoroHexParts.makeDecomposition(self.doc, l_shape, merge=False)
         self.assertTrue(d.isValid(), d.getStatusString())
         self.assertEqual(d.SubVolumeCount, 3)
