@@ -12,6 +12,7 @@ import FreeCAD
 import Part
 
 import VoroHex
+import VoroHexObjects
 
 # VTK hex faces, outward (the mesh order VoroHex uses, and Abaqus/CalculiX C3D8 order).
 HEX_FACES = ((0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7))
@@ -684,6 +685,39 @@ class TestVoroHexApi(unittest.TestCase):
         bad = VoroHex.check((pts, [[4, 5, 6, 7, 0, 1, 2, 3]]))
         self.assertFalse(bad.valid)
         self.assertEqual(bad.non_positive, 1)
+
+
+class BoxDocument:
+    """A mixin for document-object tests: a new document with a 10 x 20 x 30 Part::Box
+    (`doc_name` names the document), closed afterwards; make_mesh() adds its hex mesh."""
+
+    doc_name = "VoroHexTest"
+
+    def setUp(self):
+        self.doc = FreeCAD.newDocument(self.doc_name)
+        self.box = self.doc.addObject("Part::Box", "Box")
+        self.box.Length, self.box.Width, self.box.Height = 10, 20, 30
+        self.doc.recompute()
+
+    def tearDown(self):
+        FreeCAD.closeDocument(self.doc.Name)
+
+    def make_mesh(self, size=5):
+        obj = VoroHexObjects.makeHexMesh(self.doc, self.box, size=size)
+        self.doc.recompute()
+        return obj
+
+    def ccx_deck(self, analysis, solver, folder):
+        """The .inp FreeCAD's CalculiX tools write for `analysis` into `folder` (test mode:
+        not solved), after their prerequisites check passed: its path."""
+        from femtools import ccxtools
+
+        fea = ccxtools.FemToolsCcx(analysis, solver, test_mode=True)
+        fea.update_objects()
+        fea.setup_working_dir(folder)
+        self.assertFalse(fea.check_prerequisites())
+        self.assertFalse(fea.write_inp_file())
+        return fea.inp_file_name
 
 
 def snapshot(doc):

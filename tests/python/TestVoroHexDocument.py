@@ -13,18 +13,10 @@ import VoroHex
 import VoroHexGraph
 import VoroHexObjects
 import VoroHexParts
-from TestVoroHex import femmesh_hex_volumes, figure6_shape, inp_c3d8_volumes, snapshot
+from TestVoroHex import BoxDocument, femmesh_hex_volumes, figure6_shape, inp_c3d8_volumes, snapshot
 
 
-class TestVoroHexObject(unittest.TestCase):
-    def setUp(self):
-        self.doc = FreeCAD.newDocument("VoroHexTest")
-        self.box = self.doc.addObject("Part::Box", "Box")
-        self.box.Length, self.box.Width, self.box.Height = 10, 20, 30
-        self.doc.recompute()
-
-    def tearDown(self):
-        FreeCAD.closeDocument(self.doc.Name)
+class TestVoroHexObject(BoxDocument, unittest.TestCase):
 
     def make_l(self):
         """An L-shaped extrusion (4 x 3, legs 1 thick, 3 deep) as a document object."""
@@ -35,10 +27,12 @@ class TestVoroHexObject(unittest.TestCase):
         self.doc.recompute()
         return l_shape
 
-    def make_mesh(self, size=5):
-        obj = VoroHexObjects.makeHexMesh(self.doc, self.box, size=size)
-        self.doc.recompute()
-        return obj
+    def reopened(self, path, name):
+        """The document saved to `path`, closed and opened again; its object `name`."""
+        self.doc.saveAs(path)
+        FreeCAD.closeDocument(self.doc.Name)
+        self.doc = FreeCAD.openDocument(path)
+        return self.doc.getObject(name)
 
     def test_cancelled_graph_or_decomposition_leaves_the_document_as_it_was(self):
         part = self.doc.addObject("Part::Feature", "Figure6")
@@ -142,12 +136,7 @@ class TestVoroHexObject(unittest.TestCase):
         self.assertIn("eps", fine.Message)
         # Saved and reopened, the object keeps its properties.
         with tempfile.TemporaryDirectory() as tmp:
-            path = os.path.join(tmp, "graph.FCStd")
-            name = g.Name
-            self.doc.saveAs(path)
-            FreeCAD.closeDocument(self.doc.Name)
-            self.doc = FreeCAD.openDocument(path)
-            g2 = self.doc.getObject(name)
+            g2 = self.reopened(os.path.join(tmp, "graph.FCStd"), g.Name)
             self.assertEqual(list(g2.ShownTypes), [t for t in VoroHexGraph.TYPE_NAMES
                                                    if t != hidden])
             self.assertEqual(dict(g2.EdgeTypeCounts), {t: str(n) for t, n in expected.items()})
@@ -276,11 +265,7 @@ class TestVoroHexObject(unittest.TestCase):
         obj = self.make_mesh(size=10)
         name, hexes = obj.Name, obj.HexCount
         with tempfile.TemporaryDirectory() as d:
-            path = os.path.join(d, "hex.FCStd")
-            self.doc.saveAs(path)
-            FreeCAD.closeDocument(self.doc.Name)
-            self.doc = FreeCAD.openDocument(path)
-            o2 = self.doc.getObject(name)
+            o2 = self.reopened(os.path.join(d, "hex.FCStd"), name)
             self.assertEqual(o2.Proxy.Type, "Fem::VoroHexMesh")
             self.assertEqual(o2.HexCount, hexes)
             self.assertEqual(o2.FemMesh.VolumeCount, hexes)
@@ -339,11 +324,7 @@ class TestVoroHexObject(unittest.TestCase):
             obj.removeProperty(prop)
         self.assertNotIn("SmoothPasses", obj.PropertiesList)
         with tempfile.TemporaryDirectory() as d:
-            path = os.path.join(d, "old.FCStd")
-            self.doc.saveAs(path)
-            FreeCAD.closeDocument(self.doc.Name)
-            self.doc = FreeCAD.openDocument(path)
-            o2 = self.doc.getObject(name)
+            o2 = self.reopened(os.path.join(d, "old.FCStd"), name)
             for prop in new:
                 self.assertIn(prop, o2.PropertiesList)
             self.assertEqual(o2.SmoothIterations, 3)  # kept from the file
@@ -374,7 +355,6 @@ class TestVoroHexObject(unittest.TestCase):
 
     def test_calculix_analysis_inp(self):
         import ObjectsFem
-        from femtools import ccxtools
 
         analysis = ObjectsFem.makeAnalysis(self.doc, "Analysis")
         solver = ObjectsFem.makeSolverCalculixCcxTools(self.doc, "CalculiXccxTools")
@@ -400,17 +380,13 @@ class TestVoroHexObject(unittest.TestCase):
         self.assertTrue(mesh.isValid())
 
         with tempfile.TemporaryDirectory() as d:
-            fea = ccxtools.FemToolsCcx(analysis, solver, test_mode=True)
-            fea.update_objects()
-            fea.setup_working_dir(d)
-            self.assertFalse(fea.check_prerequisites())
-            self.assertFalse(fea.write_inp_file())
-            with open(fea.inp_file_name) as f:
+            path = self.ccx_deck(analysis, solver, d)
+            with open(path) as f:
                 text = f.read()
             self.assertRegex(text, r"(?i)\*element,\s*type=C3D8")
             self.assertRegex(text, r"(?i)\*boundary")
             self.assertRegex(text, r"(?i)\*cload")
-            vols = inp_c3d8_volumes(fea.inp_file_name)
+            vols = inp_c3d8_volumes(path)
             self.assertEqual(len(vols), 48)
             self.assertTrue(all(v > 0 for v in vols), min(vols))
             self.assertTrue(math.isclose(sum(vols), 6000.0, rel_tol=1e-9))
