@@ -14,6 +14,8 @@
 #include "mesh/map_block.h"
 #include "mesh/mesh_sub_volumes.h"
 #include "mesh/midpoint.h"
+#include "mesh/multisweep.h"
+#include "mesh/revolve.h"
 #include "mesh/sweep.h"
 #include "occ/shape_io.h"
 #include "occ/split_solid.h"
@@ -38,6 +40,10 @@ const char* scheme_name(Scheme s) {
       return "map";
     case Scheme::midpoint:
       return "midpoint";
+    case Scheme::multisweep:
+      return "multisweep";
+    case Scheme::revolve:
+      return "revolve";
     case Scheme::none:
       return "none";
   }
@@ -470,9 +476,11 @@ void snap_coplanar(const occ::Solid& solid, std::vector<DecompositionQuad>& quad
   }
 }
 
-// Step 6: type and scheme of one sub-volume.
+// Step 6: type and scheme of one sub-volume, judged by the meshers in the pipeline's order:
+// a mapped block, a sweep (first for a Vs), a multisweep, a revolve (the solid's only
+// sub-volume), midpoint subdivision.
 void type_sub_volume(const VoronoiGraph& g, const DecompositionResult& r, int index,
-                     SubVolume& sv) {
+                     const DecomposeOptions& options, SubVolume& sv) {
   std::set<int> originals;
   for (const VirtualFace& vf : r.topology.faces)
     if (vf.sub_volume == index && vf.original.valid()) originals.insert(vf.original.value());
@@ -496,21 +504,51 @@ void type_sub_volume(const VoronoiGraph& g, const DecompositionResult& r, int in
   };
   if (sv.type == SubVolumeType::vs && sweep.ok) {
     use_sweep("Vs: sweep between the faces across its f_s face");
-  } else if (map.ok) {
+    return;
+  }
+  if (map.ok) {
     sv.scheme = Scheme::map;
     sv.reason = sv.type == SubVolumeType::vs
                     ? "Vs not sweepable (" + sweep.reason + "), a topological hexahedron"
                     : "Ve: a topological hexahedron";
-  } else if (sweep.ok) {
-    use_sweep("Ve: sweep along its Voronoi edges");
-  } else if (const mesh::Applicability mid = mesh::midpoint_applicable(*sv.solid); mid.ok) {
+    return;
+  }
+  if (sweep.ok) return use_sweep("Ve: sweep along its Voronoi edges");
+  std::string why = "no scheme: sweep: " + sweep.reason + "; map: " + map.reason;
+  if (options.multisweep) {
+    const mesh::MultisweepApplicability multi = mesh::multisweep_applicable(*sv.solid);
+    if (multi.ok) {
+      sv.scheme = Scheme::multisweep;
+      sv.reason = "prismatic: a multisweep along its axis (" + std::to_string(multi.levels) +
+                  " levels, " + std::to_string(multi.regions) + " regions)";
+      return;
+    }
+    why += "; multisweep: " + multi.reason;
+  }
+  if (options.revolve && r.sub_volumes.size() == 1) {
+    const mesh::RevolveApplicability rev = mesh::revolve_applicable(*sv.solid);
+    if (rev.ok) {
+      sv.scheme = Scheme::revolve;
+      sv.reason = "a solid of revolution (revolved about its axis; meshed on its own only)";
+      return;
+    }
+    why += "; revolve: " + rev.reason;
+  }
+  if (const mesh::Applicability mid = mesh::midpoint_applicable(*sv.solid); mid.ok) {
     sv.scheme = Scheme::midpoint;
     sv.reason = "Ve: a convex cell (midpoint subdivision)";
   } else {
     sv.scheme = Scheme::none;
-    sv.reason =
-        "no scheme: sweep: " + sweep.reason + "; map: " + map.reason + "; midpoint: " + mid.reason;
+    sv.reason = why + "; midpoint: " + mid.reason;
   }
+}
+
+// Whether a union of sub-volumes is one the merge pass keeps: a sweep, else (when the
+// options allow) a multisweep, or a revolve when it is the whole solid.
+bool union_has_scheme(const occ::Solid& u, bool whole, const DecomposeOptions& options) {
+  return mesh::sweep_applicable(u).ok ||
+         (options.multisweep && mesh::multisweep_applicable(u).ok) ||
+         (whole && options.revolve && mesh::revolve_applicable(u).ok);
 }
 
 using Clock = std::chrono::steady_clock;
@@ -528,15 +566,14 @@ int invalid_faces(const DecompositionResult& r) {
 // interface splits is no longer one face, and a sweep across it may not be one any more.
 // No value when the pieces do not glue.
 std::optional<mesh::SubVolumePlan> glued_plan(const DecompositionResult& r,
-                                              const std::vector<int>& which) {
-  // Without multisweeps: the decomposition's own schemes are map, sweep and midpoint.
-  if (which.size() == 1) return mesh::plan_sub_volumes(*r.sub_volumes[which[0]].solid, false);
+                                              const std::vector<int>& which, bool multisweep) {
+  if (which.size() == 1) return mesh::plan_sub_volumes(*r.sub_volumes[which[0]].solid, multisweep);
   std::vector<const occ::Solid*> solids;
   for (int i : which) solids.push_back(r.sub_volumes[i].solid.get());
   try {
     const occ::ReadResult glued = occ::glue_solids(solids, "The sub-volumes");
     if (!glued.ok() || glued.solid->num_solids() != int(solids.size())) return std::nullopt;
-    return mesh::plan_sub_volumes(*glued.solid, false);
+    return mesh::plan_sub_volumes(*glued.solid, multisweep);
   } catch (const std::exception&) {
     return std::nullopt;
   }
@@ -546,10 +583,10 @@ std::optional<mesh::SubVolumePlan> glued_plan(const DecompositionResult& r,
 // does every neighbour that has one alone. Only they are glued (one OCCT general fuse of a
 // few pieces per try, not of all): the judgement of the whole is judge_glued's, at the end.
 bool union_meshable_glued(const DecompositionResult& trial, int u,
-                          const std::vector<int>& neighbours) {
+                          const std::vector<int>& neighbours, bool multisweep) {
   std::vector<int> which{u};
   which.insert(which.end(), neighbours.begin(), neighbours.end());
-  const std::optional<mesh::SubVolumePlan> plan = glued_plan(trial, which);
+  const std::optional<mesh::SubVolumePlan> plan = glued_plan(trial, which, multisweep);
   if (!plan || plan->schemes[0].empty()) return false;
   for (std::size_t k = 1; k < which.size(); ++k)
     if (trial.sub_volumes[which[k]].scheme != Scheme::none && plan->schemes[k].empty())
@@ -557,26 +594,30 @@ bool union_meshable_glued(const DecompositionResult& trial, int u,
   return true;
 }
 
-// A block or sweep alone that is none once glued to its neighbours gets no scheme: the
-// report says what the meshing of several sub-volumes will find (and the pipeline then
-// tries other cuts instead of failing there).
-void judge_glued(DecompositionResult& r) {
+// A block, sweep or multisweep alone that is none once glued to its neighbours gets no
+// scheme: the report says what the meshing of several sub-volumes will find (and the
+// pipeline then tries other cuts instead of failing there).
+void judge_glued(DecompositionResult& r, bool multisweep) {
   if (r.sub_volumes.size() < 2) return;
   std::vector<int> all(r.sub_volumes.size());
   for (std::size_t i = 0; i < all.size(); ++i) all[i] = int(i);
-  const std::optional<mesh::SubVolumePlan> plan = glued_plan(r, all);
+  const std::optional<mesh::SubVolumePlan> plan = glued_plan(r, all, multisweep);
   if (!plan) return;
   for (std::size_t i = 0; i < r.sub_volumes.size(); ++i) {
     SubVolume& sv = r.sub_volumes[i];
-    if ((sv.scheme != Scheme::map && sv.scheme != Scheme::sweep) || !plan->schemes[i].empty())
-      continue;
-    sv.reason = std::string(sv.scheme == Scheme::map ? "a topological hexahedron" : "a sweep") +
+    const bool joined =
+        sv.scheme == Scheme::map || sv.scheme == Scheme::sweep || sv.scheme == Scheme::multisweep;
+    if (!joined || !plan->schemes[i].empty()) continue;
+    sv.reason = std::string(sv.scheme == Scheme::map     ? "a topological hexahedron"
+                            : sv.scheme == Scheme::sweep ? "a sweep"
+                                                         : "prismatic") +
                 " alone, but no scheme once glued to its neighbours: " + plan->reasons[i];
     sv.scheme = Scheme::none;
   }
 }
 
-// Merge pass (§7): unite sub-volumes whose union is sweepable. Candidates, largest first:
+// Merge pass (§7): unite sub-volumes whose union is a sweep (or a multisweep, or the whole
+// solid revolved: union_has_scheme). Candidates, largest first:
 // all sub-volumes, each one with all its neighbours across decomposition faces, each
 // neighbouring pair. A union is kept only if no decomposition face becomes invalid: a
 // union whose face is partly a model face and partly the interface to a neighbour would
@@ -588,7 +629,8 @@ void judge_glued(DecompositionResult& r) {
 // and the pass stops at the time limit (or when `progress` is cancelled): each try is an
 // OCCT fuse.
 void merge_pass(const occ::Solid& solid, const VoronoiGraph& g, double tol, double time_limit,
-                const core::Progress& progress, DecompositionResult& r) {
+                const DecomposeOptions& options, const core::Progress& progress,
+                DecompositionResult& r) {
   std::set<std::vector<const occ::Solid*>> rejected;
   const auto start = Clock::now();
   occ::Fuser fuser;  // the unions' unifications in one child process
@@ -649,7 +691,7 @@ void merge_pass(const occ::Solid& solid, const VoronoiGraph& g, double tol, doub
         for (std::size_t k = 2; u && k < group.size(); ++k)
           u = fuser.fuse(*u, *r.sub_volumes[group[k]].solid, left());
       }
-      if (!u || !mesh::sweep_applicable(*u).ok) {
+      if (!u || !union_has_scheme(*u, int(group.size()) == n, options)) {
         rejected.insert(key);
         continue;
       }
@@ -677,13 +719,13 @@ void merge_pass(const occ::Solid& solid, const VoronoiGraph& g, double tol, doub
                                                        [&](int k) { return k < j; })));
       std::sort(neighbours.begin(), neighbours.end());
       neighbours.erase(std::unique(neighbours.begin(), neighbours.end()), neighbours.end());
-      if (!union_meshable_glued(trial, group[0], neighbours)) {
+      if (!union_meshable_glued(trial, group[0], neighbours, options.multisweep)) {
         rejected.insert(key);
         continue;
       }
       r = std::move(trial);
       for (std::size_t i = 0; i < r.sub_volumes.size(); ++i)
-        type_sub_volume(g, r, int(i), r.sub_volumes[i]);
+        type_sub_volume(g, r, int(i), options, r.sub_volumes[i]);
       merged = true;
       break;
     }
@@ -818,6 +860,10 @@ DecompositionResult decompose(const occ::Solid& solid, const voronoi::VoronoiRes
         core::make_info("dangling_decomposition_faces",
                         std::to_string(split.dropped_internal_faces) +
                             " pieces of decomposition faces separated nothing and were dropped"));
+  // One piece is the solid itself: taken exactly, without the edges the decomposition
+  // faces that separated nothing imprinted on its faces (HexMe s11's cube with a cylinder:
+  // no multisweep with them, one without).
+  if (split.pieces.size() == 1) split.pieces[0] = solid.clone();
   for (occ::Solid& piece : split.pieces) {
     SubVolume sv;
     sv.volume = piece.volume();
@@ -826,7 +872,7 @@ DecompositionResult decompose(const occ::Solid& solid, const voronoi::VoronoiRes
   }
   detail::build_topology(solid, tol, r);
   for (std::size_t i = 0; i < r.sub_volumes.size(); ++i)
-    type_sub_volume(g, r, int(i), r.sub_volumes[i]);
+    type_sub_volume(g, r, int(i), options, r.sub_volumes[i]);
   r.stats.sub_volumes_before_merge = int(r.sub_volumes.size());
   if (cancelled_only(progress)) return stopped(r, progress, "typing the sub-volumes", t0);
   // Pieces that are not closed or lose volume cannot be repaired by merging: report now.
@@ -844,14 +890,14 @@ DecompositionResult decompose(const occ::Solid& solid, const voronoi::VoronoiRes
 
   if (cancelled_only(progress)) return stopped(r, progress, "checking the sub-volumes", t0);
   if (options.merge)
-    merge_pass(solid, g, tol, within(options.split_time_limit, progress), progress, r);
+    merge_pass(solid, g, tol, within(options.split_time_limit, progress), options, progress, r);
   // A deadline ends the merge pass with what it has (merge_stopped); a cancel ends the run.
   if (cancelled_only(progress)) return stopped(r, progress, "merging sub-volumes", t0);
   progress.report("decompose", 0.75);
   // Judged glued only when it is a candidate for meshing: every piece has a scheme alone.
   if (std::none_of(r.sub_volumes.begin(), r.sub_volumes.end(),
                    [](const SubVolume& sv) { return sv.scheme == Scheme::none; }))
-    judge_glued(r);
+    judge_glued(r, options.multisweep);
   detail::build_virtual_edges(solid, tol, r);
 
   r.stats.sub_volumes = int(r.sub_volumes.size());

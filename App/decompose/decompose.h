@@ -32,6 +32,13 @@ struct DecomposeOptions {
   double sharp_angle = 60;
   // Unite adjacent sub-volumes whose union is sweepable (the paper's §7 proposal).
   bool merge = true;
+  // The meshers that judge the sub-volumes besides the mapped block, the one-to-one sweep
+  // and midpoint subdivision: a prismatic sub-volume is a multisweep (many-to-one sweep with
+  // submapped walls; mesh_sub_volumes meshes it beside blocks and sweeps), and a solid that
+  // stays one sub-volume is revolved where it is a solid of revolution (meshed on its own
+  // only). The mesh pipeline follows its own `schemes`.
+  bool multisweep = true;
+  bool revolve = true;
   // Geometric tolerance (coincident points, coplanarity, faces on faces), relative to the
   // bounding-box diagonal; (0, 0.01].
   double tolerance = 1e-6;
@@ -125,10 +132,13 @@ struct VirtualTopology {
 
 enum class SubVolumeType { vs, ve };
 // midpoint: a convex cell for midpoint subdivision (Ve); it is meshed on its own only (its
-// faces' subdivision is not the mapped grid a neighbour would put on them).
-enum class Scheme { sweep, map, midpoint, none };
+// faces' subdivision is not the mapped grid a neighbour would put on them). multisweep: a
+// prismatic sub-volume (many-to-one sweep); revolve: the one sub-volume of a solid of
+// revolution (meshed on its own only).
+enum class Scheme { sweep, map, midpoint, multisweep, revolve, none };
 const char* sub_volume_type_name(SubVolumeType t);  // "Vs", "Ve"
-const char* scheme_name(Scheme s);                  // "sweep", "map", "midpoint", "none"
+// "sweep", "map", "midpoint", "multisweep", "revolve", "none"
+const char* scheme_name(Scheme s);
 
 struct SubVolume {
   std::shared_ptr<const occ::Solid> solid;

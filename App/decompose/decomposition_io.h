@@ -5,8 +5,8 @@
 //   {"status": "ok"|"partial"|"failed",
 //    "counts": {"sub_volumes_before_merge": n, "sub_volumes": n, "decomposition_faces": n,
 //               "quads": n, "edges_of_interest": n, "projected_edges": n},
-//    "sub_volumes": [{"id": i, "type": "Vs"|"Ve", "scheme": "sweep"|"map"|"midpoint"|"none",
-//                     "reason": "...", "volume": v, "merged_from": n,
+//    "sub_volumes": [{"id": i, "type": "Vs"|"Ve", "scheme": "sweep"|"map"|"multisweep"|
+//                     "revolve"|"midpoint"|"none", "reason": "...", "volume": v, "merged_from": n,
 //                     "f_s_face": voronoi id or null, "source": "Face3", "target": "Face5",
 //                     "faces": [{"face": "Face1", "on": "Face4" or null,
 //                                "decomposition_face": k or null}],

@@ -741,8 +741,8 @@ class Decomposition:
 
     status: "ok", "partial" or "failed"; counts: {"sub_volumes_before_merge",
     "sub_volumes", "decomposition_faces", "quads", ...}; sub_volumes: list of dicts with
-    "id", "type" ("Vs"/"Ve"), "scheme" ("sweep"/"map"/"midpoint"/"none"), "reason", "volume",
-    "merged_from", "source"/"target" (sweeps); faces: the decomposition faces ("id",
+    "id", "type" ("Vs"/"Ve"), "scheme" ("sweep"/"map"/"multisweep"/"revolve"/"midpoint"/"none"),
+    "reason", "volume", "merged_from", "source"/"target" (sweeps); faces: the decomposition faces ("id",
     "sub_volumes", "edges", "area", "min_angle" (degrees, its smallest angle with a
     neighbouring face), "voronoi_elements", "governors"); diagnostics: list of dicts;
     shapes: the sub-volumes as Part.Solid, in the order of sub_volumes (empty when the

@@ -17,7 +17,8 @@ TYPE = "VoroHex::Decomposition"
 # colours; VoroHexGui/colour_check.py measures every pair at least 12 CIEDE2000 units apart
 # for normal vision and each dichromacy (a test checks it).
 ROLES = (
-    ("sweep", (0x56 / 255, 0xB4 / 255, 0xE9 / 255), "side face of a sub-volume meshed by sweeping"),
+    ("sweep", (0x56 / 255, 0xB4 / 255, 0xE9 / 255),
+     "side face of a sub-volume meshed by sweeping (one-to-one, many-to-one or revolved)"),
     ("map", (0x00 / 255, 0x9E / 255, 0x73 / 255), "face of a sub-volume meshed as a mapped block"),
     ("midpoint", (0xCC / 255, 0x79 / 255, 0xA7 / 255),
      "face of a sub-volume meshed by midpoint subdivision"),
@@ -27,6 +28,8 @@ ROLES = (
      "decomposition face (between two sub-volumes)"),
 )
 COLOURS = {r[0]: r[1] for r in ROLES}
+# Sweeps along the sub-volume's axis (many-to-one) or about it take the sweep's colour.
+SWEPT = {"multisweep": "sweep", "revolve": "sweep"}
 
 RESULTS = (
     ("Status", "App::PropertyString", "ok, partial, or error when the last recompute failed"),
@@ -35,7 +38,8 @@ RESULTS = (
     ("SubVolumesBeforeMerge", "App::PropertyInteger", "Sub-volumes of the first split"),
     ("DecompositionFaceCount", "App::PropertyInteger", "Faces between two sub-volumes"),
     ("Types", "App::PropertyStringList", "Vs or Ve per sub-volume"),
-    ("Schemes", "App::PropertyStringList", "Meshing scheme per sub-volume (sweep, map, none)"),
+    ("Schemes", "App::PropertyStringList",
+     "Meshing scheme per sub-volume (sweep, map, multisweep, revolve, midpoint, none)"),
     ("Reasons", "App::PropertyStringList", "Why that scheme, per sub-volume"),
     ("FaceRoles", "App::PropertyStringList",
      "Role of every face of the sub-volumes, one sub-volume after the other (each child "
@@ -250,7 +254,8 @@ def face_roles(d):
             elif "Face{}".format(k + 1) in ends:
                 mine.append("source/target")
             else:
-                mine.append(scheme if scheme in COLOURS else "none")
+                mine.append(SWEPT.get(scheme, scheme) if SWEPT.get(scheme, scheme) in COLOURS
+                            else "none")
         roles.append(mine)
     return roles
 

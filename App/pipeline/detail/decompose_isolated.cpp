@@ -39,6 +39,12 @@ std::string voronoi_decomposition(const occ::Solid& solid, const MeshOptions& me
   decompose::DecomposeOptions options;
   options.sharp_angle = mesh_options.sharp_angle;
   options.stop_at_open_gap = true;
+  const auto allowed = [&](const char* scheme) {
+    return std::find(mesh_options.schemes.begin(), mesh_options.schemes.end(), scheme) !=
+           mesh_options.schemes.end();
+  };
+  options.multisweep = allowed("multisweep");
+  options.revolve = allowed("revolve");
   const decompose::DecompositionResult d = decompose::decompose(solid, graph, options, deadline);
   if (!d.ok()) {
     // Why it failed: its first error (a warning before it, such as an open vertex gap, is
@@ -63,10 +69,13 @@ std::string voronoi_decomposition(const occ::Solid& solid, const MeshOptions& me
     if (sv.scheme == decompose::Scheme::none)
       throw std::runtime_error("sub-volume " + std::to_string(k + 1) + " of its decomposition " +
                                "has no scheme (" + sv.reason + ")");
-    if (sv.scheme == decompose::Scheme::midpoint)
-      throw std::runtime_error("sub-volume " + std::to_string(k + 1) + " of its decomposition " +
-                               "is a convex cell for midpoint subdivision, which is meshed only " +
-                               "on its own (not joined to swept or mapped neighbours)");
+    if (sv.scheme == decompose::Scheme::midpoint || sv.scheme == decompose::Scheme::revolve)
+      throw std::runtime_error(
+          "sub-volume " + std::to_string(k + 1) + " of its decomposition " + "is " +
+          (sv.scheme == decompose::Scheme::midpoint ? "a convex cell for midpoint subdivision"
+                                                    : "a solid of revolution") +
+          ", which is meshed only on its own (not joined to swept or "
+          "mapped neighbours)");
     solids.push_back(sv.solid.get());
   }
   return to_text(d.stats.sub_volumes_before_merge, "voronoi", solids);

@@ -311,6 +311,48 @@ TEST(Decompose, SphereEdgesAreTheirOwnPolesAndSeam) {
   EXPECT_EQ(poles, 2);
 }
 
+// Prismatic pieces are judged by the multisweep too (issue 22: the meshers judge the
+// sub-volumes, many-to-one sweeps among them). The post on a plate is neither a block nor a
+// sweep in any direction but prismatic along z: its pieces merge into one multisweep; with
+// multisweeps off, the decomposition keeps to blocks and sweeps as before.
+TEST(Decompose, PrismaticSubVolumesAreMultisweeps) {
+  const occ::Solid post = testing::make_post_on_plate();
+  const Decomposed merged = run(post);
+  ASSERT_EQ(merged.result.sub_volumes.size(), 1u) << describe(merged);
+  EXPECT_EQ(merged.result.sub_volumes[0].scheme, Scheme::multisweep) << describe(merged);
+  EXPECT_GT(merged.result.stats.sub_volumes_before_merge, 1);
+  EXPECT_STREQ(scheme_name(Scheme::multisweep), "multisweep");
+  expect_valid(post, merged);
+  DecomposeOptions without;
+  without.multisweep = false;
+  const Decomposed old = run(post, without);
+  for (const SubVolume& sv : old.result.sub_volumes)
+    EXPECT_NE(sv.scheme, Scheme::multisweep) << describe(old);
+  EXPECT_GT(old.result.sub_volumes.size(), 1u) << describe(old);
+}
+
+// A solid of revolution that stays one sub-volume is revolved (a ring of triangular
+// section, as HexMe s16's torus: no block, sweep or prism); one piece is the solid itself, without
+// the edges the decomposition faces that separated nothing imprinted on it (HexMe s11's cube with a
+// cylinder: a multisweep then).
+TEST(Decompose, OneSubVolumeIsTheSolidJudgedByEveryMesher) {
+  {
+    // A ring of triangular section: a plane and two cones.
+    const occ::Solid ring = occ::make_revolved({{6, 0}, {10, 0}, {8, 3}});
+    const Decomposed r = run(ring);
+    ASSERT_EQ(r.result.sub_volumes.size(), 1u) << describe(r);
+    EXPECT_EQ(r.result.sub_volumes[0].scheme, Scheme::revolve) << describe(r);
+    EXPECT_STREQ(scheme_name(Scheme::revolve), "revolve");
+  }
+  const occ::ReadResult in =
+      occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/s11o_cube_cyl.step");
+  ASSERT_TRUE(in.ok()) << "HexMe model s11 not found in " << VOROHEX_HEXME_DIR;
+  const Decomposed r = run(*in.solid);
+  ASSERT_EQ(r.result.sub_volumes.size(), 1u) << describe(r);
+  EXPECT_EQ(r.result.sub_volumes[0].scheme, Scheme::multisweep) << describe(r);
+  EXPECT_EQ(r.result.sub_volumes[0].solid->num_edges(), in.solid->num_edges());
+}
+
 TEST(Decompose, WritesCompoundAndReport) {
   const occ::Solid l = make_l(3);
   DecomposeOptions opt;
