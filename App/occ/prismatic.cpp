@@ -93,8 +93,11 @@ std::string check_faces_and_edges(const core::MeshDomain& solid, const Vec3& a, 
   auto height = [&](const Vec3& p) { return (p - origin).dot(a); };
   for (FaceId f : solid.faces()) {
     const core::SurfaceInfo info = solid.surface_info(f);
+    // A face without a boundary (a broken piece of a split) is no cap or wall.
+    const auto wires = solid.face_wires(f);
+    if (wires.empty() || wires[0].empty()) return face_name(f.value()) + " has no boundary";
     if (info.kind == core::SurfaceKind::plane) {
-      const Vec3 q = solid.vertex_point(solid.edge_first_vertex(solid.face_wires(f)[0][0].edge));
+      const Vec3 q = solid.vertex_point(solid.edge_first_vertex(wires[0][0].edge));
       const Vec3 n = solid.face_normal(f, q);
       const double cosine = n.dot(a);
       if (std::abs(std::abs(cosine) - 1) < kParallel) {
@@ -121,7 +124,7 @@ std::string check_faces_and_edges(const core::MeshDomain& solid, const Vec3& a, 
       return face_name(f.value()) + " is " + surface_kind(info.kind);
     // Another surface (B-spline, offset...): a wall when its normal is across the axis at
     // every sample of its boundary.
-    for (const auto& wire : solid.face_wires(f))
+    for (const auto& wire : wires)
       for (const OrientedEdge& oe : wire) {
         if (solid.edge_is_degenerated(oe.edge)) continue;
         for (const Vec3& q : solid.edge_points_by_length(oe.edge, 8))
@@ -139,6 +142,7 @@ std::string check_faces_and_edges(const core::MeshDomain& solid, const Vec3& a, 
     // the axis when every sample lies on the axis line through the first, horizontal when
     // every sample lies at the first one's height.
     const std::vector<Vec3> p = solid.edge_points_by_length(e, 8);
+    if (p.empty()) return edge_name(e.value()) + " has no points";
     bool vertical = true, horizontal = true;
     for (const Vec3& q : p) {
       const Vec3 d = q - p[0];
