@@ -10,6 +10,7 @@
 #include <set>
 #include <sstream>
 
+#include "core/isolated_call.h"
 #include "decompose/detail/topology.h"
 #include "mesh/map_block.h"
 #include "mesh/mesh_sub_volumes.h"
@@ -564,19 +565,42 @@ int invalid_faces(const DecompositionResult& r) {
 // The schemes of the sub-volumes `which` once glued to each other, as the meshing of
 // several sub-volumes judges them (mesh/mesh_sub_volumes.h): a face a neighbour's
 // interface splits is no longer one face, and a sweep across it may not be one any more.
-// No value when the pieces do not glue.
+// No value when the pieces do not glue. OCCT's general fuse can crash on pieces it cannot
+// glue (a block with two crossing holes: SIGSEGV in BOPTools_AlgoTools::
+// CorrectCurveOnSurface, which ended the whole decomposition), so the pieces are glued and
+// judged in a child process: a crash there is a union that does not glue.
 std::optional<mesh::SubVolumePlan> glued_plan(const DecompositionResult& r,
                                               const std::vector<int>& which, bool multisweep) {
   if (which.size() == 1) return mesh::plan_sub_volumes(*r.sub_volumes[which[0]].solid, multisweep);
   std::vector<const occ::Solid*> solids;
   for (int i : which) solids.push_back(r.sub_volumes[i].solid.get());
-  try {
+  // The plan crosses back as lines: "1" or "0", then "<scheme>\t<reason>" per sub-volume.
+  const core::IsolatedResult got = core::isolated_call([&]() -> std::string {
     const occ::ReadResult glued = occ::glue_solids(solids, "The sub-volumes");
-    if (!glued.ok() || glued.solid->num_solids() != int(solids.size())) return std::nullopt;
-    return mesh::plan_sub_volumes(*glued.solid, multisweep);
-  } catch (const std::exception&) {
-    return std::nullopt;
+    if (!glued.ok() || glued.solid->num_solids() != int(solids.size()))
+      throw std::runtime_error("the pieces do not glue");
+    const mesh::SubVolumePlan plan = mesh::plan_sub_volumes(*glued.solid, multisweep);
+    std::string out = plan.ok ? "1" : "0";
+    for (std::size_t k = 0; k < plan.schemes.size(); ++k) {
+      std::string reason = plan.reasons[k];
+      std::replace(reason.begin(), reason.end(), '\n', ' ');
+      out += "\n" + plan.schemes[k] + "\t" + reason;
+    }
+    return out;
+  });
+  if (!got.ok()) return std::nullopt;
+  mesh::SubVolumePlan plan;
+  std::istringstream lines(got.data);
+  std::string line;
+  std::getline(lines, line);
+  plan.ok = line == "1";
+  while (std::getline(lines, line)) {
+    const std::size_t tab = line.find('\t');
+    plan.schemes.push_back(line.substr(0, tab));
+    plan.reasons.push_back(tab == std::string::npos ? "" : line.substr(tab + 1));
   }
+  if (plan.schemes.size() != solids.size()) return std::nullopt;
+  return plan;
 }
 
 // Whether the union at index u of `trial` keeps a scheme glued to its neighbours, and so
