@@ -358,7 +358,11 @@ int run_decompose(const std::vector<std::string>& args) {
             << " sub-volumes before merging, " << result.stats.sub_volumes << " after, "
             << result.stats.decomposition_faces << " decomposition faces\n";
         for (std::size_t i = 0; i < result.sub_volumes.size(); ++i)
-          out << "  sub-volume " << i << ": " << result.sub_volumes[i].reason << "\n";
+          out << "  sub-volume " << i << " ("
+              << decompose::scheme_name(result.sub_volumes[i].scheme)
+              << "): " << result.sub_volumes[i].reason << "\n";
+        if (result.status == decompose::DecompositionStatus::partial)
+          out << "partial: " << decompose::partial_reason(result) << "\n";
         out << "wrote " << brep_path << (json_path.empty() ? "" : ", " + json_path)
             << (vtp_path.empty() ? "" : ", " + vtp_path) << "\n";
         return out.str();

@@ -544,6 +544,26 @@ core::Diagnostic not_stopped_error(double time_limit) {
   return core::make_error("time_limit", s.str());
 }
 
+std::string partial_reason(const DecompositionResult& r) {
+  if (r.status != DecompositionStatus::partial) return {};
+  // The codes that make a decomposition partial, with what one of them means.
+  static const std::vector<std::pair<std::string, std::string>> kinds = {
+      {"no_scheme", "sub-volume(s) no scheme accepts"},
+      {"invalid_decomposition_face",
+       "decomposition face(s) not a quadrilateral between two sub-volumes"},
+      {"open_vertex_gap", "Voronoi vertex gap(s) the rules leave open"},
+      {"unusable_voronoi_edge", "Voronoi edge(s) that could not be used"},
+      {"split_check_failed", "split whose pieces failed the self-check (the solid taken whole)"}};
+  std::string out;
+  for (const auto& [code, what] : kinds) {
+    const auto n = std::count_if(r.diagnostics.begin(), r.diagnostics.end(),
+                                 [&](const core::Diagnostic& d) { return d.code == code; });
+    if (n > 0)
+      out += (out.empty() ? "" : "; ") + std::to_string(n) + " " + what + " (" + code + ")";
+  }
+  return out.empty() ? "see the warnings" : out;
+}
+
 DecompositionResult decompose(const occ::Solid& solid, const voronoi::VoronoiResult& voronoi,
                               const DecomposeOptions& options, const core::Progress& progress) {
   const auto t0 = Clock::now();

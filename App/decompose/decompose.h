@@ -198,6 +198,11 @@ DecompositionResult decompose(const occ::Solid& solid, const voronoi::VoronoiRes
                               const DecomposeOptions& options = {},
                               const core::Progress& progress = {});
 
+// Why a decomposition is partial, in one line: the warnings that make it so, counted by
+// kind ("2 sub-volumes have no scheme (no_scheme); 3 decomposition faces are not ...");
+// empty for one that is not partial.
+std::string partial_reason(const DecompositionResult& r);
+
 // For callers that run decompose() in a child process (vorohex decompose, VoroHex.decompose):
 // the seconds they wait past its time limit before killing the child where OCCT's split
 // does not return (its deadline is only polled at OCCT's progress points): 10 %, at least

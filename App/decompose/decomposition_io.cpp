@@ -35,6 +35,7 @@ std::string decomposition_json(const DecompositionResult& r) {
   using nlohmann::json;
   json j;
   j["status"] = status_name(r.status);
+  if (r.status == DecompositionStatus::partial) j["partial_reason"] = partial_reason(r);
   j["counts"] = {{"sub_volumes_before_merge", r.stats.sub_volumes_before_merge},
                  {"sub_volumes", r.stats.sub_volumes},
                  {"decomposition_faces", r.stats.decomposition_faces},

@@ -2,7 +2,7 @@
 // report for people and scripts.
 //
 // JSON layout:
-//   {"status": "ok"|"partial"|"failed",
+//   {"status": "ok"|"partial"|"failed", "partial_reason": "..." (partial only: why),
 //    "counts": {"sub_volumes_before_merge": n, "sub_volumes": n, "decomposition_faces": n,
 //               "quads": n, "edges_of_interest": n, "projected_edges": n},
 //    "sub_volumes": [{"id": i, "type": "Vs"|"Ve", "scheme": "sweep"|"map"|"multisweep"|

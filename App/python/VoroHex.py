@@ -739,10 +739,11 @@ def voronoi_graph(shape, eps=None, delta=None, max_depth=None, linear_tolerance=
 class Decomposition:
     """The decomposition of a solid into sub-volumes (what VoroHex.decompose returns).
 
-    status: "ok", "partial" or "failed"; counts: {"sub_volumes_before_merge",
-    "sub_volumes", "decomposition_faces", "quads", ...}; sub_volumes: list of dicts with
-    "id", "type" ("Vs"/"Ve"), "scheme" ("sweep"/"map"/"multisweep"/"revolve"/"midpoint"/"none"),
-    "reason", "volume", "merged_from", "source"/"target" (sweeps); faces: the decomposition faces ("id",
+    status: "ok", "partial" or "failed" (partial_reason: why partial); counts:
+    {"sub_volumes_before_merge", "sub_volumes", "decomposition_faces", "quads", ...};
+    sub_volumes: list of dicts with "id", "type" ("Vs"/"Ve"), "scheme" ("sweep"/"map"/
+    "multisweep"/"revolve"/"midpoint"/"none"), "reason", "volume", "merged_from",
+    "source"/"target" (sweeps); faces: the decomposition faces ("id",
     "sub_volumes", "edges", "area", "min_angle" (degrees, its smallest angle with a
     neighbouring face), "voronoi_elements", "governors"); diagnostics: list of dicts;
     shapes: the sub-volumes as Part.Solid, in the order of sub_volumes (empty when the
@@ -760,6 +761,7 @@ class Decomposition:
     def __init__(self, data, shapes):
         self.data = data
         self.status = data.get("status", "failed")
+        self.partial_reason = data.get("partial_reason", "")  # why "partial" (else empty)
         self.counts = data.get("counts", {})
         self.sub_volumes = data.get("sub_volumes", [])
         self.faces = data.get("decomposition_faces", [])

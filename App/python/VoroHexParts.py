@@ -145,13 +145,21 @@ class Decomposition:
         schemes = {}
         for s in obj.Schemes:
             schemes[s] = schemes.get(s, 0) + 1
-        obj.Message = "{} sub-volumes ({}), {} before merging, {} decomposition faces".format(
-            obj.SubVolumeCount, ", ".join("{} {}".format(n, s) for s, n in sorted(
-                schemes.items())), obj.SubVolumesBeforeMerge, obj.DecompositionFaceCount)
+        obj.Message = "{} ({}), {} before merging, {}".format(
+            plural(obj.SubVolumeCount, "sub-volume"), ", ".join("{} {}".format(n, s) for s, n in
+                                                               sorted(schemes.items())),
+            obj.SubVolumesBeforeMerge, plural(obj.DecompositionFaceCount, "decomposition face"))
+        if d.status == "partial":
+            obj.Message += ". Partial: " + (d.partial_reason or "see the report's warnings")
         if note:
             obj.Message += ". " + note
         set_children(obj, solids, data["roles"])
         return None
+
+
+def plural(n, noun):
+    """"1 sub-volume", "2 sub-volumes"."""
+    return "{} {}{}".format(n, noun, "" if n == 1 else "s")
 
 
 def cache_key(obj):

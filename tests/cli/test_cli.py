@@ -669,11 +669,12 @@ class InspectCommands(unittest.TestCase):
 
     def test_failed_decomposition_still_writes_its_report(self):
         # HexMe's notch: the split loses 1.3e-9 of the volume (over the 1e-9 allowed), so the
-        # decomposition fails; the report says why, and no sub-volumes are written.
+        # decomposition without merging fails; the report says why, and no sub-volumes are
+        # written.
         step = os.path.join(HEXME, "s07o_notch.step")
         self.assertTrue(os.path.exists(step), step)
         parts, rep = os.path.join(self.dir, "parts.brep"), os.path.join(self.dir, "d.json")
-        code, _, stderr = run("decompose", step, "-o", parts, "--report", rep)
+        code, _, stderr = run("decompose", step, "-o", parts, "--report", rep, "--no-merge")
         self.assertEqual(code, 1, stderr)
         self.assertIn("volume_mismatch", stderr)
         with open(rep) as f:
@@ -681,6 +682,18 @@ class InspectCommands(unittest.TestCase):
         self.assertEqual(report["status"], "failed")
         self.assertIn("volume_mismatch", [d["code"] for d in report["diagnostics"]])
         self.assertFalse(os.path.exists(parts))
+        # Merging, all pieces together are the notch itself, a multisweep: it is the one
+        # sub-volume, and the report and the output say the split did not hold.
+        code, out, stderr = run("decompose", step, "-o", parts, "--report", rep)
+        self.assertEqual(code, 0, stderr)
+        self.assertIn("sub-volume 0 (multisweep)", out)
+        self.assertIn("partial: 1 split whose pieces failed the self-check", out)
+        with open(rep) as f:
+            report = json.load(f)
+        self.assertEqual(report["status"], "partial")
+        self.assertIn("split_check_failed", report["partial_reason"])
+        self.assertEqual([sv["scheme"] for sv in report["sub_volumes"]], ["multisweep"])
+        self.assertTrue(os.path.exists(parts))
 
     def test_inspect_bad_input(self):
         code, _, stderr = run("voronoi", os.path.join(self.dir, "missing.step"), "-o", "x.json")
