@@ -177,6 +177,30 @@ class TestVoroHexObject(BoxDocument, unittest.TestCase):
                 VoroHexParts.makeDecomposition(self.doc, l_shape, time_limit=bad)
         self.assertEqual([o.Name for o in self.doc.Objects], names)
 
+    def test_decomposition_object_with_multisweeps_and_revolves(self):
+        # The meshers judge the sub-volumes: a stepped plate with two holes is one multisweep,
+        # a ring of triangular section one revolve, both drawn in the sweep's colour; the
+        # ring's cones are its own faces (no decomposition face). Why a decomposition is
+        # partial is in its message.
+        V = FreeCAD.Vector
+        plate = Part.makeBox(80, 50, 6).fuse(Part.makeBox(40, 50, 6, V(40, 0, 6)))
+        for x in (20, 60):
+            plate = plate.cut(Part.makeCylinder(5, 30, V(x, 25, -5)))
+        ring = Part.Face(Part.makePolygon([V(6, 0, 0), V(10, 0, 0), V(8, 0, 3), V(6, 0, 0)]))
+        ring = Part.makeSolid(Part.makeShell(ring.revolve(V(0, 0, 0), V(0, 0, 1), 360).Faces))
+        for shape, scheme in ((plate.removeSplitter(), "multisweep"), (ring, "revolve")):
+            part = self.doc.addObject("Part::Feature", scheme)
+            part.Shape = shape
+            d = VoroHexParts.makeDecomposition(self.doc, part)
+            self.assertTrue(d.isValid(), d.getStatusString())
+            self.assertEqual(list(d.Schemes), [scheme], d.Message)
+            self.assertEqual(set(d.FaceRoles), {"sweep"}, d.Message)
+            self.assertTrue(d.Message.startswith("1 sub-volume (1 " + scheme + ")"), d.Message)
+            self.assertIn(d.Status, ("ok", "partial"))
+            self.assertEqual("Partial: " in d.Message, d.Status == "partial", d.Message)
+            if scheme == "revolve":
+                self.assertEqual((d.Status, d.DecompositionFaceCount), ("ok", 0), d.Message)
+
     def test_recompute_counts_validity(self):
         obj = self.make_mesh()
         self.assertEqual(obj.Proxy.Type, "Fem::VoroHexMesh")
