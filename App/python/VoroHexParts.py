@@ -18,7 +18,7 @@ TYPE = "VoroHex::Decomposition"
 # for normal vision and each dichromacy (a test checks it).
 ROLES = (
     ("sweep", (0x56 / 255, 0xB4 / 255, 0xE9 / 255),
-     "side face of a sub-volume meshed by sweeping (one-to-one, many-to-one or revolved)"),
+     "side face of a swept sub-volume (sweep, multisweep, revolve)"),
     ("map", (0x00 / 255, 0x9E / 255, 0x73 / 255), "face of a sub-volume meshed as a mapped block"),
     ("midpoint", (0xCC / 255, 0x79 / 255, 0xA7 / 255),
      "face of a sub-volume meshed by midpoint subdivision"),
