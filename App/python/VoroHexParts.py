@@ -24,8 +24,7 @@ ROLES = (
      "face of a sub-volume meshed by midpoint subdivision"),
     ("none", (0xD5 / 255, 0x5E / 255, 0x00 / 255), "face of a sub-volume no scheme accepts"),
     ("source/target", (0x00 / 255, 0x72 / 255, 0xB2 / 255), "source or target face of a sweep"),
-    ("decomposition", (0xF0 / 255, 0xE4 / 255, 0x42 / 255),
-     "decomposition face (between two sub-volumes)"),
+    ("decomposition", (0xF0 / 255, 0xE4 / 255, 0x42 / 255), "a cut: face between two sub-volumes"),
 )
 COLOURS = {r[0]: r[1] for r in ROLES}
 # Sweeps along the sub-volume's axis (many-to-one) or about it take the sweep's colour.

@@ -83,7 +83,39 @@ def swatch(rgb):
     return QtGui.QIcon(pix)
 
 
-class EdgeTypeTable(QtGui.QTableWidget):
+class FittedTable(QtGui.QTableWidget):
+    """A legend table whose rows are as tall as their wrapped text, refitted whenever the
+    panel's width changes: nothing cut, nothing to scroll."""
+
+    def fit_rows(self):
+        """Rows as tall as their wrapped text, the table as tall as its rows (no scrolling,
+        no cut text)."""
+        self.resizeRowsToContents()
+        height = self.horizontalHeader().height() + 2 * self.frameWidth()
+        height += sum(self.rowHeight(r) for r in range(self.rowCount()))
+        self.setMinimumHeight(height)
+        self.setMaximumHeight(height)
+
+    def resizeEvent(self, event):
+        super().resizeEvent(event)
+        QtCore.QTimer.singleShot(0, self.fit_rows)  # after the columns took their widths
+
+    def cut_cells(self):
+        """(row, column) of every cell whose text does not fit in it (tests: none)."""
+        cut = []
+        for r in range(self.rowCount()):
+            for c in range(self.columnCount()):
+                item = self.item(r, c)
+                fm = QtGui.QFontMetrics(item.font() if item.font() else self.font())
+                width = self.columnWidth(c) - 8 - (26 if c == 0 else 0)  # icon, check box
+                need = fm.boundingRect(QtCore.QRect(0, 0, max(width, 1), 10000),
+                                       int(QtCore.Qt.TextWordWrap), item.text())
+                if need.width() > width + 1 or need.height() > self.rowHeight(r):
+                    cut.append((r, c))
+        return cut
+
+
+class EdgeTypeTable(FittedTable):
     """The edge-type legend of a Voronoi graph object: per type its colour, name (a check
     box that shows or hides the type), number of edges and meaning (wrapped, never cut)."""
 
@@ -113,33 +145,6 @@ class EdgeTypeTable(QtGui.QTableWidget):
         self.setWordWrap(True)
         self.setTextElideMode(QtCore.Qt.ElideNone)
         self.itemChanged.connect(self.toggled)
-
-    def fit_rows(self):
-        """Rows as tall as their wrapped text, the table as tall as its rows (no scrolling,
-        no cut text)."""
-        self.resizeRowsToContents()
-        height = self.horizontalHeader().height() + 2 * self.frameWidth()
-        height += sum(self.rowHeight(r) for r in range(self.rowCount()))
-        self.setMinimumHeight(height)
-        self.setMaximumHeight(height)
-
-    def resizeEvent(self, event):
-        super().resizeEvent(event)
-        QtCore.QTimer.singleShot(0, self.fit_rows)  # after the columns took their widths
-
-    def cut_cells(self):
-        """(row, column) of every cell whose text does not fit in it (tests: none)."""
-        cut = []
-        for r in range(self.rowCount()):
-            for c in range(self.columnCount()):
-                item = self.item(r, c)
-                fm = QtGui.QFontMetrics(item.font() if item.font() else self.font())
-                width = self.columnWidth(c) - 8 - (26 if c == 0 else 0)  # icon, check box
-                need = fm.boundingRect(QtCore.QRect(0, 0, max(width, 1), 10000),
-                                       int(QtCore.Qt.TextWordWrap), item.text())
-                if need.width() > width + 1 or need.height() > self.rowHeight(r):
-                    cut.append((r, c))
-        return cut
 
     def set_graph(self, obj):
         """Shows the counts and shown types of a graph object (None: empty)."""

@@ -9,7 +9,7 @@ from PySide import QtCore, QtGui
 
 import VoroHexGui
 import VoroHexParts
-from VoroHexGui.graph_view import swatch
+from VoroHexGui.graph_view import FittedTable, swatch
 from VoroHexGui.view_provider import ViewProviderBase, fade_solid
 
 MODE = "Sub-volumes"
@@ -102,7 +102,7 @@ class PartsTaskPanel:
         summary.setObjectName("lbl_parts_summary")
         summary.setWordWrap(True)
         layout.addWidget(summary)
-        legend = QtGui.QTableWidget(len(VoroHexParts.ROLES), 2)
+        legend = FittedTable(len(VoroHexParts.ROLES), 2)
         legend.setObjectName("tbl_roles")
         legend.setHorizontalHeaderLabels(["Face role", "Meaning"])
         legend.verticalHeader().setVisible(False)
@@ -151,13 +151,7 @@ class PartsTaskPanel:
         FreeCADGui.Selection.clearSelection()
         self.observer = PickObserver(self)
         FreeCADGui.Selection.addObserver(self.observer)
-        QtCore.QTimer.singleShot(0, self.fit_legend)
-
-    def fit_legend(self):
-        self.legend.resizeRowsToContents()
-        height = self.legend.horizontalHeader().height() + 2 * self.legend.frameWidth() + sum(
-            self.legend.rowHeight(r) for r in range(self.legend.rowCount()))
-        self.legend.setFixedHeight(height)
+        QtCore.QTimer.singleShot(0, self.legend.fit_rows)
 
     def children(self):
         return [c for c in self.obj.SubVolumeObjects if c is not None]

@@ -215,6 +215,9 @@ def main():
     legend = mw.findChild(QtGui.QTableWidget, "tbl_roles")
     check(legend is not None and legend.verticalScrollBar().maximum() == 0,
           "the role legend shows all its rows")
+    # (The role names' column is sized to its contents; the meanings' column wraps.)
+    cut = [cell for cell in legend.cut_cells() if cell[1] == 1]
+    check(not cut, "no meaning in the role legend is cut: rows {}".format(cut))
     del centre
     Gui.Selection.clearSelection()
     table.clearSelection()
