@@ -707,6 +707,23 @@ class BoxDocument:
         self.doc.recompute()
         return obj
 
+    def steel_analysis(self):
+        """A static FEM analysis with FreeCAD's CalculiX solver and a steel material:
+        (analysis, solver); the constraints and the mesh are the caller's."""
+        import ObjectsFem
+
+        analysis = ObjectsFem.makeAnalysis(self.doc, "Analysis")
+        solver = ObjectsFem.makeSolverCalculixCcxTools(self.doc, "CalculiXccxTools")
+        solver.AnalysisType = "static"
+        analysis.addObject(solver)
+        material = ObjectsFem.makeMaterialSolid(self.doc, "Steel")
+        mat = material.Material
+        mat.update({"Name": "Steel", "YoungsModulus": "210000 MPa",
+                    "PoissonRatio": "0.30", "Density": "7900 kg/m^3"})
+        material.Material = mat
+        analysis.addObject(material)
+        return analysis, solver
+
     def ccx_deck(self, analysis, solver, folder):
         """The .inp FreeCAD's CalculiX tools write for `analysis` into `folder` (test mode:
         not solved), after their prerequisites check passed: its path."""

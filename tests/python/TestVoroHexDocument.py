@@ -380,16 +380,7 @@ class TestVoroHexObject(BoxDocument, unittest.TestCase):
     def test_calculix_analysis_inp(self):
         import ObjectsFem
 
-        analysis = ObjectsFem.makeAnalysis(self.doc, "Analysis")
-        solver = ObjectsFem.makeSolverCalculixCcxTools(self.doc, "CalculiXccxTools")
-        solver.AnalysisType = "static"
-        analysis.addObject(solver)
-        material = ObjectsFem.makeMaterialSolid(self.doc, "Steel")
-        mat = material.Material
-        mat.update({"Name": "Steel", "YoungsModulus": "210000 MPa",
-                    "PoissonRatio": "0.30", "Density": "7900 kg/m^3"})
-        material.Material = mat
-        analysis.addObject(material)
+        analysis, solver = self.steel_analysis()
         fixed = ObjectsFem.makeConstraintFixed(self.doc, "Fixed")
         fixed.References = [(self.box, "Face5")]  # z = 0
         analysis.addObject(fixed)

@@ -117,14 +117,7 @@ class TestVoroHexFeaObject(BoxDocument, unittest.TestCase):
         fm = mesh.FemMesh
         self.assertTrue(all(len(fm.getElementNodes(v)) == 20 for v in fm.Volumes))
         self.assertEqual(mesh.NodeCount, fm.NodeCount)
-        analysis = ObjectsFem.makeAnalysis(self.doc, "Analysis")
-        solver = ObjectsFem.makeSolverCalculixCcxTools(self.doc, "CalculiXccxTools")
-        analysis.addObject(solver)
-        material = ObjectsFem.makeMaterialSolid(self.doc, "Steel")
-        mat = material.Material
-        mat.update({"Name": "Steel", "YoungsModulus": "210000 MPa", "PoissonRatio": "0.30"})
-        material.Material = mat
-        analysis.addObject(material)
+        analysis, solver = self.steel_analysis()
         fixed = ObjectsFem.makeConstraintFixed(self.doc, "Fixed")
         fixed.References = [(self.box, "Face5")]
         analysis.addObject(fixed)
@@ -150,15 +143,7 @@ class TestVoroHexFeaObject(BoxDocument, unittest.TestCase):
         beam = self.doc.addObject("Part::Box", "Beam")
         beam.Length, beam.Width, beam.Height = 100, 10, 10
         self.doc.recompute()
-        analysis = ObjectsFem.makeAnalysis(self.doc, "Analysis")
-        solver = ObjectsFem.makeSolverCalculixCcxTools(self.doc, "CalculiXccxTools")
-        solver.AnalysisType = "static"
-        analysis.addObject(solver)
-        material = ObjectsFem.makeMaterialSolid(self.doc, "Steel")
-        mat = material.Material
-        mat.update({"Name": "Steel", "YoungsModulus": "210000 MPa", "PoissonRatio": "0.30"})
-        material.Material = mat
-        analysis.addObject(material)
+        analysis, solver = self.steel_analysis()
         fixed = ObjectsFem.makeConstraintFixed(self.doc, "Fixed")
         fixed.References = [(beam, "Face1")]  # x = 0
         analysis.addObject(fixed)
