@@ -1,8 +1,11 @@
 // The inspection commands, which show the method's intermediate results:
 //   vorohex voronoi IN -o GRAPH.json [--vtp G.vtp]          the embedded Voronoi graph
 //   vorohex decompose IN -o PARTS.brep [--report D.json]    the sub-volumes
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <functional>
 #include <iostream>
 #include <map>
@@ -40,9 +43,14 @@ const char* const kVoronoiUsage =
 const char* const kDecomposeUsage =
     "usage: vorohex decompose IN -o PARTS.brep [--report DECOMPOSITION.json] [--vtp FACES.vtp]\n"
     "                         [--sharp-angle DEG] [--no-merge] [--plane-cuts [--tangent-planes]]\n"
-    "                         [--time-limit S] [--quiet] [graph options]\n"
+    "                         [--auto] [--time-limit S] [--quiet] [graph options]\n"
     "  IN    a solid as STEP, BREP or IGES\n"
     "  -o    the sub-volumes as solids in one BREP compound (open it in FreeCAD)\n"
+    "  --auto                 the sub-volumes the mesher meshes: the solid whole where one\n"
+    "                         scheme takes it; else the --plane-cuts where every piece has\n"
+    "                         a scheme (within half the time limit); else the Voronoi\n"
+    "                         graph's (its options apply; --report describes the one used;\n"
+    "                         --vtp is not taken)\n"
     "  --plane-cuts           the mesher's second way instead of the Voronoi graph: exact\n"
     "                         cuts along the planes and cylinders of the faces at concave\n"
     "                         edges, neighbours merged while the union has a scheme; the\n"
@@ -183,6 +191,9 @@ int run_voronoi(const std::vector<std::string>& args) {
 
 // vorohex decompose --plane-cuts: the pieces, each with the scheme it gets once glued to the
 // others (or why it has none).
+int print_plane_cuts(const std::string& input, const std::string& brep_path,
+                     const decompose::PlaneCutResult& cut, bool merge);
+
 int run_plane_cuts(const std::string& input, const std::string& brep_path, double time_limit,
                    bool tangent_planes, bool merge, const core::Progress& progress) {
   occ::ReadResult read = occ::read_solid(input);
@@ -194,6 +205,12 @@ int run_plane_cuts(const std::string& input, const std::string& brep_path, doubl
   options.merge = merge;
   const decompose::PlaneCutResult cut =
       decompose::cut_at_concave_edges(*read.solid, options, progress.with_time_limit(time_limit));
+  return print_plane_cuts(input, brep_path, cut, merge);
+}
+
+// The plane cuts' pieces written to `brep_path` and described, each with its scheme.
+int print_plane_cuts(const std::string& input, const std::string& brep_path,
+                     const decompose::PlaneCutResult& cut, bool merge) {
   if (cut.pieces.empty()) {
     std::cerr << "vorohex: the plane cuts of " << input << " failed: " << cut.why_not
               << " (nothing written)\n";
@@ -260,6 +277,70 @@ void remove_partials(const std::vector<std::string>& paths) {
     if (!path.empty()) std::remove(partial(path).c_str());
 }
 
+// vorohex decompose --auto, its first two steps: the solid whole where one scheme takes it,
+// else the plane cuts where each piece has a scheme (the tangent planes where the first
+// cut's pieces have knife edges), within half of `time_limit`. The exit code when one of
+// them is the answer (written and described); -1 (with the reason printed) when the
+// Voronoi decomposition is to follow.
+int auto_first_steps(const std::string& input, const std::string& brep_path,
+                     const std::string& json_path, const decompose::DecomposeOptions& options,
+                     double time_limit, const core::Progress& progress) {
+  auto report = [&](const std::string& text) {
+    if (json_path.empty()) return true;
+    std::ofstream out(json_path);
+    out << text << "\n";
+    if (out) return true;
+    std::cerr << "vorohex: could not write " << json_path << "\n";
+    return false;
+  };
+  occ::ReadResult read = occ::read_solid(input);
+  if (!read.ok()) {
+    print_problems(read.diagnostics);
+    return kExitBadInput;
+  }
+  const occ::Solid& solid = *read.solid;
+  std::string why;
+  const decompose::Scheme whole = decompose::whole_solid_scheme(solid, options, &why);
+  if (whole != decompose::Scheme::none) {
+    std::string error;
+    if (!occ::write_compound_brep({&solid}, brep_path, &error)) {
+      std::cerr << "vorohex: " << error << "\n";
+      return kExitBadInput;
+    }
+    if (!report(decompose::whole_solid_json(whole, why, solid.volume()))) return kExitBadInput;
+    std::cout << "decomposition of " << input << ": not cut, the mesher meshes it whole\n"
+              << "  sub-volume 0 (" << decompose::scheme_name(whole) << "): " << why << "\n"
+              << "wrote " << brep_path << "\n";
+    return kExitOk;
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  auto spent = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
+  decompose::PlaneCutOptions cuts;
+  cuts.time_limit = 0.5 * time_limit;
+  cuts.merge = options.merge;
+  cuts.multisweep = options.multisweep;
+  decompose::PlaneCutResult cut =
+      decompose::cut_at_concave_edges(solid, cuts, progress.with_time_limit(cuts.time_limit));
+  if (!cut.ok && cut.knife_edges && spent() < cuts.time_limit) {
+    decompose::PlaneCutOptions tangent = cuts;
+    tangent.tangent_planes = true;
+    tangent.time_limit = cuts.time_limit - spent();
+    decompose::PlaneCutResult second = decompose::cut_at_concave_edges(
+        solid, tangent, progress.with_time_limit(tangent.time_limit));
+    if (second.ok) cut = std::move(second);
+  }
+  if (cut.ok) {
+    if (!report(decompose::plane_cuts_json(cut, decompose::plane_cut_schemes(cut, cuts.multisweep))))
+      return kExitBadInput;
+    return print_plane_cuts(input, brep_path, cut, options.merge);
+  }
+  std::cout << "not cut along the faces at its concave edges: " << cut.why_not
+            << "; along its Voronoi graph instead" << std::endl;  // before the child forks
+  return -1;
+}
+
 int run_decompose(const std::vector<std::string>& args) {
   std::string input, brep_path, json_path, vtp_path;
   voronoi::VoronoiOptions graph_options;
@@ -289,9 +370,10 @@ int run_decompose(const std::vector<std::string>& args) {
         voronoi_option = name;
         inner();
       };
-  bool plane_cuts = false, tangent_planes = false, quiet = false;
+  bool plane_cuts = false, tangent_planes = false, quiet = false, auto_method = false;
   double time_limit = 30;
   t.flags["--plane-cuts"] = [&] { plane_cuts = true; };
+  t.flags["--auto"] = [&] { auto_method = true; };
   t.flags["--tangent-planes"] = [&] { tangent_planes = true; };
   t.flags["--quiet"] = [&] { quiet = true; };
   t.values["--time-limit"] = [&](const std::string& s) {
@@ -301,7 +383,9 @@ int run_decompose(const std::vector<std::string>& args) {
   if (brep_path.empty()) return usage_error("missing -o PARTS.brep", kDecomposeUsage);
   // The deadline counts from here: reading the file and the graph are part of the whole.
   const core::Progress printer = progress_printer(quiet);
-  const core::Progress progress = printer.with_time_limit(time_limit);
+  core::Progress progress = printer.with_time_limit(time_limit);
+  if (auto_method && plane_cuts)
+    return usage_error("--auto and --plane-cuts: one or the other", kDecomposeUsage);
   if (plane_cuts) {
     if (!voronoi_option.empty())
       return usage_error(voronoi_option +
@@ -315,6 +399,22 @@ int run_decompose(const std::vector<std::string>& args) {
   if (std::string why = graph_options.validate(); !why.empty())
     return usage_error(why, kDecomposeUsage);
   if (std::string why = options.validate(); !why.empty()) return usage_error(why, kDecomposeUsage);
+  if (auto_method) {
+    if (!vtp_path.empty())
+      return usage_error(
+          "--vtp is an option of the Voronoi decomposition alone; --auto does not take it",
+          kDecomposeUsage);
+    const auto t0 = std::chrono::steady_clock::now();
+    if (const int code =
+            auto_first_steps(input, brep_path, json_path, options, time_limit, progress);
+        code >= 0)
+      return code;
+    // The Voronoi decomposition gets what is left.
+    time_limit = std::max(
+        1.0, time_limit -
+                 std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    progress = printer.with_time_limit(time_limit);
+  }
 
   occ::ReadResult read = occ::read_solid(input);
   if (!read.ok()) {
@@ -355,8 +455,11 @@ int run_decompose(const std::vector<std::string>& args) {
         std::ostringstream out;
         out << kExitOk << "\n"
             << "decomposition of " << input << ": " << result.stats.sub_volumes_before_merge
-            << " sub-volumes before merging, " << result.stats.sub_volumes << " after, "
-            << result.stats.decomposition_faces << " decomposition faces\n";
+            << (result.stats.sub_volumes_before_merge == 1 ? " sub-volume" : " sub-volumes")
+            << " before merging, " << result.stats.sub_volumes << " after, "
+            << result.stats.decomposition_faces
+            << (result.stats.decomposition_faces == 1 ? " decomposition face\n"
+                                                      : " decomposition faces\n");
         for (std::size_t i = 0; i < result.sub_volumes.size(); ++i)
           out << "  sub-volume " << i << " ("
               << decompose::scheme_name(result.sub_volumes[i].scheme)

@@ -140,6 +140,13 @@ const char* sub_volume_type_name(SubVolumeType t);  // "Vs", "Ve"
 // "sweep", "map", "midpoint", "multisweep", "revolve", "none"
 const char* scheme_name(Scheme s);
 
+// The scheme the mesh pipeline takes for `solid` whole, in its order (a mapped block, a
+// sweep, a multisweep, a revolve, midpoint subdivision; the options say which of the
+// multisweep and the revolve are allowed), or none; why in `reason`. Judged as the meshers
+// judge, without meshing (a scheme that applies can still fail as it meshes).
+Scheme whole_solid_scheme(const occ::Solid& solid, const DecomposeOptions& options,
+                          std::string* reason);
+
 struct SubVolume {
   std::shared_ptr<const occ::Solid> solid;
   SubVolumeType type = SubVolumeType::ve;

@@ -185,7 +185,7 @@ bool write_decomposition(const DecompositionResult& r, const std::string& brep_p
   return true;
 }
 
-PlaneCutSchemes plane_cut_schemes(const PlaneCutResult& cut) {
+PlaneCutSchemes plane_cut_schemes(const PlaneCutResult& cut, bool multisweep) {
   PlaneCutSchemes out;
   out.schemes.assign(cut.pieces.size(), "");
   out.reasons.assign(cut.pieces.size(), "");
@@ -202,7 +202,7 @@ PlaneCutSchemes plane_cut_schemes(const PlaneCutResult& cut) {
     if (out.glue_error.empty()) out.glue_error = "the pieces could not be glued";
     return out;
   }
-  const mesh::SubVolumePlan plan = mesh::plan_sub_volumes(*glued.solid);
+  const mesh::SubVolumePlan plan = mesh::plan_sub_volumes(*glued.solid, multisweep);
   for (std::size_t i = 0; i < plan.schemes.size() && i < out.schemes.size(); ++i) {
     out.schemes[i] = plan.schemes[i];
     out.reasons[i] = plan.reasons[i];
@@ -265,6 +265,28 @@ std::string plane_cuts_json(const PlaneCutResult& cut, const PlaneCutSchemes& sc
                                 {"code", "pieces_not_glued"},
                                 {"message", schemes.glue_error},
                                 {"entities", json::array()}});
+  return j.dump(2);
+}
+
+std::string whole_solid_json(Scheme scheme, const std::string& reason, double volume) {
+  using nlohmann::json;
+  json j;
+  j["method"] = "whole";
+  j["status"] = "ok";
+  j["counts"] = {{"sub_volumes_before_merge", 1}, {"sub_volumes", 1}, {"decomposition_faces", 0}};
+  j["sub_volumes"] = json::array();
+  j["sub_volumes"].push_back({{"id", 0},
+                              {"scheme", scheme_name(scheme)},
+                              {"reason", reason},
+                              {"volume", volume},
+                              {"merged_from", 1}});
+  j["decomposition_faces"] = json::array();
+  j["diagnostics"] = json::array();
+  j["diagnostics"].push_back({{"severity", "info"},
+                              {"code", "not_cut"},
+                              {"message", std::string("Not cut: the mesher meshes it whole (") +
+                                              scheme_name(scheme) + ": " + reason + ")."},
+                              {"entities", json::array()}});
   return j.dump(2);
 }
 

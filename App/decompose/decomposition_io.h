@@ -51,7 +51,7 @@ struct PlaneCutSchemes {
   std::vector<std::string> reasons;  // per piece: why it has none
   std::string glue_error;
 };
-PlaneCutSchemes plane_cut_schemes(const PlaneCutResult& cut);
+PlaneCutSchemes plane_cut_schemes(const PlaneCutResult& cut, bool multisweep = true);
 
 // The plane cuts as JSON text, in the layout above where it applies:
 //   {"method": "plane-cuts", "status": "ok"|"failed",
@@ -63,5 +63,10 @@ PlaneCutSchemes plane_cut_schemes(const PlaneCutResult& cut);
 //    "decomposition_faces": [], "diagnostics": [{"code": "plane_cuts_failed" or
 //    "cut_surfaces_left_out", "message": ...}]}
 std::string plane_cuts_json(const PlaneCutResult& cut, const PlaneCutSchemes& schemes);
+
+// A solid the mesher meshes whole (whole_solid_scheme), in the same layout: {"method":
+// "whole", "status": "ok", one sub-volume with its scheme, reason and volume, the info
+// "not_cut"}.
+std::string whole_solid_json(Scheme scheme, const std::string& reason, double volume);
 
 }  // namespace vorohex::decompose

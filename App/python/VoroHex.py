@@ -747,7 +747,8 @@ class Decomposition:
     "sub_volumes", "edges", "area", "min_angle" (degrees, its smallest angle with a
     neighbouring face), "voronoi_elements", "governors"); diagnostics: list of dicts;
     shapes: the sub-volumes as Part.Solid, in the order of sub_volumes (empty when the
-    decomposition failed). method: "voronoi" or "plane-cuts" (see decompose).
+    decomposition failed). method: "voronoi", "plane-cuts" or "whole" (method="auto" on
+    a solid one scheme meshes whole; see decompose).
     cut_surfaces (plane cuts only): why each cut is where it is, a dict per surface with
     "kind" ("plane"/"cylinder"/"tangent_plane": tangent to the cylinder of "face"),
     "face" (the model face it extends, "Face7"), "concave_edges" (where it is taken,
@@ -788,7 +789,8 @@ DECOMPOSITION_TIME_LIMIT = 30.0
 
 def decompose(shape, sharp_angle=None, merge=True, vtp=None, eps=None, delta=None,
               max_depth=None, linear_tolerance=None, progress=None, method="voronoi",
-              time_limit=DECOMPOSITION_TIME_LIMIT, tangent_planes=False):
+              time_limit=DECOMPOSITION_TIME_LIMIT, tangent_planes=False, multisweep=True,
+              revolve=True):
     """Cuts the one solid in `shape` into sweepable and mappable sub-volumes along its
     embedded Voronoi graph (vorohex decompose). sharp_angle: degrees in (0, 180] below
     which a dihedral counts as sharp (default 60); merge: unite neighbours whose union is
@@ -810,11 +812,28 @@ def decompose(shape, sharp_angle=None, merge=True, vtp=None, eps=None, delta=Non
     cylinder that a planar face touches tangently is replaced by the plane tangent to it
     across its concave edges (vorohex decompose --plane-cuts --tangent-planes; what the
     mesher tries where the cut's pieces have knife edges and do not mesh). merge=False
-    with it: the pieces as cut, each with its scheme (--plane-cuts --no-merge)."""
+    with it: the pieces as cut, each with its scheme (--plane-cuts --no-merge).
+
+    method="auto": the sub-volumes the mesher meshes (vorohex decompose --auto): the solid
+    whole where one scheme takes it (method "whole", info "not_cut"; judged as the meshers
+    judge, without meshing); else the plane cuts where they give sub-volumes that all have
+    a scheme (with tangent_planes=True where the first cut's pieces have knife edges),
+    within half of time_limit; else the Voronoi decomposition, within what is left. Its
+    method says which; a Voronoi result also carries the info "plane_cuts_not_used" saying
+    why not. vtp is written by the Voronoi decomposition only.
+
+    multisweep, revolve (default True): whether the many-to-one sweep of prismatic parts
+    and the revolution judge the sub-volumes besides the mapped block, the sweep and
+    midpoint subdivision (as the mesh's schemes; the plane cuts take no revolve)."""
     import tempfile
-    if method not in ("voronoi", "plane-cuts"):
-        raise ValueError("VoroHex: option 'method' must be 'voronoi' or 'plane-cuts', got "
-                         "{!r}".format(method))
+    import time
+    if method not in ("voronoi", "plane-cuts", "auto"):
+        raise ValueError("VoroHex: option 'method' must be 'voronoi', 'plane-cuts' or 'auto', "
+                         "got {!r}".format(method))
+    for name, value in (("multisweep", multisweep), ("revolve", revolve)):
+        if not isinstance(value, bool):
+            raise TypeError("VoroHex: option '{}' must be True or False, got {!r}".format(
+                name, value))
     limit = _seconds("time_limit", time_limit)
     if not isinstance(tangent_planes, bool):
         raise TypeError("VoroHex: option 'tangent_planes' must be True or False, got "
@@ -824,6 +843,31 @@ def decompose(shape, sharp_angle=None, merge=True, vtp=None, eps=None, delta=Non
     if tangent_planes and method != "plane-cuts":
         raise ValueError("VoroHex: option 'tangent_planes' is an option of "
                          "method='plane-cuts'")
+    if method == "auto":
+        start = time.monotonic()
+        text = _core.whole_solid_json(_read_solid(check_shape(shape)), multisweep, revolve)
+        if text:
+            return Decomposition(json.loads(text), [check_shape(shape).Solids[0]])
+        cut = decompose(shape, merge=merge, progress=progress, method="plane-cuts",
+                        time_limit=0.5 * limit, multisweep=multisweep)
+        left = 0.5 * limit - (time.monotonic() - start)
+        if not cut.ok and cut.knife_edges and left > 0:
+            second = decompose(shape, merge=merge, progress=progress, method="plane-cuts",
+                               time_limit=left, tangent_planes=True, multisweep=multisweep)
+            if second.ok:
+                return second
+        if cut.ok:
+            return cut
+        why = "; ".join(x.get("message", "") for x in cut.diagnostics
+                        if x.get("severity") == "error") or "no sub-volumes"
+        d = decompose(shape, sharp_angle=sharp_angle, merge=merge, vtp=vtp, eps=eps,
+                      delta=delta, max_depth=max_depth, linear_tolerance=linear_tolerance,
+                      progress=progress, time_limit=max(1.0, limit - (time.monotonic() - start)),
+                      multisweep=multisweep, revolve=revolve)
+        d.diagnostics.append({"severity": "info", "code": "plane_cuts_not_used", "entities": [],
+                              "message": "Not cut along the faces at its concave edges: " +
+                              why[0].lower() + why[1:]})
+        return d
     if method == "plane-cuts":
         given = dict(sharp_angle=sharp_angle, vtp=vtp, eps=eps, delta=delta,
                      max_depth=max_depth, linear_tolerance=linear_tolerance)
@@ -834,7 +878,8 @@ def decompose(shape, sharp_angle=None, merge=True, vtp=None, eps=None, delta=Non
         solid = _read_solid(check_shape(shape))
         with tempfile.TemporaryDirectory(prefix="vorohex-") as tmp:
             brep = os.path.join(tmp, "pieces.brep")
-            text = _core.plane_cuts_json(solid, brep, progress, limit, tangent_planes, merge)
+            text = _core.plane_cuts_json(solid, brep, progress, limit, tangent_planes, merge,
+                                         multisweep)
             shapes = []
             if os.path.exists(brep):
                 import Part
@@ -849,7 +894,7 @@ def decompose(shape, sharp_angle=None, merge=True, vtp=None, eps=None, delta=Non
     with tempfile.TemporaryDirectory(prefix="vorohex-") as tmp:
         brep = os.path.join(tmp, "parts.brep")
         text = _core.decomposition_json(solid, opts, angle, merge, brep, vtp or "", progress,
-                                        limit)
+                                        limit, multisweep, revolve)
         shapes = []
         if os.path.exists(brep):
             import Part

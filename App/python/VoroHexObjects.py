@@ -507,14 +507,15 @@ def trials_work(report, brep, options, sizes):
 
 
 def preview_work(report, brep, sharp_angle, options):
-    """The Voronoi graph and the decomposition (merged) of the shape, as their compute()
-    values: the hex mesh panel's Preview, in one child process."""
+    """The Voronoi graph and the decomposition (merged, as the mesher cuts: method "auto")
+    of the shape, as their compute() values: the hex mesh panel's Preview, in one child
+    process."""
     import VoroHexGraph
     import VoroHexParts
 
     shape = shape_from_brep(brep)
     return (VoroHexGraph.compute(shape, sharp_angle, options, report),
-            VoroHexParts.compute(shape, sharp_angle, True, options, report))
+            VoroHexParts.compute(shape, sharp_angle, True, options, report, method="auto"))
 
 
 def automatic_size(shape):

@@ -30,8 +30,18 @@ COLOURS = {r[0]: r[1] for r in ROLES}
 # Sweeps along the sub-volume's axis (many-to-one) or about it take the sweep's colour.
 SWEPT = {"multisweep": "sweep", "revolve": "sweep"}
 
+# The Method property's choices and the VoroHex.decompose method each stands for.
+METHODS = (
+    ("As the mesher", "auto"),
+    ("Voronoi graph", "voronoi"),
+    ("Exact cuts at concave edges", "plane-cuts"),
+)
+METHOD_OF = dict(METHODS)
+
 RESULTS = (
     ("Status", "App::PropertyString", "ok, partial, or error when the last recompute failed"),
+    ("MethodUsed", "App::PropertyString",
+     "How the solid was cut: along its Voronoi graph, or along the faces at its concave edges"),
     ("Message", "App::PropertyString", "Summary of the last recompute, or why it failed"),
     ("SubVolumeCount", "App::PropertyInteger", "Sub-volumes (after merging)"),
     ("SubVolumesBeforeMerge", "App::PropertyInteger", "Sub-volumes of the first split"),
@@ -76,6 +86,15 @@ class Decomposition:
             obj.addProperty("App::PropertyBool", "Merge", "Decomposition",
                             "Unite neighbouring sub-volumes whose union is a sweep")
             obj.Merge = True
+        if not hasattr(obj, "Method"):
+            obj.addProperty("App::PropertyEnumeration", "Method", "Decomposition",
+                            "As the mesher: the exact cuts along the faces at its concave edges "
+                            "where they give sub-volumes that all have a scheme, else the "
+                            "Voronoi graph's decomposition (what Hex mesh does with a solid no "
+                            "single scheme meshes); or only one of the two")
+            obj.Method = [m[0] for m in METHODS]
+            # A document saved before the property existed showed the Voronoi graph's.
+            obj.Method = "Voronoi graph" if getattr(self, "restoring", False) else METHODS[0][0]
         if not hasattr(obj, "TimeLimit"):
             obj.addProperty("App::PropertyFloat", "TimeLimit", "Decomposition",
                             "Seconds the decomposition may take (> 0): stopped before its "
@@ -88,7 +107,11 @@ class Decomposition:
 
     def onDocumentRestored(self, obj):
         obj.SharpAngle = (obj.SharpAngle, 1.0, 180.0, 5.0)
-        self.add_properties(obj)
+        self.restoring = True
+        try:
+            self.add_properties(obj)
+        finally:
+            self.restoring = False
 
     def __getstate__(self):
         return None
@@ -110,7 +133,7 @@ class Decomposition:
                 data = VoroHexObjects.compute_or_raise(obj, "decomposition", lambda: compute(
                     obj.Part.Shape, obj.SharpAngle, obj.Merge,
                     VoroHexObjects.graph_options_of(obj), getattr(self, "progress", None),
-                    obj.TimeLimit))
+                    obj.TimeLimit, METHOD_OF[obj.Method]))
                 if data is None:  # cancelled (Status and Message say so)
                     return
             error = self.apply(obj, data)
@@ -136,15 +159,19 @@ class Decomposition:
         obj.FaceRoles = [r for roles in data["roles"] for r in roles]
         obj.SubVolumeCount = len(d.sub_volumes)
         obj.SubVolumesBeforeMerge = d.counts.get("sub_volumes_before_merge", 0)
-        obj.DecompositionFaceCount = d.counts.get("decomposition_faces", 0)
-        obj.Types = [sv.get("type", "?") for sv in d.sub_volumes]
+        # The plane cuts count no decomposition faces: each is a face two sub-volumes share.
+        obj.DecompositionFaceCount = d.counts.get(
+            "decomposition_faces", obj.FaceRoles.count("decomposition") // 2)
+        obj.Types = [sv.get("type", "") for sv in d.sub_volumes]
         obj.Schemes = [sv.get("scheme", "none") for sv in d.sub_volumes]
         obj.Reasons = [sv.get("reason", "") for sv in d.sub_volumes]
         obj.Status = d.status
+        obj.MethodUsed = method_text(d)
         schemes = {}
         for s in obj.Schemes:
             schemes[s] = schemes.get(s, 0) + 1
-        obj.Message = "{} ({}), {} before merging, {}".format(
+        obj.Message = "{}: {} ({}), {} before merging, {}".format(
+            obj.MethodUsed,
             plural(obj.SubVolumeCount, "sub-volume"), ", ".join("{} {}".format(n, s) for s, n in
                                                                sorted(schemes.items())),
             obj.SubVolumesBeforeMerge, plural(obj.DecompositionFaceCount, "decomposition face"))
@@ -156,6 +183,21 @@ class Decomposition:
         return None
 
 
+def method_text(d):
+    """How a VoroHex.Decomposition cut its solid, for the Message and MethodUsed."""
+    if d.method == "whole":
+        return "Not cut (the mesher meshes it whole)"
+    if d.method != "plane-cuts":
+        return "Cut along its Voronoi graph"
+    surfaces = [c for c in d.cut_surfaces if c.get("used", True)]
+    kinds = {"cylinder": "the cylinder of ", "tangent_plane": "the plane tangent to the "
+             "cylinder of "}
+    named = ", ".join(kinds.get(c.get("kind"), "the plane of ") + c.get("face", "?")
+                      for c in surfaces[:4])
+    more = " and {} more".format(len(surfaces) - 4) if len(surfaces) > 4 else ""
+    return "Cut along the faces at its concave edges ({}{})".format(named, more)
+
+
 def plural(n, noun):
     """"1 sub-volume", "2 sub-volumes"."""
     return "{} {}{}".format(n, noun, "" if n == 1 else "s")
@@ -163,19 +205,22 @@ def plural(n, noun):
 
 def cache_key(obj):
     return (obj.Part.Name if obj.Part else None, obj.SharpAngle, obj.Merge, obj.TimeLimit,
-            tuple(sorted(VoroHexObjects.graph_options_of(obj).items())))
+            obj.Method, tuple(sorted(VoroHexObjects.graph_options_of(obj).items())))
 
 
 def compute(shape, sharp_angle, merge, options, progress=None,
-            time_limit=VoroHex.DECOMPOSITION_TIME_LIMIT):
+            time_limit=VoroHex.DECOMPOSITION_TIME_LIMIT, method="voronoi"):
     """The decomposition of `shape` as plain values (no document access: it runs in a child
     process for the GUI): the VoroHex.Decomposition without its shapes, each sub-volume as
     a BREP string, and the role of each of its faces. apply() stores them. Faces split on
     one surface are merged first (VoroHexObjects.merged_split_faces)."""
     shape, merged = VoroHexObjects.merged_split_faces(shape)
-    d = VoroHex.decompose(shape, sharp_angle=sharp_angle, merge=merge, progress=progress,
-                          time_limit=time_limit,
-                          **options)
+    if method == "plane-cuts":  # it takes none of the Voronoi graph's options
+        d = VoroHex.decompose(shape, merge=merge, progress=progress, time_limit=time_limit,
+                              method=method)
+    else:
+        d = VoroHex.decompose(shape, sharp_angle=sharp_angle, merge=merge, progress=progress,
+                              time_limit=time_limit, method=method, **options)
     roles = face_roles(d) if d.ok and d.shapes else []
     solids = [s.exportBrepToString() for s in d.shapes]
     d.shapes = []
@@ -183,10 +228,10 @@ def compute(shape, sharp_angle, merge, options, progress=None,
 
 
 def compute_work(report, brep, sharp_angle, merge, options,
-                 time_limit=VoroHex.DECOMPOSITION_TIME_LIMIT):
+                 time_limit=VoroHex.DECOMPOSITION_TIME_LIMIT, method="voronoi"):
     """compute() of the shape `brep` (exportBrepToString()), in a VoroHexJobs child."""
     return compute(VoroHexObjects.shape_from_brep(brep), sharp_angle, merge, options, report,
-                   time_limit)
+                   time_limit, method)
 
 
 def set_children(obj, solids, roles):
@@ -213,10 +258,11 @@ def set_children(obj, solids, roles):
         child.Shape = solid
         child.SubVolume = k
         child.Scheme = obj.Schemes[k] if k < len(obj.Schemes) else "none"
-        child.SubVolumeType = obj.Types[k] if k < len(obj.Types) else "?"
+        child.SubVolumeType = obj.Types[k] if k < len(obj.Types) else ""
         child.FaceRoles = roles[k] if k < len(roles) else []
-        child.Label = "{} sub-volume {} ({} {})".format(
-            obj.Part.Label if obj.Part else obj.Label, k, child.SubVolumeType, child.Scheme)
+        child.Label = "{} sub-volume {} ({})".format(
+            obj.Part.Label if obj.Part else obj.Label, k,
+            " ".join(t for t in (child.SubVolumeType, child.Scheme) if t))
         child.purgeTouched()
     obj.SubVolumeObjects = children
     explode(obj)
@@ -268,14 +314,20 @@ def face_roles(d):
 
 
 def makeDecomposition(doc, part, name=None, merge=True, progress=None, data=None,
-                      time_limit=None, **options):
+                      time_limit=None, method="auto", **options):
     """Adds a decomposition object for `part` to `doc` and computes it. Raises ValueError
     (and leaves the document as it was) when `part` holds no single solid. progress as for
     VoroHexGraph.makeVoronoiGraph; options: sharp_angle, eps, delta, max_depth, set as the
-    object's properties before it computes; time_limit: seconds (TimeLimit, default 30)."""
+    object's properties before it computes; time_limit: seconds (TimeLimit, default 30);
+    method: "auto" (as the mesher, the default), "voronoi" or "plane-cuts", as for
+    VoroHex.decompose (the Method property)."""
     error = VoroHexObjects.source_error(part)
     if error is not None:
         raise ValueError("VoroHex: " + error)
+    labels = {m: label for label, m in METHODS}
+    if method not in labels:
+        raise ValueError("VoroHex: option 'method' must be 'auto', 'voronoi' or 'plane-cuts', "
+                         "got {!r}".format(method))
     if time_limit is not None:
         time_limit = VoroHex._seconds("time_limit", time_limit)
     obj = doc.addObject("Part::FeaturePython",
@@ -290,6 +342,7 @@ def makeDecomposition(doc, part, name=None, merge=True, progress=None, data=None
         doc.removeObject(obj.Name)  # the document as it was
         raise
     obj.Merge = merge
+    obj.Method = labels[method]
     if time_limit is not None:
         obj.TimeLimit = time_limit
     if FreeCAD.GuiUp:

@@ -532,12 +532,14 @@ void check_time_limit(double time_limit) {
 std::string decomposition_json(SolidPtr solid, const voronoi::VoronoiOptions& graph_options,
                                double sharp_angle, bool merge, const std::string& brep_path,
                                const std::string& vtp_path, py::object progress,
-                               double time_limit) {
+                               double time_limit, bool multisweep, bool revolve) {
   if (!solid) throw std::invalid_argument("no solid given");
   if (std::string why = graph_options.validate(); !why.empty()) throw std::invalid_argument(why);
   decompose::DecomposeOptions options;
   options.sharp_angle = sharp_angle;
   options.merge = merge;
+  options.multisweep = multisweep;
+  options.revolve = revolve;
   if (std::string why = options.validate(); !why.empty()) throw std::invalid_argument(why);
   check_time_limit(time_limit);
   // In the child: it writes the files, the JSON comes back. The time limit bounds the whole
@@ -564,17 +566,32 @@ std::string decomposition_json(SolidPtr solid, const voronoi::VoronoiOptions& gr
   }
 }
 
+// The solid as the one sub-volume, as JSON text (decompose::whole_solid_json), where the mesh
+// pipeline takes it whole (decompose::whole_solid_scheme); "" where no scheme does.
+std::string whole_solid_json(SolidPtr solid, bool multisweep, bool revolve) {
+  if (!solid) throw std::invalid_argument("no solid given");
+  decompose::DecomposeOptions options;
+  options.multisweep = multisweep;
+  options.revolve = revolve;
+  std::string reason;
+  const decompose::Scheme s = decompose::whole_solid_scheme(*solid, options, &reason);
+  return s == decompose::Scheme::none ? ""
+                                      : decompose::whole_solid_json(s, reason, solid->volume());
+}
+
 // The mesher's exact plane cuts at concave edges (decompose/plane_cuts.h) as JSON text
 // (decomposition_io.h), each piece with the scheme it gets; writes the pieces as a BREP
 // compound where a path is given (also when the cuts failed: the pieces as cut).
 std::string plane_cuts_json(SolidPtr solid, const std::string& brep_path, py::object progress,
-                            double time_limit, bool tangent_planes, bool merge) {
+                            double time_limit, bool tangent_planes, bool merge,
+                            bool multisweep) {
   if (!solid) throw std::invalid_argument("no solid given");
   check_time_limit(time_limit);
   decompose::PlaneCutOptions options;
   options.time_limit = time_limit;
   options.tangent_planes = tangent_planes;
   options.merge = merge;
+  options.multisweep = multisweep;
   try {
     return run_isolated(
         [&](const core::Progress& in_child) {
@@ -587,7 +604,7 @@ std::string plane_cuts_json(SolidPtr solid, const std::string& brep_path, py::ob
             if (!occ::write_compound_brep(pieces, brep_path, &error))
               throw std::runtime_error(error);
           }
-          return decompose::plane_cuts_json(cut, decompose::plane_cut_schemes(cut));
+          return decompose::plane_cuts_json(cut, decompose::plane_cut_schemes(cut, multisweep));
         },
         progress, "plane cuts", kill_after(time_limit));
   } catch (const TimeLimitError&) {
@@ -635,11 +652,17 @@ PYBIND11_MODULE(_VoroHexCore, m) {
   m.def("decomposition_json", &decomposition_json, py::arg("solid"), py::arg("graph_options"),
         py::arg("sharp_angle"), py::arg("merge"), py::arg("brep_path") = "",
         py::arg("vtp_path") = "", py::arg("progress") = py::none(), py::arg("time_limit") = 30.0,
+        py::arg("multisweep") = true, py::arg("revolve") = true,
         "the decomposition of a solid as JSON text; writes the sub-volumes (BREP) and the "
-        "decomposition faces (VTP) where paths are given; time_limit: seconds for the whole");
+        "decomposition faces (VTP) where paths are given; time_limit: seconds for the whole; "
+        "multisweep, revolve: whether those meshers judge the sub-volumes too");
+  m.def("whole_solid_json", &whole_solid_json, py::arg("solid"), py::arg("multisweep") = true,
+        py::arg("revolve") = true,
+        "the solid as its one sub-volume (JSON text) where the mesher meshes it whole with one "
+        "scheme; \"\" where none takes it");
   m.def("plane_cuts_json", &plane_cuts_json, py::arg("solid"), py::arg("brep_path") = "",
         py::arg("progress") = py::none(), py::arg("time_limit") = 30.0,
-        py::arg("tangent_planes") = false, py::arg("merge") = true,
+        py::arg("tangent_planes") = false, py::arg("merge") = true, py::arg("multisweep") = true,
         "the exact plane cuts at a solid's concave edges as JSON text, each piece with its "
         "scheme (merge=False: the pieces as cut); writes the pieces (BREP) where a path is "
         "given");

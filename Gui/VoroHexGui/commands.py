@@ -261,8 +261,9 @@ class DecompositionCommand:
         return {
             "Pixmap": VoroHexGui.resource("icons", "VoroHexParts.svg"),
             "MenuText": "Decomposition",
-            "ToolTip": "Cut the selected solid into sweepable and mappable sub-volumes along "
-                       "its Voronoi graph; faces coloured by scheme, decomposition faces marked",
+            "ToolTip": "Cut the selected solid into sweepable and mappable sub-volumes as the "
+                       "hex mesher does (along the faces at its concave edges, else along its "
+                       "Voronoi graph); faces coloured by scheme, decomposition faces marked",
         }
 
     def IsActive(self):
@@ -272,7 +273,8 @@ class DecompositionCommand:
         import VoroHexParts
 
         make_and_edit(selected_part(), "Decomposition", "VoroHexParts", "makeDecomposition",
-                      VoroHexParts.compute_work, (60.0, True, {}))
+                      VoroHexParts.compute_work,
+                      (60.0, True, {}, VoroHexParts.VoroHex.DECOMPOSITION_TIME_LIMIT, "auto"))
 
 
 def is_hex_mesh(obj):

@@ -102,17 +102,38 @@ class FittedTable(QtGui.QTableWidget):
 
     def cut_cells(self):
         """(row, column) of every cell whose text does not fit in it (tests: none)."""
-        cut = []
-        for r in range(self.rowCount()):
-            for c in range(self.columnCount()):
-                item = self.item(r, c)
-                fm = QtGui.QFontMetrics(item.font() if item.font() else self.font())
-                width = self.columnWidth(c) - 8 - (26 if c == 0 else 0)  # icon, check box
-                need = fm.boundingRect(QtCore.QRect(0, 0, max(width, 1), 10000),
-                                       int(QtCore.Qt.TextWordWrap), item.text())
-                if need.width() > width + 1 or need.height() > self.rowHeight(r):
-                    cut.append((r, c))
-        return cut
+        return cut_cells(self)
+
+
+class WrappedTable(QtGui.QTableWidget):
+    """A table of long texts (the sub-volumes' reasons) wrapped in their cells, its rows
+    refitted whenever its width changes; it scrolls when they are many."""
+
+    def fit_rows(self):
+        self.resizeRowsToContents()
+
+    def resizeEvent(self, event):
+        super().resizeEvent(event)
+        QtCore.QTimer.singleShot(0, self.fit_rows)
+
+    def cut_cells(self):
+        """(row, column) of every cell whose text does not fit in it (tests: none)."""
+        return cut_cells(self)
+
+
+def cut_cells(table):
+    """(row, column) of every cell of `table` whose text does not fit in it."""
+    cut = []
+    for r in range(table.rowCount()):
+        for c in range(table.columnCount()):
+            item = table.item(r, c)
+            fm = QtGui.QFontMetrics(item.font() if item.font() else table.font())
+            width = table.columnWidth(c) - 8 - (26 if c == 0 else 0)  # icon, check box
+            need = fm.boundingRect(QtCore.QRect(0, 0, max(width, 1), 10000),
+                                   int(QtCore.Qt.TextWordWrap), item.text())
+            if need.width() > width + 1 or need.height() > table.rowHeight(r):
+                cut.append((r, c))
+    return cut
 
 
 class EdgeTypeTable(FittedTable):

@@ -9,7 +9,7 @@ from PySide import QtCore, QtGui
 
 import VoroHexGui
 import VoroHexParts
-from VoroHexGui.graph_view import FittedTable, swatch
+from VoroHexGui.graph_view import FittedTable, WrappedTable, swatch
 from VoroHexGui.view_provider import ViewProviderBase, fade_solid
 
 MODE = "Sub-volumes"
@@ -130,10 +130,15 @@ class PartsTaskPanel:
         self.explode.valueChanged.connect(self.exploded)
         row.addWidget(self.explode)
         layout.addLayout(row)
-        self.table = QtGui.QTableWidget(len(obj.Schemes), 4)
+        self.table = WrappedTable(len(obj.Schemes), 4)
         self.table.setObjectName("tbl_sub_volumes")
         self.table.setHorizontalHeaderLabels(["Id", "Type", "Scheme", "Why"])
         self.table.verticalHeader().setVisible(False)
+        # The reasons are sentences: wrapped in their cells, never cut short (the narrow
+        # Combo View showed "Not a block: the..." before).
+        self.table.setWordWrap(True)
+        self.table.setTextElideMode(QtCore.Qt.ElideNone)
+        self.table.setHorizontalScrollBarPolicy(QtCore.Qt.ScrollBarAlwaysOff)
         self.table.setEditTriggers(QtGui.QAbstractItemView.NoEditTriggers)
         self.table.setSelectionBehavior(QtGui.QAbstractItemView.SelectRows)
         for r, (t, s, why) in enumerate(zip(obj.Types, obj.Schemes, obj.Reasons)):
@@ -141,8 +146,12 @@ class PartsTaskPanel:
                 item = QtGui.QTableWidgetItem(text)
                 item.setToolTip(text)
                 self.table.setItem(r, col, item)
-        self.table.horizontalHeader().setStretchLastSection(True)
-        self.table.resizeColumnsToContents()
+        header = self.table.horizontalHeader()
+        for col in range(3):
+            header.setSectionResizeMode(col, QtGui.QHeaderView.ResizeToContents)
+        header.setSectionResizeMode(3, QtGui.QHeaderView.Stretch)
+        # The exact cuts at concave edges type no sub-volume Vs or Ve.
+        self.table.setColumnHidden(1, not any(obj.Types))
         self.table.setMinimumHeight(160)
         layout.addWidget(self.table)
         self.table.itemSelectionChanged.connect(self.selected)

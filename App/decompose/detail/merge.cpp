@@ -343,3 +343,30 @@ bool take_whole_solid(const occ::Solid& solid, const VoronoiGraph& g, double tol
   return true;
 }
 }  // namespace vorohex::decompose::detail
+
+namespace vorohex::decompose {
+
+Scheme whole_solid_scheme(const occ::Solid& solid, const DecomposeOptions& options,
+                          std::string* reason) {
+  const mesh::Applicability map = mesh::map_block_applicable(solid);
+  if (map.ok) return *reason = "a topological hexahedron", Scheme::map;
+  const mesh::SweepApplicability sweep = mesh::sweep_applicable(solid);
+  if (sweep.ok) return *reason = "a sweep", Scheme::sweep;
+  std::string why = "map: " + map.reason + "; sweep: " + sweep.reason;
+  if (options.multisweep) {
+    const mesh::MultisweepApplicability multi = mesh::multisweep_applicable(solid);
+    if (multi.ok) return *reason = "prismatic: a multisweep along its axis", Scheme::multisweep;
+    why += "; multisweep: " + multi.reason;
+  }
+  if (options.revolve) {
+    const mesh::RevolveApplicability rev = mesh::revolve_applicable(solid);
+    if (rev.ok) return *reason = "a solid of revolution", Scheme::revolve;
+    why += "; revolve: " + rev.reason;
+  }
+  const mesh::Applicability mid = mesh::midpoint_applicable(solid);
+  if (mid.ok) return *reason = "a convex cell (midpoint subdivision)", Scheme::midpoint;
+  *reason = why + "; midpoint: " + mid.reason;
+  return Scheme::none;
+}
+
+}  // namespace vorohex::decompose
