@@ -332,7 +332,8 @@ int auto_first_steps(const std::string& input, const std::string& brep_path,
     if (second.ok) cut = std::move(second);
   }
   if (cut.ok) {
-    if (!report(decompose::plane_cuts_json(cut, decompose::plane_cut_schemes(cut, cuts.multisweep))))
+    if (!report(
+            decompose::plane_cuts_json(cut, decompose::plane_cut_schemes(cut, cuts.multisweep))))
       return kExitBadInput;
     return print_plane_cuts(input, brep_path, cut, options.merge);
   }
@@ -411,8 +412,8 @@ int run_decompose(const std::vector<std::string>& args) {
       return code;
     // The Voronoi decomposition gets what is left.
     time_limit = std::max(
-        1.0, time_limit -
-                 std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+        1.0,
+        time_limit - std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     progress = printer.with_time_limit(time_limit);
   }
 

@@ -224,6 +224,11 @@ std::string plane_cuts_json(const PlaneCutResult& cut, const PlaneCutSchemes& sc
     const std::string scheme = i < schemes.schemes.size() ? schemes.schemes[i] : "";
     std::string reason = i < schemes.reasons.size() ? schemes.reasons[i] : "";
     if (scheme.empty() && reason.empty()) reason = schemes.glue_error;
+    if (!scheme.empty() && reason.empty())
+      reason = (scheme == "map"          ? std::string("a topological hexahedron")
+                : scheme == "multisweep" ? std::string("prismatic: a multisweep along its axis")
+                                         : "a " + scheme) +
+               " once glued to the other pieces";
     j["sub_volumes"].push_back({{"id", i},
                                 {"scheme", scheme.empty() ? "none" : scheme},
                                 {"reason", reason},

@@ -159,9 +159,10 @@ class Decomposition:
         obj.FaceRoles = [r for roles in data["roles"] for r in roles]
         obj.SubVolumeCount = len(d.sub_volumes)
         obj.SubVolumesBeforeMerge = d.counts.get("sub_volumes_before_merge", 0)
-        # The plane cuts count no decomposition faces: each is a face two sub-volumes share.
+        # The plane cuts count no decomposition faces: the sub-volumes' faces against
+        # another, the same face on both sides counted once.
         obj.DecompositionFaceCount = d.counts.get(
-            "decomposition_faces", obj.FaceRoles.count("decomposition") // 2)
+            "decomposition_faces", data.get("decomposition_faces", 0))
         obj.Types = [sv.get("type", "") for sv in d.sub_volumes]
         obj.Schemes = [sv.get("scheme", "none") for sv in d.sub_volumes]
         obj.Reasons = [sv.get("reason", "") for sv in d.sub_volumes]
@@ -222,9 +223,11 @@ def compute(shape, sharp_angle, merge, options, progress=None,
         d = VoroHex.decompose(shape, sharp_angle=sharp_angle, merge=merge, progress=progress,
                               time_limit=time_limit, method=method, **options)
     roles = face_roles(d) if d.ok and d.shapes else []
+    between = distinct_faces(d.shapes, roles) if roles else 0
     solids = [s.exportBrepToString() for s in d.shapes]
     d.shapes = []
-    return {"decomposition": d, "solids": solids, "roles": roles, "merged_faces": merged}
+    return {"decomposition": d, "solids": solids, "roles": roles, "merged_faces": merged,
+            "decomposition_faces": between}
 
 
 def compute_work(report, brep, sharp_angle, merge, options,
@@ -285,24 +288,20 @@ def explode(obj):
 
 def face_roles(d):
     """The role of every face of every sub-volume (a list per sub-volume, in its Faces
-    order): a decomposition face where it coincides with a face of another sub-volume
-    (same area and centre), a sweep's source or target, else its sub-volume's scheme."""
+    order): a decomposition face where it lies against another sub-volume (a point inside
+    it on a face of another: the same face, or part of one where the other's face spans
+    several sub-volumes, as the plane cuts' merged pieces do), a sweep's source or target,
+    else its sub-volume's scheme."""
     diagonal = max((s.BoundBox.DiagonalLength for s in d.shapes), default=1.0)
     tol = 1e-7 * max(diagonal, 1e-300)
-    keys = [[(f.Area, f.CenterOfMass) for f in s.Faces] for s in d.shapes]
-
-    def shared(i, area, centre):
-        return any(abs(a - area) <= tol * max(1.0, area) and (c - centre).Length <= tol
-                   for j, faces in enumerate(keys) if j != i for a, c in faces)
-
     roles = []
     for i, solid in enumerate(d.shapes):
         sv = d.sub_volumes[i] if i < len(d.sub_volumes) else {}
         scheme = sv.get("scheme", "none")
         ends = [sv.get("source"), sv.get("target")] if scheme == "sweep" else []
         mine = []
-        for k, (area, centre) in enumerate(keys[i]):
-            if shared(i, area, centre):
+        for k, face in enumerate(solid.Faces):
+            if against_another(face, i, d.shapes, tol):
                 mine.append("decomposition")
             elif "Face{}".format(k + 1) in ends:
                 mine.append("source/target")
@@ -311,6 +310,59 @@ def face_roles(d):
                             else "none")
         roles.append(mine)
     return roles
+
+
+def distinct_faces(shapes, roles):
+    """How many faces lie between sub-volumes: the decomposition faces, one that two
+    sub-volumes both have (same area and centre) counted once."""
+    diagonal = max((s.BoundBox.DiagonalLength for s in shapes), default=1.0)
+    tol = 1e-7 * max(diagonal, 1e-300)
+    seen = []
+    for solid, mine in zip(shapes, roles):
+        for face, role in zip(solid.Faces, mine):
+            if role != "decomposition":
+                continue
+            key = (face.Area, face.CenterOfMass)
+            if not any(abs(a - key[0]) <= tol * max(1.0, a) and (c - key[1]).Length <= tol
+                       for a, c in seen):
+                seen.append(key)
+    return len(seen)
+
+
+def inner_point(face):
+    """A point inside `face`: the centre of its largest triangle, projected onto it (its
+    centre of mass can lie in a hole, or off a curved face)."""
+    points, triangles = face.tessellate(0.01 * max(face.BoundBox.DiagonalLength, 1e-300))
+    if not triangles:
+        return face.CenterOfMass
+
+    def area(t):
+        a, b, c = (points[j] for j in t)
+        return (b - a).cross(c - a).Length
+
+    a, b, c = (points[j] for j in max(triangles, key=area))
+    centre = (a + b + c) * (1.0 / 3.0)
+    u, v = face.Surface.parameter(centre)
+    return face.Surface.value(u, v)
+
+
+def against_another(face, i, shapes, tol):
+    """Whether a point inside `face` (of shapes[i]) lies on a face of another shape."""
+    p = inner_point(face)
+    vertex = Part.Vertex(p)
+    for j, other in enumerate(shapes):
+        if j == i:
+            continue
+        box = FreeCAD.BoundBox(other.BoundBox)
+        box.enlarge(10 * tol)
+        if not box.isInside(p):
+            continue
+        for f in other.Faces:
+            fb = FreeCAD.BoundBox(f.BoundBox)
+            fb.enlarge(10 * tol)
+            if fb.isInside(p) and f.distToShape(vertex)[0] <= 10 * tol:
+                return True
+    return False
 
 
 def makeDecomposition(doc, part, name=None, merge=True, progress=None, data=None,

@@ -531,8 +531,8 @@ void check_time_limit(double time_limit) {
 // BREP compound and the decomposition faces as VTP where paths are given.
 std::string decomposition_json(SolidPtr solid, const voronoi::VoronoiOptions& graph_options,
                                double sharp_angle, bool merge, const std::string& brep_path,
-                               const std::string& vtp_path, py::object progress,
-                               double time_limit, bool multisweep, bool revolve) {
+                               const std::string& vtp_path, py::object progress, double time_limit,
+                               bool multisweep, bool revolve) {
   if (!solid) throw std::invalid_argument("no solid given");
   if (std::string why = graph_options.validate(); !why.empty()) throw std::invalid_argument(why);
   decompose::DecomposeOptions options;
@@ -583,8 +583,7 @@ std::string whole_solid_json(SolidPtr solid, bool multisweep, bool revolve) {
 // (decomposition_io.h), each piece with the scheme it gets; writes the pieces as a BREP
 // compound where a path is given (also when the cuts failed: the pieces as cut).
 std::string plane_cuts_json(SolidPtr solid, const std::string& brep_path, py::object progress,
-                            double time_limit, bool tangent_planes, bool merge,
-                            bool multisweep) {
+                            double time_limit, bool tangent_planes, bool merge, bool multisweep) {
   if (!solid) throw std::invalid_argument("no solid given");
   check_time_limit(time_limit);
   decompose::PlaneCutOptions options;

@@ -591,6 +591,57 @@ class InspectCommands(unittest.TestCase):
         self.assertGreater(int(cut.group(1)), 2)
         self.assertEqual(len(Part.read(parts).Solids), int(cut.group(1)))
 
+    def test_decompose_auto_shows_the_sub_volumes_the_mesher_meshes(self):
+        # --auto: what `vorohex mesh` does with a solid. HexMe s07 (a notched block) one
+        # multisweep takes whole: not cut. HexMe i10, which no single scheme takes: the
+        # plane cuts at its concave edges, the blocks and sweeps its mesh is made of. A
+        # sphere (no concave edge): the Voronoi decomposition, saying why.
+        parts, rep = os.path.join(self.dir, "auto.brep"), os.path.join(self.dir, "auto.json")
+        s07 = os.path.join(HEXME, "s07o_notch.step")
+        code, stdout, stderr = run("decompose", s07, "-o", parts, "--auto", "--report", rep,
+                                   "--quiet")
+        self.assertEqual(code, 0, stdout + stderr)
+        self.assertIn("not cut, the mesher meshes it whole", stdout)
+        self.assertIn("sub-volume 0 (multisweep)", stdout)
+        with open(rep) as f:
+            report = json.load(f)
+        self.assertEqual((report["method"], report["status"]), ("whole", "ok"))
+        self.assertEqual([sv["scheme"] for sv in report["sub_volumes"]], ["multisweep"])
+        sys.path.append("/usr/lib/freecad-python3/lib")
+        import Part
+        whole = Part.read(parts).Solids
+        self.assertEqual(len(whole), 1)
+        self.assertAlmostEqual(whole[0].Volume / Part.read(s07).Volume, 1, places=9)
+        i10 = os.path.join(HEXME, "i10o_simp.step")
+        code, stdout, stderr = run("decompose", i10, "-o", parts, "--auto", "--report", rep,
+                                   "--quiet")
+        self.assertEqual(code, 0, stdout + stderr)
+        self.assertIn("plane cuts of", stdout)
+        with open(rep) as f:
+            cuts = json.load(f)
+        self.assertEqual((cuts["method"], cuts["status"]), ("plane-cuts", "ok"))
+        mesh_rep = os.path.join(self.dir, "i10.json")
+        code, _, stderr = run("mesh", i10, "-o", os.path.join(self.dir, "i10.vtu"), "--report",
+                              mesh_rep, "--quiet")
+        self.assertEqual(code, 0, stderr)
+        with open(mesh_rep) as f:
+            meshed = json.load(f)
+        self.assertEqual(sorted(sv["scheme"] for sv in cuts["sub_volumes"]),
+                         sorted(meshed["sub_volume_schemes"]))
+        self.assertEqual(len(Part.read(parts).Solids), len(meshed["sub_volume_schemes"]))
+        sphere = os.path.join(HEXME, "s17o_sphere.step")
+        code, stdout, stderr = run("decompose", sphere, "-o", parts, "--auto", "--quiet")
+        self.assertIn("not cut along the faces at its concave edges: it has no concave edge "
+                      "to cut at; along its Voronoi graph instead", stdout)
+        self.assertEqual(stdout.count("not cut along"), 1, stdout)  # printed once, not per process
+        self.assertIn("decomposition of " + sphere + ": 1 sub-volume before merging", stdout)
+        for bad, why in ((["--plane-cuts"], "--auto and --plane-cuts: one or the other"),
+                         (["--vtp", os.path.join(self.dir, "f.vtp")],
+                          "--vtp is an option of the Voronoi decomposition alone")):
+            code, _, stderr = run("decompose", s07, "-o", parts, "--auto", *bad)
+            self.assertEqual(code, 2, bad)
+            self.assertIn(why, stderr)
+
     def test_a_lug_as_wide_as_its_tube_is_cut_across_the_tube(self):
         # A tube with a lug as wide as the tube standing on it, a hole across the lug, built
         # with Part booleans: the lug's sides are tangent to the tube. Cut along the tube's
@@ -621,6 +672,11 @@ class InspectCommands(unittest.TestCase):
         code, _, stderr = run("decompose", step, "-o", parts, "--tangent-planes")
         self.assertEqual(code, 2)
         self.assertIn("--tangent-planes is an option of --plane-cuts", stderr)
+        # --auto takes the tangent planes where the cut's pieces have knife edges, as the
+        # mesher does.
+        code, stdout, stderr = run("decompose", step, "-o", parts, "--auto", "--quiet")
+        self.assertEqual(code, 0, stdout + stderr)
+        self.assertRegex(stdout, r"the plane tangent to the cylinder of Face\d+")
         out, rep = os.path.join(self.dir, "lug_tube.vtu"), os.path.join(self.dir, "r.json")
         code, _, stderr = run("mesh", step, "-o", out, "--report", rep, "--quiet")
         self.assertEqual(code, 0, stderr)

@@ -160,8 +160,17 @@ def main():
     parts = [o for o in doc.Objects if hasattr(o, "SubVolumeObjects")]
     check(len(parts) == 1 and parts[0].Status in ("ok", "partial"), "decomposition computed")
     d = parts[0]
-    check(d.SubVolumeCount == 1 and list(d.Schemes) == ["sweep"], "merged: the L is one sweep")
+    # As the mesher (the command's method): the L is a sweep whole, not cut.
+    check(d.Method == "As the mesher" and d.MethodUsed.startswith("Not cut") and
+          d.SubVolumeCount == 1 and list(d.Schemes) == ["sweep"],
+          "as the mesher: the L is one sweep, not cut: " + d.Message)
     close_panel(mw)
+    d.Method = "Voronoi graph"
+    doc.recompute()
+    pump(0.5)
+    check(d.MethodUsed == "Cut along its Voronoi graph" and d.SubVolumeCount == 1 and
+          d.SubVolumesBeforeMerge == 3 and list(d.Schemes) == ["sweep"],
+          "along its Voronoi graph, merged: the L is one sweep: " + d.Message)
     d.Merge = False
     doc.recompute()
     pump(0.5)
@@ -381,12 +390,19 @@ def main():
     screenshot(view, "gui_voronoi_figure6")
     close_panel(mw)
     g6[0].ViewObject.Visibility = False
-    # Cancel during a long command (the decomposition of this part takes about 2.4 s): the
-    # busy dialog's Cancel stops it, the GUI stays responsive (the timer that presses
-    # Cancel fires meanwhile) and the document is as it was.
+    # Cancel during a long command: the busy dialog's Cancel stops it, the GUI stays
+    # responsive (the timer that presses Cancel fires meanwhile) and the document is as it
+    # was. The part: Figure 6's with a cross hole through two corners, which no scheme takes
+    # whole and the plane cuts do not cut (24 surfaces), so the decomposition as the mesher
+    # does it is the Voronoi graph's (about 20 s; Figure 6's own is one sweep at once).
+    holed = doc.addObject("Part::Feature", "Figure6Holed")
+    holed.Shape = figure6_shape().cut(Part.makeCylinder(0.3, 14, FreeCAD.Vector(-7, 0, 1.5),
+                                                        FreeCAD.Vector(1, 0, 0)))
+    holed.ViewObject.Visibility = False
+    doc.recompute()
     names_before = sorted(o.Name for o in doc.Objects)
     Gui.Selection.clearSelection()
-    Gui.Selection.addSelection(figure6)
+    Gui.Selection.addSelection(holed)
     pump()
     pressed = []
 
@@ -444,13 +460,18 @@ def main():
     check(commands.wait(60), "the decomposition was computed (in a child process)")
     pump(0.5)
     d6 = [o for o in doc.Objects if hasattr(o, "SubVolumeObjects") and o.Part == figure6]
-    check(len(d6) == 1 and d6[0].Status == "ok" and list(d6[0].Schemes) == ["sweep"] and
-          d6[0].SubVolumesBeforeMerge >= 12,
-          "Figure 6 part: the decomposition is cut, then merged into one sweep: " +
-          (d6[0].Message if d6 else "?"))
+    check(len(d6) == 1 and d6[0].Status == "ok" and list(d6[0].Schemes) == ["sweep"],
+          "Figure 6 part: as the mesher, one sweep: " + (d6[0].Message if d6 else "?"))
     summary = mw.findChild(QtGui.QLabel, "lbl_parts_summary")
     check(summary is not None and summary.text() == d6[0].Message, "and its panel shows it")
     close_panel(mw)
+    d6[0].Method = "Voronoi graph"
+    doc.recompute()
+    pump(0.5)
+    check(d6[0].Status == "ok" and list(d6[0].Schemes) == ["sweep"] and
+          d6[0].SubVolumesBeforeMerge >= 12,
+          "Figure 6 part: along its Voronoi graph, cut, then merged into one sweep: " +
+          d6[0].Message)
     d6[0].Merge = False
     doc.recompute()
     pump(0.5)

@@ -271,6 +271,46 @@ class TestVoroHexApi(unittest.TestCase):
         with self.assertRaisesRegex(TypeError, "'tangent_planes' must be True or False"):
             VoroHex.decompose(solid, method="plane-cuts", tangent_planes="yes")
 
+    def test_auto_decomposition_is_what_the_mesher_meshes(self):
+        # method="auto" gives the sub-volumes the mesher meshes: a solid one scheme takes
+        # whole is not cut; HexMe i10 (no single scheme) is cut along the planes of the faces
+        # at its concave edges into the blocks and sweeps its mesh is made of; a sphere (no
+        # concave edge) goes to the Voronoi decomposition, which says why.
+        box = Part.makeBox(2, 3, 4)
+        whole = VoroHex.decompose(box, method="auto")
+        self.assertEqual((whole.method, whole.status), ("whole", "ok"))
+        self.assertEqual([sv["scheme"] for sv in whole.sub_volumes], ["map"])
+        self.assertEqual(len(whole.shapes), 1)
+        self.assertAlmostEqual(whole.shapes[0].Volume, 24.0, places=9)
+        self.assertEqual([d["code"] for d in whole.diagnostics], ["not_cut"])
+        hexme = os.environ.get("VOROHEX_HEXME")
+        self.assertTrue(hexme, "VOROHEX_HEXME: the repository's tests/data/hexme (ctest sets it)")
+        i10 = Part.read(os.path.join(hexme, "i10o_simp.step"))
+        d = VoroHex.decompose(i10, method="auto")
+        self.assertEqual((d.method, d.status), ("plane-cuts", "ok"), d.diagnostics)
+        self.assertAlmostEqual(sum(s.Volume for s in d.shapes) / i10.Volume, 1, places=6)
+        m = VoroHex.mesh(i10)
+        self.assertTrue(m.ok, m.message)
+        self.assertEqual(sorted(sv["scheme"] for sv in d.sub_volumes),
+                         sorted(m.stats.sub_volume_schemes))
+        sphere = VoroHex.decompose(Part.makeSphere(5), method="auto")
+        self.assertEqual(sphere.method, "voronoi")
+        why = [x for x in sphere.diagnostics if x["code"] == "plane_cuts_not_used"]
+        self.assertEqual(len(why), 1)
+        self.assertIn("no concave edge", why[0]["message"])
+        # The meshers that judge: without the multisweep, a round post on a plate is not
+        # taken whole, and its pieces are blocks and sweeps only.
+        post = Part.makeBox(60, 40, 10).fuse(
+            Part.makeCylinder(8, 20, FreeCAD.Vector(30, 20, 10))).removeSplitter()
+        self.assertEqual(VoroHex.decompose(post, method="auto").method, "whole")
+        no_multi = VoroHex.decompose(post, method="auto", multisweep=False)
+        self.assertNotEqual(no_multi.method, "whole")
+        self.assertNotIn("multisweep", [sv["scheme"] for sv in no_multi.sub_volumes])
+        with self.assertRaisesRegex(TypeError, "'multisweep' must be True or False"):
+            VoroHex.decompose(post, method="auto", multisweep=1)
+        with self.assertRaisesRegex(ValueError, "'method' must be"):
+            VoroHex.decompose(post, method="mesher")
+
     def test_plane_cuts_tangent_to_a_tube_where_a_lug_is_as_wide(self):
         # A lug as wide as the tube it stands on (its sides tangent to the tube): cut along
         # the tube's cylinder, its pieces have knife edges; with tangent_planes the cut is the

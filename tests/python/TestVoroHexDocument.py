@@ -40,11 +40,13 @@ class TestVoroHexObject(BoxDocument, unittest.TestCase):
         self.doc.recompute()
         names = sorted(o.Name for o in self.doc.Objects)
         with self.assertRaisesRegex(VoroHex.Cancelled, "decomposition was cancelled"):
-            VoroHexParts.makeDecomposition(self.doc, part, progress=lambda stage, f: False)
+            VoroHexParts.makeDecomposition(self.doc, part, progress=lambda stage, f: False,
+                                           method="voronoi")
         self.assertEqual(sorted(o.Name for o in self.doc.Objects), names)
         # Not cancelled, the same call makes the object. (The graph of this part takes 0.1 s,
         # less than the first progress call: it cannot be cancelled in time to test it.)
-        obj = VoroHexParts.makeDecomposition(self.doc, part, progress=lambda stage, f: True)
+        obj = VoroHexParts.makeDecomposition(self.doc, part, progress=lambda stage, f: True,
+                                             method="voronoi")
         self.assertEqual((obj.Status, obj.SubVolumeCount), ("ok", 1))
 
     def test_graph_and_decomposition_merge_faces_split_on_one_surface(self):
@@ -145,8 +147,9 @@ class TestVoroHexObject(BoxDocument, unittest.TestCase):
 
     def test_decomposition_object(self):
         l_shape = self.make_l()
-        d = VoroHexParts.makeDecomposition(self.doc, l_shape, merge=False)
+        d = VoroHexParts.makeDecomposition(self.doc, l_shape, merge=False, method="voronoi")
         self.assertTrue(d.isValid(), d.getStatusString())
+        self.assertEqual((d.Method, d.MethodUsed), ("Voronoi graph", "Cut along its Voronoi graph"))
         self.assertEqual(d.SubVolumeCount, 3)
         self.assertEqual(len(d.Shape.Solids), 3)
         self.assertAlmostEqual(sum(s.Volume for s in d.Shape.Solids), 18.0, places=6)
@@ -191,11 +194,21 @@ class TestVoroHexObject(BoxDocument, unittest.TestCase):
         for shape, scheme in ((plate.removeSplitter(), "multisweep"), (ring, "revolve")):
             part = self.doc.addObject("Part::Feature", scheme)
             part.Shape = shape
-            d = VoroHexParts.makeDecomposition(self.doc, part)
+            # As the mesher (the default): one scheme takes the solid whole, it is not cut.
+            whole = VoroHexParts.makeDecomposition(self.doc, part)
+            self.assertEqual((whole.Method, whole.Status), ("As the mesher", "ok"))
+            self.assertEqual(list(whole.Schemes), [scheme], whole.Message)
+            self.assertEqual(set(whole.FaceRoles), {"sweep"}, whole.Message)
+            self.assertTrue(whole.Message.startswith(
+                "Not cut (the mesher meshes it whole): 1 sub-volume (1 " + scheme + ")"),
+                whole.Message)
+            self.assertAlmostEqual(whole.Shape.Volume, shape.Volume, places=6)
+            d = VoroHexParts.makeDecomposition(self.doc, part, method="voronoi")
             self.assertTrue(d.isValid(), d.getStatusString())
             self.assertEqual(list(d.Schemes), [scheme], d.Message)
             self.assertEqual(set(d.FaceRoles), {"sweep"}, d.Message)
-            self.assertTrue(d.Message.startswith("1 sub-volume (1 " + scheme + ")"), d.Message)
+            self.assertTrue(d.Message.startswith(
+                "Cut along its Voronoi graph: 1 sub-volume (1 " + scheme + ")"), d.Message)
             self.assertIn(d.Status, ("ok", "partial"))
             self.assertEqual("Partial: " in d.Message, d.Status == "partial", d.Message)
             if scheme == "revolve":
