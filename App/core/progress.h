@@ -6,6 +6,7 @@
 #include <chrono>
 #include <functional>
 #include <limits>
+#include <string>
 #include <string_view>
 
 namespace vorohex::core {
@@ -57,6 +58,16 @@ class Progress {
     Progress p;
     p.has_deadline_ = has_deadline_;
     p.deadline_ = deadline_;
+    return p;
+  }
+  // A copy whose stages are named after `label` ("finer grid: smooth"): a retry's stages
+  // read as its own, not as the first run's going back to 0 % (or staying at 100 %).
+  Progress labelled(const std::string& label) const {
+    Progress p = *this;
+    if (callback_)
+      p.callback_ = [inner = callback_, label](std::string_view stage, double fraction) {
+        inner(label + ": " + std::string(stage), fraction);
+      };
     return p;
   }
   // A copy whose reports go to `callback` instead.

@@ -413,7 +413,7 @@ class Smoother {
     colour_nodes();
     for (int it = 0; it < sweeps; ++it) {
       if (cancelled()) return;
-      progress_.report("smooth", 0.5 * it / sweeps);
+      report(0.5 * it / sweeps);
       std::atomic<std::size_t> moves{0}, moved{0};
       for (const auto& nodes : colour_classes_) {
         quality::detail::parallel_chunks(nodes.size(), 4096,
@@ -587,7 +587,7 @@ class Smoother {
     double last_worst = 0;
     for (int pass = 0; pass < passes; ++pass) {
       if (cancelled()) return;
-      progress_.report("smooth", (untangle ? 0.5 : 0.75) + 0.25 * pass / passes);
+      report((untangle ? 0.5 : 0.75) + 0.25 * pass / passes);
       std::vector<std::pair<double, std::int32_t>> bad;
       for (std::size_t h = 0; h < nh; ++h) {
         const bool is_bad = untangle ? sj_[h] <= kFlat : sj_[h] < options_.quality_target;
@@ -660,7 +660,7 @@ class Smoother {
     int stalled = 0;
     for (int pass = 0; pass < passes; ++pass) {
       if (cancelled()) return total;
-      progress_.report("smooth", 0.95 + 0.05 * pass / passes);
+      report(0.95 + 0.05 * pass / passes);
       std::vector<std::pair<double, std::int32_t>> bad;
       for (std::size_t h = 0; h < nh; ++h)
         if (sj_[h] > 0 && sj_[h] < options_.quality_target)
@@ -816,6 +816,14 @@ class Smoother {
   const occ::Solid& solid_;
   const SmoothOptions& options_;
   const core::Progress& progress_;
+  double reported_ = 0;  // the fraction reported so far: the phases run again in rounds
+
+  // The smoothing's progress, never going back (a later round of the untangling reports
+  // the fraction the phases reached, not the untangling's own).
+  void report(double fraction) {
+    reported_ = std::max(reported_, fraction);
+    progress_.report("smooth", reported_);
+  }
   SmoothResult& result_;
   detail::SmoothTopology topology_;
   std::vector<char> movable_;

@@ -149,7 +149,7 @@ void finer_grid(const occ::Solid& solid, const MeshOptions& options, const core:
   const int factor = finer_factor(solid, first, result.mesh.num_hexes(), options.max_hexes, seconds,
                                   poor ? kPoorGridFactor : 0);
   if (factor == 0 || seconds < 5) return;
-  const core::Progress budget = progress.with_time_limit(seconds);
+  const core::Progress budget = progress.with_time_limit(seconds).labelled("finer grid");
   MeshResult finer;
   finer.stats.size_used = result.stats.size_used;
   grid::GridStats second;
@@ -245,7 +245,7 @@ void cusp_grid(const occ::Solid& solid, const MeshOptions& options, const core::
   if (!in_time("The grid mesh's worst hexahedron lies at a cusp of the model, but it is",
                grid_seconds(used, result), seconds, result))
     return;
-  const core::Progress budget = progress.with_time_limit(seconds);
+  const core::Progress budget = progress.with_time_limit(seconds).labelled("cusp retry");
   MeshResult again;
   again.stats.size_used = result.stats.size_used;
   const bool made = fallback(solid, options, used.size_used, why, budget, t0, again, nullptr, true);
@@ -314,7 +314,7 @@ void jittered_grid(const occ::Solid& solid, const MeshOptions& options,
   if (!in_time("The poor grid mesh, whose grid left model features uncaptured, is",
                grid_seconds(used) / std::pow(kJitterFactor, 3), seconds, result))
     return;
-  const core::Progress budget = progress.with_time_limit(seconds);
+  const core::Progress budget = progress.with_time_limit(seconds).labelled("jittered grid");
   MeshResult again;
   again.stats.size_used = result.stats.size_used;
   grid::GridStats stats;
@@ -440,7 +440,8 @@ FallbackOutcome run_fallback(const occ::Solid& solid, const MeshOptions& options
                            bool limited) {
     MeshOptions tet = options;
     tet.fallback_scheme = "tet-split";
-    const core::Progress budget = limited ? p.with_time_limit(kSecondChanceSeconds) : p;
+    const core::Progress budget =
+        (limited ? p.with_time_limit(kSecondChanceSeconds) : p).labelled("second chance");
     MeshResult second;
     second.stats.size_used = size;  // the tet split meshes at the global size
     if (fallback(solid, tet, size,
