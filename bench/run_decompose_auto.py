@@ -58,6 +58,22 @@ def outcome(report, stderr, code, seconds):
         ", ".join("%d %s" % (n, s) for s, n in sorted(schemes.items())))
 
 
+def same_as_mesh(row):
+    """"yes" where the sub-volumes' schemes are those of the mesh (hexme.md), "no" where the
+    mesh is structured and they differ, "" where the mesh is the fallback's or invalid."""
+    mesh = row["mesh"]
+    if not mesh.startswith("valid ") or " grid" in mesh or "tet-split" in mesh:
+        return ""
+    count = re.search(r"\((\d+) sub-volumes\)", mesh)
+    schemes = set(mesh.split()[1].split("+"))
+    m = re.match(r"\d+ -> (\d+) \((.*)\)", row["what"])
+    if not m:
+        return "no"
+    mine = {part.split()[1] for part in m.group(2).split(", ")}
+    same = mine == schemes and int(m.group(1)) == (int(count.group(1)) if count else 1)
+    return "yes" if same else "no"
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--build", default=os.path.join(REPO, "build"))
@@ -122,13 +138,19 @@ def write(rows, commit):
                                len(several), ", ".join(several)),
         "Seconds: median %.1f, worst %.1f." % (times[len(times) // 2] if times else 0,
                                                times[-1] if times else 0),
+        "The same sub-volumes and schemes as the mesh, where that is structured: %d of %d%s." % (
+            sum(1 for r in rows if same_as_mesh(r) == "yes"),
+            sum(1 for r in rows if same_as_mesh(r)),
+            "" if not any(same_as_mesh(r) == "no" for r in rows) else
+            " (not on %s)" % ", ".join(r["model"].split("_")[0] for r in rows
+                                       if same_as_mesh(r) == "no")),
         "",
-        "| model | method | sub-volumes | s | mesh (hexme.md) |",
-        "|---|---|---|---|---|",
+        "| model | method | sub-volumes | s | mesh (hexme.md) | same |",
+        "|---|---|---|---|---|---|",
     ]
     for r in rows:
-        lines.append("| %s | %s | %s | %.2f | %s |" % (r["model"], r["method"], r["what"],
-                                                        r["seconds"], r["mesh"]))
+        lines.append("| %s | %s | %s | %.2f | %s | %s |" % (
+            r["model"], r["method"], r["what"], r["seconds"], r["mesh"], same_as_mesh(r)))
     out = os.path.join(HERE, "results", "decomposition_auto.md")
     with open(out, "w") as fh:
         fh.write("\n".join(lines) + "\n")
