@@ -49,7 +49,8 @@ const char* const kDecomposeUsage =
     "  --auto                 the sub-volumes the mesher meshes: the solid whole where one\n"
     "                         scheme takes it; else the --plane-cuts where every piece has\n"
     "                         a scheme (within half the time limit); else the Voronoi\n"
-    "                         graph's (its options apply; --report describes the one used;\n"
+    "                         graph's within a fifth of it (the mesher's 6 s by default;\n"
+    "                         its options apply; --report describes the one used;\n"
     "                         --vtp is not taken)\n"
     "  --plane-cuts           the mesher's second way instead of the Voronoi graph: exact\n"
     "                         cuts along the planes and cylinders of the faces at concave\n"
@@ -300,14 +301,16 @@ int auto_first_steps(const std::string& input, const std::string& brep_path,
   }
   const occ::Solid& solid = *read.solid;
   std::string why;
-  const decompose::Scheme whole = decompose::whole_solid_scheme(solid, options, &why);
+  std::pair<core::FaceId, core::FaceId> ends;
+  const decompose::Scheme whole = decompose::whole_solid_scheme(solid, options, &why, &ends);
   if (whole != decompose::Scheme::none) {
     std::string error;
     if (!occ::write_compound_brep({&solid}, brep_path, &error)) {
       std::cerr << "vorohex: " << error << "\n";
       return kExitBadInput;
     }
-    if (!report(decompose::whole_solid_json(whole, why, solid.volume()))) return kExitBadInput;
+    if (!report(decompose::whole_solid_json(whole, why, solid.volume(), ends)))
+      return kExitBadInput;
     std::cout << "decomposition of " << input << ": not cut, the mesher meshes it whole\n"
               << "  sub-volume 0 (" << decompose::scheme_name(whole) << "): " << why << "\n"
               << "wrote " << brep_path << "\n";
@@ -410,12 +413,23 @@ int run_decompose(const std::vector<std::string>& args) {
             auto_first_steps(input, brep_path, json_path, options, time_limit, progress);
         code >= 0)
       return code;
-    // The Voronoi decomposition gets what is left.
+    // The Voronoi decomposition gets what is left, at most a fifth of the limit: the 6 s
+    // `vorohex mesh` gives it with its default decomposition time limit of 60 s (a tenth).
     time_limit = std::max(
         1.0,
-        time_limit - std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+        std::min(0.2 * time_limit,
+                 time_limit -
+                     std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()));
     progress = printer.with_time_limit(time_limit);
   }
+  // As the mesher: where the Voronoi decomposition leaves a sub-volume without a scheme, or
+  // fails, `vorohex mesh` meshes the solid with its fallback.
+  const auto fallback_note = [&](int code, const std::string& out) {
+    if (auto_method && (code != kExitOk || out.find(" (none): ") != std::string::npos))
+      std::cout << "as the mesher: not every sub-volume has a scheme, so vorohex mesh meshes "
+                   "the solid with its fallback (the grid mesher) instead\n";
+    return code;
+  };
 
   occ::ReadResult read = occ::read_solid(input);
   if (!read.ok()) {
@@ -478,7 +492,7 @@ int run_decompose(const std::vector<std::string>& args) {
   if (got.ok()) {
     const std::size_t eol = got.data.find('\n');
     std::cout << got.data.substr(eol + 1);
-    return std::stoi(got.data.substr(0, eol));
+    return fallback_note(std::stoi(got.data.substr(0, eol)), got.data);
   }
   decompose::DecompositionResult failed;  // status failed
   if (got.status == core::IsolatedResult::Status::cancelled) {
@@ -496,7 +510,7 @@ int run_decompose(const std::vector<std::string>& args) {
   std::string error;
   if (!json_path.empty() && !decompose::write_decomposition(failed, "", json_path, &error))
     std::cerr << "vorohex: " << error << "\n";
-  return kExitInvalid;
+  return fallback_note(kExitInvalid, "");
 }
 
 }  // namespace vorohex::cli

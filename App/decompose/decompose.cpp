@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <iomanip>
 #include <map>
 #include <set>
 #include <sstream>
@@ -538,7 +539,8 @@ double stop_grace(double time_limit) {
 
 core::Diagnostic not_stopped_error(double time_limit) {
   std::ostringstream s;
-  s << "The decomposition did not stop within its time limit of " << time_limit
+  s << std::fixed << std::setprecision(1)
+    << "The decomposition did not stop within its time limit of " << time_limit
     << " s (OCCT's split or fuse did not return in time) and was stopped " << stop_grace(time_limit)
     << " s after it";
   return core::make_error("time_limit", s.str());

@@ -144,8 +144,10 @@ const char* scheme_name(Scheme s);
 // sweep, a multisweep, a revolve, midpoint subdivision; the options say which of the
 // multisweep and the revolve are allowed), or none; why in `reason`. Judged as the meshers
 // judge, without meshing (a scheme that applies can still fail as it meshes).
+// A sweep's source and target in `ends` where given.
 Scheme whole_solid_scheme(const occ::Solid& solid, const DecomposeOptions& options,
-                          std::string* reason);
+                          std::string* reason,
+                          std::pair<core::FaceId, core::FaceId>* ends = nullptr);
 
 struct SubVolume {
   std::shared_ptr<const occ::Solid> solid;

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "mesh/mesh_sub_volumes.h"
+#include "mesh/sweep.h"
 #include "occ/shape_io.h"
 #include "occ/split_solid.h"
 
@@ -34,6 +35,7 @@ std::string face_name(core::FaceId f) {
 std::string decomposition_json(const DecompositionResult& r) {
   using nlohmann::json;
   json j;
+  j["method"] = "voronoi";
   j["status"] = status_name(r.status);
   if (r.status == DecompositionStatus::partial) j["partial_reason"] = partial_reason(r);
   j["counts"] = {{"sub_volumes_before_merge", r.stats.sub_volumes_before_merge},
@@ -203,9 +205,13 @@ PlaneCutSchemes plane_cut_schemes(const PlaneCutResult& cut, bool multisweep) {
     return out;
   }
   const mesh::SubVolumePlan plan = mesh::plan_sub_volumes(*glued.solid, multisweep);
+  out.ends.assign(cut.pieces.size(), {});
   for (std::size_t i = 0; i < plan.schemes.size() && i < out.schemes.size(); ++i) {
     out.schemes[i] = plan.schemes[i];
     out.reasons[i] = plan.reasons[i];
+    if (out.schemes[i] != "sweep") continue;
+    const mesh::SweepApplicability sweep = mesh::sweep_applicable(cut.pieces[i]);
+    if (sweep.ok) out.ends[i] = {sweep.source, sweep.target};
   }
   return out;
 }
@@ -233,6 +239,10 @@ std::string plane_cuts_json(const PlaneCutResult& cut, const PlaneCutSchemes& sc
                                 {"scheme", scheme.empty() ? "none" : scheme},
                                 {"reason", reason},
                                 {"volume", cut.pieces[i].volume()}});
+    if (i < schemes.ends.size() && schemes.ends[i].first.valid()) {
+      j["sub_volumes"].back()["source"] = core::entity_name(schemes.ends[i].first);
+      j["sub_volumes"].back()["target"] = core::entity_name(schemes.ends[i].second);
+    }
   }
   j["knife_edges"] = cut.knife_edges;
   j["merges_checked_each"] = cut.merges_checked_each;
@@ -273,7 +283,8 @@ std::string plane_cuts_json(const PlaneCutResult& cut, const PlaneCutSchemes& sc
   return j.dump(2);
 }
 
-std::string whole_solid_json(Scheme scheme, const std::string& reason, double volume) {
+std::string whole_solid_json(Scheme scheme, const std::string& reason, double volume,
+                             std::pair<core::FaceId, core::FaceId> ends) {
   using nlohmann::json;
   json j;
   j["method"] = "whole";
@@ -285,6 +296,10 @@ std::string whole_solid_json(Scheme scheme, const std::string& reason, double vo
                               {"reason", reason},
                               {"volume", volume},
                               {"merged_from", 1}});
+  if (ends.first.valid() && ends.second.valid()) {
+    j["sub_volumes"][0]["source"] = core::entity_name(ends.first);
+    j["sub_volumes"][0]["target"] = core::entity_name(ends.second);
+  }
   j["decomposition_faces"] = json::array();
   j["diagnostics"] = json::array();
   j["diagnostics"].push_back({{"severity", "info"},

@@ -48,6 +48,8 @@ bool write_decomposition(const DecompositionResult& result, const std::string& b
 // no piece has a scheme.
 struct PlaneCutSchemes {
   std::vector<std::string> schemes;  // per piece ("" when none)
+  // Per piece that is a sweep on its own: its source and target (its own faces' ids).
+  std::vector<std::pair<core::FaceId, core::FaceId>> ends;
   std::vector<std::string> reasons;  // per piece: why it has none
   std::string glue_error;
 };
@@ -67,6 +69,7 @@ std::string plane_cuts_json(const PlaneCutResult& cut, const PlaneCutSchemes& sc
 // A solid the mesher meshes whole (whole_solid_scheme), in the same layout: {"method":
 // "whole", "status": "ok", one sub-volume with its scheme, reason and volume, the info
 // "not_cut"}.
-std::string whole_solid_json(Scheme scheme, const std::string& reason, double volume);
+std::string whole_solid_json(Scheme scheme, const std::string& reason, double volume,
+                             std::pair<core::FaceId, core::FaceId> ends = {});
 
 }  // namespace vorohex::decompose

@@ -818,9 +818,11 @@ def decompose(shape, sharp_angle=None, merge=True, vtp=None, eps=None, delta=Non
     whole where one scheme takes it (method "whole", info "not_cut"; judged as the meshers
     judge, without meshing); else the plane cuts where they give sub-volumes that all have
     a scheme (with tangent_planes=True where the first cut's pieces have knife edges),
-    within half of time_limit; else the Voronoi decomposition, within what is left. Its
-    method says which; a Voronoi result also carries the info "plane_cuts_not_used" saying
-    why not. vtp is written by the Voronoi decomposition only.
+    within half of time_limit; else the Voronoi decomposition, within a fifth of it (the 6 s
+    the mesher gives it by default). Its method says which; a Voronoi result also carries
+    the info "plane_cuts_not_used" saying why not, and "mesher_fallback" where not every
+    sub-volume has a scheme (the mesher then meshes the solid with the grid mesher). vtp is
+    written by the Voronoi decomposition only.
 
     multisweep, revolve (default True): whether the many-to-one sweep of prismatic parts
     and the revolution judge the sub-volumes besides the mapped block, the sweep and
@@ -860,13 +862,21 @@ def decompose(shape, sharp_angle=None, merge=True, vtp=None, eps=None, delta=Non
             return cut
         why = "; ".join(x.get("message", "") for x in cut.diagnostics
                         if x.get("severity") == "error") or "no sub-volumes"
+        # At most a fifth of the limit: the 6 s the mesher gives it by default (a tenth of
+        # its decomposition time limit of 60 s).
+        left = min(0.2 * limit, limit - (time.monotonic() - start))
         d = decompose(shape, sharp_angle=sharp_angle, merge=merge, vtp=vtp, eps=eps,
                       delta=delta, max_depth=max_depth, linear_tolerance=linear_tolerance,
-                      progress=progress, time_limit=max(1.0, limit - (time.monotonic() - start)),
+                      progress=progress, time_limit=max(1.0, left),
                       multisweep=multisweep, revolve=revolve)
         d.diagnostics.append({"severity": "info", "code": "plane_cuts_not_used", "entities": [],
                               "message": "Not cut along the faces at its concave edges: " +
                               why[0].lower() + why[1:]})
+        if not d.ok or any(sv.get("scheme") == "none" for sv in d.sub_volumes):
+            d.diagnostics.append({
+                "severity": "info", "code": "mesher_fallback", "entities": [],
+                "message": "Not every sub-volume has a scheme, so the mesher meshes the solid "
+                           "with its fallback (the grid mesher) instead."})
         return d
     if method == "plane-cuts":
         given = dict(sharp_angle=sharp_angle, vtp=vtp, eps=eps, delta=delta,

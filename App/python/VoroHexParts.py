@@ -147,10 +147,11 @@ class Decomposition:
         d = data["decomposition"]
         merged = data.get("merged_faces", 0)
         note = VoroHexObjects.merged_faces_note(merged) if merged else None
+        fallback = [x["message"] for x in d.diagnostics if x.get("code") == "mesher_fallback"]
         if not d.ok or not data["solids"]:
-            return ("; ".join(x.get("message", "") for x in d.diagnostics
-                              if x.get("severity") == "error") or "the decomposition failed") + \
-                (" " + note if note else "")
+            why = "; ".join(x.get("message", "") for x in d.diagnostics
+                            if x.get("severity") == "error") or "the decomposition failed"
+            return " ".join([why.rstrip(".") + "."] + ([note] if note else []) + fallback)
         self.data, self.key = data, cache_key(obj)
         solids = [Part.Shape() for _ in data["solids"]]
         for shape, text in zip(solids, data["solids"]):
@@ -178,6 +179,8 @@ class Decomposition:
             obj.SubVolumesBeforeMerge, plural(obj.DecompositionFaceCount, "decomposition face"))
         if d.status == "partial":
             obj.Message += ". Partial: " + (d.partial_reason or "see the report's warnings")
+        if fallback:
+            obj.Message += ". " + fallback[0].rstrip(".")
         if note:
             obj.Message += ". " + note
         set_children(obj, solids, data["roles"])
@@ -189,6 +192,8 @@ def method_text(d):
     if d.method == "whole":
         return "Not cut (the mesher meshes it whole)"
     if d.method != "plane-cuts":
+        if len(d.sub_volumes) == 1 and d.counts.get("sub_volumes_before_merge", 1) == 1:
+            return "Not cut (its Voronoi graph gives one sub-volume)"
         return "Cut along its Voronoi graph"
     surfaces = [c for c in d.cut_surfaces if c.get("used", True)]
     kinds = {"cylinder": "the cylinder of ", "tangent_plane": "the plane tangent to the "
@@ -213,9 +218,15 @@ def compute(shape, sharp_angle, merge, options, progress=None,
             time_limit=VoroHex.DECOMPOSITION_TIME_LIMIT, method="voronoi"):
     """The decomposition of `shape` as plain values (no document access: it runs in a child
     process for the GUI): the VoroHex.Decomposition without its shapes, each sub-volume as
-    a BREP string, and the role of each of its faces. apply() stores them. Faces split on
-    one surface are merged first (VoroHexObjects.merged_split_faces)."""
-    shape, merged = VoroHexObjects.merged_split_faces(shape)
+    a BREP string, and the role of each of its faces. apply() stores them. For the Voronoi
+    graph's alone, faces split on one surface are merged first
+    (VoroHexObjects.merged_split_faces); as the mesher, they are taken as the mesher takes
+    them."""
+    # The mesher takes split faces as they are: as the mesher (and for its exact cuts) so
+    # does the decomposition.
+    merged = 0
+    if method == "voronoi":
+        shape, merged = VoroHexObjects.merged_split_faces(shape)
     if method == "plane-cuts":  # it takes none of the Voronoi graph's options
         d = VoroHex.decompose(shape, merge=merge, progress=progress, time_limit=time_limit,
                               method=method)
@@ -288,10 +299,9 @@ def explode(obj):
 
 def face_roles(d):
     """The role of every face of every sub-volume (a list per sub-volume, in its Faces
-    order): a decomposition face where it lies against another sub-volume (a point inside
-    it on a face of another: the same face, or part of one where the other's face spans
-    several sub-volumes, as the plane cuts' merged pieces do), a sweep's source or target,
-    else its sub-volume's scheme."""
+    order): a decomposition face where most of it lies against another sub-volume (on the
+    same face, or on part of a larger one, as the plane cuts' merged pieces meet), a sweep's
+    source or target, else its sub-volume's scheme."""
     diagonal = max((s.BoundBox.DiagonalLength for s in d.shapes), default=1.0)
     tol = 1e-7 * max(diagonal, 1e-300)
     roles = []
@@ -329,40 +339,50 @@ def distinct_faces(shapes, roles):
     return len(seen)
 
 
-def inner_point(face):
-    """A point inside `face`: the centre of its largest triangle, projected onto it (its
-    centre of mass can lie in a hole, or off a curved face)."""
+def inner_points(face, at_most=12):
+    """Up to `at_most` points inside `face`, each with the area it stands for: the centres
+    of its largest triangles, projected onto it (its centre of mass can lie in a hole, or
+    off a curved face)."""
     points, triangles = face.tessellate(0.01 * max(face.BoundBox.DiagonalLength, 1e-300))
-    if not triangles:
-        return face.CenterOfMass
 
     def area(t):
         a, b, c = (points[j] for j in t)
-        return (b - a).cross(c - a).Length
+        return 0.5 * (b - a).cross(c - a).Length
 
-    a, b, c = (points[j] for j in max(triangles, key=area))
-    centre = (a + b + c) * (1.0 / 3.0)
-    u, v = face.Surface.parameter(centre)
-    return face.Surface.value(u, v)
+    out = []
+    for t in sorted(triangles, key=area, reverse=True)[:at_most]:
+        a, b, c = (points[j] for j in t)
+        u, v = face.Surface.parameter((a + b + c) * (1.0 / 3.0))
+        out.append((face.Surface.value(u, v), area(t)))
+    return out or [(face.CenterOfMass, 1.0)]
 
 
 def against_another(face, i, shapes, tol):
-    """Whether a point inside `face` (of shapes[i]) lies on a face of another shape."""
-    p = inner_point(face)
-    vertex = Part.Vertex(p)
-    for j, other in enumerate(shapes):
-        if j == i:
-            continue
-        box = FreeCAD.BoundBox(other.BoundBox)
-        box.enlarge(10 * tol)
-        if not box.isInside(p):
-            continue
-        for f in other.Faces:
-            fb = FreeCAD.BoundBox(f.BoundBox)
-            fb.enlarge(10 * tol)
-            if fb.isInside(p) and f.distToShape(vertex)[0] <= 10 * tol:
-                return True
-    return False
+    """Whether most of `face` (of shapes[i]; by the area its sample points stand for) lies
+    on faces of other shapes: a face between two sub-volumes, all of it or most, not an
+    outer face that touches another sub-volume along a strip."""
+    on = total = 0.0
+    for p, weight in inner_points(face):
+        total += weight
+        vertex = Part.Vertex(p)
+        for j, other in enumerate(shapes):
+            if j == i:
+                continue
+            box = FreeCAD.BoundBox(other.BoundBox)
+            box.enlarge(10 * tol)
+            if not box.isInside(p):
+                continue
+            if any(f.distToShape(vertex)[0] <= 10 * tol for f in other.Faces
+                   if _near_box(f, p, 10 * tol)):
+                on += weight
+                break
+    return on >= 0.5 * total
+
+
+def _near_box(face, p, tol):
+    box = FreeCAD.BoundBox(face.BoundBox)
+    box.enlarge(tol)
+    return box.isInside(p)
 
 
 def makeDecomposition(doc, part, name=None, merge=True, progress=None, data=None,

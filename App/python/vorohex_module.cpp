@@ -574,9 +574,11 @@ std::string whole_solid_json(SolidPtr solid, bool multisweep, bool revolve) {
   options.multisweep = multisweep;
   options.revolve = revolve;
   std::string reason;
-  const decompose::Scheme s = decompose::whole_solid_scheme(*solid, options, &reason);
-  return s == decompose::Scheme::none ? ""
-                                      : decompose::whole_solid_json(s, reason, solid->volume());
+  std::pair<core::FaceId, core::FaceId> ends;
+  const decompose::Scheme s = decompose::whole_solid_scheme(*solid, options, &reason, &ends);
+  return s == decompose::Scheme::none
+             ? ""
+             : decompose::whole_solid_json(s, reason, solid->volume(), ends);
 }
 
 // The mesher's exact plane cuts at concave edges (decompose/plane_cuts.h) as JSON text

@@ -107,10 +107,18 @@ class FittedTable(QtGui.QTableWidget):
 
 class WrappedTable(QtGui.QTableWidget):
     """A table of long texts (the sub-volumes' reasons) wrapped in their cells, its rows
-    refitted whenever its width changes; it scrolls when they are many."""
+    refitted whenever its width changes, each at most `max_lines` lines tall (the whole text
+    in the cell's tooltip: a reason of 300 characters in a narrow column pushed its row's id
+    and scheme out of sight); it scrolls when they are many."""
+
+    max_lines = 5
 
     def fit_rows(self):
         self.resizeRowsToContents()
+        tallest = self.max_lines * QtGui.QFontMetrics(self.font()).lineSpacing() + 8
+        for r in range(self.rowCount()):
+            if self.rowHeight(r) > tallest:
+                self.setRowHeight(r, tallest)
 
     def resizeEvent(self, event):
         super().resizeEvent(event)
@@ -118,17 +126,18 @@ class WrappedTable(QtGui.QTableWidget):
 
     def cut_cells(self):
         """(row, column) of every cell whose text does not fit in it (tests: none)."""
-        return cut_cells(self)
+        return cut_cells(self, icon_columns=())
 
 
-def cut_cells(table):
-    """(row, column) of every cell of `table` whose text does not fit in it."""
+def cut_cells(table, icon_columns=(0,)):
+    """(row, column) of every cell of `table` whose text does not fit in it (cells of
+    `icon_columns` hold an icon or a check box beside their text)."""
     cut = []
     for r in range(table.rowCount()):
         for c in range(table.columnCount()):
             item = table.item(r, c)
             fm = QtGui.QFontMetrics(item.font() if item.font() else table.font())
-            width = table.columnWidth(c) - 8 - (26 if c == 0 else 0)  # icon, check box
+            width = table.columnWidth(c) - 8 - (26 if c in icon_columns else 0)
             need = fm.boundingRect(QtCore.QRect(0, 0, max(width, 1), 10000),
                                    int(QtCore.Qt.TextWordWrap), item.text())
             if need.width() > width + 1 or need.height() > table.rowHeight(r):

@@ -205,6 +205,9 @@ def main():
     check(l_shape.ViewObject.DisplayMode == "Wireframe", "the solid fades to its edges")
     table = mw.findChild(QtGui.QTableWidget, "tbl_sub_volumes")
     check(table is not None and table.rowCount() == 3, "sub-volume table has 3 rows")
+    pump(0.3)
+    check(table.cut_cells() == [], "every reason whole in its cell (wrapped): {}".format(
+        table.cut_cells()))
     table.selectRow(1)
     pump(0.3)
     sel = Gui.Selection.getSelection()

@@ -283,11 +283,26 @@ class TestVoroHexApi(unittest.TestCase):
         self.assertEqual(len(whole.shapes), 1)
         self.assertAlmostEqual(whole.shapes[0].Volume, 24.0, places=9)
         self.assertEqual([d["code"] for d in whole.diagnostics], ["not_cut"])
+        # A sweep whole names its source and target (the decomposition view's dark faces).
+        V = FreeCAD.Vector
+        pentagon = Part.Face(Part.makePolygon(
+            [V(math.cos(a), math.sin(a), 0) for a in
+             [2 * math.pi * k / 5 for k in range(5)] + [0]])).extrude(V(0, 0, 3))
+        swept = VoroHex.decompose(pentagon, method="auto")
+        self.assertEqual([sv["scheme"] for sv in swept.sub_volumes], ["sweep"])
+        ends = {swept.sub_volumes[0]["source"], swept.sub_volumes[0]["target"]}
+        caps = {"Face%d" % (k + 1) for k, f in enumerate(pentagon.Faces)
+                if len(f.Edges) == 5}
+        self.assertEqual(ends, caps)
         hexme = os.environ.get("VOROHEX_HEXME")
         self.assertTrue(hexme, "VOROHEX_HEXME: the repository's tests/data/hexme (ctest sets it)")
         i10 = Part.read(os.path.join(hexme, "i10o_simp.step"))
         d = VoroHex.decompose(i10, method="auto")
         self.assertEqual((d.method, d.status), ("plane-cuts", "ok"), d.diagnostics)
+        for sv, piece in zip(d.sub_volumes, d.shapes):  # each sweep's ends: two of its faces
+            if sv["scheme"] == "sweep":
+                self.assertLessEqual(int(sv["source"][4:]), len(piece.Faces))
+                self.assertLessEqual(int(sv["target"][4:]), len(piece.Faces))
         self.assertAlmostEqual(sum(s.Volume for s in d.shapes) / i10.Volume, 1, places=6)
         m = VoroHex.mesh(i10)
         self.assertTrue(m.ok, m.message)

@@ -51,10 +51,11 @@ class TestVoroHexObject(BoxDocument, unittest.TestCase):
 
     def test_graph_and_decomposition_merge_faces_split_on_one_surface(self):
         # An L fused from two boxes without Refine (FreeCAD 0.20's default for Part
-        # booleans) keeps faces split where the boxes met. The graph and decomposition
-        # objects merge them first, as Part > Refine shape does: the same graph and
+        # booleans) keeps faces split where the boxes met. The graph and the Voronoi graph's
+        # decomposition merge them first, as Part > Refine shape does: the same graph and
         # sub-volumes as the refined L's, and their message says so. (On the split faces the
-        # API's graph has a degenerate edge where the boxes met.)
+        # API's graph has a degenerate edge where the boxes met.) As the mesher, the
+        # decomposition takes them as they are, as the mesher does.
         fused = Part.makeBox(40, 10, 10).fuse(Part.makeBox(10, 10, 40))
         refined = fused.removeSplitter()
         extra = len(fused.Faces) - len(refined.Faces)
@@ -67,7 +68,7 @@ class TestVoroHexObject(BoxDocument, unittest.TestCase):
             part.Shape = shape
             self.doc.recompute()
             objects[name] = (VoroHexGraph.makeVoronoiGraph(self.doc, part),
-                             VoroHexParts.makeDecomposition(self.doc, part))
+                             VoroHexParts.makeDecomposition(self.doc, part, method="voronoi"))
         (g, d), (g_ref, d_ref) = objects["Unrefined"], objects["Refined"]
         self.assertEqual(dict(g.EdgeTypeCounts), dict(g_ref.EdgeTypeCounts))
         self.assertNotIn("degenerate", dict(g.EdgeTypeCounts))
@@ -79,6 +80,11 @@ class TestVoroHexObject(BoxDocument, unittest.TestCase):
             self.assertIn(note, obj.Message)
         for obj in (g_ref, d_ref):
             self.assertNotIn("merged", obj.Message)
+        mesher = VoroHexParts.makeDecomposition(self.doc, self.doc.getObject("Unrefined"))
+        self.assertNotIn("merged", mesher.Message)
+        self.assertEqual((mesher.MethodUsed, mesher.SubVolumeCount),
+                         ("Not cut (the mesher meshes it whole)", 1), mesher.Message)
+        self.assertEqual(len(mesher.SubVolumeObjects[0].Shape.Faces), len(fused.Faces))
 
     def test_voronoi_graph_object(self):
         l_shape = self.make_l()
@@ -207,8 +213,10 @@ class TestVoroHexObject(BoxDocument, unittest.TestCase):
             self.assertTrue(d.isValid(), d.getStatusString())
             self.assertEqual(list(d.Schemes), [scheme], d.Message)
             self.assertEqual(set(d.FaceRoles), {"sweep"}, d.Message)
-            self.assertTrue(d.Message.startswith(
-                "Cut along its Voronoi graph: 1 sub-volume (1 " + scheme + ")"), d.Message)
+            how = ("Not cut (its Voronoi graph gives one sub-volume)"
+                   if d.SubVolumesBeforeMerge == 1 else "Cut along its Voronoi graph")
+            self.assertTrue(d.Message.startswith(how + ": 1 sub-volume (1 " + scheme + ")"),
+                            d.Message)
             self.assertIn(d.Status, ("ok", "partial"))
             self.assertEqual("Partial: " in d.Message, d.Status == "partial", d.Message)
             if scheme == "revolve":

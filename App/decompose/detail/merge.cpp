@@ -347,11 +347,16 @@ bool take_whole_solid(const occ::Solid& solid, const VoronoiGraph& g, double tol
 namespace vorohex::decompose {
 
 Scheme whole_solid_scheme(const occ::Solid& solid, const DecomposeOptions& options,
-                          std::string* reason) {
+                          std::string* reason, std::pair<core::FaceId, core::FaceId>* ends) {
   const mesh::Applicability map = mesh::map_block_applicable(solid);
   if (map.ok) return *reason = "a topological hexahedron", Scheme::map;
   const mesh::SweepApplicability sweep = mesh::sweep_applicable(solid);
-  if (sweep.ok) return *reason = "a sweep", Scheme::sweep;
+  if (sweep.ok) {
+    if (ends) *ends = {sweep.source, sweep.target};
+    return *reason = "a sweep from " + core::entity_name(sweep.source) + " to " +
+                     core::entity_name(sweep.target),
+           Scheme::sweep;
+  }
   std::string why = "map: " + map.reason + "; sweep: " + sweep.reason;
   if (options.multisweep) {
     const mesh::MultisweepApplicability multi = mesh::multisweep_applicable(solid);
