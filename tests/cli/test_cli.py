@@ -635,6 +635,8 @@ class InspectCommands(unittest.TestCase):
                       "to cut at; along its Voronoi graph instead", stdout)
         self.assertEqual(stdout.count("not cut along"), 1, stdout)  # printed once, not per process
         self.assertIn("decomposition of " + sphere + ": 1 sub-volume before merging", stdout)
+        self.assertIn("as the mesher: not every sub-volume has a scheme, so vorohex mesh meshes "
+                      "the solid with its fallback (the grid mesher) instead", stdout)
         for bad, why in ((["--plane-cuts"], "--auto and --plane-cuts: one or the other"),
                          (["--vtp", os.path.join(self.dir, "f.vtp")],
                           "--vtp is an option of the Voronoi decomposition alone")):
