@@ -102,6 +102,23 @@ class PartsTaskPanel:
         summary.setObjectName("lbl_parts_summary")
         summary.setWordWrap(True)
         layout.addWidget(summary)
+        self.summary = summary
+        # How to cut (the Method property), recomputed in a child process with a progress
+        # dialog that can cancel it (an edit of the property recomputes in FreeCAD's own
+        # thread, which the Voronoi graph's decomposition can hold for seconds).
+        row = QtGui.QHBoxLayout()
+        row.addWidget(QtGui.QLabel("Cut:"))
+        self.method = QtGui.QComboBox()
+        self.method.setObjectName("cb_method")
+        self.method.addItems([label for label, _ in VoroHexParts.METHODS])
+        # As narrow as the Combo View (its longest choice widened the panel past it).
+        self.method.setSizeAdjustPolicy(QtGui.QComboBox.AdjustToMinimumContentsLengthWithIcon)
+        self.method.setMinimumContentsLength(8)
+        self.method.setCurrentIndex(self.method_index(obj.Method))
+        self.method.setToolTip(obj.getDocumentationOfProperty("Method"))
+        self.method.activated.connect(self.method_chosen)
+        row.addWidget(self.method, 1)
+        layout.addLayout(row)
         legend = FittedTable(len(VoroHexParts.ROLES), 2)
         legend.setObjectName("tbl_roles")
         legend.setHorizontalHeaderLabels(["Face role", "Meaning"])
@@ -130,7 +147,7 @@ class PartsTaskPanel:
         self.explode.valueChanged.connect(self.exploded)
         row.addWidget(self.explode)
         layout.addLayout(row)
-        self.table = WrappedTable(len(obj.Schemes), 4)
+        self.table = WrappedTable(0, 4)
         self.table.setObjectName("tbl_sub_volumes")
         self.table.setHorizontalHeaderLabels(["Id", "Type", "Scheme", "Why"])
         self.table.verticalHeader().setVisible(False)
@@ -141,17 +158,11 @@ class PartsTaskPanel:
         self.table.setHorizontalScrollBarPolicy(QtCore.Qt.ScrollBarAlwaysOff)
         self.table.setEditTriggers(QtGui.QAbstractItemView.NoEditTriggers)
         self.table.setSelectionBehavior(QtGui.QAbstractItemView.SelectRows)
-        for r, (t, s, why) in enumerate(zip(obj.Types, obj.Schemes, obj.Reasons)):
-            for col, text in enumerate((str(r), t, s, why)):
-                item = QtGui.QTableWidgetItem(text)
-                item.setToolTip(text)
-                self.table.setItem(r, col, item)
         header = self.table.horizontalHeader()
         for col in range(3):
             header.setSectionResizeMode(col, QtGui.QHeaderView.ResizeToContents)
         header.setSectionResizeMode(3, QtGui.QHeaderView.Stretch)
-        # The exact cuts at concave edges type no sub-volume Vs or Ve.
-        self.table.setColumnHidden(1, not any(obj.Types))
+        self.fill_table()
         self.table.setMinimumHeight(160)
         layout.addWidget(self.table)
         self.table.itemSelectionChanged.connect(self.selected)
@@ -161,6 +172,55 @@ class PartsTaskPanel:
         self.observer = PickObserver(self)
         FreeCADGui.Selection.addObserver(self.observer)
         QtCore.QTimer.singleShot(0, self.legend.fit_rows)
+
+    def fill_table(self):
+        """The sub-volumes' rows: id, type, scheme and why."""
+        obj = self.obj
+        self.table.clearContents()
+        self.table.setRowCount(len(obj.Schemes))
+        for r, (t, s, why) in enumerate(zip(obj.Types, obj.Schemes, obj.Reasons)):
+            for col, text in enumerate((str(r), t, s, why)):
+                item = QtGui.QTableWidgetItem(text)
+                item.setToolTip(text)
+                self.table.setItem(r, col, item)
+        # The exact cuts at concave edges type no sub-volume Vs or Ve.
+        self.table.setColumnHidden(1, not any(obj.Types))
+        self.table.fit_rows()
+
+    @staticmethod
+    def method_index(label):
+        labels = [m[0] for m in VoroHexParts.METHODS]
+        return labels.index(label) if label in labels else 0
+
+    def method_chosen(self, index):
+        """Another way to cut: computed in a child process (Cancel in its progress dialog
+        leaves the object as it was), then stored as a recompute would."""
+        label = VoroHexParts.METHODS[index][0]
+        obj = self.obj
+        if label == obj.Method or obj.Part is None:
+            return
+        import VoroHexObjects
+        from VoroHexGui import commands
+
+        def done(data, why):
+            if data is None or obj.Document.getObject(obj.Name) is None:
+                self.method.setCurrentIndex(self.method_index(obj.Method))
+                if why and why != "cancelled":
+                    self.summary.setText("Not recomputed: " + why)
+                return
+            doc = obj.Document
+            doc.openTransaction("VoroHex decomposition method")
+            obj.Method = label
+            obj.Proxy.data, obj.Proxy.key = data, VoroHexParts.cache_key(obj)
+            doc.recompute()
+            doc.commitTransaction()
+            self.summary.setText(obj.Message)
+            self.fill_table()
+
+        commands.start("Decomposition", VoroHexParts.compute_work,
+                       (obj.Part.Shape.exportBrepToString(), obj.SharpAngle, obj.Merge,
+                        VoroHexObjects.graph_options_of(obj), obj.TimeLimit,
+                        VoroHexParts.METHOD_OF[label]), done)
 
     def children(self):
         return [c for c in self.obj.SubVolumeObjects if c is not None]

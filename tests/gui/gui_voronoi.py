@@ -235,6 +235,22 @@ def main():
     table.clearSelection()
     l_shape.ViewObject.Visibility = False
     screenshot(view, "gui_decomposition_l")
+    # How to cut, chosen in the panel: computed in a child process (its progress dialog),
+    # then shown in the panel and the object; back to the Voronoi graph's.
+    method = mw.findChild(QtGui.QComboBox, "cb_method")
+    check(method is not None and method.currentText() == "Voronoi graph",
+          "the panel's Cut chooser shows the object's Method")
+    for index, label, rows in ((0, "As the mesher", 1), (1, "Voronoi graph", 3)):
+        method.setCurrentIndex(index)
+        method.activated.emit(index)
+        check(commands.wait(60), "the decomposition was computed again (in a child process)")
+        pump(0.5)
+        check(d.Method == label and table.rowCount() == rows == d.SubVolumeCount and
+              summary_text(mw) == d.Message,
+              "Cut: {}: {} row(s), the panel's summary is the object's: {}".format(
+                  label, table.rowCount(), d.Message))
+    check(d.MethodUsed == "Cut along its Voronoi graph", "back to the Voronoi graph's cut")
+    children = list(d.SubVolumeObjects)
     close_panel(mw)
     check(not Gui.Control.activeDialog(), "decomposition panel closed")
     check(l_shape.ViewObject.DisplayMode != "Wireframe" and not Gui.Selection.getSelection(),
@@ -487,6 +503,12 @@ def main():
     figure6.ViewObject.Visibility = False  # the decomposition's faces, not the solid's
     screenshot(view, "gui_decomposition_figure6")
     close_panel(mw)
+
+
+def summary_text(mw):
+    """The decomposition panel's summary line."""
+    label = mw.findChild(QtGui.QLabel, "lbl_parts_summary")
+    return label.text() if label is not None else None
 
 
 def report_text(mw):
