@@ -316,24 +316,12 @@ int auto_first_steps(const std::string& input, const std::string& brep_path,
               << "wrote " << brep_path << "\n";
     return kExitOk;
   }
-  const auto t0 = std::chrono::steady_clock::now();
-  auto spent = [&] {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  };
   decompose::PlaneCutOptions cuts;
   cuts.time_limit = 0.5 * time_limit;
   cuts.merge = options.merge;
   cuts.multisweep = options.multisweep;
-  decompose::PlaneCutResult cut =
-      decompose::cut_at_concave_edges(solid, cuts, progress.with_time_limit(cuts.time_limit));
-  if (!cut.ok && cut.knife_edges && spent() < cuts.time_limit) {
-    decompose::PlaneCutOptions tangent = cuts;
-    tangent.tangent_planes = true;
-    tangent.time_limit = cuts.time_limit - spent();
-    decompose::PlaneCutResult second = decompose::cut_at_concave_edges(
-        solid, tangent, progress.with_time_limit(tangent.time_limit));
-    if (second.ok) cut = std::move(second);
-  }
+  const decompose::PlaneCutResult cut =
+      decompose::cut_as_the_mesher(solid, cuts, progress.with_time_limit(cuts.time_limit));
   if (cut.ok) {
     if (!report(
             decompose::plane_cuts_json(cut, decompose::plane_cut_schemes(cut, cuts.multisweep))))

@@ -755,4 +755,19 @@ PlaneCutResult cut_at_concave_edges(const occ::Solid& solid, const PlaneCutOptio
   return r;
 }
 
+PlaneCutResult cut_as_the_mesher(const occ::Solid& solid, const PlaneCutOptions& options,
+                                 const core::Progress& progress) {
+  const auto t0 = std::chrono::steady_clock::now();
+  PlaneCutResult cut = cut_at_concave_edges(solid, options, progress);
+  const double spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (cut.ok || !cut.knife_edges || options.tangent_planes || spent >= options.time_limit)
+    return cut;
+  PlaneCutOptions tangent = options;
+  tangent.tangent_planes = true;
+  tangent.time_limit = options.time_limit - spent;
+  PlaneCutResult second = cut_at_concave_edges(solid, tangent, progress);
+  if (second.ok) return second;
+  return cut;
+}
+
 }  // namespace vorohex::decompose

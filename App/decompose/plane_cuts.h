@@ -85,4 +85,10 @@ std::string used_surfaces_text(const PlaneCutResult& cut, std::size_t at_most = 
 PlaneCutResult cut_at_concave_edges(const occ::Solid& solid, const PlaneCutOptions& options = {},
                                     const core::Progress& progress = {});
 
+// The cut the mesher takes: cut_at_concave_edges, and where its pieces have knife edges and
+// do not all have a scheme, the cut with the tangent planes instead (when that one is ok),
+// within what is left of options.time_limit.
+PlaneCutResult cut_as_the_mesher(const occ::Solid& solid, const PlaneCutOptions& options,
+                                 const core::Progress& progress = {});
+
 }  // namespace vorohex::decompose

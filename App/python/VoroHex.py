@@ -827,7 +827,6 @@ def decompose(shape, sharp_angle=None, merge=True, vtp=None, eps=None, delta=Non
     multisweep, revolve (default True): whether the many-to-one sweep of prismatic parts
     and the revolution judge the sub-volumes besides the mapped block, the sweep and
     midpoint subdivision (as the mesh's schemes; the plane cuts take no revolve)."""
-    import tempfile
     import time
     if method not in ("voronoi", "plane-cuts", "auto"):
         raise ValueError("VoroHex: option 'method' must be 'voronoi', 'plane-cuts' or 'auto', "
@@ -845,39 +844,6 @@ def decompose(shape, sharp_angle=None, merge=True, vtp=None, eps=None, delta=Non
     if tangent_planes and method != "plane-cuts":
         raise ValueError("VoroHex: option 'tangent_planes' is an option of "
                          "method='plane-cuts'")
-    if method == "auto":
-        start = time.monotonic()
-        text = _core.whole_solid_json(_read_solid(check_shape(shape)), multisweep, revolve)
-        if text:
-            return Decomposition(json.loads(text), [check_shape(shape).Solids[0]])
-        cut = decompose(shape, merge=merge, progress=progress, method="plane-cuts",
-                        time_limit=0.5 * limit, multisweep=multisweep)
-        left = 0.5 * limit - (time.monotonic() - start)
-        if not cut.ok and cut.knife_edges and left > 0:
-            second = decompose(shape, merge=merge, progress=progress, method="plane-cuts",
-                               time_limit=left, tangent_planes=True, multisweep=multisweep)
-            if second.ok:
-                return second
-        if cut.ok:
-            return cut
-        why = "; ".join(x.get("message", "") for x in cut.diagnostics
-                        if x.get("severity") == "error") or "no sub-volumes"
-        # At most a fifth of the limit: the 6 s the mesher gives it by default (a tenth of
-        # its decomposition time limit of 60 s).
-        left = min(0.2 * limit, limit - (time.monotonic() - start))
-        d = decompose(shape, sharp_angle=sharp_angle, merge=merge, vtp=vtp, eps=eps,
-                      delta=delta, max_depth=max_depth, linear_tolerance=linear_tolerance,
-                      progress=progress, time_limit=max(1.0, left),
-                      multisweep=multisweep, revolve=revolve)
-        d.diagnostics.append({"severity": "info", "code": "plane_cuts_not_used", "entities": [],
-                              "message": "Not cut along the faces at its concave edges: " +
-                              why[0].lower() + why[1:]})
-        if not d.ok or any(sv.get("scheme") == "none" for sv in d.sub_volumes):
-            d.diagnostics.append({
-                "severity": "info", "code": "mesher_fallback", "entities": [],
-                "message": "Not every sub-volume has a scheme, so the mesher meshes the solid "
-                           "with its fallback (the grid mesher) instead."})
-        return d
     if method == "plane-cuts":
         given = dict(sharp_angle=sharp_angle, vtp=vtp, eps=eps, delta=delta,
                      max_depth=max_depth, linear_tolerance=linear_tolerance)
@@ -886,25 +852,53 @@ def decompose(shape, sharp_angle=None, merge=True, vtp=None, eps=None, delta=Non
             raise ValueError("VoroHex: option '{}' is an option of the Voronoi decomposition; "
                              "method='plane-cuts' takes none".format(named[0]))
         solid = _read_solid(check_shape(shape))
-        with tempfile.TemporaryDirectory(prefix="vorohex-") as tmp:
-            brep = os.path.join(tmp, "pieces.brep")
-            text = _core.plane_cuts_json(solid, brep, progress, limit, tangent_planes, merge,
-                                         multisweep)
-            shapes = []
-            if os.path.exists(brep):
-                import Part
-                shapes = list(Part.read(brep).Solids)
-        return Decomposition(json.loads(text), shapes)
+        return _writing_parts(lambda brep: _core.plane_cuts_json(
+            solid, brep, progress, limit, tangent_planes, merge, multisweep))
     angle = 60.0 if sharp_angle is None else _number("sharp_angle", sharp_angle)
     if not 0 < angle <= 180:
         raise ValueError("VoroHex: option 'sharp_angle' must be in (0, 180], got {}".format(
             angle))
     opts = _voronoi_options(eps, delta, max_depth, linear_tolerance)
-    solid = _read_solid(check_shape(shape))
+    checked = check_shape(shape)
+    solid = _read_solid(checked)
+
+    def voronoi(seconds):
+        return _writing_parts(lambda brep: _core.decomposition_json(
+            solid, opts, angle, merge, brep, vtp or "", progress, seconds, multisweep, revolve))
+
+    if method == "voronoi":
+        return voronoi(limit)
+    start = time.monotonic()
+    text = _core.whole_solid_json(solid, multisweep, revolve)
+    if text:
+        return Decomposition(json.loads(text), [checked.Solids[0]])
+    cut = _writing_parts(lambda brep: _core.plane_cuts_json(
+        solid, brep, progress, 0.5 * limit, False, merge, multisweep, as_the_mesher=True))
+    if cut.ok:
+        return cut
+    why = "; ".join(x.get("message", "") for x in cut.diagnostics
+                    if x.get("severity") == "error") or "no sub-volumes"
+    # At most a fifth of the limit: the 6 s the mesher gives it by default (a tenth of its
+    # decomposition time limit of 60 s).
+    d = voronoi(max(1.0, min(0.2 * limit, limit - (time.monotonic() - start))))
+    d.diagnostics.append({"severity": "info", "code": "plane_cuts_not_used", "entities": [],
+                          "message": "Not cut along the faces at its concave edges: " +
+                          why[0].lower() + why[1:]})
+    if not d.ok or any(sv.get("scheme") == "none" for sv in d.sub_volumes):
+        d.diagnostics.append({
+            "severity": "info", "code": "mesher_fallback", "entities": [],
+            "message": "Not every sub-volume has a scheme, so the mesher meshes the solid "
+                       "with its fallback (the grid mesher) instead."})
+    return d
+
+
+def _writing_parts(compute):
+    """The Decomposition of compute(brep_path) (its JSON text), with the solids it wrote to
+    brep_path (a temporary file)."""
+    import tempfile
     with tempfile.TemporaryDirectory(prefix="vorohex-") as tmp:
         brep = os.path.join(tmp, "parts.brep")
-        text = _core.decomposition_json(solid, opts, angle, merge, brep, vtp or "", progress,
-                                        limit, multisweep, revolve)
+        text = compute(brep)
         shapes = []
         if os.path.exists(brep):
             import Part

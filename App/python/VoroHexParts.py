@@ -302,8 +302,7 @@ def face_roles(d):
     order): a decomposition face where most of it lies against another sub-volume (on the
     same face, or on part of a larger one, as the plane cuts' merged pieces meet), a sweep's
     source or target, else its sub-volume's scheme."""
-    diagonal = max((s.BoundBox.DiagonalLength for s in d.shapes), default=1.0)
-    tol = 1e-7 * max(diagonal, 1e-300)
+    tol = coincidence(d.shapes)
     roles = []
     for i, solid in enumerate(d.shapes):
         sv = d.sub_volumes[i] if i < len(d.sub_volumes) else {}
@@ -325,8 +324,7 @@ def face_roles(d):
 def distinct_faces(shapes, roles):
     """How many faces lie between sub-volumes: the decomposition faces, one that two
     sub-volumes both have (same area and centre) counted once."""
-    diagonal = max((s.BoundBox.DiagonalLength for s in shapes), default=1.0)
-    tol = 1e-7 * max(diagonal, 1e-300)
+    tol = coincidence(shapes)
     seen = []
     for solid, mine in zip(shapes, roles):
         for face, role in zip(solid.Faces, mine):
@@ -337,6 +335,12 @@ def distinct_faces(shapes, roles):
                        for a, c in seen):
                 seen.append(key)
     return len(seen)
+
+
+def coincidence(shapes):
+    """The distance below which the sub-volumes' geometry coincides: 1e-7 of their extent."""
+    diagonal = max((s.BoundBox.DiagonalLength for s in shapes), default=1.0)
+    return 1e-7 * max(diagonal, 1e-300)
 
 
 def inner_points(face, at_most=12):
@@ -365,22 +369,17 @@ def against_another(face, i, shapes, tol):
     for p, weight in inner_points(face):
         total += weight
         vertex = Part.Vertex(p)
-        for j, other in enumerate(shapes):
-            if j == i:
-                continue
-            box = FreeCAD.BoundBox(other.BoundBox)
-            box.enlarge(10 * tol)
-            if not box.isInside(p):
-                continue
-            if any(f.distToShape(vertex)[0] <= 10 * tol for f in other.Faces
-                   if _near_box(f, p, 10 * tol)):
-                on += weight
-                break
+        if any(j != i and near_box(other, p, 10 * tol) and
+               any(near_box(f, p, 10 * tol) and f.distToShape(vertex)[0] <= 10 * tol
+                   for f in other.Faces)
+               for j, other in enumerate(shapes)):
+            on += weight
     return on >= 0.5 * total
 
 
-def _near_box(face, p, tol):
-    box = FreeCAD.BoundBox(face.BoundBox)
+def near_box(shape, p, tol):
+    """Whether p lies in `shape`'s bounding box grown by tol (before a distance query)."""
+    box = FreeCAD.BoundBox(shape.BoundBox)
     box.enlarge(tol)
     return box.isInside(p)
 

@@ -585,7 +585,8 @@ std::string whole_solid_json(SolidPtr solid, bool multisweep, bool revolve) {
 // (decomposition_io.h), each piece with the scheme it gets; writes the pieces as a BREP
 // compound where a path is given (also when the cuts failed: the pieces as cut).
 std::string plane_cuts_json(SolidPtr solid, const std::string& brep_path, py::object progress,
-                            double time_limit, bool tangent_planes, bool merge, bool multisweep) {
+                            double time_limit, bool tangent_planes, bool merge, bool multisweep,
+                            bool as_the_mesher) {
   if (!solid) throw std::invalid_argument("no solid given");
   check_time_limit(time_limit);
   decompose::PlaneCutOptions options;
@@ -596,8 +597,10 @@ std::string plane_cuts_json(SolidPtr solid, const std::string& brep_path, py::ob
   try {
     return run_isolated(
         [&](const core::Progress& in_child) {
-          const decompose::PlaneCutResult cut = decompose::cut_at_concave_edges(
-              *solid, options, in_child.with_time_limit(time_limit));
+          const core::Progress deadline = in_child.with_time_limit(time_limit);
+          const decompose::PlaneCutResult cut =
+              as_the_mesher ? decompose::cut_as_the_mesher(*solid, options, deadline)
+                            : decompose::cut_at_concave_edges(*solid, options, deadline);
           if (!brep_path.empty() && !cut.pieces.empty()) {
             std::vector<const occ::Solid*> pieces;
             for (const occ::Solid& s : cut.pieces) pieces.push_back(&s);
@@ -664,9 +667,11 @@ PYBIND11_MODULE(_VoroHexCore, m) {
   m.def("plane_cuts_json", &plane_cuts_json, py::arg("solid"), py::arg("brep_path") = "",
         py::arg("progress") = py::none(), py::arg("time_limit") = 30.0,
         py::arg("tangent_planes") = false, py::arg("merge") = true, py::arg("multisweep") = true,
+        py::arg("as_the_mesher") = false,
         "the exact plane cuts at a solid's concave edges as JSON text, each piece with its "
-        "scheme (merge=False: the pieces as cut); writes the pieces (BREP) where a path is "
-        "given");
+        "scheme (merge=False: the pieces as cut; as_the_mesher: the tangent planes where the "
+        "first cut's pieces have knife edges and do not all have a scheme); writes the pieces "
+        "(BREP) where a path is given");
   m.def("check_mesh", &check, py::arg("mesh"), py::arg("solid") = nullptr,
         py::arg("volume_rel_tol") = quality::CheckOptions{}.volume_rel_tol,
         py::arg("distance_rel_tol") = quality::CheckOptions{}.distance_rel_tol);

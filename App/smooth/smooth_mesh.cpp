@@ -817,13 +817,8 @@ class Smoother {
   const SmoothOptions& options_;
   const core::Progress& progress_;
   double reported_ = 0;  // the fraction reported so far: the phases run again in rounds
-
-  // The smoothing's progress, never going back (a later round of the untangling reports
-  // the fraction the phases reached, not the untangling's own).
-  void report(double fraction) {
-    reported_ = std::max(reported_, fraction);
-    progress_.report("smooth", reported_);
-  }
+  // Never going back (a later round of the untangling reports the fraction reached).
+  void report(double f) { progress_.report("smooth", reported_ = std::max(reported_, f)); }
   SmoothResult& result_;
   detail::SmoothTopology topology_;
   std::vector<char> movable_;

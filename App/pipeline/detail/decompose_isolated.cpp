@@ -96,18 +96,7 @@ std::string decompose_to_text(const occ::Solid& solid, const MeshOptions& mesh_o
                                    "multisweep") != mesh_options.schemes.end();
     options.tangent_planes = methods == DecompositionMethods::tangent_plane_cuts;
     options.time_limit = std::max(1.0, options.tangent_planes ? time_limit : 0.5 * time_limit);
-    decompose::PlaneCutResult cut = decompose::cut_at_concave_edges(solid, options, reports);
-    // Pieces left with knife edges that do not all have a scheme: the tangent planes instead,
-    // within what is left of the cuts' time.
-    const double spent =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    if (!cut.ok && cut.knife_edges && spent < options.time_limit) {
-      decompose::PlaneCutOptions tangent = options;
-      tangent.tangent_planes = true;
-      tangent.time_limit = options.time_limit - spent;
-      decompose::PlaneCutResult second = decompose::cut_at_concave_edges(solid, tangent, reports);
-      if (second.ok) cut = std::move(second);
-    }
+    const decompose::PlaneCutResult cut = decompose::cut_as_the_mesher(solid, options, reports);
     if (cut.ok) {
       std::vector<const occ::Solid*> solids;
       for (const occ::Solid& s : cut.pieces) solids.push_back(&s);
