@@ -283,9 +283,10 @@ void remove_partials(const std::vector<std::string>& paths) {
 // cut's pieces have knife edges), within half of `time_limit`. The exit code when one of
 // them is the answer (written and described); -1 (with the reason printed) when the
 // Voronoi decomposition is to follow.
-int auto_first_steps(const std::string& input, const std::string& brep_path,
-                     const std::string& json_path, const decompose::DecomposeOptions& options,
-                     double time_limit, const core::Progress& progress) {
+int auto_first_steps(const std::string& input, const occ::Solid& solid,
+                     const std::string& brep_path, const std::string& json_path,
+                     const decompose::DecomposeOptions& options, double time_limit,
+                     const core::Progress& progress) {
   auto report = [&](const std::string& text) {
     if (json_path.empty()) return true;
     std::ofstream out(json_path);
@@ -294,12 +295,6 @@ int auto_first_steps(const std::string& input, const std::string& brep_path,
     std::cerr << "vorohex: could not write " << json_path << "\n";
     return false;
   };
-  occ::ReadResult read = occ::read_solid(input);
-  if (!read.ok()) {
-    print_problems(read.diagnostics);
-    return kExitBadInput;
-  }
-  const occ::Solid& solid = *read.solid;
   std::string why;
   std::pair<core::FaceId, core::FaceId> ends;
   const decompose::Scheme whole = decompose::whole_solid_scheme(solid, options, &why, &ends);
@@ -391,14 +386,19 @@ int run_decompose(const std::vector<std::string>& args) {
   if (std::string why = graph_options.validate(); !why.empty())
     return usage_error(why, kDecomposeUsage);
   if (std::string why = options.validate(); !why.empty()) return usage_error(why, kDecomposeUsage);
+  if (auto_method && !vtp_path.empty())
+    return usage_error(
+        "--vtp is an option of the Voronoi decomposition alone; --auto does not take it",
+        kDecomposeUsage);
+  const auto t0 = std::chrono::steady_clock::now();
+  occ::ReadResult read = occ::read_solid(input);
+  if (!read.ok()) {
+    print_problems(read.diagnostics);
+    return kExitBadInput;
+  }
   if (auto_method) {
-    if (!vtp_path.empty())
-      return usage_error(
-          "--vtp is an option of the Voronoi decomposition alone; --auto does not take it",
-          kDecomposeUsage);
-    const auto t0 = std::chrono::steady_clock::now();
-    if (const int code =
-            auto_first_steps(input, brep_path, json_path, options, time_limit, progress);
+    if (const int code = auto_first_steps(input, *read.solid, brep_path, json_path, options,
+                                          time_limit, progress);
         code >= 0)
       return code;
     // The Voronoi decomposition gets what is left, at most a fifth of the limit: the 6 s
@@ -419,11 +419,6 @@ int run_decompose(const std::vector<std::string>& args) {
     return code;
   };
 
-  occ::ReadResult read = occ::read_solid(input);
-  if (!read.ok()) {
-    print_problems(read.diagnostics);
-    return kExitBadInput;
-  }
   // The graph and the decomposition run in a child process: they stop themselves at the
   // deadline where they can, and the child is killed a little after it where OCCT's split
   // does not return (HexMe i09: 20 s past its limit). Its stderr is this process's; what
