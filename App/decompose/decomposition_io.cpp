@@ -252,9 +252,10 @@ std::string plane_cuts_json(const PlaneCutResult& cut, const PlaneCutSchemes& sc
     json edges = json::array();
     for (core::EdgeId e : c.edges) edges.push_back(core::entity_name(e));
     j["cut_surfaces"].push_back({{"id", i},
-                                 {"kind", c.cylinder  ? "cylinder"
-                                          : c.tangent ? "tangent_plane"
-                                                      : "plane"},
+                                 {"kind", c.cylinder      ? "cylinder"
+                                          : c.tangent     ? "tangent_plane"
+                                          : c.around_hole ? "hole_plane"
+                                                          : "plane"},
                                  {"face", core::entity_name(c.face)},
                                  {"concave_edges", edges},
                                  {"used", c.used}});

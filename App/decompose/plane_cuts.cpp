@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "core/option_checks.h"
+#include "decompose/detail/hole_planes.h"
 #include "mesh/map_block.h"
 #include "mesh/mesh_sub_volumes.h"
 #include "mesh/multisweep.h"
@@ -41,6 +42,7 @@ struct Plane {
   FaceId face;                // the model face it extends (the first found)
   std::vector<EdgeId> edges;  // the concave edges it is taken at
   bool tangent = false;       // tangent to the cylinder of `face`, in its place
+  bool around_hole = false;   // around the hole of `face` (detail/hole_planes.h)
 };
 
 // A cylinder to cut along, the model face it extends and the concave edges it is taken at.
@@ -515,9 +517,10 @@ bool split_along(const occ::Solid& solid, std::vector<Plane>& planes,
 }  // namespace
 
 std::string surface_text(const CutSurface& s, bool with_edges) {
-  std::string t = std::string(s.cylinder  ? "the cylinder of "
-                              : s.tangent ? "the plane tangent to the cylinder of "
-                                          : "the plane of ") +
+  std::string t = std::string(s.cylinder      ? "the cylinder of "
+                              : s.tangent     ? "the plane tangent to the cylinder of "
+                              : s.around_hole ? "a plane around the hole of "
+                                              : "the plane of ") +
                   core::entity_name(s.face);
   if (!with_edges || s.edges.empty()) return t;
   t += " (at ";
@@ -527,14 +530,25 @@ std::string surface_text(const CutSurface& s, bool with_edges) {
 }
 
 std::string used_surfaces_text(const PlaneCutResult& cut, std::size_t at_most) {
-  std::string t;
-  std::size_t shown = 0, used = 0;
+  // The planes around one hole are named once, with their number ("4 planes around the hole
+  // of Face5").
+  std::vector<std::pair<std::string, int>> named;
   for (const CutSurface& s : cut.surfaces) {
     if (!s.used) continue;
-    ++used;
-    if (shown < at_most) t += (shown++ ? ", " : "") + surface_text(s, false);
+    const std::string t = surface_text(s, false);
+    if (s.around_hole && !named.empty() && named.back().first == t)
+      ++named.back().second;
+    else
+      named.push_back({t, 1});
   }
-  if (used > shown) t += " and " + std::to_string(used - shown) + " more";
+  std::string t;
+  std::size_t shown = 0;
+  for (const auto& [text, n] : named) {
+    if (shown == at_most) break;
+    t += (shown++ ? ", " : "") +
+         (n > 1 ? std::to_string(n) + " planes" + text.substr(text.find(" around")) : text);
+  }
+  if (named.size() > shown) t += " and " + std::to_string(named.size() - shown) + " more";
   return t;
 }
 
@@ -636,7 +650,8 @@ PlaneCutResult cut_along(const occ::Solid& solid, std::vector<Plane> planes,
     return r;
   }
   progress.report("plane_cuts", 0.0);
-  for (const Plane& pl : planes) r.surfaces.push_back({false, pl.tangent, pl.face, pl.edges, true});
+  for (const Plane& pl : planes)
+    r.surfaces.push_back({false, pl.tangent, pl.face, pl.edges, true, pl.around_hole});
   for (const Cylinder& c : cylinders) r.surfaces.push_back({true, false, c.face, c.edges, true});
   const double whole = solid.volume();
   std::vector<occ::Solid> pieces;
@@ -758,15 +773,44 @@ PlaneCutResult cut_at_concave_edges(const occ::Solid& solid, const PlaneCutOptio
 PlaneCutResult cut_as_the_mesher(const occ::Solid& solid, const PlaneCutOptions& options,
                                  const core::Progress& progress) {
   const auto t0 = std::chrono::steady_clock::now();
+  auto left = [&] {
+    return options.time_limit -
+           std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
   PlaneCutResult cut = cut_at_concave_edges(solid, options, progress);
-  const double spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  if (cut.ok || !cut.knife_edges || options.tangent_planes || spent >= options.time_limit)
-    return cut;
-  PlaneCutOptions tangent = options;
-  tangent.tangent_planes = true;
-  tangent.time_limit = options.time_limit - spent;
-  PlaneCutResult second = cut_at_concave_edges(solid, tangent, progress);
-  if (second.ok) return second;
+  if (cut.ok || options.tangent_planes) return cut;
+  if (cut.knife_edges && left() > 0) {
+    PlaneCutOptions tangent = options;
+    tangent.tangent_planes = true;
+    tangent.time_limit = left();
+    PlaneCutResult second = cut_at_concave_edges(solid, tangent, progress);
+    if (second.ok) return second;
+  }
+  // Third: with planes around the holes that cross the part's other direction.
+  std::vector<Plane> planes;
+  std::vector<Cylinder> cylinders;
+  std::string why;
+  if (left() <= 0 || !concave_surfaces(solid, planes, cylinders, why)) return cut;
+  // A part a few planes around its holes make structured is a simple one (a tube with a cross
+  // hole: 0.6 s): these cuts get at most a quarter of the time, kAroundSeconds and
+  // kAroundPieces pieces (HexMe's parts with many holes, which they never make structured,
+  // waited up to 15 s more for them: i24).
+  constexpr int kAroundPieces = 40;
+  constexpr double kAroundSeconds = 4;
+  PlaneCutOptions around_options = options;
+  around_options.max_pieces = std::min(options.max_pieces, kAroundPieces);
+  const double until = left() - std::min(0.25 * options.time_limit, kAroundSeconds);
+  const double tol = 1e-7 * solid.diagonal();
+  const auto sets = detail::hole_plane_sets(solid);
+  for (const std::vector<detail::HolePlane>& set : sets) {
+    if (left() <= until) break;
+    std::vector<Plane> with = planes;
+    for (const detail::HolePlane& h : set)
+      add_plane(with, {h.normal, h.offset, h.hole, {}, false, true}, tol);
+    PlaneCutResult around =
+        cut_along(solid, std::move(with), cylinders, around_options, left() - until, progress);
+    if (around.ok) return around;
+  }
   return cut;
 }
 

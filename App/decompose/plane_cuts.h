@@ -44,6 +44,9 @@ struct CutSurface {
   core::FaceId face;                // the model face it extends
   std::vector<core::EdgeId> edges;  // the concave edges it is taken at
   bool used = true;                 // false: left out (OCCT's cut with it failed)
+  // A plane parallel to the axis of the hole of `face`, about one and a half radii from it
+  // (cut_as_the_mesher's third try: a cross hole, which has no concave edge).
+  bool around_hole = false;
 };
 
 struct PlaneCutResult {
@@ -86,8 +89,10 @@ PlaneCutResult cut_at_concave_edges(const occ::Solid& solid, const PlaneCutOptio
                                     const core::Progress& progress = {});
 
 // The cut the mesher takes: cut_at_concave_edges, and where its pieces have knife edges and
-// do not all have a scheme, the cut with the tangent planes instead (when that one is ok),
-// within what is left of options.time_limit.
+// do not all have a scheme, the cut with the tangent planes instead (when that one is ok);
+// else the cut at concave edges with planes around round holes too (a cross hole through a
+// tube, a hole along a block beside a boss: detail/hole_planes.h), for each set of them until
+// one is ok; all within what is left of options.time_limit. Not ok: the first cut's result.
 PlaneCutResult cut_as_the_mesher(const occ::Solid& solid, const PlaneCutOptions& options,
                                  const core::Progress& progress = {});
 

@@ -750,7 +750,9 @@ class Decomposition:
     decomposition failed). method: "voronoi", "plane-cuts" or "whole" (method="auto" on
     a solid one scheme meshes whole; see decompose).
     cut_surfaces (plane cuts only): why each cut is where it is, a dict per surface with
-    "kind" ("plane"/"cylinder"/"tangent_plane": tangent to the cylinder of "face"),
+    "kind" ("plane"/"cylinder"/"tangent_plane": tangent to the cylinder of "face"/
+    "hole_plane": parallel to the axis of the hole "face" is on, about 1.5 radii from it,
+    where the cut at concave edges alone fails; method "auto" only),
     "face" (the model face it extends, "Face7"), "concave_edges" (where it is taken,
     ["Edge12", ...]) and "used" (False: left out); knife_edges: pieces meet at an angle near
     zero where a planar face touches a cylinder cut along (the mesher then tries

@@ -197,11 +197,23 @@ def method_text(d):
         return "Cut along its Voronoi graph"
     surfaces = [c for c in d.cut_surfaces if c.get("used", True)]
     kinds = {"cylinder": "the cylinder of ", "tangent_plane": "the plane tangent to the "
-             "cylinder of "}
-    named = ", ".join(kinds.get(c.get("kind"), "the plane of ") + c.get("face", "?")
-                      for c in surfaces[:4])
-    more = " and {} more".format(len(surfaces) - 4) if len(surfaces) > 4 else ""
-    return "Cut along the faces at its concave edges ({}{})".format(named, more)
+             "cylinder of ", "hole_plane": "a plane around the hole of "}
+    texts = []  # [text, count]: the planes around one hole named once
+    for c in surfaces:
+        text = kinds.get(c.get("kind"), "the plane of ") + c.get("face", "?")
+        if c.get("kind") == "hole_plane" and texts and texts[-1][0] == text:
+            texts[-1][1] += 1
+        else:
+            texts.append([text, 1])
+    named = ", ".join(t if n == 1 else "{} planes around{}".format(n, t.split(" around", 1)[1])
+                      for t, n in texts[:4])
+    more = " and {} more".format(len(texts) - 4) if len(texts) > 4 else ""
+    holes = any(c.get("kind") == "hole_plane" for c in surfaces)
+    concave = any(c.get("kind") != "hole_plane" for c in surfaces)
+    what = ("planes around its holes" if holes and not concave else
+            "the faces at its concave edges and planes around its holes" if holes else
+            "the faces at its concave edges")
+    return "Cut along {} ({}{})".format(what, named, more)
 
 
 def plural(n, noun):

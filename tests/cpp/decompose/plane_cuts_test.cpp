@@ -8,6 +8,8 @@
 #include <memory>
 
 #include "decompose/decomposition_io.h"
+#include "decompose/detail/hole_planes.h"
+#include "fixtures/machined.h"
 #include "fixtures/solids.h"
 #include "mesh/map_block.h"
 #include "mesh/mesh_sub_volumes.h"
@@ -366,6 +368,62 @@ TEST(PlaneCuts, TheMergingEndsAtItsTimeLimitEvenWhereOcctDoesNot) {
   }
   std::printf("[plane_cuts] HexMe i15: %d pieces, %zu after merging for %.1f s (limit %g s)\n",
               r.pieces_before_merge, r.pieces.size(), seconds, o.time_limit);
+}
+
+// A cross hole through a tube's wall has no concave edge (its edges are convex): the cut at
+// concave edges has nothing to cut along, and no one sweep takes the tube. The mesher's cut
+// puts four planes around the hole, parallel to its axis: the hole lies in a piece swept
+// along it, the rest sweeps along the tube.
+TEST(PlaneCuts, ACrossHoleIsCutAroundByPlanesAlongItsAxis) {
+  const occ::Solid tube = testing::make_thin_tube_with_cross_hole();
+  const PlaneCutResult first = cut_at_concave_edges(tube);
+  EXPECT_FALSE(first.ok);
+  EXPECT_EQ(first.why_not, "it has no concave edge to cut at");
+  const PlaneCutResult r = cut_as_the_mesher(tube, {});
+  ASSERT_TRUE(r.ok) << r.why_not;
+  ASSERT_EQ(r.surfaces.size(), 4u);
+  std::string hole;
+  for (const CutSurface& c : r.surfaces) {
+    EXPECT_TRUE(c.around_hole);
+    EXPECT_FALSE(c.cylinder || c.tangent);
+    EXPECT_TRUE(c.edges.empty());
+    occ::CutCylinder cyl;
+    ASSERT_TRUE(occ::face_cylinder(tube, c.face, &cyl));  // a face of the cross hole
+    EXPECT_NEAR(cyl.radius, 5, 1e-9);
+    EXPECT_NEAR(std::abs(cyl.axis.x()), 1, 1e-9);
+    hole = core::entity_name(c.face);
+  }
+  EXPECT_EQ(used_surfaces_text(r), "4 planes around the hole of " + hole);
+  EXPECT_GE(r.pieces.size(), 2u);
+  expect_fill_with_schemes(tube, r);
+}
+
+// The planes around a hole are parallel to its axis, at 1.25 to 2 radii from it, and set
+// along the direction the other holes run (the tube's bore: z) where it is across the hole.
+// A boss is no hole (its material is inside its cylinder), nor is a half-round groove (its
+// edges do not go all around); a part whose only holes run one way gets one set, around them.
+TEST(PlaneCuts, PlanesAroundHolesAreParallelToTheHoleAndClearOfIt) {
+  const occ::Solid tube = testing::make_thin_tube_with_cross_hole();
+  const auto sets = detail::hole_plane_sets(tube);
+  ASSERT_GE(sets.size(), 1u);
+  ASSERT_EQ(sets[0].size(), 4u);  // around the cross hole only: the bore runs along z
+  for (const detail::HolePlane& p : sets[0]) {
+    EXPECT_NEAR(p.normal.x(), 0, 1e-9);  // parallel to the hole's axis (x)
+    const bool along_z = std::abs(std::abs(p.normal.z()) - 1) < 1e-9;
+    EXPECT_TRUE(along_z || std::abs(std::abs(p.normal.y()) - 1) < 1e-9);
+    // Its distance from the hole's axis (the line y = 0, z = 20).
+    const double d = std::abs(p.offset - p.normal.z() * 20);
+    EXPECT_GE(d, 1.25 * 5 - 1e-9);
+    EXPECT_LE(d, 2 * 5 + 1e-9);
+  }
+  const occ::Solid block = testing::make_block_with_boss_and_cross_hole();
+  const auto around = detail::hole_plane_sets(block);
+  ASSERT_EQ(around.size(), 1u);  // the hole along y; the boss is none
+  ASSERT_EQ(around[0].size(), 4u);
+  for (const detail::HolePlane& p : around[0]) EXPECT_NEAR(p.normal.y(), 0, 1e-9);
+  const occ::Solid groove =
+      testing::cut(occ::make_box(20, 20, 10), occ::make_cylinder(3, 30, {-5, 10, 10}, {1, 0, 0}));
+  EXPECT_TRUE(detail::hole_plane_sets(groove).empty());
 }
 
 }  // namespace

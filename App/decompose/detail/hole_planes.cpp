@@ -1,0 +1,184 @@
+#include "decompose/detail/hole_planes.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "occ/split_solid.h"
+
+namespace vorohex::decompose::detail {
+
+using core::FaceId;
+using core::Vec3;
+
+namespace {
+
+struct Hole {
+  occ::CutCylinder cylinder;
+  std::vector<FaceId> faces;
+  double area = 0;
+  FaceId largest;
+};
+
+// Any unit vector at right angles to d.
+Vec3 perpendicular(const Vec3& d) {
+  const Vec3 any = std::abs(d.x()) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
+  return d.cross(any).normalized();
+}
+
+bool parallel(const Vec3& a, const Vec3& b) {
+  return std::abs(a.dot(b)) > 1 - 1e-6;
+}
+
+// Whether the points (on the cylinder) go all around its axis: no gap of a quarter turn.
+bool all_around(const occ::CutCylinder& c, const std::vector<Vec3>& points) {
+  const Vec3 u = perpendicular(c.axis), v = c.axis.cross(u);
+  std::vector<double> angle;
+  for (const Vec3& p : points) {
+    const Vec3 r = p - c.origin;
+    angle.push_back(std::atan2(r.dot(v), r.dot(u)));
+  }
+  if (angle.size() < 3) return false;
+  std::sort(angle.begin(), angle.end());
+  double gap = angle.front() + 2 * M_PI - angle.back();
+  for (std::size_t k = 1; k < angle.size(); ++k) gap = std::max(gap, angle[k] - angle[k - 1]);
+  return gap < M_PI / 2;
+}
+
+std::vector<Hole> holes_of(const occ::Solid& s) {
+  const double tol = 1e-7 * s.diagonal();
+  std::vector<Hole> holes;
+  std::vector<std::vector<Vec3>> points;  // per hole: its faces' edge points
+  for (const occ::FaceSample& sample : occ::sample_faces(s)) {
+    occ::CutCylinder c;
+    if (!occ::face_cylinder(s, sample.face, &c)) continue;
+    Vec3 r = sample.point - c.origin;
+    r -= r.dot(c.axis) * c.axis;
+    if (sample.normal.dot(r) >= 0) continue;  // material inside: a boss, a shaft
+    std::size_t k = 0;
+    for (; k < holes.size(); ++k) {
+      const occ::CutCylinder& h = holes[k].cylinder;
+      const Vec3 d = c.origin - h.origin;
+      if (parallel(h.axis, c.axis) && std::abs(h.radius - c.radius) <= tol &&
+          (d - d.dot(h.axis) * h.axis).norm() <= tol)
+        break;
+    }
+    if (k == holes.size()) holes.push_back({c, {}, 0, sample.face}), points.emplace_back();
+    Hole& h = holes[k];
+    if (sample.area > s.area(h.largest) || h.faces.empty()) h.largest = sample.face;
+    h.faces.push_back(sample.face);
+    h.area += sample.area;
+    for (const auto& wire : s.face_wires(sample.face))
+      for (const core::OrientedEdge& e : wire) {
+        if (s.edge_is_degenerated(e.edge)) continue;
+        const std::vector<Vec3> p = s.edge_points_by_length(e.edge, 12);
+        points[k].insert(points[k].end(), p.begin(), p.end());
+      }
+  }
+  std::vector<Hole> round;
+  for (std::size_t k = 0; k < holes.size(); ++k)
+    if (all_around(holes[k].cylinder, points[k])) round.push_back(holes[k]);
+  return round;
+}
+
+// The direction across hole axis d the planes are set along: `preferred` where at right
+// angles to d, else the normal of the largest planar face at right angles to it (a block's
+// side), else any.
+Vec3 across(const occ::Solid& s, const Vec3& d, const Vec3* preferred) {
+  if (preferred && std::abs(preferred->dot(d)) < 1e-6) return *preferred;
+  double best = 0;
+  Vec3 n = perpendicular(d);
+  for (FaceId f : s.faces()) {
+    if (!s.face_is_planar(f)) continue;
+    const core::SurfaceInfo info = s.surface_info(f);
+    if (info.kind != core::SurfaceKind::plane) continue;
+    const Vec3 fn = info.direction.normalized();
+    const double a = s.area(f);
+    if (std::abs(fn.dot(d)) < 1e-6 && a > best) best = a, n = fn;
+  }
+  return n;
+}
+
+// The pair of planes normal . x = normal . origin +- b around the hole, b = k radius with k
+// chosen among a few so that the planes keep furthest from the solid's edges (a plane near
+// an edge leaves a sliver); none of them where the solid does not reach.
+void add_pair(const occ::Solid& s, const Hole& h, const Vec3& normal,
+              const std::vector<Vec3>& edge_points, std::vector<HolePlane>& out) {
+  const double c = normal.dot(h.cylinder.origin);
+  const double factors[] = {1.5, 1.35, 1.7, 1.25, 2.0};
+  double best_k = factors[0], best = -1;
+  for (double k : factors) {
+    double nearest = 1e300;
+    for (const Vec3& p : edge_points) {
+      const double t = normal.dot(p);
+      nearest = std::min({nearest, std::abs(t - c - k * h.cylinder.radius),
+                          std::abs(t - c + k * h.cylinder.radius)});
+    }
+    if (nearest > best + 1e-9 * s.diagonal()) best = nearest, best_k = k;
+  }
+  const core::BoundingBox box = s.bounding_box();
+  double lo = 1e300, hi = -1e300;
+  for (int k = 0; k < 8; ++k) {
+    const Vec3 corner((k & 1) ? box.max.x() : box.min.x(), (k & 2) ? box.max.y() : box.min.y(),
+                      (k & 4) ? box.max.z() : box.min.z());
+    lo = std::min(lo, normal.dot(corner)), hi = std::max(hi, normal.dot(corner));
+  }
+  for (double side : {-1.0, 1.0}) {
+    const double offset = c + side * best_k * h.cylinder.radius;
+    if (offset > lo && offset < hi) out.push_back({normal, offset, h.largest});
+  }
+}
+
+bool same_set(const std::vector<HolePlane>& a, const std::vector<HolePlane>& b, double tol) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t k = 0; k < a.size(); ++k)
+    if (!parallel(a[k].normal, b[k].normal) ||
+        std::abs(a[k].offset * a[k].normal.dot(b[k].normal) - b[k].offset) > tol)
+      return false;
+  return true;
+}
+
+}  // namespace
+
+std::vector<std::vector<HolePlane>> hole_plane_sets(const occ::Solid& solid) {
+  const std::vector<Hole> holes = holes_of(solid);
+  if (holes.empty()) return {};
+  std::vector<Vec3> edge_points;
+  for (core::EdgeId e : solid.edges()) {
+    if (solid.edge_is_degenerated(e)) continue;
+    const std::vector<Vec3> p = solid.edge_points_by_length(e, 8);
+    edge_points.insert(edge_points.end(), p.begin(), p.end());
+  }
+  // The directions holes run along, the one with the most hole area first.
+  std::vector<std::pair<double, Vec3>> directions;
+  for (const Hole& h : holes) {
+    auto it = std::find_if(directions.begin(), directions.end(),
+                           [&](const auto& d) { return parallel(d.second, h.cylinder.axis); });
+    if (it == directions.end())
+      directions.push_back({h.area, h.cylinder.axis});
+    else
+      it->first += h.area;
+  }
+  std::stable_sort(directions.begin(), directions.end(),
+                   [](const auto& a, const auto& b) { return a.first > b.first; });
+  std::vector<std::vector<HolePlane>> sets;
+  auto add_set = [&](const Vec3* along) {
+    std::vector<HolePlane> set;
+    for (const Hole& h : holes) {
+      if (along && parallel(*along, h.cylinder.axis)) continue;
+      const Vec3 e1 = across(solid, h.cylinder.axis, along);
+      const Vec3 e2 = h.cylinder.axis.cross(e1).normalized();
+      add_pair(solid, h, e1, edge_points, set);
+      add_pair(solid, h, e2, edge_points, set);
+    }
+    if (set.empty()) return;
+    for (const auto& known : sets)
+      if (same_set(known, set, 1e-7 * solid.diagonal())) return;
+    sets.push_back(std::move(set));
+  };
+  for (const auto& d : directions) add_set(&d.second);
+  add_set(nullptr);
+  return sets;
+}
+
+}  // namespace vorohex::decompose::detail
