@@ -575,6 +575,18 @@ std::vector<occ::Solid> clones(const std::vector<occ::Solid>& v) {
   return out;
 }
 
+// Whether a face of the piece lies on one of the holes' cylinders.
+bool on_a_hole(const occ::Solid& piece, const std::vector<occ::CutCylinder>& holes) {
+  const double tol = 1e-7 * piece.diagonal();
+  for (FaceId f : piece.faces()) {
+    occ::CutCylinder c;
+    if (!occ::face_cylinder(piece, f, &c)) continue;
+    for (const occ::CutCylinder& h : holes)
+      if (same_cylinder(c, h, std::max(tol, 1e-9 * h.radius))) return true;
+  }
+  return false;
+}
+
 // Merges neighbouring pieces while the union is a block, a sweep or prismatic (and, when
 // `careful`, every piece around it stays so once glued: merge_keeps_meshable), each merge
 // taking one piece away, until none is left or the time is up. `volume`, `touch`: per piece.
@@ -631,9 +643,13 @@ void merge_neighbours(std::vector<occ::Solid>& pieces, std::vector<double>& volu
 }
 
 // The solid cut along these surfaces and the pieces merged, in `time_limit` seconds.
+// Pieces with a face on one of `holes` are not merged (the planes around a hole: its piece
+// sweeps along it; merged, a tube's half with the hole through its wall was a sweep whose
+// layers fold).
 PlaneCutResult cut_along(const occ::Solid& solid, std::vector<Plane> planes,
                          std::vector<Cylinder> cylinders, PlaneCutOptions options,
-                         double time_limit, const core::Progress& progress) {
+                         double time_limit, const core::Progress& progress,
+                         const std::vector<occ::CutCylinder>& holes = {}) {
   options.time_limit = time_limit;
   PlaneCutResult r;
   const auto t0 = std::chrono::steady_clock::now();
@@ -715,7 +731,10 @@ PlaneCutResult cut_along(const occ::Solid& solid, std::vector<Plane> planes,
   // merges 18 -> 6 s.
   const std::vector<occ::Solid> cut = clones(pieces);
   const std::vector<double> cut_volume = volume;
-  const Touching cut_touch = touching(pointers(pieces), cut_glued);
+  Touching cut_touch = touching(pointers(pieces), cut_glued);
+  for (std::size_t k = 0; k < pieces.size() && !holes.empty(); ++k)
+    if (on_a_hole(pieces[k], holes))
+      for (std::size_t m = 0; m < pieces.size(); ++m) cut_touch[k][m] = cut_touch[m][k] = 0;
   const double cut_into = double(pieces.size());
   merge_neighbours(pieces, volume, cut_touch, options, /*careful=*/false, cut_into, seconds,
                    progress);
@@ -805,10 +824,13 @@ PlaneCutResult cut_as_the_mesher(const occ::Solid& solid, const PlaneCutOptions&
   for (const std::vector<detail::HolePlane>& set : sets) {
     if (left() <= until) break;
     std::vector<Plane> with = planes;
-    for (const detail::HolePlane& h : set)
+    std::vector<occ::CutCylinder> holes;
+    for (const detail::HolePlane& h : set) {
       add_plane(with, {h.normal, h.offset, h.hole, {}, false, true}, tol);
-    PlaneCutResult around =
-        cut_along(solid, std::move(with), cylinders, around_options, left() - until, progress);
+      holes.push_back(h.cylinder);
+    }
+    PlaneCutResult around = cut_along(solid, std::move(with), cylinders, around_options,
+                                      left() - until, progress, holes);
     if (around.ok) return around;
   }
   return cut;

@@ -99,20 +99,45 @@ Vec3 across(const occ::Solid& s, const Vec3& d, const Vec3* preferred) {
   return n;
 }
 
+// How far a plane normal . x = offset keeps from an edge sampled at `points`: the distance
+// to the edge's extent along the normal, or where it crosses the edge, to the nearer end of
+// that extent; halved where that end is a turn of the edge, not one of its ends (crossing a
+// boss's circle near its side leaves a sliver of the boss, a piece no scheme takes, where
+// passing as near beside it leaves a thin slab; crossing a straight edge near its end is
+// only as near as its vertex; a closed edge has no ends).
+double clearance(const std::vector<Vec3>& points, const Vec3& normal, double offset) {
+  std::size_t lo = 0, hi = 0;
+  for (std::size_t k = 1; k < points.size(); ++k) {
+    if (normal.dot(points[k]) < normal.dot(points[lo])) lo = k;
+    if (normal.dot(points[k]) > normal.dot(points[hi])) hi = k;
+  }
+  const double a = normal.dot(points[lo]), b = normal.dot(points[hi]);
+  if (offset <= a) return a - offset;
+  if (offset >= b) return offset - b;
+  const bool nearer_lo = offset - a < b - offset;
+  const std::size_t end = nearer_lo ? lo : hi;
+  const double d = nearer_lo ? offset - a : b - offset;
+  const bool closed = (points.front() - points.back()).norm() <= 1e-9 * (b - a);  // a circle
+  return !closed && (end == 0 || end + 1 == points.size()) ? d : 0.5 * d;
+}
+
 // The pair of planes normal . x = normal . origin +- b around the hole, b = k radius with k
-// chosen among a few so that the planes keep furthest from the solid's edges (a plane near
-// an edge leaves a sliver); none of them where the solid does not reach.
+// the first of a few (1.5 first) whose planes keep half a radius clear of every edge of the
+// solid (the hole's own too), else the one keeping clearest; none of them where the solid
+// does not reach.
 void add_pair(const occ::Solid& s, const Hole& h, const Vec3& normal,
-              const std::vector<Vec3>& edge_points, std::vector<HolePlane>& out) {
-  const double c = normal.dot(h.cylinder.origin);
+              const std::vector<std::vector<Vec3>>& edges, std::vector<HolePlane>& out) {
+  const double c = normal.dot(h.cylinder.origin), r = h.cylinder.radius;
   const double factors[] = {1.5, 1.35, 1.7, 1.25, 2.0};
   double best_k = factors[0], best = -1;
   for (double k : factors) {
     double nearest = 1e300;
-    for (const Vec3& p : edge_points) {
-      const double t = normal.dot(p);
-      nearest = std::min({nearest, std::abs(t - c - k * h.cylinder.radius),
-                          std::abs(t - c + k * h.cylinder.radius)});
+    for (const std::vector<Vec3>& e : edges)
+      nearest =
+          std::min({nearest, clearance(e, normal, c + k * r), clearance(e, normal, c - k * r)});
+    if (nearest >= 0.5 * r * (1 - 1e-6)) {  // the hole's own edges: exactly at 1.5
+      best_k = k;
+      break;
     }
     if (nearest > best + 1e-9 * s.diagonal()) best = nearest, best_k = k;
   }
@@ -124,8 +149,8 @@ void add_pair(const occ::Solid& s, const Hole& h, const Vec3& normal,
     lo = std::min(lo, normal.dot(corner)), hi = std::max(hi, normal.dot(corner));
   }
   for (double side : {-1.0, 1.0}) {
-    const double offset = c + side * best_k * h.cylinder.radius;
-    if (offset > lo && offset < hi) out.push_back({normal, offset, h.largest});
+    const double offset = c + side * best_k * r;
+    if (offset > lo && offset < hi) out.push_back({normal, offset, h.largest, h.cylinder});
   }
 }
 
@@ -143,12 +168,9 @@ bool same_set(const std::vector<HolePlane>& a, const std::vector<HolePlane>& b, 
 std::vector<std::vector<HolePlane>> hole_plane_sets(const occ::Solid& solid) {
   const std::vector<Hole> holes = holes_of(solid);
   if (holes.empty()) return {};
-  std::vector<Vec3> edge_points;
-  for (core::EdgeId e : solid.edges()) {
-    if (solid.edge_is_degenerated(e)) continue;
-    const std::vector<Vec3> p = solid.edge_points_by_length(e, 8);
-    edge_points.insert(edge_points.end(), p.begin(), p.end());
-  }
+  std::vector<std::vector<Vec3>> edges;  // each sampled
+  for (core::EdgeId e : solid.edges())
+    if (!solid.edge_is_degenerated(e)) edges.push_back(solid.edge_points_by_length(e, 16));
   // The directions holes run along, the one with the most hole area first.
   std::vector<std::pair<double, Vec3>> directions;
   for (const Hole& h : holes) {
@@ -168,8 +190,8 @@ std::vector<std::vector<HolePlane>> hole_plane_sets(const occ::Solid& solid) {
       if (along && parallel(*along, h.cylinder.axis)) continue;
       const Vec3 e1 = across(solid, h.cylinder.axis, along);
       const Vec3 e2 = h.cylinder.axis.cross(e1).normalized();
-      add_pair(solid, h, e1, edge_points, set);
-      add_pair(solid, h, e2, edge_points, set);
+      add_pair(solid, h, e1, edges, set);
+      add_pair(solid, h, e2, edges, set);
     }
     if (set.empty()) return;
     for (const auto& known : sets)

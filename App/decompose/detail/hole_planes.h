@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "occ/solid.h"
+#include "occ/split_solid.h"
 
 namespace vorohex::decompose::detail {
 
@@ -17,7 +18,8 @@ namespace vorohex::decompose::detail {
 struct HolePlane {
   core::Vec3 normal;  // unit
   double offset = 0;
-  core::FaceId hole;  // a face of the hole it is around (the largest)
+  core::FaceId hole;          // a face of the hole it is around (the largest)
+  occ::CutCylinder cylinder;  // the hole's
 };
 
 // The sets of planes to try, best first: for each direction holes run along (the direction
