@@ -232,9 +232,7 @@ int print_plane_cuts(const std::string& input, const std::string& brep_path,
             << (merge ? ", " + std::to_string(cut.pieces.size()) + " after merging"
                       : " (not merged)")
             << "\n";
-  std::string along;
-  for (const decompose::CutSurface& c : cut.surfaces)
-    if (c.used) along += (along.empty() ? "" : ", ") + decompose::surface_text(c);
+  const std::string along = decompose::used_surfaces_text(cut, cut.surfaces.size(), true);
   if (!along.empty()) std::cout << "  cut along: " << along << "\n";
   if (const std::string left_out = decompose::left_out_text(cut); !left_out.empty())
     std::cout << "  left out (OCCT's cut along them with the others failed): " << left_out << "\n";

@@ -529,13 +529,13 @@ std::string surface_text(const CutSurface& s, bool with_edges) {
   return t + ")";
 }
 
-std::string used_surfaces_text(const PlaneCutResult& cut, std::size_t at_most) {
+std::string used_surfaces_text(const PlaneCutResult& cut, std::size_t at_most, bool with_edges) {
   // The planes around one hole are named once, with their number ("4 planes around the hole
   // of Face5").
   std::vector<std::pair<std::string, int>> named;
   for (const CutSurface& s : cut.surfaces) {
     if (!s.used) continue;
-    const std::string t = surface_text(s, false);
+    const std::string t = surface_text(s, with_edges);
     if (s.around_hole && !named.empty() && named.back().first == t)
       ++named.back().second;
     else

@@ -81,9 +81,11 @@ std::string left_out_text(const PlaneCutResult& cut);
 // "the plane of Face7 (at Edge12, Edge14)"; without the edges: "the plane of Face7"; "the
 // plane tangent to the cylinder of Face3" for a tangent plane.
 std::string surface_text(const CutSurface& surface, bool with_edges = true);
-// The surfaces used, without their edges, the first `at_most` named ("the plane of Face3,
-// the cylinder of Face9 and 4 more").
-std::string used_surfaces_text(const PlaneCutResult& cut, std::size_t at_most = 6);
+// The surfaces used, the first `at_most` named ("the plane of Face3, the cylinder of Face9
+// and 4 more"; the planes around one hole once, "4 planes around the hole of Face5"), with
+// their concave edges when `with_edges`.
+std::string used_surfaces_text(const PlaneCutResult& cut, std::size_t at_most = 6,
+                               bool with_edges = false);
 
 PlaneCutResult cut_at_concave_edges(const occ::Solid& solid, const PlaneCutOptions& options = {},
                                     const core::Progress& progress = {});

@@ -644,6 +644,37 @@ class InspectCommands(unittest.TestCase):
             self.assertEqual(code, 2, bad)
             self.assertIn(why, stderr)
 
+    def test_decompose_auto_cuts_around_a_cross_hole(self):
+        # A tube with a cross hole through both walls, built with Part booleans: no concave
+        # edge, so --auto (as the mesher) cuts with four planes around the hole, named once,
+        # and vorohex mesh meshes the same structured sub-volumes.
+        sys.path.append("/usr/lib/freecad-python3/lib")
+        import FreeCAD
+        import Part
+        V = FreeCAD.Vector
+        tube = (Part.makeCylinder(10, 50).cut(Part.makeCylinder(7, 50))
+                .cut(Part.makeCylinder(3, 30, V(-15, 0, 25), V(1, 0, 0))).removeSplitter())
+        step = os.path.join(self.dir, "tube.step")
+        tube.exportStep(step)
+        parts, rep = os.path.join(self.dir, "tube.brep"), os.path.join(self.dir, "tube.json")
+        code, stdout, stderr = run("decompose", step, "-o", parts, "--auto", "--report", rep,
+                                   "--quiet")
+        self.assertEqual(code, 0, stdout + stderr)
+        self.assertRegex(stdout, r"cut along: 4 planes around the hole of Face\d+\n")
+        with open(rep) as f:
+            cuts = json.load(f)
+        self.assertEqual((cuts["method"], cuts["status"]), ("plane-cuts", "ok"))
+        self.assertEqual([c["kind"] for c in cuts["cut_surfaces"]], ["hole_plane"] * 4)
+        mesh_rep = os.path.join(self.dir, "tube_mesh.json")
+        code, _, stderr = run("mesh", step, "-o", os.path.join(self.dir, "tube.vtu"), "--report",
+                              mesh_rep, "--quiet")
+        self.assertEqual(code, 0, stderr)
+        with open(mesh_rep) as f:
+            meshed = json.load(f)
+        self.assertEqual(sorted(sv["scheme"] for sv in cuts["sub_volumes"]),
+                         sorted(meshed["sub_volume_schemes"]))
+        self.assertGreaterEqual(meshed["check"]["scaled_jacobian"]["min"], 0.3)
+
     def test_a_lug_as_wide_as_its_tube_is_cut_across_the_tube(self):
         # A tube with a lug as wide as the tube standing on it, a hole across the lug, built
         # with Part booleans: the lug's sides are tangent to the tube. Cut along the tube's
