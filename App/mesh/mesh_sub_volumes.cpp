@@ -328,6 +328,11 @@ PartMesh mesh_part(const Part& part, const std::vector<int>& counts,
     o.size_field = options.size_field;
     o.edge_nodes = edge_nodes;
     SweepResult r = sweep(part.solid, o, progress);
+    if (!r.ok && r.folded > 0 && !progress.cancelled()) {  // the target's nodes along the axis
+      o.target_along_axis = true;
+      SweepResult along = sweep(part.solid, o, progress);
+      if (along.ok || (along.folded > 0 && along.folded < r.folded)) r = std::move(along);
+    }
     // Folded layers: untangled with the nodes on the faces shared with a neighbour kept
     // (both meshes of a shared face must stay the same).
     if (!r.ok && r.folded > 0 && !progress.cancelled()) {

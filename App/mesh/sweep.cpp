@@ -616,6 +616,18 @@ class AffineFit {
   Eigen::Matrix<double, 3, 2> m_;
 };
 
+// The point of face f on the line through p along unit d, found by projecting onto the face
+// and moving back onto the line (a few times), then onto the face: where the line meets it
+// transversally, the meeting point.
+Vec3 onto_face_along(const core::MeshDomain& solid, core::FaceId f, Vec3 p, const Vec3& d) {
+  for (int k = 0; k < 8 && d.norm() > 0; ++k) {
+    const Vec3 step = (solid.project_to_face(f, p) - p).dot(d) * d;
+    p += step;
+    if (step.norm() <= 1e-12 * (1 + p.norm())) break;
+  }
+  return solid.project_to_face(f, p);
+}
+
 }  // namespace
 
 SweepApplicability sweep_applicable(const core::MeshDomain& solid) {
@@ -751,6 +763,9 @@ SweepResult sweep(const core::MeshDomain& solid, const SweepOptions& options,
     for (std::size_t j = 0; j < nb; ++j) xt[j] = P[id(K, j)];
     AffineFit to_target(xs);
     to_target.fit(xt);
+    Vec3 axis = Vec3::Zero();  // the sweep's, from the source's boundary centre to the target's
+    for (std::size_t j = 0; j < nb; ++j) axis += (xt[j] - xs[j]) / double(nb);
+    axis = axis.norm() > 0 ? Vec3(axis.normalized()) : axis;
     // A grid source has a grid target: transfinite interpolation of the target's own
     // boundary nodes (what a neighbour meshing that face as a mapped face computes).
     std::vector<Vec3> grid_target =
@@ -764,8 +779,10 @@ SweepResult sweep(const core::MeshDomain& solid, const SweepOptions& options,
     for (std::size_t j = nb; j < M; ++j) {
       P[id(0, j)] = sm.points[j];
       C[id(0, j)] = NodeClass::on(t.source);
-      P[id(K, j)] = !grid_target.empty() ? grid_target[j - nb]
-                                         : solid.project_to_face(t.target, to_target(sm.points[j]));
+      const Vec3 image = to_target(sm.points[j]);
+      P[id(K, j)] = !grid_target.empty()        ? grid_target[j - nb]
+                    : options.target_along_axis ? onto_face_along(solid, t.target, image, axis)
+                                                : solid.project_to_face(t.target, image);
       C[id(K, j)] = NodeClass::on(t.target);
     }
   } catch (const std::exception& e) {

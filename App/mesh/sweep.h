@@ -41,6 +41,13 @@ struct SweepOptions {
   // Per edge id: nodes a neighbouring sub-volume already placed on it (first to last
   // vertex), taken instead of the edge's own spacing when their number fits its count.
   std::vector<std::vector<core::Vec3>> edge_nodes;
+  // The target's inner nodes (a source meshed freely) where the line through each source
+  // node's affine image along the sweep's axis (from the source's boundary centre to the
+  // target's) meets the target, not at the point of the target nearest that image. Tried
+  // where the layers fold: a cross hole's piece of a tube's wall, swept from the outer
+  // cylinder to the inner, folds where the nearest points pull the nodes around the hole
+  // sideways.
+  bool target_along_axis = false;
   void validate() const;  // throws std::invalid_argument naming the bad field
 };
 

@@ -75,6 +75,12 @@ class SweepScheme : public Scheme {
       if (other.source != r.source && (other.ok || (other.folded > 0 && other.folded < r.folded)))
         r = std::move(other);
     }
+    if (!r.ok && r.folded > 0 && !progress.cancelled()) {  // the target's nodes along the axis
+      mesh::SweepOptions along = o;
+      along.target_along_axis = true;
+      mesh::SweepResult other = mesh::sweep(solid, along, progress);
+      if (other.ok || (other.folded > 0 && other.folded < r.folded)) r = std::move(other);
+    }
     if (!r.ok && r.folded > 0 && !progress.cancelled() &&
         smooth::untangle_folded(r.mesh, solid, {}, &size, progress))
       mesh::accept_untangled(r);

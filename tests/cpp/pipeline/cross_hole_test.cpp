@@ -68,5 +68,26 @@ TEST(GenerateMesh, ATubeAndABlockWithACrossHoleAreMeshedStructured) {
   }
 }
 
+// A flanged pipe with a cross hole, at diagonal / 20 and / 25. At / 25 the hole's piece of
+// the wall (a sweep from the outer cylinder to the bore) folded 2 hexahedra where its target
+// nodes were the bore's points nearest their affine images; placed along the sweep's axis
+// instead (mesh::SweepOptions::target_along_axis, tried where the layers fold) it does not
+// (before: the grid's 146,855 hexahedra).
+TEST(GenerateMesh, AFlangedPipeWithACrossHoleIsMeshedStructuredAtBothSizes) {
+  const occ::Solid pipe = testing::make_flanged_pipe_with_cross_hole();
+  for (const double divisions : {20.0, 25.0}) {
+    SCOPED_TRACE(divisions);
+    MeshOptions opt;
+    opt.size = pipe.diagonal() / divisions;
+    opt.fallback = false;
+    const MeshResult r = generate_mesh(pipe, opt);
+    ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
+    EXPECT_GE(r.stats.sub_volumes, 2);
+    EXPECT_TRUE(r.check.valid);
+    EXPECT_GE(r.check.scaled_jacobian.min, 0.3);
+    EXPECT_LT(r.mesh.num_hexes(), 5000u);
+  }
+}
+
 }  // namespace
 }  // namespace vorohex::pipeline
