@@ -88,6 +88,17 @@ def build_parts(work):
     # A thin-walled tube (wall 1 of radius 20: a seventieth of its diagonal) with a cross hole.
     parts["thin-walled tube with a cross hole"] = cyl(20, 40, (0, 0, 0)).cut(
         cyl(19, 40, (0, 0, 0))).cut(cyl(5, 50, (-25, 0, 20), (1, 0, 0)))
+    # Round holes across the part's other direction (the plane cuts' planes around holes).
+    parts["shaft with a cross hole"] = cyl(10, 50, (0, 0, 0)).cut(
+        cyl(3, 30, (-15, 0, 25), (1, 0, 0)))
+    parts["tube with two cross holes"] = cyl(10, 60, (0, 0, 0)).cut(cyl(7, 60, (0, 0, 0))).cut(
+        cyl(3, 30, (-15, 0, 20), (1, 0, 0))).cut(cyl(3, 30, (0, -15, 40), (0, 1, 0)))
+    parts["flanged pipe with a cross hole"] = cyl(20, 8, (0, 0, 0)).fuse(
+        cyl(12, 50, (0, 0, 0))).cut(cyl(8, 60, (0, 0, -5))).cut(
+        cyl(3, 40, (-20, 0, 35), (1, 0, 0)))
+    parts["plate with a hole in its side and two through"] = box(60, 40, 10).cut(
+        cyl(3, 20, (-1, 20, 5), (1, 0, 0))).cut(cyl(4, 10, (15, 10, 0))).cut(
+        cyl(4, 10, (45, 30, 0)))
     # Parts prismatic along two axes (a feature across the main body's axis).
     plate = box(100, 60, 10)
     for x, y in [(10, 10), (10, 50), (70, 10), (70, 50)]:
@@ -103,6 +114,9 @@ def build_parts(work):
     parts["angle bracket, two holes in each leg"] = angle.fuse(wall)
     parts["block with a boss, cross hole"] = box(80, 40, 30).cut(
         cyl(6, 40, (40, 0, 15), (0, 1, 0))).fuse(cyl(10, 15, (20, 20, 30)))
+    parts["block with a bored boss, cross hole"] = box(80, 40, 30).cut(
+        cyl(6, 40, (40, 0, 15), (0, 1, 0))).fuse(cyl(10, 15, (20, 20, 30))).cut(
+        cyl(5, 50, (20, 20, -1)))
     # Faces that come to a point: a boss whose circle is tangent to the plate's outline from
     # inside; a lug whose rounded end is tangent to the tube it is on (as HexMe i11).
     parts["plate with a boss tangent to its outline"] = cyl(20, 4, (0, 0, 0)).fuse(
