@@ -154,6 +154,31 @@ void add_pair(const occ::Solid& s, const Hole& h, const Vec3& normal,
   }
 }
 
+// Whether hole g crosses hole h inside the box the planes around h make (their axes pass
+// within the sum of their radii, at a point of both holes' extents) and is narrower than
+// that box, so that h's piece would hold g's crossing too (two crossing holes: no sweep
+// takes it). A hole wider than the box (a tube's bore, crossed by a hole through its wall)
+// takes the box's middle away, leaving pieces of the wall.
+bool crosses_inside(const occ::Solid& s, const Hole& h, const Hole& g) {
+  const Vec3 &a = h.cylinder.axis, &b = g.cylinder.axis;
+  if (parallel(a, b) || g.cylinder.radius >= 1.5 * h.cylinder.radius) return false;
+  const Vec3 w = h.cylinder.origin - g.cylinder.origin;
+  const double ab = a.dot(b), den = 1 - ab * ab;
+  const double t = (ab * b.dot(w) - a.dot(w)) / den, u = (b.dot(w) - ab * a.dot(w)) / den;
+  const Vec3 p = h.cylinder.origin + t * a, q = g.cylinder.origin + u * b;
+  if ((p - q).norm() >= h.cylinder.radius + g.cylinder.radius) return false;
+  auto within = [&](const Hole& k, const Vec3& x) {
+    core::BoundingBox box = s.face_bounding_box(k.faces.front());
+    for (FaceId f : k.faces) {
+      const core::BoundingBox fb = s.face_bounding_box(f);
+      box.min = box.min.cwiseMin(fb.min), box.max = box.max.cwiseMax(fb.max);
+    }
+    const double tol = 1e-6 * s.diagonal();
+    return (x.array() >= box.min.array() - tol).all() && (x.array() <= box.max.array() + tol).all();
+  };
+  return within(h, p) && within(g, q);
+}
+
 bool same_set(const std::vector<HolePlane>& a, const std::vector<HolePlane>& b, double tol) {
   if (a.size() != b.size()) return false;
   for (std::size_t k = 0; k < a.size(); ++k)
@@ -188,6 +213,8 @@ std::vector<std::vector<HolePlane>> hole_plane_sets(const occ::Solid& solid) {
     std::vector<HolePlane> set;
     for (const Hole& h : holes) {
       if (along && parallel(*along, h.cylinder.axis)) continue;
+      for (const Hole& g : holes)
+        if (&g != &h && crosses_inside(solid, h, g)) return;  // no set: its piece would not sweep
       const Vec3 e1 = across(solid, h.cylinder.axis, along);
       const Vec3 e2 = h.cylinder.axis.cross(e1).normalized();
       add_pair(solid, h, e1, edges, set);

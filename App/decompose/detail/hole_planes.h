@@ -25,8 +25,9 @@ struct HolePlane {
 // The sets of planes to try, best first: for each direction holes run along (the direction
 // whose holes have the most area first), the planes around the holes that do not run along it
 // (those stay in a sweep along it); then the planes around every hole. Sets that would be
-// empty or repeat an earlier one are left out. A hole: the faces on one cylinder whose
-// material is outside it and whose edges go all around it (a fillet's do not).
+// empty or repeat an earlier one are left out, and so are those around a hole that another,
+// narrower than the planes' box, crosses inside it (two crossing holes). A hole: the faces on one
+// cylinder whose material is outside it and whose edges go all around it (a fillet's do not).
 std::vector<std::vector<HolePlane>> hole_plane_sets(const occ::Solid& solid);
 
 }  // namespace vorohex::decompose::detail

@@ -403,6 +403,7 @@ TEST(PlaneCuts, ACrossHoleIsCutAroundByPlanesAlongItsAxis) {
 // (the tube's bore: z) where it is across the hole.
 // A boss is no hole (its material is inside its cylinder), nor is a half-round groove (its
 // edges do not go all around); a part whose only holes run one way gets one set, around them.
+// Holes that cross inside the box get none.
 TEST(PlaneCuts, PlanesAroundHolesAreParallelToTheHoleAndClearOfIt) {
   const occ::Solid tube = testing::make_thin_tube_with_cross_hole();
   const auto sets = detail::hole_plane_sets(tube);
@@ -429,6 +430,14 @@ TEST(PlaneCuts, PlanesAroundHolesAreParallelToTheHoleAndClearOfIt) {
   const occ::Solid groove =
       testing::cut(occ::make_box(20, 20, 10), occ::make_cylinder(3, 30, {-5, 10, 10}, {1, 0, 0}));
   EXPECT_TRUE(detail::hole_plane_sets(groove).empty());
+  // Two crossing holes (radius 4 through a 20 cube along x and y): the box around either
+  // holds the other's crossing, so no set is tried (each cost 4 s and never swept).
+  occ::Solid crossing =
+      testing::cut(occ::make_box(20, 20, 20), occ::make_cylinder(4, 20, {10, 0, 10}, {0, 1, 0}));
+  crossing = testing::cut(crossing, occ::make_cylinder(4, 20, {0, 10, 10}, {1, 0, 0}));
+  EXPECT_TRUE(detail::hole_plane_sets(crossing).empty());
+  // A hole wider than the box crossed (the tube's bore) leaves the set as it is.
+  EXPECT_FALSE(detail::hole_plane_sets(testing::make_tube_with_cross_hole()).empty());
 }
 
 }  // namespace
