@@ -591,6 +591,19 @@ class InspectCommands(unittest.TestCase):
         self.assertGreater(int(cut.group(1)), 2)
         self.assertEqual(len(Part.read(parts).Solids), int(cut.group(1)))
 
+    def mesh_as_cut(self, step, cuts):
+        """The report of `vorohex mesh` on step, checked to be made of the sub-volumes and
+        schemes of the --auto report `cuts`."""
+        mesh_rep = os.path.join(self.dir, "as_cut.json")
+        code, _, stderr = run("mesh", step, "-o", os.path.join(self.dir, "as_cut.vtu"),
+                              "--report", mesh_rep, "--quiet")
+        self.assertEqual(code, 0, stderr)
+        with open(mesh_rep) as f:
+            meshed = json.load(f)
+        self.assertEqual(sorted(sv["scheme"] for sv in cuts["sub_volumes"]),
+                         sorted(meshed["sub_volume_schemes"]))
+        return meshed
+
     def test_decompose_auto_shows_the_sub_volumes_the_mesher_meshes(self):
         # --auto: what `vorohex mesh` does with a solid. HexMe s07 (a notched block) one
         # multisweep takes whole: not cut. HexMe i10, which no single scheme takes: the
@@ -620,14 +633,7 @@ class InspectCommands(unittest.TestCase):
         with open(rep) as f:
             cuts = json.load(f)
         self.assertEqual((cuts["method"], cuts["status"]), ("plane-cuts", "ok"))
-        mesh_rep = os.path.join(self.dir, "i10.json")
-        code, _, stderr = run("mesh", i10, "-o", os.path.join(self.dir, "i10.vtu"), "--report",
-                              mesh_rep, "--quiet")
-        self.assertEqual(code, 0, stderr)
-        with open(mesh_rep) as f:
-            meshed = json.load(f)
-        self.assertEqual(sorted(sv["scheme"] for sv in cuts["sub_volumes"]),
-                         sorted(meshed["sub_volume_schemes"]))
+        meshed = self.mesh_as_cut(i10, cuts)
         self.assertEqual(len(Part.read(parts).Solids), len(meshed["sub_volume_schemes"]))
         sphere = os.path.join(HEXME, "s17o_sphere.step")
         code, stdout, stderr = run("decompose", sphere, "-o", parts, "--auto", "--quiet")
@@ -665,14 +671,7 @@ class InspectCommands(unittest.TestCase):
             cuts = json.load(f)
         self.assertEqual((cuts["method"], cuts["status"]), ("plane-cuts", "ok"))
         self.assertEqual([c["kind"] for c in cuts["cut_surfaces"]], ["hole_plane"] * 4)
-        mesh_rep = os.path.join(self.dir, "tube_mesh.json")
-        code, _, stderr = run("mesh", step, "-o", os.path.join(self.dir, "tube.vtu"), "--report",
-                              mesh_rep, "--quiet")
-        self.assertEqual(code, 0, stderr)
-        with open(mesh_rep) as f:
-            meshed = json.load(f)
-        self.assertEqual(sorted(sv["scheme"] for sv in cuts["sub_volumes"]),
-                         sorted(meshed["sub_volume_schemes"]))
+        meshed = self.mesh_as_cut(step, cuts)
         self.assertGreaterEqual(meshed["check"]["scaled_jacobian"]["min"], 0.3)
 
     def test_a_lug_as_wide_as_its_tube_is_cut_across_the_tube(self):
