@@ -805,16 +805,19 @@ PlaneCutResult cut_as_the_mesher(const occ::Solid& solid, const PlaneCutOptions&
     PlaneCutResult second = cut_at_concave_edges(solid, tangent, progress);
     if (second.ok) return second;
   }
-  // Third: with planes around the holes that cross the part's other direction.
+  // Third: with planes around the holes that cross the part's other direction. A part a few
+  // planes around its holes make structured is a simple one (a tube with a cross hole: 0.6
+  // s): these cuts get at most a quarter of the time, kAroundSeconds and kAroundPieces pieces
+  // (HexMe's parts with many holes, which they never make structured, waited up to 15 s more
+  // for them: i24), and are not tried where the cut at concave edges alone gave more than
+  // half that many pieces (more planes only add to them: HexMe i02, i24 and n05, 31 to 38
+  // pieces, 95 to 232 with the planes, 3 to 4 s each).
+  constexpr int kAroundPieces = 40;
+  if (cut.pieces_before_merge > kAroundPieces / 2) return cut;
   std::vector<Plane> planes;
   std::vector<Cylinder> cylinders;
   std::string why;
   if (left() <= 0 || !concave_surfaces(solid, planes, cylinders, why)) return cut;
-  // A part a few planes around its holes make structured is a simple one (a tube with a cross
-  // hole: 0.6 s): these cuts get at most a quarter of the time, kAroundSeconds and
-  // kAroundPieces pieces (HexMe's parts with many holes, which they never make structured,
-  // waited up to 15 s more for them: i24).
-  constexpr int kAroundPieces = 40;
   constexpr double kAroundSeconds = 4;
   PlaneCutOptions around_options = options;
   around_options.max_pieces = std::min(options.max_pieces, kAroundPieces);
