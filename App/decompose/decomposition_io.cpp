@@ -246,6 +246,8 @@ std::string plane_cuts_json(const PlaneCutResult& cut, const PlaneCutSchemes& sc
   }
   j["knife_edges"] = cut.knife_edges;
   j["merges_checked_each"] = cut.merges_checked_each;
+  j["cut_kind"] = cut_kind_text(cut);  // "the faces at its concave edges", ...
+  j["cut_along"] = used_surfaces_text(cut, 4);
   j["cut_surfaces"] = json::array();
   for (std::size_t i = 0; i < cut.surfaces.size(); ++i) {
     const CutSurface& c = cut.surfaces[i];

@@ -552,6 +552,15 @@ std::string used_surfaces_text(const PlaneCutResult& cut, std::size_t at_most, b
   return t;
 }
 
+std::string cut_kind_text(const PlaneCutResult& cut) {
+  bool holes = false, concave = false;
+  for (const CutSurface& s : cut.surfaces)
+    if (s.used) (s.around_hole ? holes : concave) = true;
+  return holes && !concave ? "planes around its holes"
+         : holes           ? "the faces at its concave edges and planes around its holes"
+                           : "the faces at its concave edges";
+}
+
 std::string left_out_text(const PlaneCutResult& cut) {
   std::string t;
   for (const CutSurface& s : cut.surfaces)

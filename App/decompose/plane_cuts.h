@@ -81,6 +81,9 @@ std::string left_out_text(const PlaneCutResult& cut);
 // "the plane of Face7 (at Edge12, Edge14)"; without the edges: "the plane of Face7"; "the
 // plane tangent to the cylinder of Face3" for a tangent plane.
 std::string surface_text(const CutSurface& surface, bool with_edges = true);
+// What the cut went along, for "Cut along ...": "the faces at its concave edges", "planes
+// around its holes", or "the faces at its concave edges and planes around its holes".
+std::string cut_kind_text(const PlaneCutResult& cut);
 // The surfaces used, the first `at_most` named ("the plane of Face3, the cylinder of Face9
 // and 4 more"; the planes around one hole once, "4 planes around the hole of Face5"), with
 // their concave edges when `with_edges`.

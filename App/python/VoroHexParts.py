@@ -195,25 +195,9 @@ def method_text(d):
         if len(d.sub_volumes) == 1 and d.counts.get("sub_volumes_before_merge", 1) == 1:
             return "Not cut (its Voronoi graph gives one sub-volume)"
         return "Cut along its Voronoi graph"
-    surfaces = [c for c in d.cut_surfaces if c.get("used", True)]
-    kinds = {"cylinder": "the cylinder of ", "tangent_plane": "the plane tangent to the "
-             "cylinder of ", "hole_plane": "a plane around the hole of "}
-    texts = []  # [text, count]: the planes around one hole named once
-    for c in surfaces:
-        text = kinds.get(c.get("kind"), "the plane of ") + c.get("face", "?")
-        if c.get("kind") == "hole_plane" and texts and texts[-1][0] == text:
-            texts[-1][1] += 1
-        else:
-            texts.append([text, 1])
-    named = ", ".join(t if n == 1 else "{} planes around{}".format(n, t.split(" around", 1)[1])
-                      for t, n in texts[:4])
-    more = " and {} more".format(len(texts) - 4) if len(texts) > 4 else ""
-    holes = any(c.get("kind") == "hole_plane" for c in surfaces)
-    concave = any(c.get("kind") != "hole_plane" for c in surfaces)
-    what = ("planes around its holes" if holes and not concave else
-            "the faces at its concave edges and planes around its holes" if holes else
-            "the faces at its concave edges")
-    return "Cut along {} ({}{})".format(what, named, more)
+    # The cut's own words (decompose::cut_kind_text, used_surfaces_text).
+    return "Cut along {} ({})".format(d.data.get("cut_kind", "the faces at its concave edges"),
+                                      d.data.get("cut_along", ""))
 
 
 def plural(n, noun):

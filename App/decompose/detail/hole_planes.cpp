@@ -15,9 +15,10 @@ namespace {
 
 struct Hole {
   occ::CutCylinder cylinder;
-  std::vector<FaceId> faces;
-  double area = 0;
-  FaceId largest;
+  double area = 0;  // of its faces
+  FaceId largest;   // its largest face
+  double largest_area = 0;
+  core::BoundingBox box;  // of its faces
 };
 
 // Any unit vector at right angles to d.
@@ -63,11 +64,12 @@ std::vector<Hole> holes_of(const occ::Solid& s) {
           (d - d.dot(h.axis) * h.axis).norm() <= tol)
         break;
     }
-    if (k == holes.size()) holes.push_back({c, {}, 0, sample.face}), points.emplace_back();
+    const core::BoundingBox box = s.face_bounding_box(sample.face);
+    if (k == holes.size()) holes.push_back({c, 0, sample.face, 0, box}), points.emplace_back();
     Hole& h = holes[k];
-    if (sample.area > s.area(h.largest) || h.faces.empty()) h.largest = sample.face;
-    h.faces.push_back(sample.face);
+    if (sample.area > h.largest_area) h.largest = sample.face, h.largest_area = sample.area;
     h.area += sample.area;
+    h.box.min = h.box.min.cwiseMin(box.min), h.box.max = h.box.max.cwiseMax(box.max);
     for (const auto& wire : s.face_wires(sample.face))
       for (const core::OrientedEdge& e : wire) {
         if (s.edge_is_degenerated(e.edge)) continue;
@@ -167,14 +169,10 @@ bool crosses_inside(const occ::Solid& s, const Hole& h, const Hole& g) {
   const double t = (ab * b.dot(w) - a.dot(w)) / den, u = (b.dot(w) - ab * a.dot(w)) / den;
   const Vec3 p = h.cylinder.origin + t * a, q = g.cylinder.origin + u * b;
   if ((p - q).norm() >= h.cylinder.radius + g.cylinder.radius) return false;
+  const double tol = 1e-6 * s.diagonal();
   auto within = [&](const Hole& k, const Vec3& x) {
-    core::BoundingBox box = s.face_bounding_box(k.faces.front());
-    for (FaceId f : k.faces) {
-      const core::BoundingBox fb = s.face_bounding_box(f);
-      box.min = box.min.cwiseMin(fb.min), box.max = box.max.cwiseMax(fb.max);
-    }
-    const double tol = 1e-6 * s.diagonal();
-    return (x.array() >= box.min.array() - tol).all() && (x.array() <= box.max.array() + tol).all();
+    return (x.array() >= k.box.min.array() - tol).all() &&
+           (x.array() <= k.box.max.array() + tol).all();
   };
   return within(h, p) && within(g, q);
 }

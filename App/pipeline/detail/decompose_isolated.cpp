@@ -4,6 +4,8 @@
 #include <chrono>
 #include <sstream>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "core/isolated_call.h"
 #include "decompose/decompose.h"
@@ -102,7 +104,8 @@ std::string decompose_to_text(const occ::Solid& solid, const MeshOptions& mesh_o
       for (const occ::Solid& s : cut.pieces) solids.push_back(&s);
       const std::string method = "plane cuts\t" + decompose::left_out_text(cut) + "\t" +
                                  decompose::used_surfaces_text(cut) + "\t" +
-                                 (cut.knife_edges ? "1" : "0");
+                                 (cut.knife_edges ? "1" : "0") + "\t" +
+                                 decompose::cut_kind_text(cut);
       return to_text(cut.pieces_before_merge, method.c_str(), solids);
     }
     why =
@@ -169,17 +172,20 @@ IsolatedDecomposition decompose_isolated(const occ::Solid& solid, const MeshOpti
   }
   out.before_merge = std::atoi(run.data.substr(0, eol).c_str());
   out.method = run.data.substr(eol + 1, eol2 - eol - 1);
-  // "plane cuts\t<surfaces left out>\t<surfaces used>"
-  const std::size_t tab = out.method.find('\t');
-  if (tab != std::string::npos) {
-    const std::size_t tab2 = out.method.find('\t', tab + 1);
-    out.left_out = out.method.substr(tab + 1, tab2 == std::string::npos ? tab2 : tab2 - tab - 1);
-    if (tab2 != std::string::npos) {
-      const std::size_t tab3 = out.method.find('\t', tab2 + 1);
-      out.along = out.method.substr(tab2 + 1, tab3 == std::string::npos ? tab3 : tab3 - tab2 - 1);
-      out.knife_edges = tab3 != std::string::npos && out.method.substr(tab3 + 1) == "1";
-    }
-    out.method.resize(tab);
+  // "plane cuts\t<surfaces left out>\t<surfaces used>\t<knife edges: 1/0>\t<cut_kind_text>"
+  std::vector<std::string> fields;
+  for (std::size_t at = 0;;) {
+    const std::size_t tab = out.method.find('\t', at);
+    fields.push_back(out.method.substr(at, tab == std::string::npos ? tab : tab - at));
+    if (tab == std::string::npos) break;
+    at = tab + 1;
+  }
+  out.method = fields[0];
+  if (fields.size() == 5) {
+    out.left_out = fields[1];
+    out.along = fields[2];
+    out.knife_edges = fields[3] == "1";
+    out.cut_kind = fields[4];
   }
   occ::ReadOptions ro;
   ro.several_solids = true;

@@ -25,6 +25,7 @@ struct IsolatedDecomposition {
   std::string along;                   // plane cuts: the surfaces cut along ("the plane of
                                        // Face3, the cylinder of Face9 and 4 more")
   bool knife_edges = false;            // plane cuts: PlaneCutResult::knife_edges
+  std::string cut_kind;                // plane cuts: decompose::cut_kind_text
   std::string why_not;                 // when pieces is null: a sentence fragment
   bool cancelled = false;              // stopped by `progress` (not by the time limit)
   double seconds = 0;

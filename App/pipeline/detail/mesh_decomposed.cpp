@@ -103,22 +103,15 @@ bool mesh_pieces(const occ::Solid& solid, const IsolatedDecomposition& d,
   result.stats.intervals = {0, 0, 0};
   result.stats.seconds_meshing = seconds_since(t0);
   std::ostringstream s;
-  // Plane cuts: at its concave edges, around its holes (detail/hole_planes.h), or both.
-  const bool holes = d.along.find("around the hole") != std::string::npos;
-  const bool concave = d.along.find("the plane of") != std::string::npos ||
-                       d.along.find("cylinder of") != std::string::npos;
-  s << (d.method == "voronoi" ? "Cut along its Voronoi graph into "
-                              : std::string(holes && !concave ? "Cut along planes around its holes"
-                                            : holes ? "Cut along the faces at its concave edges "
-                                                      "and planes around its holes"
-                                                    : "Cut along the faces at its concave edges") +
-                                    (d.along.empty() ? std::string() : " (" + d.along + ")") +
-                                    ", extended through it" +
-                                    (d.left_out.empty() ? std::string()
-                                                        : " (but not along " + d.left_out +
-                                                              ", with which OCCT's cut "
-                                                              "failed)") +
-                                    ", into ")
+  s << (d.method == "voronoi"
+            ? "Cut along its Voronoi graph into "
+            : "Cut along " + d.cut_kind + (d.along.empty() ? std::string() : " (" + d.along + ")") +
+                  ", extended through it" +
+                  (d.left_out.empty() ? std::string()
+                                      : " (but not along " + d.left_out +
+                                            ", with which OCCT's cut "
+                                            "failed)") +
+                  ", into ")
     << n << " sub-volumes (" << d.before_merge << " before merging; ";
   bool first = true;
   for (const auto& [name, k] : count)

@@ -425,7 +425,9 @@ TEST(PlaneCuts, PlanesAroundHolesAreParallelToTheHoleAndClearOfIt) {
     EXPECT_NEAR(p.normal.y(), 0, 1e-9);
     // Beside the boss (x from 10 to 30), not through it: a sliver of the boss's cylinder
     // would be a piece no scheme takes (2 radii, x = 28, was the furthest from every edge).
-    if (std::abs(p.normal.x()) > 0.5) EXPECT_FALSE(p.offset > 10 && p.offset < 30) << p.offset;
+    if (std::abs(p.normal.x()) > 0.5) {
+      EXPECT_FALSE(p.offset > 10 && p.offset < 30) << p.offset;
+    }
   }
   const occ::Solid groove =
       testing::cut(occ::make_box(20, 20, 10), occ::make_cylinder(3, 30, {-5, 10, 10}, {1, 0, 0}));
