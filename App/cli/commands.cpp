@@ -359,6 +359,13 @@ int mesh_command(const std::vector<std::string>& argv) {
   occ::ReadResult read = occ::read_solid(args.positional[0], read_options);
   if (!read.ok()) {
     print_diagnostics(read.diagnostics);
+    if (args.values.count("--report")) {
+      nlohmann::json j = input_error_json(args.positional[0], read.diagnostics);
+      j["output"] = "";
+      std::string error;
+      if (!write_json(j, args.values.at("--report"), &error))
+        std::cerr << "vorohex: " << error << "\n";
+    }
     return kExitBadInput;
   }
   const core::Progress progress = progress_printer(quiet);
@@ -497,20 +504,27 @@ int check_command(const std::vector<std::string>& argv) {
   if (args.values.count("--distance-tol"))
     options.distance_rel_tol = parse_positive("--distance-tol", args.values.at("--distance-tol"));
 
-  io::ReadMeshResult mesh = io::read_mesh(args.positional[0]);
-  if (!mesh.ok) {
-    print_diagnostics(mesh.diagnostics);
+  // A mesh or CAD file that cannot be read: said on stderr and in the report (valid false).
+  auto refused = [&](const std::string& input, const std::vector<core::Diagnostic>& why) {
+    print_diagnostics(why);
+    if (args.values.count("--report")) {
+      nlohmann::json j = input_error_json(input, why);
+      j.erase("ok");
+      j["valid"] = false;
+      std::string error;
+      if (!write_json(j, args.values.at("--report"), &error))
+        std::cerr << "vorohex: " << error << "\n";
+    }
     return kExitBadInput;
-  }
+  };
+  io::ReadMeshResult mesh = io::read_mesh(args.positional[0]);
+  if (!mesh.ok) return refused(args.positional[0], mesh.diagnostics);
   std::unique_ptr<occ::Solid> cad;
   if (args.values.count("--cad")) {
     occ::ReadOptions read_options;
     read_options.several_solids = true;
     occ::ReadResult read = occ::read_solid(args.values.at("--cad"), read_options);
-    if (!read.ok()) {
-      print_diagnostics(read.diagnostics);
-      return kExitBadInput;
-    }
+    if (!read.ok()) return refused(args.values.at("--cad"), read.diagnostics);
     cad = std::move(read.solid);
   }
   const quality::CheckReport report = quality::check_mesh(mesh.mesh, cad.get(), options);

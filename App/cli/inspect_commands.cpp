@@ -392,6 +392,10 @@ int run_decompose(const std::vector<std::string>& args) {
   occ::ReadResult read = occ::read_solid(input);
   if (!read.ok()) {
     print_problems(read.diagnostics);
+    std::string error;
+    if (!json_path.empty() &&
+        !write_json(input_error_json(input, read.diagnostics), json_path, &error))
+      std::cerr << "vorohex: " << error << "\n";
     return kExitBadInput;
   }
   if (auto_method) {

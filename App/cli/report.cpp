@@ -150,4 +150,13 @@ bool write_json(const nlohmann::json& j, const std::string& path, std::string* e
   return true;
 }
 
+nlohmann::json input_error_json(const std::string& input,
+                                const std::vector<core::Diagnostic>& diagnostics) {
+  nlohmann::json j;
+  j["input"] = input;
+  j["ok"] = false;
+  j["diagnostics"] = diagnostics_json(diagnostics);
+  return j;
+}
+
 }  // namespace vorohex::cli

@@ -28,6 +28,12 @@ nlohmann::json groups_json(const std::vector<io::NamedGroup>& groups);
 // usage after each error pushed the error itself out of sight.
 std::string usage_hint(const char* usage);
 
+// The report of a run refused for its input (missing, empty, unreadable, not a solid...):
+// the input, "ok": false and the diagnostics saying why, so that a pipeline reading the
+// reports finds every failure, not only those of files that could be read.
+nlohmann::json input_error_json(const std::string& input,
+                                const std::vector<core::Diagnostic>& diagnostics);
+
 // Writes JSON to a file; false and *error on failure.
 bool write_json(const nlohmann::json& j, const std::string& path, std::string* error);
 

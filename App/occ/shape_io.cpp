@@ -15,6 +15,9 @@
 #include <Interface_EntityIterator.hxx>
 #include <Interface_Graph.hxx>
 #include <Interface_InterfaceModel.hxx>
+#include <Message.hxx>
+#include <Message_Messenger.hxx>
+#include <Message_Printer.hxx>
 #include <STEPControl_Reader.hxx>
 #include <STEPControl_Writer.hxx>
 #include <ShapeFix_Shape.hxx>
@@ -527,6 +530,33 @@ bool only_whitespace(std::ifstream& in) {
   return true;
 }
 
+// OCCT's readers print their own notes on stdout through the default messenger (a STEP
+// file with a header and no data: "Interruption ReadFile par Exception ... Abandon", in
+// French, in colour, before our error). While one of these is alive only failures are
+// printed; what is wrong with the file is said by our diagnostics.
+class QuietReaders {
+ public:
+  QuietReaders() {
+    const Handle(Message_Messenger)& m = Message::DefaultMessenger();
+    for (Message_SequenceOfPrinters::Iterator it(m->Printers()); it.More(); it.Next()) {
+      levels_.push_back(it.Value()->GetTraceLevel());
+      it.Value()->SetTraceLevel(Message_Fail);
+    }
+  }
+  ~QuietReaders() {
+    const Handle(Message_Messenger)& m = Message::DefaultMessenger();
+    std::size_t i = 0;
+    for (Message_SequenceOfPrinters::Iterator it(m->Printers()); it.More() && i < levels_.size();
+         it.Next(), ++i)
+      it.Value()->SetTraceLevel(levels_[i]);
+  }
+  QuietReaders(const QuietReaders&) = delete;
+  QuietReaders& operator=(const QuietReaders&) = delete;
+
+ private:
+  std::vector<Message_Gravity> levels_;
+};
+
 }  // namespace
 
 ReadResult read_solid(const std::string& path, const ReadOptions& options) {
@@ -573,6 +603,7 @@ ReadResult read_solid(const std::string& path, const ReadOptions& options) {
             make_error("unreadable_file", where + " is a damaged STEP file: " + names + "."));
         return r;
       }
+      const QuietReaders quiet;
       STEPControl_Reader reader;
       if (reader.ReadFile(path.c_str()) == IFSelect_RetDone) {
         if (refuse_damaged(reader, is_step_shape_entity, where, kind, r, warnings)) return r;
@@ -590,6 +621,7 @@ ReadResult read_solid(const std::string& path, const ReadOptions& options) {
                                        "(column 73)."));
         return r;
       }
+      const QuietReaders quiet;
       IGESControl_Reader reader;
       if (reader.ReadFile(path.c_str()) == IFSelect_RetDone) {
         if (refuse_damaged(reader, is_iges_shape_entity, where, kind, r, warnings)) return r;

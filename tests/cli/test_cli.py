@@ -138,28 +138,65 @@ class MeshCommand(unittest.TestCase):
         with open(os.path.join(self.dir, "box.inp")) as f:
             self.assertIn("C3D8", f.read())
 
-    def expect_bad_input(self, args, phrase):
+    def expect_bad_input(self, args, phrase, report=False):
+        # report: the input file is what is wrong (not the options), so --report says why.
         out = os.path.join(self.dir, "out.vtu")
-        code, stdout, stderr = run("mesh", *args, "-o", out)
+        rep = os.path.join(self.dir, "bad.json")
+        if os.path.exists(rep):
+            os.remove(rep)
+        code, stdout, stderr = run("mesh", *args, "-o", out, "--report", rep)
         self.assertEqual(code, 2, stdout + stderr)
         self.assertIn(phrase.lower(), stderr.lower())
+        # Only our message: OCCT's own notes (French, on stdout) are not printed.
+        self.assertNotIn("Interruption", stdout + stderr)
         self.assertFalse(os.path.exists(out), "no output may be left behind")
         self.assertEqual([f for f in os.listdir(self.dir) if f.startswith(".vorohex-tmp")], [])
+        if not report:
+            return
+        # The report says why, as for a mesh that failed.
+        with open(rep) as f:
+            r = json.load(f)
+        self.assertFalse(r["ok"])
+        self.assertEqual(r["output"], "")
+        errors = [d for d in r["diagnostics"] if d["severity"] == "error"]
+        self.assertTrue(errors)
+        self.assertIn(phrase.lower(),
+                      " ".join(d["code"] + " " + d["message"] for d in errors).lower())
 
     def test_bad_input_files(self):
-        self.expect_bad_input([os.path.join(self.dir, "missing.step")], "not")
+        self.expect_bad_input([os.path.join(self.dir, "missing.step")], "not", True)
         empty = os.path.join(self.dir, "empty.step")
         open(empty, "w").close()
-        self.expect_bad_input([empty], "empty")
+        self.expect_bad_input([empty], "empty", True)
         text = os.path.join(self.dir, "text.step")
         with open(text, "w") as f:
             f.write("this is not a STEP file\n")
-        self.expect_bad_input([text], "text.step")
+        self.expect_bad_input([text], "text.step", True)
+        header = os.path.join(self.dir, "header.step")  # a header and no data
+        with open(header, "w") as f:
+            f.write("ISO-10303-21;\nHEADER;\nENDSEC;\nDATA;\nENDSEC;\nEND-ISO-10303-21;\n")
+        self.expect_bad_input([header], "not a readable STEP file", True)
+        # check and decompose write their report too.
+        rep = os.path.join(self.dir, "check.json")
+        code, stdout, stderr = run("check", os.path.join(self.dir, "missing.vtu"), "--report", rep)
+        self.assertEqual(code, 2, stdout + stderr)
+        with open(rep) as f:
+            r = json.load(f)
+        self.assertFalse(r["valid"])
+        self.assertEqual(r["diagnostics"][0]["severity"], "error")
+        rep = os.path.join(self.dir, "decompose.json")
+        code, stdout, stderr = run("decompose", empty, "-o", os.path.join(self.dir, "p.brep"),
+                                   "--report", rep)
+        self.assertEqual(code, 2, stdout + stderr)
+        with open(rep) as f:
+            r = json.load(f)
+        self.assertFalse(r["ok"])
+        self.assertEqual(r["diagnostics"][0]["code"], "empty_file")
         unknown = os.path.join(self.dir, "part.obj")
         with open(unknown, "w") as f:
             f.write("v 0 0 0\n")
-        self.expect_bad_input([unknown], "format")
-        self.expect_bad_input([self.dir], "is a folder, not a file")
+        self.expect_bad_input([unknown], "format", True)
+        self.expect_bad_input([self.dir], "is a folder, not a file", True)
 
     def test_bad_output_paths_are_refused_before_meshing(self):
         # A folder that does not exist, for the mesh or the report, and a folder given as
@@ -225,7 +262,7 @@ class MeshCommand(unittest.TestCase):
         shell = Part.Shell(box.Faces[:5])
         path = os.path.join(self.dir, "open.brep")
         shell.exportBrep(path)
-        self.expect_bad_input([path], "open")
+        self.expect_bad_input([path], "open", True)
         # Several solids: meshed, joined where they touch; overlapping ones refused.
         two = Part.makeCompound([Part.makeBox(1, 1, 1),
                                  Part.makeBox(1, 1, 1, FreeCAD.Vector(1, 0, 0))])
@@ -249,7 +286,7 @@ class MeshCommand(unittest.TestCase):
                                      Part.makeBox(1, 1, 1, FreeCAD.Vector(0.5, 0, 0))])
         path = os.path.join(self.dir, "overlap.step")
         overlap.exportStep(path)
-        self.expect_bad_input([path], "overlap")
+        self.expect_bad_input([path], "overlap", True)
 
     def test_bad_options(self):
         step = os.path.join(EXAMPLES, "box_3x2x1.step")
