@@ -95,6 +95,13 @@ class Decomposition:
             obj.Method = [m[0] for m in METHODS]
             # A document saved before the property existed showed the Voronoi graph's.
             obj.Method = "Voronoi graph" if getattr(self, "restoring", False) else METHODS[0][0]
+        if not hasattr(obj, "AllowedSchemes"):
+            obj.addProperty("App::PropertyString", "AllowedSchemes", "Decomposition",
+                            "The schemes that may mesh a sub-volume, comma-separated, as the "
+                            "hex mesh's Schemes: a mapped block, a sweep and midpoint "
+                            "subdivision always; multisweep (prismatic) and revolve only when "
+                            "named")
+            obj.AllowedSchemes = ALL_SCHEMES
         if not hasattr(obj, "TimeLimit"):
             obj.addProperty("App::PropertyFloat", "TimeLimit", "Decomposition",
                             "Seconds the decomposition may take (> 0): stopped before its "
@@ -133,7 +140,7 @@ class Decomposition:
                 data = VoroHexObjects.compute_or_raise(obj, "decomposition", lambda: compute(
                     obj.Part.Shape, obj.SharpAngle, obj.Merge,
                     VoroHexObjects.graph_options_of(obj), getattr(self, "progress", None),
-                    obj.TimeLimit, METHOD_OF[obj.Method]))
+                    obj.TimeLimit, METHOD_OF[obj.Method], obj.AllowedSchemes))
                 if data is None:  # cancelled (Status and Message say so)
                     return
             error = self.apply(obj, data)
@@ -207,28 +214,52 @@ def plural(n, noun):
 
 def cache_key(obj):
     return (obj.Part.Name if obj.Part else None, obj.SharpAngle, obj.Merge, obj.TimeLimit,
-            obj.Method, tuple(sorted(VoroHexObjects.graph_options_of(obj).items())))
+            obj.Method, obj.AllowedSchemes,
+            tuple(sorted(VoroHexObjects.graph_options_of(obj).items())))
+
+
+# The decomposition's default AllowedSchemes: every single-solid scheme the mesher has by
+# default.
+ALL_SCHEMES = "map,sweep,multisweep,revolve,midpoint"
+
+
+def judging_schemes(schemes):
+    """(multisweep, revolve) from a Schemes text as the hex mesh takes it ("map,sweep,
+    multisweep"): whether prismatic and revolved sub-volumes count as meshable. An empty
+    text means every scheme. A name the mesher does not know raises ValueError naming it."""
+    if not isinstance(schemes, str):
+        raise TypeError("VoroHex: option 'schemes' must be one comma-separated string, got "
+                        "{!r}".format(schemes))
+    names = [n.strip() for n in schemes.split(",") if n.strip()] or ALL_SCHEMES.split(",")
+    known = list(VoroHex._core.scheme_names())
+    unknown = [n for n in names if n not in known]
+    if unknown:
+        raise ValueError("VoroHex: unknown scheme '{}' in {!r}; known: {}".format(
+            unknown[0], schemes, ", ".join(known)))
+    return "multisweep" in names, "revolve" in names
 
 
 def compute(shape, sharp_angle, merge, options, progress=None,
-            time_limit=VoroHex.DECOMPOSITION_TIME_LIMIT, method="voronoi"):
+            time_limit=VoroHex.DECOMPOSITION_TIME_LIMIT, method="voronoi", schemes=ALL_SCHEMES):
     """The decomposition of `shape` as plain values (no document access: it runs in a child
     process for the GUI): the VoroHex.Decomposition without its shapes, each sub-volume as
     a BREP string, and the role of each of its faces. apply() stores them. For the Voronoi
     graph's alone, faces split on one surface are merged first
     (VoroHexObjects.merged_split_faces); as the mesher, they are taken as the mesher takes
-    them."""
+    them. schemes: the Schemes text that judges the sub-volumes (judging_schemes)."""
     # The mesher takes split faces as they are: as the mesher (and for its exact cuts) so
     # does the decomposition.
+    multisweep, revolve = judging_schemes(schemes)
     merged = 0
     if method == "voronoi":
         shape, merged = VoroHexObjects.merged_split_faces(shape)
     if method == "plane-cuts":  # it takes none of the Voronoi graph's options
         d = VoroHex.decompose(shape, merge=merge, progress=progress, time_limit=time_limit,
-                              method=method)
+                              method=method, multisweep=multisweep, revolve=revolve)
     else:
         d = VoroHex.decompose(shape, sharp_angle=sharp_angle, merge=merge, progress=progress,
-                              time_limit=time_limit, method=method, **options)
+                              time_limit=time_limit, method=method, multisweep=multisweep,
+                              revolve=revolve, **options)
     roles = face_roles(d) if d.ok and d.shapes else []
     between = distinct_faces(d.shapes, roles) if roles else 0
     solids = [s.exportBrepToString() for s in d.shapes]
@@ -238,10 +269,11 @@ def compute(shape, sharp_angle, merge, options, progress=None,
 
 
 def compute_work(report, brep, sharp_angle, merge, options,
-                 time_limit=VoroHex.DECOMPOSITION_TIME_LIMIT, method="voronoi"):
+                 time_limit=VoroHex.DECOMPOSITION_TIME_LIMIT, method="voronoi",
+                 schemes=ALL_SCHEMES):
     """compute() of the shape `brep` (exportBrepToString()), in a VoroHexJobs child."""
     return compute(VoroHexObjects.shape_from_brep(brep), sharp_angle, merge, options, report,
-                   time_limit, method)
+                   time_limit, method, schemes)
 
 
 def set_children(obj, solids, roles):
@@ -381,13 +413,15 @@ def near_box(shape, p, tol):
 
 
 def makeDecomposition(doc, part, name=None, merge=True, progress=None, data=None,
-                      time_limit=None, method="auto", **options):
+                      time_limit=None, method="auto", schemes=None, **options):
     """Adds a decomposition object for `part` to `doc` and computes it. Raises ValueError
     (and leaves the document as it was) when `part` holds no single solid. progress as for
     VoroHexGraph.makeVoronoiGraph; options: sharp_angle, eps, delta, max_depth, set as the
     object's properties before it computes; time_limit: seconds (TimeLimit, default 30);
     method: "auto" (as the mesher, the default), "voronoi" or "plane-cuts", as for
-    VoroHex.decompose (the Method property)."""
+    VoroHex.decompose (the Method property); schemes: the Schemes text judging the
+    sub-volumes (AllowedSchemes; default every scheme; a hex mesh's Preview passes the
+    mesh's Schemes)."""
     error = VoroHexObjects.source_error(part)
     if error is not None:
         raise ValueError("VoroHex: " + error)
@@ -397,6 +431,8 @@ def makeDecomposition(doc, part, name=None, merge=True, progress=None, data=None
                          "got {!r}".format(method))
     if time_limit is not None:
         time_limit = VoroHex._seconds("time_limit", time_limit)
+    if schemes is not None:
+        judging_schemes(schemes)  # a bad text is refused before the document changes
     obj = doc.addObject("Part::FeaturePython",
                         name or VoroHexObjects.object_name(part, "Decomposition"))
     if name is None:
@@ -412,6 +448,8 @@ def makeDecomposition(doc, part, name=None, merge=True, progress=None, data=None
     obj.Method = labels[method]
     if time_limit is not None:
         obj.TimeLimit = time_limit
+    if schemes is not None:
+        obj.AllowedSchemes = schemes
     if FreeCAD.GuiUp:
         from VoroHexGui import parts_view
 

@@ -188,14 +188,16 @@ def make_and_edit(part, label, module, factory, work, args):
 
 def make_preview(mesh_obj, part, options, on_done):
     """The Voronoi graph and the decomposition of `part` with `options` (sharp_angle, eps,
-    delta, max_depth), computed in one child process, as document objects replacing the
-    previous preview of `mesh_obj`; on_done((graph, decomposition) or None, error)."""
+    delta, max_depth; the decomposition's sub-volumes judged by the mesh's Schemes), computed
+    in one child process, as document objects replacing the previous preview of `mesh_obj`;
+    on_done((graph, decomposition) or None, error)."""
     import VoroHexGraph
     import VoroHexParts
 
     doc = part.Document
     graph_options = dict(options)
     angle = graph_options.pop("sharp_angle")
+    schemes = getattr(mesh_obj, "Schemes", "") or VoroHexParts.ALL_SCHEMES
 
     def done(data, why):
         if data is None:
@@ -205,7 +207,8 @@ def make_preview(mesh_obj, part, options, on_done):
         def make():
             remove_preview(mesh_obj)
             g = VoroHexGraph.makeVoronoiGraph(doc, part, data=data[0], **options)
-            p = VoroHexParts.makeDecomposition(doc, part, data=data[1], **options)
+            p = VoroHexParts.makeDecomposition(doc, part, data=data[1], schemes=schemes,
+                                               **options)
             mesh_obj.PreviewObjects = [g.Name, p.Name]
             return g, p
 
@@ -218,7 +221,7 @@ def make_preview(mesh_obj, part, options, on_done):
         on_done(made, None if made else "the preview failed (see the Report view)")
 
     return start("Preview", VoroHexObjects.preview_work,
-                 (part.Shape.exportBrepToString(), angle, graph_options), done)
+                 (part.Shape.exportBrepToString(), angle, graph_options, schemes), done)
 
 
 def remove_preview(mesh_obj):

@@ -220,7 +220,7 @@ class PartsTaskPanel:
         commands.start("Decomposition", VoroHexParts.compute_work,
                        (obj.Part.Shape.exportBrepToString(), obj.SharpAngle, obj.Merge,
                         VoroHexObjects.graph_options_of(obj), obj.TimeLimit,
-                        VoroHexParts.METHOD_OF[label]), done)
+                        VoroHexParts.METHOD_OF[label], obj.AllowedSchemes), done)
 
     def children(self):
         return [c for c in self.obj.SubVolumeObjects if c is not None]

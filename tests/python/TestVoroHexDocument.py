@@ -222,6 +222,41 @@ class TestVoroHexObject(BoxDocument, unittest.TestCase):
             if scheme == "revolve":
                 self.assertEqual((d.Status, d.DecompositionFaceCount), ("ok", 0), d.Message)
 
+    def test_decomposition_judged_by_the_mesh_schemes(self):
+        # A stepped plate with two holes is one multisweep; with the schemes a hex mesh may
+        # use without multisweep (its Schemes, which the Preview passes), the decomposition
+        # shows what that mesh does instead: cut at its step into two sweeps.
+        V = FreeCAD.Vector
+        plate = Part.makeBox(80, 50, 6).fuse(Part.makeBox(40, 50, 6, V(40, 0, 6)))
+        for x in (20, 60):
+            plate = plate.cut(Part.makeCylinder(5, 30, V(x, 25, -5)))
+        part = self.doc.addObject("Part::Feature", "Plate")
+        part.Shape = plate.removeSplitter()
+        self.doc.recompute()
+        whole = VoroHexParts.makeDecomposition(self.doc, part)
+        self.assertEqual(whole.AllowedSchemes, VoroHexParts.ALL_SCHEMES)
+        self.assertEqual(list(whole.Schemes), ["multisweep"], whole.Message)
+        no_multisweep = "map,sweep,revolve,midpoint"
+        d = VoroHexParts.makeDecomposition(self.doc, part, schemes=no_multisweep)
+        self.assertEqual((d.Status, d.AllowedSchemes), ("ok", no_multisweep), d.Message)
+        self.assertNotIn("multisweep", list(d.Schemes), d.Message)
+        mesh = VoroHex.mesh(part.Shape, schemes=no_multisweep, size=4)
+        self.assertTrue(mesh.ok, mesh.message)
+        self.assertEqual(sorted(d.Schemes), sorted(mesh.stats.sub_volume_schemes), d.Message)
+        # Edited back to every scheme, the recompute takes the plate whole again.
+        d.AllowedSchemes = ""
+        self.doc.recompute()
+        self.assertEqual(list(d.Schemes), ["multisweep"], d.Message)
+        # The Preview's work, in its child: the same with the mesh's schemes.
+        _, data = VoroHexObjects.preview_work(None, part.Shape.exportBrepToString(), 60.0, {},
+                                              no_multisweep)
+        self.assertEqual(sorted(v["scheme"] for v in data["decomposition"].sub_volumes),
+                         sorted(mesh.stats.sub_volume_schemes))
+        names = [o.Name for o in self.doc.Objects]
+        with self.assertRaisesRegex(ValueError, "unknown scheme 'swep'"):
+            VoroHexParts.makeDecomposition(self.doc, part, schemes="map,swep")
+        self.assertEqual([o.Name for o in self.doc.Objects], names)
+
     def test_recompute_counts_validity(self):
         obj = self.make_mesh()
         self.assertEqual(obj.Proxy.Type, "Fem::VoroHexMesh")
