@@ -230,16 +230,22 @@ std::string plane_cuts_json(const PlaneCutResult& cut, const PlaneCutSchemes& sc
     const std::string scheme = i < schemes.schemes.size() ? schemes.schemes[i] : "";
     std::string reason = i < schemes.reasons.size() ? schemes.reasons[i] : "";
     if (scheme.empty() && reason.empty()) reason = schemes.glue_error;
+    const bool ends = i < schemes.ends.size() && schemes.ends[i].first.valid();
+    // A sweep says which way it sweeps: its source and target among the piece's own faces
+    // (the sub-volume's Face2, as FreeCAD numbers the piece).
     if (!scheme.empty() && reason.empty())
       reason = (scheme == "map"          ? std::string("a topological hexahedron")
                 : scheme == "multisweep" ? std::string("prismatic: a multisweep along its axis")
                                          : "a " + scheme) +
+               (ends ? " from its " + core::entity_name(schemes.ends[i].first) + " to its " +
+                           core::entity_name(schemes.ends[i].second)
+                     : std::string()) +
                " once glued to the other pieces";
     j["sub_volumes"].push_back({{"id", i},
                                 {"scheme", scheme.empty() ? "none" : scheme},
                                 {"reason", reason},
                                 {"volume", cut.pieces[i].volume()}});
-    if (i < schemes.ends.size() && schemes.ends[i].first.valid()) {
+    if (ends) {
       j["sub_volumes"].back()["source"] = core::entity_name(schemes.ends[i].first);
       j["sub_volumes"].back()["target"] = core::entity_name(schemes.ends[i].second);
     }

@@ -708,6 +708,12 @@ class InspectCommands(unittest.TestCase):
             cuts = json.load(f)
         self.assertEqual((cuts["method"], cuts["status"]), ("plane-cuts", "ok"))
         self.assertEqual([c["kind"] for c in cuts["cut_surfaces"]], ["hole_plane"] * 4)
+        # A swept piece says which way it sweeps, by its own faces (as the report's ends).
+        for v in cuts["sub_volumes"]:
+            if v["scheme"] == "sweep":
+                self.assertIn("a sweep from its {} to its {} once glued".format(
+                    v["source"], v["target"]), v["reason"])
+        self.assertIn("sweep", [v["scheme"] for v in cuts["sub_volumes"]])
         meshed = self.mesh_as_cut(step, cuts)
         self.assertGreaterEqual(meshed["check"]["scaled_jacobian"]["min"], 0.3)
 
