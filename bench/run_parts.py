@@ -8,8 +8,8 @@ at diagonal / 25. The shapes are the ones issues 20 and 22 name (a stepped block
 paper's Figure 6 and 7 shapes, a block with two crossing holes, an L bracket with a hole
 in each leg, a stepped plate with holes, a flanged pipe), a few more a user makes every
 day, and two whose faces come to a point (a boss tangent to a plate's round outline from
-inside; a lug whose round end is tangent to its tube, as HexMe i11). Writes
-bench/results/parts.md.
+inside; a lug whose round end is tangent to its tube, as HexMe i11), and the drilled and
+countersunk holes and filleted edges of PartDesign. Writes bench/results/parts.md.
 
 usage: run_parts.py [--build BUILD]
 """
@@ -125,6 +125,18 @@ def build_parts(work):
         cyl(6, 10, (0, 40, 0), (1, 0, 0)))
     parts["tube with a lug whose round end is tangent to it"] = cyl(15, 60, (0, 0, 0), (1, 0, 0)).fuse(
         lug).cut(cyl(9, 60, (0, 0, 0), (1, 0, 0)))
+    # What PartDesign's Hole and Fillet make every day: a blind hole with a 118-degree drill
+    # point, a countersunk hole, a block with its four top edges filleted (its Voronoi
+    # graph's split did not return for 34 s; tests/data/block_top_fillets.step).
+    tip = 4 / math.tan(math.radians(59))
+    parts["block with a drilled blind hole"] = box(30, 30, 20).cut(
+        cyl(4, 12, (15, 15, 8))).cut(
+        Part.makeCone(4, 0, tip, V(15, 15, 8), V(0, 0, -1)))
+    parts["block with a countersunk hole"] = box(30, 30, 20).cut(cyl(4, 20, (15, 15, 0))).cut(
+        Part.makeCone(4, 8, 4, V(15, 15, 16)))
+    top = box(30, 20, 10)
+    parts["block with its top edges filleted"] = top.makeFillet(
+        2, [e for e in top.Edges if e.BoundBox.ZMin > 10 - 1e-6])
     out = []
     for k, (name, shape) in enumerate(parts.items()):
         solid = refined(shape)

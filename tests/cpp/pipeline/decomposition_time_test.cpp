@@ -1,0 +1,38 @@
+// The mesher's decomposition keeps to its time: a step that does not return in its share is
+// stopped there, and the fallback's mesh, made beside it, is taken.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "fixtures/diagnostics.h"
+#include "occ/shape_io.h"
+#include "pipeline/generate_mesh.h"
+
+namespace vorohex::pipeline {
+namespace {
+
+// A block with its four top edges filleted (tests/data/block_top_fillets.step, made with
+// FreeCAD's makeFillet by bench/run_parts.py): no scheme takes it whole and it has no concave
+// edge to cut at, so the mesher tries its Voronoi graph's decomposition, which gets a tenth
+// of the decomposition's 60 s. OCCT's split of that graph's cut returns only after about
+// 34 s, and the child running it was stopped at the whole 60 s limit: the grid mesh, made
+// beside it in 2 s, waited 47 s. Now the decomposition is stopped when the Voronoi step's
+// 6 s and their grace have passed, and the message says so.
+TEST(GenerateMesh, AVoronoiSplitThatDoesNotReturnIsStoppedAtItsShareOfTheTime) {
+  const occ::ReadResult in =
+      occ::read_solid(std::string(VOROHEX_SOURCE_DIR) + "/tests/data/block_top_fillets.step");
+  ASSERT_TRUE(in.ok());
+  const MeshResult r = generate_mesh(*in.solid, MeshOptions{});
+  ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
+  EXPECT_EQ(r.stats.scheme, "grid");
+  EXPECT_TRUE(r.check.valid);
+  const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "fallback");
+  ASSERT_NE(d, nullptr);
+  EXPECT_NE(d->message.find("its Voronoi decomposition did not stop within its 6.0 s (OCCT's "
+                            "split did not return) and was stopped 2.0 s after it"),
+            std::string::npos)
+      << d->message;
+}
+
+}  // namespace
+}  // namespace vorohex::pipeline
