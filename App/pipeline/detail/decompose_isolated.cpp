@@ -196,6 +196,11 @@ IsolatedDecomposition decompose_isolated(const occ::Solid& solid, const MeshOpti
     case core::IsolatedResult::Status::cancelled: {
       out.cancelled = progress.cancelled();
       std::ostringstream s;
+      // (The plane cuts' own reason stays in the child; that it reached the Voronoi step
+      // says they failed.)
+      if (voronoi_stopped && !out.cancelled && methods != DecompositionMethods::voronoi)
+        s << "cutting along the faces at its concave edges did not give sub-volumes that all "
+          << "have a scheme; ";
       if (voronoi_stopped && !out.cancelled)
         s << "its Voronoi decomposition did not stop within its " << std::fixed
           << std::setprecision(1) << voronoi_budget << " s (OCCT's split did not return) and was "

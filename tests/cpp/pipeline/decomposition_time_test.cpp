@@ -28,8 +28,10 @@ TEST(GenerateMesh, AVoronoiSplitThatDoesNotReturnIsStoppedAtItsShareOfTheTime) {
   EXPECT_TRUE(r.check.valid);
   const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "fallback");
   ASSERT_NE(d, nullptr);
-  EXPECT_NE(d->message.find("its Voronoi decomposition did not stop within its 6.0 s (OCCT's "
-                            "split did not return) and was stopped 2.0 s after it"),
+  EXPECT_NE(d->message.find("cutting along the faces at its concave edges did not give "
+                            "sub-volumes that all have a scheme; its Voronoi decomposition did "
+                            "not stop within its 6.0 s (OCCT's split did not return) and was "
+                            "stopped 2.0 s after it"),
             std::string::npos)
       << d->message;
 }
