@@ -124,6 +124,11 @@ class TaskPanel:
         self.payload = None
         self.suggested_size = None
         self._build_advanced()
+        # Labels above their fields where the panel is narrower than label and field side by
+        # side: FreeCAD's Combo View opens about 250 px wide, and the panel's minimum was 339
+        # px with no horizontal scroll bar (the size field, Stop, the histogram cut off).
+        for form in self.form.findChildren(QtGui.QFormLayout):
+            form.setRowWrapPolicy(QtGui.QFormLayout.WrapLongRows)
         self._bind_element_order()
         self.form.pb_run.clicked.connect(self.run)
         self.form.pb_stop.clicked.connect(self.stop)
@@ -171,7 +176,7 @@ class TaskPanel:
         graph_form.addRow("Max. octree depth:", self.max_depth)
         dec_box = QtGui.QWidget()
         dec_form = QtGui.QFormLayout(dec_box)
-        self.decompose = QtGui.QCheckBox("Cut into sub-volumes before any fallback", dec_box)
+        self.decompose = QtGui.QCheckBox("Cut into sub-volumes first", dec_box)
         self.decompose.setObjectName("cb_decompose")
         dec_form.addRow(self.decompose)
         self.sharp_angle = QtGui.QDoubleSpinBox(dec_box)
@@ -203,7 +208,7 @@ class TaskPanel:
                   self.decomposition_time, self.fallback, self.time_limit, self.schemes):
             option = next(o for o in VoroHex.OPTIONS if self._widget(o) is w)
             w.setToolTip(option.doc)
-        self.preview = QtGui.QPushButton("Preview graph and decomposition", dec_box)
+        self.preview = QtGui.QPushButton("Preview graph and cuts", dec_box)
         self.preview.setObjectName("pb_preview")
         self.preview.setToolTip("Computes the Voronoi graph and the decomposition of the solid "
                                 "with these options, as document objects (replacing the "
@@ -246,11 +251,11 @@ class TaskPanel:
         for key, title, content in (
                 ("sub_volumes", "Sub-volumes", self.sub_volumes),
                 ("messages", "Messages", self.diagnostics),
-                ("limits", "Advanced: limits and fallback", self.form.gb_limits),
+                ("limits", "Advanced: limits, fallback", self.form.gb_limits),
                 ("graph", "Advanced: Voronoi graph", graph_box),
-                ("decomposition", "Advanced: decomposition and preview", dec_box),
+                ("decomposition", "Advanced: decomposition", dec_box),
                 ("smoothing", "Advanced: smoothing", self.form.gb_smoothing),
-                ("check", "Advanced: check tolerances", self.form.gb_check)):
+                ("check", "Advanced: tolerances", self.form.gb_check)):
             layout.removeWidget(content)
             if isinstance(content, QtGui.QGroupBox):
                 content.setTitle("")
