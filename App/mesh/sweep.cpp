@@ -97,6 +97,13 @@ double chain_turn(const Solid& s, const OrientedEdge& a, const OrientedEdge& b) 
 }
 
 // The sweep structure with `S` as source, or the reason why there is none.
+// Whether e bounds face f on both sides (its seam) and no other face.
+bool is_seam_of(const Solid& s, EdgeId e, FaceId f) {
+  for (FaceId g : s.edge_faces(e))
+    if (g != f) return false;
+  return true;
+}
+
 std::string find_topology(const Solid& s, FaceId S, Topology& topo) {
   topo = Topology();
   topo.source = S;
@@ -187,6 +194,11 @@ std::string find_topology(const Solid& s, FaceId S, Topology& topo) {
   std::set<int> t_all;
   for (const auto& w : s.face_wires(T))
     for (const OrientedEdge& oe : w) {
+      // A cone's apex (a degenerated edge) and its seam (an edge of the target alone) bound
+      // no linking face: a drill point's cone is the target of a sweep from a disc, its
+      // apex where the line along the axis through the disc's centre meets it.
+      if (s.edge_is_degenerated(oe.edge)) continue;
+      if (is_seam_of(s, oe.edge, T)) continue;
       t_all.insert(oe.edge.value());
       if (source_vertices.count(s.edge_first_vertex(oe.edge).value()))
         return name(S) + " and " + name(T) + " share a vertex";
@@ -776,14 +788,31 @@ SweepResult sweep(const core::MeshDomain& solid, const SweepOptions& options,
       if (!tm.ok) throw std::runtime_error("the target could not be submapped");
       grid_target.assign(tm.points.begin() + nb, tm.points.end());
     }
+    // A target with an apex inside (a drill point's cone: a degenerated edge), whose
+    // points nearest to the source's images near the axis lie on a ring around the apex, is
+    // reached along the axis; its inner node nearest the apex goes there.
+    std::vector<core::VertexId> apexes;
+    for (const auto& w : solid.face_wires(t.target))
+      for (const OrientedEdge& oe : w)
+        if (solid.edge_is_degenerated(oe.edge)) apexes.push_back(solid.edge_first_vertex(oe.edge));
+    const bool along = options.target_along_axis || !apexes.empty();
     for (std::size_t j = nb; j < M; ++j) {
       P[id(0, j)] = sm.points[j];
       C[id(0, j)] = NodeClass::on(t.source);
       const Vec3 image = to_target(sm.points[j]);
-      P[id(K, j)] = !grid_target.empty()        ? grid_target[j - nb]
-                    : options.target_along_axis ? onto_face_along(solid, t.target, image, axis)
-                                                : solid.project_to_face(t.target, image);
+      P[id(K, j)] = !grid_target.empty() ? grid_target[j - nb]
+                    : along              ? onto_face_along(solid, t.target, image, axis)
+                                         : solid.project_to_face(t.target, image);
       C[id(K, j)] = NodeClass::on(t.target);
+    }
+    for (core::VertexId v : apexes) {
+      const Vec3 apex = solid.vertex_point(v);
+      std::size_t nearest = M;
+      for (std::size_t j = nb; j < M; ++j)
+        if (nearest == M || (P[id(K, j)] - apex).norm() < (P[id(K, nearest)] - apex).norm())
+          nearest = j;
+      if (nearest < M && (P[id(K, nearest)] - apex).norm() < options.size)
+        P[id(K, nearest)] = apex, C[id(K, nearest)] = NodeClass::on(v);
     }
   } catch (const std::exception& e) {
     result.diagnostics.push_back(core::make_error(

@@ -1,7 +1,8 @@
 // One-to-one sweeping: a solid with a source face (planar or curved, with holes), a target
 // face, and linking faces that each have one wire of four sides (one edge on the source, a
 // chain of edges on the target that meet at side vertices, where the chain turns by less
-// than 30 degrees: a neighbour's vertex imprinted there, and two linking edges). The
+// than 30 degrees: a neighbour's vertex imprinted there, and two linking edges; the
+// target may have an apex inside, a drill point's cone, reached along the axis). The
 // source is meshed by quad_face, the target by the same topology mapped (least-squares
 // affine map of the boundary loops, projected), the linking faces by transfinite
 // interpolation (projected when curved), and the inner layers by the blend of the source-

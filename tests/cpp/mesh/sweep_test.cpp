@@ -7,9 +7,11 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <stdexcept>
 #include <string>
 
 #include "occ/primitives.h"
+#include "occ/split_solid.h"
 #include "quality/check_mesh.h"
 
 namespace vorohex::mesh {
@@ -109,6 +111,32 @@ TEST(Sweep, CylinderIsADiscSwept) {
   EXPECT_GE(f.mean, 0.85);
   const auto a = sweep_applicable(cyl);
   EXPECT_TRUE(cyl.face_is_planar(a.source));
+}
+
+// The column under a drilled blind hole (the plane cuts cut it off along the hole's
+// cylinder): a disc swept up to the drill point's cone, whose apex (a degenerated edge) and
+// seam bound no linking face. The disc's centre goes to the apex.
+TEST(Sweep, ADiscIsSweptToADrillPointsCone) {
+  const double tip = 4 / std::tan(59 * 3.14159265358979323846 / 180);
+  const occ::Solid column = [&] {
+    auto c = occ::cut_solids(occ::make_cylinder(4, 8, {0, 0, 0}, {0, 0, 1}),
+                             occ::make_cone(4, 0, tip, {0, 0, 8}, {0, 0, -1}));
+    if (!c) throw std::runtime_error("the cut failed");
+    return std::move(*c);
+  }();
+  const SweepApplicability a = sweep_applicable(column);
+  ASSERT_TRUE(a.ok) << a.reason;
+  EXPECT_TRUE(column.face_is_planar(a.source));
+  EXPECT_EQ(column.surface_info(a.target).kind, core::SurfaceKind::cone);
+  sweep_and_check("drill point", column, 0.7, false);
+  SweepOptions o;
+  o.size = 0.7;
+  const SweepResult r = sweep(column, o);
+  ASSERT_TRUE(r.ok);
+  double nearest = 1e9;
+  for (const Vec3& p : r.mesh.points())
+    nearest = std::min(nearest, (p - Vec3(0, 0, 8 - tip)).norm());
+  EXPECT_LT(nearest, 1e-6) << "a node at the apex";
 }
 
 TEST(Sweep, CurvedSourceFace) {
