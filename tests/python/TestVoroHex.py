@@ -352,6 +352,47 @@ class TestVoroHexApi(unittest.TestCase):
                          sorted(m.stats.sub_volume_schemes))
         self.assertGreaterEqual(m.stats.min_scaled_jacobian, 0.3)
 
+    def test_partdesign_drilled_blind_hole_is_cut_and_swept(self):
+        # A block with a blind hole made by PartDesign's Hole (its default drill point, a
+        # 118-degree cone): cut along the hole's cylinder, the column under the hole is swept
+        # up to the cone (its apex on a node), the rest is one multisweep. It was the grid
+        # mesher's before.
+        import Sketcher  # noqa: F401  (the sketches' type)
+        V = FreeCAD.Vector
+        doc = FreeCAD.newDocument("DrilledHole")
+        try:
+            body = doc.addObject("PartDesign::Body", "Body")
+            base = body.newObject("Sketcher::SketchObject", "Base")
+            base.Support, base.MapMode = (doc.getObject("XY_Plane"), [""]), "FlatFace"
+            corners = [V(0, 0, 0), V(30, 0, 0), V(30, 30, 0), V(0, 30, 0)]
+            for i in range(4):
+                base.addGeometry(Part.LineSegment(corners[i], corners[(i + 1) % 4]))
+            doc.recompute()
+            pad = body.newObject("PartDesign::Pad", "Pad")
+            pad.Profile, pad.Length = base, 20
+            doc.recompute()
+            top = next(i for i, f in enumerate(pad.Shape.Faces)
+                       if abs(f.CenterOfMass.z - 20) < 1e-6)
+            circle = body.newObject("Sketcher::SketchObject", "HoleSketch")
+            circle.Support, circle.MapMode = (pad, ["Face%d" % (top + 1)]), "FlatFace"
+            doc.recompute()
+            circle.addGeometry(Part.Circle(V(15, 15, 0), V(0, 0, 1), 4))
+            doc.recompute()
+            hole = body.newObject("PartDesign::Hole", "Hole")
+            hole.Profile, hole.Diameter, hole.Depth = circle, 8, 12
+            hole.DepthType, hole.DrillPoint, hole.Threaded = "Dimension", "Angled", False
+            doc.recompute()
+            self.assertTrue(hole.isValid())
+            shape = body.Shape
+            self.assertIn("Cone", [type(f.Surface).__name__ for f in shape.Faces])
+            m = VoroHex.mesh(shape)
+            self.assertTrue(m.ok, m.message)
+            self.assertEqual((m.stats.scheme, m.stats.sub_volumes), ("multisweep+sweep", 2))
+            self.assertGreaterEqual(m.stats.min_scaled_jacobian, 0.4)
+            self.assertLess(m.stats.volume_rel_error, 0.005)
+        finally:
+            FreeCAD.closeDocument(doc.Name)
+
     def test_plane_cuts_tangent_to_a_tube_where_a_lug_is_as_wide(self):
         # A lug as wide as the tube it stands on (its sides tangent to the tube): cut along
         # the tube's cylinder, its pieces have knife edges; with tangent_planes the cut is the
