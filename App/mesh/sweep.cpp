@@ -13,6 +13,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "mesh/detail/cad_lookup.h"
 #include "mesh/detail/grid_face.h"
 #include "mesh/detail/quad_quality.h"
 #include "mesh/detail/sizing.h"
@@ -628,18 +629,6 @@ class AffineFit {
   Eigen::Matrix<double, 3, 2> m_;
 };
 
-// The point of face f on the line through p along unit d, found by projecting onto the face
-// and moving back onto the line (a few times), then onto the face: where the line meets it
-// transversally, the meeting point.
-Vec3 onto_face_along(const core::MeshDomain& solid, core::FaceId f, Vec3 p, const Vec3& d) {
-  for (int k = 0; k < 8 && d.norm() > 0; ++k) {
-    const Vec3 step = (solid.project_to_face(f, p) - p).dot(d) * d;
-    p += step;
-    if (step.norm() <= 1e-12 * (1 + p.norm())) break;
-  }
-  return solid.project_to_face(f, p);
-}
-
 }  // namespace
 
 SweepApplicability sweep_applicable(const core::MeshDomain& solid) {
@@ -791,17 +780,14 @@ SweepResult sweep(const core::MeshDomain& solid, const SweepOptions& options,
     // A target with an apex inside (a drill point's cone: a degenerated edge), whose
     // points nearest to the source's images near the axis lie on a ring around the apex, is
     // reached along the axis; its inner node nearest the apex goes there.
-    std::vector<core::VertexId> apexes;
-    for (const auto& w : solid.face_wires(t.target))
-      for (const OrientedEdge& oe : w)
-        if (solid.edge_is_degenerated(oe.edge)) apexes.push_back(solid.edge_first_vertex(oe.edge));
+    const std::vector<core::VertexId> apexes = detail::apex_vertices(solid, t.target);
     const bool along = options.target_along_axis || !apexes.empty();
     for (std::size_t j = nb; j < M; ++j) {
       P[id(0, j)] = sm.points[j];
       C[id(0, j)] = NodeClass::on(t.source);
       const Vec3 image = to_target(sm.points[j]);
       P[id(K, j)] = !grid_target.empty() ? grid_target[j - nb]
-                    : along              ? onto_face_along(solid, t.target, image, axis)
+                    : along              ? detail::onto_face_along(solid, t.target, image, axis)
                                          : solid.project_to_face(t.target, image);
       C[id(K, j)] = NodeClass::on(t.target);
     }

@@ -17,4 +17,22 @@ NodeClass cad_entity_at(const core::MeshDomain& solid, const core::Vec3& p, doub
   return NodeClass::interior();
 }
 
+core::Vec3 onto_face_along(const core::MeshDomain& solid, core::FaceId f, core::Vec3 p,
+                           const core::Vec3& d) {
+  for (int k = 0; k < 8 && d.norm() > 0; ++k) {
+    const core::Vec3 step = (solid.project_to_face(f, p) - p).dot(d) * d;
+    p += step;
+    if (step.norm() <= 1e-12 * (1 + p.norm())) break;
+  }
+  return solid.project_to_face(f, p);
+}
+
+std::vector<core::VertexId> apex_vertices(const core::MeshDomain& solid, core::FaceId f) {
+  std::vector<core::VertexId> out;
+  for (const auto& w : solid.face_wires(f))
+    for (const core::OrientedEdge& oe : w)
+      if (solid.edge_is_degenerated(oe.edge)) out.push_back(solid.edge_first_vertex(oe.edge));
+  return out;
+}
+
 }  // namespace vorohex::mesh::detail

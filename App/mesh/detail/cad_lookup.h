@@ -1,6 +1,8 @@
 // The CAD entity a point lies on, for meshers that place nodes by geometry (multisweep,
-// revolve) and classify them afterwards.
+// revolve) and classify them afterwards; where a line meets a face; a face's apexes.
 #pragma once
+
+#include <vector>
 
 #include "core/geometry.h"
 #include "core/hex_mesh.h"
@@ -13,5 +15,14 @@ namespace vorohex::mesh::detail {
 // the search when it holds.
 core::NodeClass cad_entity_at(const core::MeshDomain& solid, const core::Vec3& p, double tol,
                               core::NodeClass hint = core::NodeClass::interior());
+
+// The point of face f on the line through p along unit d, found by projecting onto the face
+// and moving back onto the line (a few times), then onto the face: where the line meets it
+// transversally, the meeting point.
+core::Vec3 onto_face_along(const core::MeshDomain& solid, core::FaceId f, core::Vec3 p,
+                           const core::Vec3& d);
+
+// The vertices of face f's degenerated edges: a cone's apex, a sphere's pole.
+std::vector<core::VertexId> apex_vertices(const core::MeshDomain& solid, core::FaceId f);
 
 }  // namespace vorohex::mesh::detail
