@@ -508,11 +508,8 @@ int check_command(const std::vector<std::string>& argv) {
   auto refused = [&](const std::string& input, const std::vector<core::Diagnostic>& why) {
     print_diagnostics(why);
     if (args.values.count("--report")) {
-      nlohmann::json j = input_error_json(input, why);
-      j.erase("ok");
-      j["valid"] = false;
       std::string error;
-      if (!write_json(j, args.values.at("--report"), &error))
+      if (!write_json(input_error_json(input, why, "valid"), args.values.at("--report"), &error))
         std::cerr << "vorohex: " << error << "\n";
     }
     return kExitBadInput;

@@ -151,10 +151,11 @@ bool write_json(const nlohmann::json& j, const std::string& path, std::string* e
 }
 
 nlohmann::json input_error_json(const std::string& input,
-                                const std::vector<core::Diagnostic>& diagnostics) {
+                                const std::vector<core::Diagnostic>& diagnostics,
+                                const char* verdict) {
   nlohmann::json j;
   j["input"] = input;
-  j["ok"] = false;
+  j[verdict] = false;
   j["diagnostics"] = diagnostics_json(diagnostics);
   return j;
 }

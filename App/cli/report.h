@@ -29,10 +29,12 @@ nlohmann::json groups_json(const std::vector<io::NamedGroup>& groups);
 std::string usage_hint(const char* usage);
 
 // The report of a run refused for its input (missing, empty, unreadable, not a solid...):
-// the input, "ok": false and the diagnostics saying why, so that a pipeline reading the
-// reports finds every failure, not only those of files that could be read.
+// the input, `verdict` false ("ok" for mesh and decompose, "valid" for check) and the
+// diagnostics saying why, so that a pipeline reading the reports finds every failure, not
+// only those of files that could be read.
 nlohmann::json input_error_json(const std::string& input,
-                                const std::vector<core::Diagnostic>& diagnostics);
+                                const std::vector<core::Diagnostic>& diagnostics,
+                                const char* verdict = "ok");
 
 // Writes JSON to a file; false and *error on failure.
 bool write_json(const nlohmann::json& j, const std::string& path, std::string* error);

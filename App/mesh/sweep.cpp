@@ -97,7 +97,6 @@ double chain_turn(const Solid& s, const OrientedEdge& a, const OrientedEdge& b) 
   return std::acos(std::clamp(c, -1.0, 1.0)) * 180 / M_PI;
 }
 
-// The sweep structure with `S` as source, or the reason why there is none.
 // Whether e bounds face f on both sides (its seam) and no other face.
 bool is_seam_of(const Solid& s, EdgeId e, FaceId f) {
   for (FaceId g : s.edge_faces(e))
@@ -105,6 +104,7 @@ bool is_seam_of(const Solid& s, EdgeId e, FaceId f) {
   return true;
 }
 
+// The sweep structure with `S` as source, or the reason why there is none.
 std::string find_topology(const Solid& s, FaceId S, Topology& topo) {
   topo = Topology();
   topo.source = S;

@@ -506,7 +506,7 @@ def trials_work(report, brep, options, sizes):
     return found
 
 
-def preview_work(report, brep, sharp_angle, options, schemes=None):
+def preview_work(report, brep, sharp_angle, options, schemes=""):
     """The Voronoi graph and the decomposition (merged, as the mesher cuts: method "auto",
     its sub-volumes judged by the mesh's `schemes`) of the shape, as their compute() values:
     the hex mesh panel's Preview, in one child process."""
@@ -516,7 +516,7 @@ def preview_work(report, brep, sharp_angle, options, schemes=None):
     shape = shape_from_brep(brep)
     return (VoroHexGraph.compute(shape, sharp_angle, options, report),
             VoroHexParts.compute(shape, sharp_angle, True, options, report, method="auto",
-                                 schemes=schemes or VoroHexParts.ALL_SCHEMES))
+                                 schemes=schemes))
 
 
 def automatic_size(shape):

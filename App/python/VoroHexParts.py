@@ -218,24 +218,15 @@ def cache_key(obj):
             tuple(sorted(VoroHexObjects.graph_options_of(obj).items())))
 
 
-# The decomposition's default AllowedSchemes: every single-solid scheme the mesher has by
-# default.
-ALL_SCHEMES = "map,sweep,multisweep,revolve,midpoint"
+# The decomposition's default AllowedSchemes: the mesher's default schemes.
+ALL_SCHEMES = ",".join(VoroHex._core.MeshOptions().schemes)
 
 
 def judging_schemes(schemes):
-    """(multisweep, revolve) from a Schemes text as the hex mesh takes it ("map,sweep,
-    multisweep"): whether prismatic and revolved sub-volumes count as meshable. An empty
-    text means every scheme. A name the mesher does not know raises ValueError naming it."""
-    if not isinstance(schemes, str):
-        raise TypeError("VoroHex: option 'schemes' must be one comma-separated string, got "
-                        "{!r}".format(schemes))
-    names = [n.strip() for n in schemes.split(",") if n.strip()] or ALL_SCHEMES.split(",")
-    known = list(VoroHex._core.scheme_names())
-    unknown = [n for n in names if n not in known]
-    if unknown:
-        raise ValueError("VoroHex: unknown scheme '{}' in {!r}; known: {}".format(
-            unknown[0], schemes, ", ".join(known)))
+    """(multisweep, revolve) from a Schemes text as the hex mesh takes it (parsed and checked
+    as VoroHex.mesh's `schemes`: an unknown name raises ValueError naming it; empty: every
+    scheme): whether prismatic and revolved sub-volumes count as meshable."""
+    names = list(VoroHex._make_options({"schemes": schemes}).schemes) or ALL_SCHEMES.split(",")
     return "multisweep" in names, "revolve" in names
 
 

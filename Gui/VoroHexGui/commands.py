@@ -197,7 +197,7 @@ def make_preview(mesh_obj, part, options, on_done):
     doc = part.Document
     graph_options = dict(options)
     angle = graph_options.pop("sharp_angle")
-    schemes = getattr(mesh_obj, "Schemes", "") or VoroHexParts.ALL_SCHEMES
+    schemes = getattr(mesh_obj, "Schemes", "")  # empty: every scheme
 
     def done(data, why):
         if data is None:

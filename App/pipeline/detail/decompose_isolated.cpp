@@ -8,6 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/isolated_call.h"
@@ -21,6 +22,9 @@
 namespace vorohex::pipeline::detail {
 
 namespace {
+
+// The stage the child reports as the Voronoi decomposition starts (and the parent watches for).
+constexpr std::string_view kVoronoiStage = "voronoi";
 
 // Seconds the Voronoi decomposition gets when it starts `elapsed` seconds into a
 // decomposition of `time_limit`: what is left, at most voronoi_share of it unless it is the
@@ -47,10 +51,10 @@ std::string to_text(int before_merge, const char* method,
 std::string voronoi_decomposition(const occ::Solid& solid, const MeshOptions& mesh_options,
                                   double seconds, const core::Progress& reports) {
   const core::Progress deadline = reports.with_time_limit(std::max(1.0, seconds));
-  reports.report("voronoi", 0.0);
+  reports.report(kVoronoiStage, 0.0);
   const voronoi::VoronoiResult graph = voronoi::compute_voronoi_graph(solid, mesh_options.graph);
   if (!graph.ok()) throw std::runtime_error("its Voronoi graph could not be computed");
-  reports.report("voronoi", 1.0);
+  reports.report(kVoronoiStage, 1.0);
   decompose::DecomposeOptions options;
   options.sharp_angle = mesh_options.sharp_angle;
   options.stop_at_open_gap = true;
@@ -165,7 +169,7 @@ IsolatedDecomposition decompose_isolated(const occ::Solid& solid, const MeshOpti
             progress.report(stage, f);
             if (progress.cancelled()) stop = true;
             const auto now = std::chrono::steady_clock::now();
-            if (!voronoi_until && stage == "voronoi") {
+            if (!voronoi_until && stage == kVoronoiStage) {
               voronoi_budget =
                   std::max(0.0, voronoi_seconds(time_limit, core::seconds_since(t0), methods));
               voronoi_until =
@@ -196,17 +200,18 @@ IsolatedDecomposition decompose_isolated(const occ::Solid& solid, const MeshOpti
     case core::IsolatedResult::Status::cancelled: {
       out.cancelled = progress.cancelled();
       std::ostringstream s;
-      // (The plane cuts' own reason stays in the child; that it reached the Voronoi step
-      // says they failed.)
-      if (voronoi_stopped && !out.cancelled && methods != DecompositionMethods::voronoi)
-        s << "cutting along the faces at its concave edges did not give sub-volumes that all "
-          << "have a scheme; ";
-      if (voronoi_stopped && !out.cancelled)
+      if (voronoi_stopped && !out.cancelled) {
+        // (The plane cuts' own reason stays in the child; that it reached the Voronoi step
+        // says they failed.)
+        if (methods != DecompositionMethods::voronoi)
+          s << "cutting along the faces at its concave edges did not give sub-volumes that all "
+            << "have a scheme; ";
         s << "its Voronoi decomposition did not stop within its " << std::fixed
           << std::setprecision(1) << voronoi_budget << " s (OCCT's split did not return) and was "
           << "stopped " << decompose::stop_grace(voronoi_budget) << " s after it";
-      else
+      } else {
         s << "its decomposition did not finish within " << time_limit << " s";
+      }
       out.why_not = out.cancelled ? "its decomposition was cancelled" : s.str();
       return out;
     }
