@@ -14,10 +14,13 @@ namespace {
 // A block with its four top edges filleted (tests/data/block_top_fillets.step, made with
 // FreeCAD's makeFillet by bench/run_parts.py): no scheme takes it whole and it has no concave
 // edge to cut at, so the mesher tries its Voronoi graph's decomposition, which gets a tenth
-// of the decomposition's 60 s. OCCT's split of that graph's cut returns only after about
+// of the decomposition's 60 s. OCCT's split of that graph's cut returned only after about
 // 34 s, and the child running it was stopped at the whole 60 s limit: the grid mesh, made
-// beside it in 2 s, waited 47 s. Now the decomposition is stopped when the Voronoi step's
-// 6 s and their grace have passed, and the message says so.
+// beside it in 2 s, waited 47 s. Now the decomposition ends within the Voronoi step's 6 s and
+// their grace: stopped by the parent where the split runs on past them, or by its own
+// deadline where the split is interrupted in time (which of the two depends on where OCCT is
+// when the 6 s run out: on a loaded machine the split stopped itself). Either way the message
+// names the 6 s, never the whole limit.
 TEST(GenerateMesh, AVoronoiSplitThatDoesNotReturnIsStoppedAtItsShareOfTheTime) {
   const occ::ReadResult in =
       occ::read_solid(std::string(VOROHEX_SOURCE_DIR) + "/tests/data/block_top_fillets.step");
@@ -28,12 +31,18 @@ TEST(GenerateMesh, AVoronoiSplitThatDoesNotReturnIsStoppedAtItsShareOfTheTime) {
   EXPECT_TRUE(r.check.valid);
   const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "fallback");
   ASSERT_NE(d, nullptr);
-  EXPECT_NE(d->message.find("cutting along the faces at its concave edges did not give "
-                            "sub-volumes that all have a scheme; its Voronoi decomposition did "
-                            "not stop within its 6.0 s (OCCT's split did not return) and was "
-                            "stopped 2.0 s after it"),
+  const std::string& m = d->message;
+  EXPECT_NE(m.find("cutting along the faces at its concave edges did not give sub-volumes that "
+                   "all have a scheme"),
             std::string::npos)
-      << d->message;
+      << m;
+  const bool stopped_by_the_parent =
+      m.find(
+          "its Voronoi decomposition did not stop within its 6.0 s (OCCT's split did not "
+          "return) and was stopped 2.0 s after it") != std::string::npos;
+  const bool stopped_itself = m.find("within 6 s)") != std::string::npos;
+  EXPECT_TRUE(stopped_by_the_parent || stopped_itself) << m;
+  EXPECT_EQ(m.find("within 60"), std::string::npos) << m;
 }
 
 }  // namespace
