@@ -36,6 +36,9 @@ struct Plan {
   std::vector<int> layers;      // per slab
   std::vector<int> level_z;     // per level: its index in the list of heights
   std::vector<double> heights;  // every layer's height, bottom to top
+  // Per 2-D node and level: the level's height over the node, on a sloped cap where one at
+  // that level covers a region around it (empty when no cap is sloped: the levels' heights).
+  std::vector<std::vector<double>> level_height;
   bool ok = false;
   std::vector<core::Diagnostic> diagnostics;
 };
@@ -178,6 +181,70 @@ bool fixed_counts(const core::MeshDomain& solid, const occ::PrismaticStructure& 
   return true;
 }
 
+// The height of sloped cap k over the point b (anywhere on the line along the axis).
+double sloped_height(const core::MeshDomain& solid, const occ::PrismaticStructure& s, int k,
+                     const Vec3& b) {
+  const Vec3 start = b + (s.levels[s.cap_level[k]] - s.height(b)) * s.axis;
+  return s.height(detail::onto_face_along(solid, s.caps[k], start, s.axis));
+}
+
+// The sloped cap at level l covering region f, or -1.
+int sloped_cap_over(const occ::PrismaticStructure& s, int f, int l) {
+  for (int k : s.covering_caps[f])
+    if (s.cap_sloped[k] && s.cap_level[k] == l) return k;
+  return -1;
+}
+
+// Fills p.level_height where a cap is sloped. False with why where a level breaks (a sloped
+// cap's rim meets a region where that level is flat off its height) or a slab over a node
+// would keep less than a fiftieth of its thickness.
+bool sloped_levels(const core::MeshDomain& solid, Plan& p, std::string& why) {
+  const occ::PrismaticStructure& s = p.structure;
+  if (std::none_of(s.cap_sloped.begin(), s.cap_sloped.end(), [](bool b) { return b; })) return true;
+  const FaceSetMesh& F = p.regions;
+  const int levels = int(s.levels.size()), slabs = levels - 1;
+  const double tol = std::max(1e-6 * solid.diagonal(), 10 * solid.tolerance());
+  p.level_height.assign(F.points.size(), s.levels);
+  std::vector<std::vector<char>> on_slope(F.points.size(), std::vector<char>(levels, 0));
+  auto used = [&](int f, int l) {
+    return (l > 0 && s.inside[f][l - 1]) || (l < slabs && s.inside[f][l]);
+  };
+  for (int f = 1; f < int(F.quads.size()); ++f)
+    for (int l = 0; l < levels; ++l) {
+      const int k = sloped_cap_over(s, f, l);
+      if (k < 0 || !used(f, l)) continue;
+      for (const auto& q : F.quads[f])
+        for (int n : q)
+          if (!on_slope[n][l]) {  // a ridge's nodes: from the first cap (they meet there)
+            p.level_height[n][l] = sloped_height(solid, s, k, F.points[n]);
+            on_slope[n][l] = 1;
+          }
+    }
+  for (int f = 1; f < int(F.quads.size()); ++f)
+    for (int l = 0; l < levels; ++l) {
+      if (!used(f, l) || sloped_cap_over(s, f, l) >= 0) continue;
+      for (const auto& q : F.quads[f])
+        for (int n : q)
+          if (on_slope[n][l] && std::abs(p.level_height[n][l] - s.levels[l]) > tol) {
+            why = "a sloped cap's rim leaves the height of level " + std::to_string(l + 1) +
+                  " where that level is flat";
+            return false;
+          }
+    }
+  for (int f = 1; f < int(F.quads.size()); ++f)
+    for (int l = 0; l < slabs; ++l) {
+      if (!s.inside[f][l]) continue;
+      const double least = 0.02 * (s.levels[l + 1] - s.levels[l]);
+      for (const auto& q : F.quads[f])
+        for (int n : q)
+          if (p.level_height[n][l + 1] - p.level_height[n][l] < least) {
+            why = "a sloped cap leaves slab " + std::to_string(l + 1) + " almost no thickness";
+            return false;
+          }
+    }
+  return true;
+}
+
 Plan plan(const core::MeshDomain& solid, const MultisweepOptions& options,
           const core::Progress& progress) {
   options.validate();
@@ -216,6 +283,11 @@ Plan plan(const core::MeshDomain& solid, const MultisweepOptions& options,
   p.regions = mesh_face_set(*s.arrangement, fo, progress);
   if (!p.regions.ok) {
     p.diagnostics = p.regions.diagnostics;
+    return p;
+  }
+  if (!sloped_levels(solid, p, why)) {
+    p.diagnostics.push_back(
+        core::make_error("not_applicable", "The solid is not prismatic: " + why + "."));
     return p;
   }
   const std::size_t slabs = s.levels.size() - 1;
@@ -386,8 +458,15 @@ MultisweepResult multisweep(const core::MeshDomain& solid, const MultisweepOptio
     } else {
       const Vec3 base = on.dim == 0 ? arr.vertex_point(core::VertexId(on.id))
                                     : arr.edge_points_by_length(core::EdgeId(on.id), 2)[1];
+      // A level over a sloped cap lies on it (any cap at that level around: they meet here).
+      auto level_at = [&](int l) {
+        for (int f : *around)
+          if (const int k = sloped_cap_over(s, f, l); k >= 0)
+            return sloped_height(solid, s, k, base);
+        return s.levels[l];
+      };
       const double h =
-          lv >= 0 ? s.levels[lv] : 0.5 * (s.levels[slab_of[z]] + s.levels[slab_of[z] + 1]);
+          lv >= 0 ? level_at(lv) : 0.5 * (level_at(slab_of[z]) + level_at(slab_of[z] + 1));
       c = lookup(base + (h - s.height(base)) * s.axis);
     }
     classes.emplace(key, c);
@@ -404,7 +483,18 @@ MultisweepResult multisweep(const core::MeshDomain& solid, const MultisweepOptio
     const auto it = node_id.find(key);
     if (it != node_id.end()) return it->second;
     const Vec3& b = F.points[n2];
-    const Vec3 q = b + (p.heights[z] - s.height(b)) * s.axis;
+    double h = p.heights[z];
+    if (!p.level_height.empty()) {  // between the levels as they lie over this node
+      const std::vector<double>& at = p.level_height[n2];
+      if (level_of[z] >= 0) {
+        h = at[level_of[z]];
+      } else {
+        const int l = slab_of[z];
+        const double t = (h - s.levels[l]) / (s.levels[l + 1] - s.levels[l]);
+        h = at[l] + t * (at[l + 1] - at[l]);
+      }
+    }
+    const Vec3 q = b + (h - s.height(b)) * s.axis;
     const std::int32_t id = mesh.add_node(q, classify(F.on[n2], z)).value();
     node_id.emplace(key, id);
     return id;
@@ -434,15 +524,16 @@ MultisweepResult multisweep(const core::MeshDomain& solid, const MultisweepOptio
       }
     }
   }
-  // The corners of an extruded quad are positive when the quad is; a region whose quads
-  // turned the wrong way would show here.
+  // The corners of an extruded quad are positive when the quad is (and its column rises); a
+  // region whose quads turned the wrong way would show here.
   std::size_t folded = 0;
   for (const core::HexNodes& h : mesh.hexes()) {
     const auto c = [&](int i) -> const Vec3& { return mesh.points()[h[i]]; };
     bool bad = false;
     for (int i = 0; i < 4 && !bad; ++i) {
       const int n = (i + 1) % 4, pv = (i + 3) % 4;
-      bad = (c(n) - c(i)).cross(c(pv) - c(i)).dot(c(i + 4) - c(i)) <= 0;
+      bad = (c(n) - c(i)).cross(c(pv) - c(i)).dot(c(i + 4) - c(i)) <= 0 ||
+            (c(n + 4) - c(i + 4)).cross(c(pv + 4) - c(i + 4)).dot(c(i + 4) - c(i)) <= 0;
     }
     folded += bad;
   }

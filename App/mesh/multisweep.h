@@ -7,7 +7,9 @@
 // of the regions inside it, so several sources at different levels sweep onto one target
 // and walls with steps are meshed as submapped faces, with no decomposition. The result is
 // independent of how the solid was modelled (edge order, seams, orientation): it depends
-// only on its geometry.
+// only on its geometry. A sloped cap (occ/prismatic.h: a pyramidal pocket's floor, a hip
+// roof) bends its level: the columns over it end on it, their layers spread between the
+// levels as they lie over each node.
 #pragma once
 
 #include <string>

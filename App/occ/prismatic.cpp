@@ -84,18 +84,59 @@ const char* surface_kind(core::SurfaceKind t) {
   }
 }
 
-// Whether every face is a cap or a wall and every edge vertical or horizontal for `a`;
-// fills caps (with their heights) or returns the reason.
+const double kSlopeCos = 0.5;  // cos 60 degrees: the steepest a sloped cap may be
+
+// Whether face f is a sloped cap for axis a (prismatic.h): its normal, sampled along its
+// boundary and at a point inside, within 60 degrees of the axis and always on one side of
+// it (`up`: the side of +a); no seam and no degenerated edge (a cone's apex, a sphere's pole).
+bool sloped_cap(const core::MeshDomain& solid, FaceId f, const Vec3& a, bool& up) {
+  std::vector<Vec3> q;
+  std::vector<int> seen;
+  for (const auto& wire : solid.face_wires(f))
+    for (const OrientedEdge& oe : wire) {
+      if (solid.edge_is_degenerated(oe.edge) ||
+          std::find(seen.begin(), seen.end(), oe.edge.value()) != seen.end())
+        return false;
+      seen.push_back(oe.edge.value());
+      for (const Vec3& p : solid.edge_points_by_length(oe.edge, 8)) q.push_back(p);
+    }
+  if (q.empty()) return false;
+  Vec3 mean = Vec3::Zero();
+  for (const Vec3& p : q) mean += p;
+  q.push_back(solid.project_to_face(f, mean / double(q.size())));
+  int sign = 0;
+  for (const Vec3& p : q) {
+    const double c = solid.face_normal(f, p).dot(a);
+    if (std::abs(c) < kSlopeCos || (sign != 0 && (c > 0) != (sign > 0))) return false;
+    sign = c > 0 ? 1 : -1;
+  }
+  up = sign > 0;
+  return true;
+}
+
+// Whether every face is a cap (flat or sloped) or a wall for `a`, and every edge vertical,
+// horizontal or on a sloped cap; fills caps (with their heights, NaN for the sloped ones)
+// or returns the reason.
 std::string check_faces_and_edges(const core::MeshDomain& solid, const Vec3& a, const Vec3& origin,
                                   double tol, std::vector<FaceId>& caps,
-                                  std::vector<double>& cap_height, std::vector<bool>& cap_up) {
+                                  std::vector<double>& cap_height, std::vector<bool>& cap_up,
+                                  std::vector<bool>& cap_sloped) {
   const double kParallel = 1e-9;  // |cos| of the angle between unit directions
   auto height = [&](const Vec3& p) { return (p - origin).dot(a); };
+  std::vector<char> on_sloped(solid.num_faces() + 1, 0);
+  auto add_sloped = [&](FaceId f, bool up) {
+    caps.push_back(f);
+    cap_height.push_back(std::nan(""));
+    cap_up.push_back(up);
+    cap_sloped.push_back(true);
+    on_sloped[f.value()] = 1;
+  };
   for (FaceId f : solid.faces()) {
     const core::SurfaceInfo info = solid.surface_info(f);
     // A face without a boundary (a broken piece of a split) is no cap or wall.
     const auto wires = solid.face_wires(f);
     if (wires.empty() || wires[0].empty()) return face_name(f.value()) + " has no boundary";
+    bool up = false;
     if (info.kind == core::SurfaceKind::plane) {
       const Vec3 q = solid.vertex_point(solid.edge_first_vertex(wires[0][0].edge));
       const Vec3 n = solid.face_normal(f, q);
@@ -104,7 +145,12 @@ std::string check_faces_and_edges(const core::MeshDomain& solid, const Vec3& a, 
         caps.push_back(f);
         cap_height.push_back(height(q));
         cap_up.push_back(cosine > 0);
+        cap_sloped.push_back(false);
       } else if (std::abs(cosine) > kParallel) {
+        if (sloped_cap(solid, f, a, up)) {
+          add_sloped(f, up);
+          continue;
+        }
         std::ostringstream why;
         why << face_name(f.value()) << " is a plane at "
             << std::acos(std::min(1.0, std::abs(cosine))) * 180 / 3.14159265358979323846
@@ -120,17 +166,28 @@ std::string check_faces_and_edges(const core::MeshDomain& solid, const Vec3& a, 
                " across the axis";
       continue;
     }
-    if (info.kind != core::SurfaceKind::other)
+    if (info.kind != core::SurfaceKind::other) {
+      if (sloped_cap(solid, f, a, up)) {
+        add_sloped(f, up);
+        continue;
+      }
       return face_name(f.value()) + " is " + surface_kind(info.kind);
+    }
     // Another surface (B-spline, offset...): a wall when its normal is across the axis at
     // every sample of its boundary.
+    bool wall = true;
     for (const auto& wire : wires)
       for (const OrientedEdge& oe : wire) {
         if (solid.edge_is_degenerated(oe.edge)) continue;
         for (const Vec3& q : solid.edge_points_by_length(oe.edge, 8))
-          if (std::abs(solid.face_normal(f, q).dot(a)) > 1e-7)
-            return face_name(f.value()) + " is a curved surface not parallel to the axis";
+          wall = wall && std::abs(solid.face_normal(f, q).dot(a)) <= 1e-7;
       }
+    if (wall) continue;
+    if (sloped_cap(solid, f, a, up)) {
+      add_sloped(f, up);
+      continue;
+    }
+    return face_name(f.value()) + " is a curved surface not parallel to the axis";
   }
   for (EdgeId e : solid.edges()) {
     if (solid.edge_is_degenerated(e)) return edge_name(e.value()) + " is degenerated";
@@ -149,7 +206,9 @@ std::string check_faces_and_edges(const core::MeshDomain& solid, const Vec3& a, 
       vertical = vertical && (d - d.dot(a) * a).norm() <= tol;
       horizontal = horizontal && std::abs(d.dot(a)) <= tol;
     }
-    if (!vertical && !horizontal)
+    bool climbs_a_sloped_cap = false;
+    for (FaceId f : solid.edge_faces(e)) climbs_a_sloped_cap |= on_sloped[f.value()] != 0;
+    if (!vertical && !horizontal && !climbs_a_sloped_cap)
       return edge_name(e.value()) + " neither runs along the axis nor lies at one height";
   }
   if (caps.empty()) return "no face is perpendicular to the axis";
@@ -187,11 +246,16 @@ class Projector {
                         &v1 = vertex(solid_.edge_last_vertex(e));
     const core::CurveInfo info = solid_.curve_info(e);
     std::vector<Vec3> p = solid_.edge_points_by_length(e, 32);
-    for (Vec3& q : p) q = down(q);
     auto pnt = [](const Vec3& q) { return gp_Pnt(q.x(), q.y(), q.z()); };
+    // A circle's plane is across the axis when the edge lies at one height (else, climbing
+    // a sloped cap, its shadow is an ellipse: interpolated below).
+    bool level = true;
+    for (const Vec3& q : p)
+      level = level && std::abs((q - p[0]).dot(a_)) <= 1e-7 * (1 + info.radius);
+    for (Vec3& q : p) q = down(q);
     if (info.kind == core::CurveKind::line) {
       out = BRepBuilderAPI_MakeEdge(v0, v1).Edge();
-    } else if (info.kind == core::CurveKind::circle) {
+    } else if (info.kind == core::CurveKind::circle && level) {
       // The circle (its plane is across the axis) turned so that it runs as the edge does:
       // from the first sample through the middle one (or, closed, on to the second).
       gp_Dir n(a_.x(), a_.y(), a_.z());
@@ -260,13 +324,26 @@ PrismaticStructure structure_for(const core::MeshDomain& solid, const Vec3& a) {
   const double tol = std::max(1e-6 * diag, 2 * solid.tolerance());
   std::vector<double> cap_height;
   std::vector<bool> cap_up;
-  r.reason = check_faces_and_edges(solid, a, r.origin, tol, r.caps, cap_height, cap_up);
+  r.reason =
+      check_faces_and_edges(solid, a, r.origin, tol, r.caps, cap_height, cap_up, r.cap_sloped);
   if (!r.reason.empty()) return r;
   r.cap_up = cap_up;
 
-  // Levels: the vertices' heights, merged within the tolerance.
+  // Levels: the heights of the vertices on a wall or a flat cap (an apex among sloped caps
+  // only is none), merged within the tolerance.
+  std::vector<char> sloped_face(solid.num_faces() + 1, 0),
+      level_vertex(solid.num_vertices() + 1, 0);
+  for (std::size_t k = 0; k < r.caps.size(); ++k) sloped_face[r.caps[k].value()] = r.cap_sloped[k];
+  for (FaceId f : solid.faces()) {
+    if (sloped_face[f.value()]) continue;
+    for (const auto& wire : solid.face_wires(f))
+      for (const OrientedEdge& oe : wire)
+        for (VertexId v : {solid.edge_first_vertex(oe.edge), solid.edge_last_vertex(oe.edge)})
+          if (v.valid()) level_vertex[v.value()] = 1;
+  }
   std::vector<double> h;
-  for (VertexId v : solid.vertices()) h.push_back(r.height(solid.vertex_point(v)));
+  for (VertexId v : solid.vertices())
+    if (level_vertex[v.value()]) h.push_back(r.height(solid.vertex_point(v)));
   std::sort(h.begin(), h.end());
   for (double x : h)
     if (r.levels.empty() || x - r.levels.back() > tol) r.levels.push_back(x);
@@ -275,17 +352,55 @@ PrismaticStructure structure_for(const core::MeshDomain& solid, const Vec3& a) {
       if (std::abs(r.levels[i] - x) <= tol) return int(i);
     return -1;
   };
-  for (std::size_t k = 0; k < r.caps.size(); ++k) {
-    const int l = level_of(cap_height[k]);
-    if (l < 0) {
-      r.reason = face_name(r.caps[k].value()) + " lies between the vertices' heights";
-      return r;
-    }
-    r.cap_level.push_back(l);
-  }
   if (r.levels.size() < 2) {
     r.reason = "all vertices lie at one height";
     return r;
+  }
+  for (std::size_t k = 0; k < r.caps.size(); ++k) {
+    const FaceId f = r.caps[k];
+    if (!r.cap_sloped[k]) {
+      const int l = level_of(cap_height[k]);
+      if (l < 0) {
+        r.reason = face_name(f.value()) + " lies between the vertices' heights";
+        return r;
+      }
+      r.cap_level.push_back(l);
+      continue;
+    }
+    // A sloped cap: the one level of its vertices on walls or flat caps; it stays clear of
+    // the levels next to it (a twentieth of the slab), so that the slabs it bounds keep a
+    // thickness everywhere.
+    int l = -1;
+    double lo = 1e300, hi = -1e300;
+    for (const auto& wire : solid.face_wires(f))
+      for (const OrientedEdge& oe : wire) {
+        for (const Vec3& q : solid.edge_points_by_length(oe.edge, 8)) {
+          lo = std::min(lo, r.height(q));
+          hi = std::max(hi, r.height(q));
+        }
+        const VertexId v = solid.edge_first_vertex(oe.edge);
+        if (!level_vertex[v.value()]) continue;
+        const int lv = level_of(r.height(solid.vertex_point(v)));
+        if (l >= 0 && lv != l) {
+          r.reason =
+              face_name(f.value()) +
+              " slopes between two levels (its vertices on walls or flat caps lie at two heights)";
+          return r;
+        }
+        l = lv;
+      }
+    if (l < 0) {
+      r.reason = face_name(f.value()) + " slopes with no vertex on a wall or a flat cap";
+      return r;
+    }
+    const bool too_high = l + 1 < int(r.levels.size()) &&
+                          hi > r.levels[l + 1] - 0.05 * (r.levels[l + 1] - r.levels[l]);
+    const bool too_low = l > 0 && lo < r.levels[l - 1] + 0.05 * (r.levels[l] - r.levels[l - 1]);
+    if (too_high || too_low) {
+      r.reason = face_name(f.value()) + " slopes to within a twentieth of the next level";
+      return r;
+    }
+    r.cap_level.push_back(l);
   }
 
   // Arrangement: every cap and every horizontal edge, moved down to height 0, fused.
@@ -429,9 +544,13 @@ EdgeInStructure edge_in_structure(const core::MeshDomain& solid, const Prismatic
   if (!s.ok || solid.edge_is_degenerated(e)) return out;
   const double tol = std::max(1e-6 * solid.diagonal(), 10 * solid.tolerance());
   double lo = 1e300, hi = -1e300;
-  for (const Vec3& q : solid.edge_points_by_length(e, 8)) {
+  const std::vector<Vec3> samples = solid.edge_points_by_length(e, 64);
+  bool vertical = true;
+  for (const Vec3& q : samples) {
     lo = std::min(lo, s.height(q));
     hi = std::max(hi, s.height(q));
+    const Vec3 d = q - samples.front();
+    vertical = vertical && (d - d.dot(s.axis) * s.axis).norm() <= tol;
   }
   if (hi - lo <= tol) {
     // The arrangement edges whose middles, lifted to the edge's height, lie on it (the
@@ -440,6 +559,32 @@ EdgeInStructure edge_in_structure(const core::MeshDomain& solid, const Prismatic
       const Vec3 m = s.arrangement->edge_points_by_length(a, 2)[1];
       const Vec3 lifted = m + (lo - s.height(m)) * s.axis;
       if ((solid.project_to_edge(e, lifted) - lifted).norm() <= tol)
+        out.arrangement_edges.push_back(a.value());
+    }
+    return out;
+  }
+  if (!vertical) {
+    // An edge climbing a sloped cap: the arrangement edges whose middles lie under it. The
+    // point of e over a middle m: from the nearest sample, alternately onto e and back onto
+    // the axis line through m (it converges, the edge being less steep than 60 degrees).
+    auto flat = [&](const Vec3& q) { return Vec3(q - s.height(q) * s.axis); };
+    double spacing = 0;
+    for (std::size_t i = 1; i < samples.size(); ++i)
+      spacing = std::max(spacing, (samples[i] - samples[i - 1]).norm());
+    for (EdgeId a : s.arrangement->edges()) {
+      const Vec3 m = s.arrangement->edge_points_by_length(a, 2)[1];
+      std::size_t best = 0;
+      for (std::size_t i = 1; i < samples.size(); ++i)
+        if ((flat(samples[i]) - flat(m)).norm() < (flat(samples[best]) - flat(m)).norm()) best = i;
+      if ((flat(samples[best]) - flat(m)).norm() > spacing + tol) continue;
+      Vec3 q = m + (s.height(samples[best]) - s.height(m)) * s.axis;
+      for (int k = 0; k < 100; ++k) {
+        const Vec3 next = m + (s.height(solid.project_to_edge(e, q)) - s.height(m)) * s.axis;
+        const bool still = (next - q).norm() <= 1e-3 * tol;
+        q = next;
+        if (still) break;
+      }
+      if ((solid.project_to_edge(e, q) - q).norm() <= tol)
         out.arrangement_edges.push_back(a.value());
     }
     return out;

@@ -7,8 +7,8 @@
 #    before any work starts, with the count in the message;
 #  - a part that takes more than 10 s to mesh: a QTimer ticking every 50 ms never sees a
 #    gap over 0.3 s, and Stop ends the run within 1 s with no traceback in the Report view;
-#    Stop also within 1 s in the decomposition (HexMe n06o, its steps named in the bar as
-#    they run), the grid mesher and the smoothing stages;
+#    Stop also within 1 s in the decomposition (a cube with a steep pyramid pit, its steps
+#    named in the bar as they run), the grid mesher and the smoothing stages;
 #  - a fallback mesh gets a banner with a size that gives a structured mesh, found by trying;
 #  - Run recomputes only the mesh being edited; Cancel on a never-run mesh removes it;
 #    meshes are named after their part; commands are greyed out for a sketch, a face and a
@@ -401,9 +401,20 @@ def main():
     long_part.Radius, long_part.Height = 22, 70
     ski = doc.addObject("Part::Feature", "SkiJump")
     ski.Shape = Part.read(os.path.join(HEXME, "n03o_skijump_box_cyl.step"))
-    # An anti-prism with a pentagonal pyramid: seconds of decomposition (OCCT's split).
-    notch = doc.addObject("Part::Feature", "AntiPentapyr")
-    notch.Shape = Part.read(os.path.join(HEXME, "n06o_anti_pentapyr.step"))
+    # A 2 x 2 x 2 cube with a steep pyramid pit (1 x 1, 1.6 deep; too steep for the
+    # multisweep's sloped caps, which take HexMe n06's pentagonal one now): seconds of
+    # decomposition (OCCT's split of the pit's wedges).
+    V = FreeCAD.Vector
+    corners = [V(0, 0, 0), V(2, 0, 0), V(2, 2, 0), V(0, 2, 0), V(0, 0, 2), V(2, 0, 2),
+               V(2, 2, 2), V(0, 2, 2), V(.5, .5, 2), V(1.5, .5, 2), V(1.5, 1.5, 2),
+               V(.5, 1.5, 2), V(1, 1, 0.4)]
+    polygons = [[0, 3, 2, 1], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6], [3, 0, 4, 7],
+                [4, 5, 9, 8], [5, 6, 10, 9], [6, 7, 11, 10], [7, 4, 8, 11], [8, 9, 12],
+                [9, 10, 12], [10, 11, 12], [11, 8, 12]]
+    notch = doc.addObject("Part::Feature", "SteepPit")
+    notch.Shape = Part.Solid(Part.Shell([
+        Part.Face(Part.makePolygon([corners[i] for i in f] + [corners[f[0]]]))
+        for f in polygons]))
     sphere = doc.addObject("Part::Feature", "Sphere")
     sphere.Shape = Part.read(os.path.join(HEXME, "s17o_sphere.step"))
     doc.recompute()
@@ -428,9 +439,9 @@ def main():
     pump(0.3)
     notch_mesh = open_panel(mw, notch)
     # The Voronoi decomposition's own step, named as it runs (its steps cross from its child
-    # process: the bar showed "decompose 0%" for all of the decomposition before). HexMe
-    # n06's graph takes a few tenths of a second, then OCCT's split of the solid by its
-    # decomposition faces about 8 s (it fails; the fallback's grid mesh, ready beside it,
+    # process: the bar showed "decompose 0%" for all of the decomposition before). The
+    # steep pit's graph takes a few tenths of a second, then OCCT's split of the solid by its
+    # decomposition faces about 3.5 s (it fails; the fallback's grid mesh, ready beside it,
     # is used): the screenshot is taken 0.5 s into that step. (HexMe i09, used here before,
     # left its decomposition step after 10 ms once a solid's bounding box stopped being
     # recomputed on every call: it stops at an open vertex gap before any split.)

@@ -1,5 +1,7 @@
 #include "mesh/detail/cad_lookup.h"
 
+#include <cmath>
+
 namespace vorohex::mesh::detail {
 
 using core::NodeClass;
@@ -20,7 +22,14 @@ NodeClass cad_entity_at(const core::MeshDomain& solid, const core::Vec3& p, doub
 core::Vec3 onto_face_along(const core::MeshDomain& solid, core::FaceId f, core::Vec3 p,
                            const core::Vec3& d) {
   for (int k = 0; k < 8 && d.norm() > 0; ++k) {
-    const core::Vec3 step = (solid.project_to_face(f, p) - p).dot(d) * d;
+    // Onto the face's tangent plane at the nearest point, along d (Newton's step: exact on a
+    // plane); where the face turns almost along d, only the nearest point's part along d.
+    const core::Vec3 q = solid.project_to_face(f, p);
+    const core::Vec3 n = solid.face_normal(f, q);
+    const double across = n.dot(d);
+    const core::Vec3 step = std::isfinite(across) && std::abs(across) > 0.2
+                                ? ((q - p).dot(n) / across) * d
+                                : (q - p).dot(d) * d;
     p += step;
     if (step.norm() <= 1e-12 * (1 + p.norm())) break;
   }

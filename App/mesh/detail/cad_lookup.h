@@ -16,9 +16,9 @@ namespace vorohex::mesh::detail {
 core::NodeClass cad_entity_at(const core::MeshDomain& solid, const core::Vec3& p, double tol,
                               core::NodeClass hint = core::NodeClass::interior());
 
-// The point of face f on the line through p along unit d, found by projecting onto the face
-// and moving back onto the line (a few times), then onto the face: where the line meets it
-// transversally, the meeting point.
+// The point of face f on the line through p along unit d: Newton's steps along the line onto
+// the tangent plane at the face's nearest point (a few), then onto the face: where the line
+// meets it transversally, the meeting point.
 core::Vec3 onto_face_along(const core::MeshDomain& solid, core::FaceId f, core::Vec3 p,
                            const core::Vec3& d);
 

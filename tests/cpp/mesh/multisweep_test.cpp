@@ -30,6 +30,7 @@ std::vector<Named> prismatic_parts() {
   out.push_back({"flanged pipe", testing::make_flanged_pipe(), false});
   out.push_back({"stepped shaft", testing::make_stepped_shaft(), false});
   out.push_back({"hexagonal wheel with rod", testing::make_hex_wheel_with_rod(), false});
+  out.push_back({"block with a pyramid pocket", testing::make_block_with_pyramid_pocket(), true});
   occ::ReadResult i15 = occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/i15o_s8.step");
   if (i15.ok()) out.push_back({"HexMe i15", i15.solid->clone(), false});
   return out;
@@ -143,6 +144,72 @@ TEST(Multisweep, StructureOfAStepAlongAnAxis) {
   ASSERT_TRUE(best.ok);
   EXPECT_EQ(best.arrangement->num_faces(), 1);
   EXPECT_NEAR(std::abs(best.axis.y()), 1, 1e-12);
+}
+
+// Sloped caps: HexMe n06's pentagonal pyramid pocket (a 3 x 3 x 2.5 block) is one slab whose
+// floor climbs the pyramid's five faces to their apex (no level of its own); the ridges'
+// nodes lie on the ridges. A roof's apex above the top level is none either.
+TEST(Multisweep, PyramidPocketsAndRoofsAreSlopedCaps) {
+  occ::ReadResult n06 =
+      occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/n06o_anti_pentapyr.step");
+  ASSERT_TRUE(n06.ok()) << "HexMe model n06 not found in " << VOROHEX_HEXME_DIR;
+  const occ::PrismaticStructure s = occ::prismatic_structure(*n06.solid);
+  ASSERT_TRUE(s.ok) << s.reason;
+  EXPECT_NEAR(std::abs(s.axis.z()), 1, 1e-12);
+  EXPECT_EQ(s.levels.size(), 2u);
+  int sloped = 0;
+  for (std::size_t k = 0; k < s.caps.size(); ++k) {
+    sloped += s.cap_sloped[k];
+    if (s.cap_sloped[k]) EXPECT_EQ(s.cap_level[k], 0) << core::entity_name(s.caps[k]);
+  }
+  EXPECT_EQ(sloped, 5);
+  EXPECT_EQ(s.arrangement->num_faces(), 6);  // the pentagon's five triangles and the rest
+  // A ridge (from a corner of the pentagon up to the apex) lies over one arrangement edge.
+  int ridges = 0;
+  for (core::EdgeId e : n06.solid->edges()) {
+    const auto p = n06.solid->edge_points_by_length(e, 2);
+    if (std::abs(s.height(p[0]) - s.height(p[2])) < 1e-6 ||
+        (p[0] - p[2] - (p[0] - p[2]).dot(s.axis) * s.axis).norm() < 1e-6)
+      continue;
+    ++ridges;
+    EXPECT_EQ(occ::edge_in_structure(*n06.solid, s, e).arrangement_edges.size(), 1u)
+        << core::entity_name(e);
+  }
+  EXPECT_EQ(ridges, 5);
+  expect_valid_multisweep({"HexMe n06", n06.solid->clone(), true}, n06.solid->diagonal() / 20);
+
+  // The roof: every column's layers lean as its top does (mean 0.83 at diagonal / 20).
+  const occ::Solid roof = testing::make_block_with_hip_roof();
+  const occ::PrismaticStructure r = occ::prismatic_structure(roof);
+  ASSERT_TRUE(r.ok) << r.reason;
+  ASSERT_EQ(r.levels.size(), 2u);
+  EXPECT_NEAR(r.levels[1] - r.levels[0], 10, 1e-9);  // the apex at 18 is no level
+  expect_valid_multisweep({"block under a hip roof", roof.clone(), true}, roof.diagonal() / 20);
+  pipeline::MeshOptions opt;
+  opt.size = roof.diagonal() / 20;
+  opt.schemes = {"multisweep"};
+  opt.fallback = false;
+  opt.decompose = false;
+  const pipeline::MeshResult m = pipeline::generate_mesh(roof, opt);
+  ASSERT_TRUE(m.ok) << (m.diagnostics.empty() ? "" : core::format(m.diagnostics.back()));
+  EXPECT_GE(m.check.scaled_jacobian.min, 0.3);
+}
+
+// Sloped faces the multisweep does not take, with the reason naming the face: a pyramid
+// steeper than 60 degrees from the axis, and a pocket whose apex comes within a twentieth
+// of the slab's thickness of the top.
+TEST(Multisweep, SteepOrNearlyPiercingSlopesAreRefused) {
+  const occ::Solid steep = testing::cut(occ::make_box(30, 30, 20),
+                                        testing::make_pyramid(13, 17, 13, 17, -1, {15, 15, 12}));
+  EXPECT_FALSE(multisweep_applicable(steep).ok);
+  const occ::PrismaticStructure a = occ::prismatic_structure(steep, Vec3::UnitZ());
+  EXPECT_FALSE(a.ok);
+  EXPECT_NE(a.reason.find("degrees to the axis"), std::string::npos) << a.reason;
+  const occ::Solid deep = testing::cut(occ::make_box(30, 30, 20),
+                                       testing::make_pyramid(5, 25, 5, 25, -1, {15, 15, 19.5}));
+  const MultisweepApplicability b = multisweep_applicable(deep);
+  EXPECT_FALSE(b.ok);
+  EXPECT_NE(b.reason.find("twentieth"), std::string::npos) << b.reason;
 }
 
 // Not prismatic, with the reason naming the face: a plane at an angle to every axis of the

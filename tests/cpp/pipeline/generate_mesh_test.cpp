@@ -59,11 +59,11 @@ TEST(GenerateMesh, PlanarSolidsAreValidAndGoodBeforeSmoothing) {
   }
 }
 
-// Neither one scheme nor a decomposition meshes a cube with a pyramid pit (its Voronoi
+// Neither one scheme nor a decomposition meshes a cube with a steep pyramid pit (its Voronoi
 // decomposition fails, and the planes of the pit's faces leave wedges): without the
 // fallback it is refused, saying why.
 TEST(GenerateMesh, WithoutTheFallbackSolidsThatNothingMeshesAreRefused) {
-  const occ::Solid pit = testing::make_pyramid_pit();
+  const occ::Solid pit = testing::make_pyramid_pit(1.2);
   MeshOptions opt;
   opt.size = 0.25;
   opt.fallback = false;
@@ -449,7 +449,7 @@ TEST(GenerateMesh, ConvexPolyhedraAreMidpointSubdivided) {
 // by the grid mesher: valid against the CAD, and said so in a warning.
 TEST(GenerateMesh, TheFallbackMeshesWhatNoSchemeAcceptsAndSaysSo) {
   std::vector<Named> solids;
-  solids.push_back({"cube with a pyramid pit", testing::make_pyramid_pit()});
+  solids.push_back({"cube with a steep pyramid pit", testing::make_pyramid_pit(1.2)});
   for (const Named& s : solids) {
     SCOPED_TRACE(s.name);
     MeshOptions opt;
@@ -467,6 +467,13 @@ TEST(GenerateMesh, TheFallbackMeshesWhatNoSchemeAcceptsAndSaysSo) {
     // Every boundary node lies on the CAD (the check measures it against its entity).
     EXPECT_LT(r.check.max_boundary_distance_rel, 1e-7);
   }
+  // The shallower pit that was this test's example is one multisweep, its floor sloped caps.
+  MeshOptions opt;
+  opt.size = 0.2;
+  const MeshResult r = generate_mesh(testing::make_pyramid_pit(), opt);
+  ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics[0]));
+  EXPECT_EQ(r.stats.scheme, "multisweep");
+  EXPECT_GE(r.check.scaled_jacobian.min, 0.4);
 }
 
 // Where the grid mesher's mesh is invalid (HexMe i02 at the default size: inverted hexes
@@ -588,7 +595,7 @@ TEST(GenerateMesh, APoorValidGridMeshIsMadeAgainOnAFinerGridWhenThatIsBetter) {
 // filled in once known), at either element order - and the decomposition's time is no
 // longer added to the fallback's.
 TEST(GenerateMesh, TheFallbackBesideTheDecompositionGivesTheSameResult) {
-  const occ::Solid pit = testing::make_pyramid_pit();
+  const occ::Solid pit = testing::make_pyramid_pit(1.2);
   for (int order : {1, 2}) {
     SCOPED_TRACE(order);
     MeshOptions after;
