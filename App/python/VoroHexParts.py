@@ -293,8 +293,10 @@ def set_children(obj, solids, roles):
         child.Scheme = obj.Schemes[k] if k < len(obj.Schemes) else "none"
         child.SubVolumeType = obj.Types[k] if k < len(obj.Types) else ""
         child.FaceRoles = roles[k] if k < len(roles) else []
+        # Named after their decomposition: a second decomposition of the same part has its
+        # own (FreeCAD would otherwise number the repeated labels "...001").
         child.Label = "{} sub-volume {} ({})".format(
-            obj.Part.Label if obj.Part else obj.Label, k,
+            obj.Label, k,
             " ".join(t for t in (child.SubVolumeType, child.Scheme) if t))
         child.purgeTouched()
     obj.SubVolumeObjects = children

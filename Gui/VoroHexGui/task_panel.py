@@ -146,6 +146,9 @@ class TaskPanel:
         self.meshed = bool(obj.Status)  # a mesh (or an error) was made before or here
         self.load()
         self.show_result()
+        previews = [obj.Document.getObject(n) for n in getattr(obj, "PreviewObjects", [])]
+        if len(previews) == 2 and None not in previews:
+            self.show_preview(*previews)
         if self.obj.Status:
             self.form.progress.setValue(100 if self.obj.Status == "ok" else 0)
             self.form.progress.setFormat("last run: " + self.obj.Status)
@@ -623,7 +626,11 @@ class TaskPanel:
         if made is None:
             self.preview_status.setText(error or "Preview stopped.")
             return
-        graph, parts = made
+        self.show_preview(*made)
+
+    def show_preview(self, graph, parts):
+        """The preview's summary and the graph's edge types, as after Preview (also when the
+        panel reopens on a mesh whose preview objects are still in the document)."""
         text = "Graph: {}.".format(graph.Message)
         if parts.Status in ("ok", "partial"):
             n = parts.SubVolumeCount

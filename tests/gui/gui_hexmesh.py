@@ -211,6 +211,17 @@ def main():
           and all(o.Part == prism for o in made), "Preview made the graph and decomposition")
     preview = mw.findChild(QtGui.QLabel, "lbl_preview").text()
     check(preview.startswith("Graph: ") and "Decomposition" in preview, "preview: " + preview)
+    # Reopened, the panel shows the preview it made (its objects are still in the document).
+    Gui.ActiveDocument.resetEdit()
+    pump(0.5)
+    Gui.ActiveDocument.setEdit(chamfered.Name)
+    pump(1.0)
+    again = mw.findChild(QtGui.QLabel, "lbl_preview").text()
+    check(again == preview, "reopened, the panel shows the preview: " + again)
+    legend = mw.findChild(QtGui.QTableWidget, "tbl_preview_edge_types")
+    check(legend is not None and not legend.isHidden() and legend.rowCount() > 0,
+          "and the graph's edge-type legend (in its section, collapsed on opening)")
+    listing = mw.findChild(QtGui.QListWidget, "lw_diagnostics")
     for o in made:
         o.ViewObject.Visibility = False
     Gui.Selection.clearSelection()

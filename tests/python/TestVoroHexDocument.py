@@ -161,6 +161,15 @@ class TestVoroHexObject(BoxDocument, unittest.TestCase):
         self.assertAlmostEqual(sum(s.Volume for s in d.Shape.Solids), 18.0, places=6)
         self.assertEqual(sorted(d.Types), ["Ve", "Vs", "Vs"])
         self.assertEqual(len(d.FaceRoles), len(d.Shape.Faces))
+        # A second decomposition of the part: its sub-volumes are named after it, so no
+        # label repeats (FreeCAD would number them "...001").
+        d2 = VoroHexParts.makeDecomposition(self.doc, l_shape, merge=False, method="voronoi")
+        labels = [c.Label for c in list(d.SubVolumeObjects) + list(d2.SubVolumeObjects)]
+        self.assertEqual(len(set(labels)), 6, labels)
+        for parent in (d, d2):
+            for c in parent.SubVolumeObjects:
+                self.assertTrue(c.Label.startswith(parent.Label + " sub-volume "), c.Label)
+        VoroHexParts.remove(d2)
         # The two cuts are faces of two sub-volumes each.
         self.assertEqual(d.DecompositionFaceCount, 2)
         self.assertEqual(list(d.FaceRoles).count("decomposition"), 4)
