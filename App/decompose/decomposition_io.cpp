@@ -263,6 +263,7 @@ std::string plane_cuts_json(const PlaneCutResult& cut, const PlaneCutSchemes& sc
                                  {"kind", c.cylinder      ? "cylinder"
                                           : c.tangent     ? "tangent_plane"
                                           : c.around_hole ? "hole_plane"
+                                          : c.at_foot     ? "foot_plane"
                                                           : "plane"},
                                  {"face", core::entity_name(c.face)},
                                  {"concave_edges", edges},

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "core/option_checks.h"
+#include "decompose/detail/foot_planes.h"
 #include "decompose/detail/hole_planes.h"
 #include "mesh/map_block.h"
 #include "mesh/mesh_sub_volumes.h"
@@ -43,6 +44,7 @@ struct Plane {
   std::vector<EdgeId> edges;  // the concave edges it is taken at
   bool tangent = false;       // tangent to the cylinder of `face`, in its place
   bool around_hole = false;   // around the hole of `face` (detail/hole_planes.h)
+  bool at_foot = false;       // across the foot of the tapered `face` (detail/foot_planes.h)
 };
 
 // A cylinder to cut along, the model face it extends and the concave edges it is taken at.
@@ -520,6 +522,7 @@ std::string surface_text(const CutSurface& s, bool with_edges) {
   std::string t = std::string(s.cylinder      ? "the cylinder of "
                               : s.tangent     ? "the plane tangent to the cylinder of "
                               : s.around_hole ? "a plane around the hole of "
+                              : s.at_foot     ? "the plane across the foot of "
                                               : "the plane of ") +
                   core::entity_name(s.face);
   if (!with_edges || s.edges.empty()) return t;
@@ -553,12 +556,18 @@ std::string used_surfaces_text(const PlaneCutResult& cut, std::size_t at_most, b
 }
 
 std::string cut_kind_text(const PlaneCutResult& cut) {
-  bool holes = false, concave = false;
+  bool holes = false, concave = false, feet = false;
   for (const CutSurface& s : cut.surfaces)
-    if (s.used) (s.around_hole ? holes : concave) = true;
-  return holes && !concave ? "planes around its holes"
-         : holes           ? "the faces at its concave edges and planes around its holes"
-                           : "the faces at its concave edges";
+    if (s.used) (s.around_hole ? holes : s.at_foot ? feet : concave) = true;
+  std::vector<std::string> kinds;
+  if (concave) kinds.push_back("the faces at its concave edges");
+  if (holes) kinds.push_back("planes around its holes");
+  if (feet) kinds.push_back("planes across the feet of its tapered faces");
+  if (kinds.empty()) return "the faces at its concave edges";
+  std::string t = kinds[0];
+  for (std::size_t k = 1; k < kinds.size(); ++k)
+    t += (k + 1 == kinds.size() ? " and " : ", ") + kinds[k];
+  return t;
 }
 
 std::string left_out_text(const PlaneCutResult& cut) {
@@ -676,7 +685,7 @@ PlaneCutResult cut_along(const occ::Solid& solid, std::vector<Plane> planes,
   }
   progress.report("plane_cuts", 0.0);
   for (const Plane& pl : planes)
-    r.surfaces.push_back({false, pl.tangent, pl.face, pl.edges, true, pl.around_hole});
+    r.surfaces.push_back({false, pl.tangent, pl.face, pl.edges, true, pl.around_hole, pl.at_foot});
   for (const Cylinder& c : cylinders) r.surfaces.push_back({true, false, c.face, c.edges, true});
   const double whole = solid.volume();
   std::vector<occ::Solid> pieces;
@@ -844,6 +853,22 @@ PlaneCutResult cut_as_the_mesher(const occ::Solid& solid, const PlaneCutOptions&
     PlaneCutResult around = cut_along(solid, std::move(with), cylinders, around_options,
                                       left() - until, progress, holes);
     if (around.ok) return around;
+  }
+  // Fourth: with planes across the feet of its tapered faces (a block with chamfered top
+  // edges, which has no concave edge: a block and a tapered slab), each axis's set in turn,
+  // within the same share of the time as the planes around holes.
+  const double feet_until = left() - std::min(0.25 * options.time_limit, kAroundSeconds);
+  for (const std::vector<detail::FootPlane>& set : detail::foot_plane_sets(solid)) {
+    if (left() <= feet_until) break;
+    std::vector<Plane> with = planes;
+    for (const detail::FootPlane& f : set) {
+      Plane pl{f.normal, f.offset, f.face, f.edges};
+      pl.at_foot = true;
+      add_plane(with, pl, tol);
+    }
+    PlaneCutResult feet =
+        cut_along(solid, std::move(with), cylinders, around_options, left() - feet_until, progress);
+    if (feet.ok) return feet;
   }
   return cut;
 }

@@ -415,4 +415,13 @@ MidpointResult midpoint_subdivide(const core::MeshDomain& solid, const MidpointO
   return r;
 }
 
+double midpoint_coarse_quality(const core::MeshDomain& solid) {
+  MidpointOptions o;
+  o.size = 10 * solid.diagonal();  // one subdivision: the coarse hexahedra
+  const MidpointResult r = midpoint_subdivide(solid, o);
+  if (!r.ok || r.mesh.num_hexes() == 0) return 1;
+  const std::vector<double> sj = quality::scaled_jacobians(r.mesh);
+  return *std::min_element(sj.begin(), sj.end());
+}
+
 }  // namespace vorohex::mesh

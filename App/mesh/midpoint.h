@@ -51,4 +51,14 @@ struct MidpointResult {
 MidpointResult midpoint_subdivide(const core::MeshDomain& solid, const MidpointOptions& options,
                                   const core::Progress& progress = {});
 
+// Below this minimum scaled Jacobian before smoothing a midpoint subdivision is poor: the
+// mesher tries the solid's decomposition first and keeps whichever meshes better (a block
+// with chamfered top edges: 0.07, where a block and a tapered slab give 0.58; HexMe's
+// convex polyhedra start at 0.34).
+constexpr double kPoorMidpointQuality = 0.2;
+
+// The smallest scaled Jacobian of the coarse hexahedra (unrefined: what bounds the refined
+// mesh's); 1 where the solid is refused.
+double midpoint_coarse_quality(const core::MeshDomain& solid);
+
 }  // namespace vorohex::mesh

@@ -14,6 +14,7 @@
 #include "io/named_groups.h"
 #include "mesh/assemble.h"
 #include "mesh/mesh_sub_volumes.h"
+#include "mesh/midpoint.h"
 #include "pipeline/detail/decompose_isolated.h"
 #include "pipeline/detail/fallback.h"
 #include "pipeline/detail/fallback_bytes.h"
@@ -22,6 +23,7 @@
 #include "pipeline/detail/part_warnings.h"
 #include "pipeline/detail/schemes.h"
 #include "quality/check_mesh.h"
+#include "quality/scaled_jacobian.h"
 
 namespace vorohex::pipeline {
 namespace {
@@ -127,6 +129,12 @@ MeshResult generate_mesh(const occ::Solid& solid, const MeshOptions& options,
 }
 
 namespace {
+// The smallest scaled Jacobian of a mesh's hexahedra (1 for an empty mesh).
+double min_scaled_jacobian(const core::HexMesh& mesh) {
+  const std::vector<double> sj = quality::scaled_jacobians(mesh);
+  return sj.empty() ? 1 : *std::min_element(sj.begin(), sj.end());
+}
+
 // How mesh_solid hands a solid no structured scheme meshes to the fallback: at once (the
 // several-solids path, which smooths all solids' meshes together), or back to the caller
 // (`deferred`: `needed` and `why` set; the caller runs it, perhaps started beside the
@@ -156,7 +164,27 @@ bool mesh_solid(const occ::Solid& solid, const MeshOptions& options, const core:
   auto add_reason = [&](const std::string& why) {
     why_not_structured += (why_not_structured.empty() ? "" : ". ") + why;
   };
-  for (const auto& scheme : detail::make_schemes(options.schemes)) {
+  auto take = [&](const detail::Scheme& scheme, detail::SchemeMesh& meshed) {
+    append(result.diagnostics, meshed.diagnostics);
+    result.stats.intervals = meshed.intervals;
+    result.stats.scheme = scheme.name();
+    result.mesh = std::move(meshed.mesh);
+    result.absorbed = std::move(meshed.absorbed);
+    if (!meshed.summary.code.empty()) result.diagnostics.push_back(meshed.summary);
+    if (!sizes.uniform() && !scheme.grades()) {
+      result.diagnostics.push_back(local_sizes_ignored(scheme.name()));
+      result.stats.local_sizes.clear();  // none applied
+    }
+  };
+  // A midpoint subdivision poorer than mesh::kPoorMidpointQuality before smoothing (a convex
+  // block with chamfered edges: 0.07, 0.15 smoothed) is held while the decomposition is
+  // tried: a decomposition that meshes at least as well replaces it (the chamfered block: a
+  // block and a tapered slab, 0.58), else it is taken.
+  const auto schemes = detail::make_schemes(options.schemes);
+  const detail::Scheme* held_scheme = nullptr;
+  detail::SchemeMesh held;
+  double held_min = 0;
+  for (const auto& scheme : schemes) {
     const detail::SchemeCheck check = scheme->applicable(solid);
     if (!check.ok) {
       add_reason(check.reason);
@@ -173,17 +201,16 @@ bool mesh_solid(const occ::Solid& solid, const MeshOptions& options, const core:
     }
     detail::SchemeMesh meshed = scheme->compute(solid, sizes, progress);
     result.stats.seconds_meshing = seconds_since(t0);
-    if (meshed.ok) {
-      append(result.diagnostics, meshed.diagnostics);
-      result.stats.intervals = meshed.intervals;
-      result.stats.scheme = scheme->name();
-      result.mesh = std::move(meshed.mesh);
-      result.absorbed = std::move(meshed.absorbed);
-      if (!meshed.summary.code.empty()) result.diagnostics.push_back(meshed.summary);
-      if (!sizes.uniform() && !scheme->grades()) {
-        result.diagnostics.push_back(local_sizes_ignored(scheme->name()));
-        result.stats.local_sizes.clear();  // none applied
+    if (meshed.ok && std::string(scheme->name()) == "midpoint" && options.decompose &&
+        !held_scheme) {
+      const double m = min_scaled_jacobian(meshed.mesh);
+      if (m < mesh::kPoorMidpointQuality) {
+        held_scheme = scheme.get(), held = std::move(meshed), held_min = m;
+        continue;
       }
+    }
+    if (meshed.ok) {
+      take(*scheme, meshed);
       return true;
     }
     if (progress.cancelled()) {
@@ -208,6 +235,31 @@ bool mesh_solid(const occ::Solid& solid, const MeshOptions& options, const core:
   if (options.schemes.empty()) why_not_structured = "No single-solid scheme is enabled";
   why_not_structured += ".";
   std::string not_decomposed = "decomposition is off";
+  if (held_scheme) {
+    // The held midpoint mesh against the decomposition's (no fallback needed either way).
+    MeshResult before = result;
+    std::ostringstream m;
+    m.precision(3);
+    m << "The midpoint subdivision's minimum scaled Jacobian is only " << held_min
+      << " before smoothing";
+    if (detail::mesh_decomposed(solid, options, sizes, progress, result, not_decomposed)) {
+      const double cut = min_scaled_jacobian(result.mesh);
+      if (cut >= held_min) {
+        m << "; its decomposition's is " << cut << ": that is used.";
+        result.diagnostics.push_back(core::make_info("midpoint_replaced", m.str(), {"midpoint"}));
+        return true;
+      }
+      m << "; its decomposition's is lower (" << cut << "): the midpoint subdivision is used.";
+    } else {
+      m << ", and its decomposition did not help (" << not_decomposed
+        << "): the midpoint subdivision is used.";
+    }
+    if (progress.cancelled()) return false;
+    result = std::move(before);
+    take(*held_scheme, held);
+    result.diagnostics.push_back(core::make_info("midpoint_kept", m.str(), {"midpoint"}));
+    return true;
+  }
   if (options.decompose) {
     if (deferred && deferred->before_decomposition && options.fallback)
       deferred->before_decomposition();

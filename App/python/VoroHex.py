@@ -752,7 +752,9 @@ class Decomposition:
     cut_surfaces (plane cuts only): why each cut is where it is, a dict per surface with
     "kind" ("plane"/"cylinder"/"tangent_plane": tangent to the cylinder of "face"/
     "hole_plane": parallel to the axis of the hole "face" is on, about 1.5 radii from it,
-    where the cut at concave edges alone fails; method "auto" only),
+    where the cut at concave edges alone fails; "foot_plane": across an axis where the
+    tapered "face" (a chamfer, a cone) meets a wall, where the others fail; method "auto"
+    only),
     "face" (the model face it extends, "Face7"), "concave_edges" (where it is taken,
     ["Edge12", ...]) and "used" (False: left out); knife_edges: pieces meet at an angle near
     zero where a planar face touches a cylinder cut along (the mesher then tries

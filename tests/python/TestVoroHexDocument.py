@@ -383,6 +383,28 @@ class TestVoroHexObject(BoxDocument, unittest.TestCase):
         obj.SmoothIterations = -5  # the constraint keeps it >= 0
         self.assertEqual(obj.SmoothIterations, 0)
 
+    def test_part_chamfer_is_a_block_and_a_tapered_slab(self):
+        # A box with its four top edges chamfered by Part's Chamfer feature: convex, so the
+        # midpoint subdivision takes it (min 0.15), poorly; cut across the chamfers' foot it
+        # is a block and a tapered slab, both mapped, and the mesh object says why.
+        box = self.doc.addObject("Part::Box", "Block")
+        box.Length, box.Width, box.Height = 40, 30, 20
+        self.doc.recompute()
+        chamfer = self.doc.addObject("Part::Chamfer", "Chamfer")
+        chamfer.Base = box
+        top = [i + 1 for i, e in enumerate(box.Shape.Edges)
+               if abs(e.BoundBox.ZMin - 20) < 1e-9 and abs(e.BoundBox.ZMax - 20) < 1e-9]
+        chamfer.Edges = [(i, 3.0, 3.0) for i in top]
+        self.doc.recompute()
+        self.assertEqual(len(chamfer.Shape.Faces), 10)
+        obj = VoroHexObjects.makeHexMesh(self.doc, chamfer)
+        self.doc.recompute()
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        self.assertEqual((obj.Scheme, obj.SubVolumeCount), ("map", 2))
+        self.assertGreaterEqual(obj.MinScaledJacobian, 0.55)
+        self.assertTrue(any("[midpoint_replaced]" in line for line in obj.Diagnostics),
+                        list(obj.Diagnostics))
+
     def test_recompute_with_smoothing_off_and_on(self):
         cyl = self.doc.addObject("Part::Cylinder", "Cylinder")
         cyl.Radius, cyl.Height = 5, 10

@@ -369,7 +369,18 @@ Scheme whole_solid_scheme(const occ::Solid& solid, const DecomposeOptions& optio
     why += "; revolve: " + rev.reason;
   }
   const mesh::Applicability mid = mesh::midpoint_applicable(solid);
-  if (mid.ok) return *reason = "a convex cell (midpoint subdivision)", Scheme::midpoint;
+  if (mid.ok) {
+    // A poor one is what the mesher holds while it tries the decomposition (generate_mesh).
+    const double q = mesh::midpoint_coarse_quality(solid);
+    if (q >= mesh::kPoorMidpointQuality)
+      return *reason = "a convex cell (midpoint subdivision)", Scheme::midpoint;
+    std::ostringstream m;
+    m.precision(3);
+    m << "; midpoint: a convex cell whose subdivision is poor (min scaled Jacobian " << q
+      << "): the mesher tries its decomposition first";
+    *reason = why + m.str();
+    return Scheme::none;
+  }
   *reason = why + "; midpoint: " + mid.reason;
   return Scheme::none;
 }

@@ -1,0 +1,30 @@
+// Planes across an axis at the foot of a tapered face: where a chamfer along a block's top
+// edges, or a countersink's cone, meets a wall (a face parallel to the axis) along an edge at
+// one height. A block with its top edges chamfered is convex and has no concave edge, so
+// the cuts at concave edges never touch it, and no one scheme takes it well (the midpoint
+// subdivision: min scaled Jacobian 0.15); cut at the chamfers' foot it is a block and a
+// tapered slab swept from its wide face to its narrow one, what a Cubit user webcuts.
+// Internal to App/decompose (the plane cuts' fourth try, docs/decomposition.md).
+#pragma once
+
+#include <vector>
+
+#include "occ/solid.h"
+
+namespace vorohex::decompose::detail {
+
+// The plane normal . x = offset through the foot of tapered model face `face`, at `edges`.
+struct FootPlane {
+  core::Vec3 normal;  // unit, along the axis
+  double offset = 0;
+  core::FaceId face;
+  std::vector<core::EdgeId> edges;
+};
+
+// The sets to try, one per axis (the directions of the solid's planes and cylinders),
+// fewest planes first: the planes at the feet of the faces tapered to that axis (planes and
+// cones, neither parallel nor across it) where they meet a wall along an edge at one height
+// strictly inside the solid's extent along the axis.
+std::vector<std::vector<FootPlane>> foot_plane_sets(const occ::Solid& solid);
+
+}  // namespace vorohex::decompose::detail
