@@ -514,11 +514,22 @@ PrismaticStructure prismatic_structure(const core::MeshDomain& solid, const Vec3
     std::vector<Vec3> axes =
         axis.norm() > 0 ? std::vector<Vec3>{canonical(axis)} : candidate_axes(solid);
     bool found = false;
+    // Refused along every axis: the reason along the one whose caps (planar faces across
+    // it) have the most area, the axis a user would sweep along (a block with a steep pit:
+    // its top and bottom's, where the pit's faces are too steep, not the sides').
     std::string first_reason;
+    double most_cap_area = -1;
     for (const Vec3& a : axes) {
       PrismaticStructure s = structure_for(solid, a);
       if (!s.ok) {
-        if (first_reason.empty()) first_reason = s.reason;
+        double cap_area = 0;
+        for (FaceId f : solid.faces()) {
+          const core::SurfaceInfo info = solid.surface_info(f);
+          if (info.kind == core::SurfaceKind::plane &&
+              std::abs(std::abs(info.direction.normalized().dot(a)) - 1) < 1e-9)
+            cap_area += solid.area(f);
+        }
+        if (cap_area > most_cap_area) first_reason = s.reason, most_cap_area = cap_area;
         continue;
       }
       const auto rank = [](const PrismaticStructure& p) {
