@@ -831,7 +831,6 @@ PlaneCutResult cut_as_the_mesher(const occ::Solid& solid, const PlaneCutOptions&
   // half that many pieces (more planes only add to them: HexMe i02, i24 and n05, 31 to 38
   // pieces, 95 to 232 with the planes, 3 to 4 s each).
   constexpr int kAroundPieces = 40;
-  if (cut.pieces_before_merge > kAroundPieces / 2) return cut;
   std::vector<Plane> planes;
   std::vector<Cylinder> cylinders;
   std::string why;
@@ -841,7 +840,9 @@ PlaneCutResult cut_as_the_mesher(const occ::Solid& solid, const PlaneCutOptions&
   around_options.max_pieces = std::min(options.max_pieces, kAroundPieces);
   const double until = left() - std::min(0.25 * options.time_limit, kAroundSeconds);
   const double tol = 1e-7 * solid.diagonal();
-  const auto sets = detail::hole_plane_sets(solid);
+  const auto sets = cut.pieces_before_merge > kAroundPieces / 2
+                        ? std::vector<std::vector<detail::HolePlane>>{}
+                        : detail::hole_plane_sets(solid);
   for (const std::vector<detail::HolePlane>& set : sets) {
     if (left() <= until) break;
     std::vector<Plane> with = planes;
@@ -858,10 +859,10 @@ PlaneCutResult cut_as_the_mesher(const occ::Solid& solid, const PlaneCutOptions&
   // edges, which has no concave edge: a block and a tapered slab), each axis's set in turn,
   // within the same share of the time as the planes around holes.
   const double feet_until = left() - std::min(0.25 * options.time_limit, kAroundSeconds);
-  for (const std::vector<detail::FootPlane>& set : detail::foot_plane_sets(solid)) {
+  for (const detail::FootPlaneSet& set : detail::foot_plane_sets(solid)) {
     if (left() <= feet_until) break;
     std::vector<Plane> with = planes;
-    for (const detail::FootPlane& f : set) {
+    for (const detail::FootPlane& f : set.planes) {
       Plane pl{f.normal, f.offset, f.face, f.edges};
       pl.at_foot = true;
       add_plane(with, pl, tol);

@@ -11,48 +11,55 @@ using core::Vec3;
 
 namespace {
 
-// The axis of a plane (its normal) or of a cylinder or cone, unit; zero for other faces.
+// The axis of a planar face (its normal: a plane, or a B-spline that is flat, as lofts
+// leave them) or of a cylinder or cone, unit; zero for other faces.
 Vec3 axis_of(const occ::Solid& s, FaceId f) {
+  if (s.face_is_planar(f)) {
+    const auto wires = s.face_wires(f);
+    if (wires.empty() || wires[0].empty()) return Vec3::Zero();
+    const Vec3 n = s.face_normal(f, s.vertex_point(s.edge_first_vertex(wires[0][0].edge)));
+    return n.norm() > 0 ? Vec3(n.normalized()) : Vec3::Zero();
+  }
   const core::SurfaceInfo info = s.surface_info(f);
-  if (info.kind != core::SurfaceKind::plane && info.kind != core::SurfaceKind::cylinder &&
-      info.kind != core::SurfaceKind::cone)
+  if (info.kind != core::SurfaceKind::cylinder && info.kind != core::SurfaceKind::cone)
     return Vec3::Zero();
   return info.direction.norm() > 0 ? Vec3(info.direction.normalized()) : Vec3::Zero();
 }
 
-// Face f parallel to axis a (a wall): a plane whose normal is across it, a cylinder along it.
+// Face f parallel to axis a (a wall): a planar face whose normal is across it, a cylinder
+// along it.
 bool wall(const occ::Solid& s, FaceId f, const Vec3& a) {
-  const core::SurfaceInfo info = s.surface_info(f);
   const Vec3 d = axis_of(s, f);
-  if (info.kind == core::SurfaceKind::plane) return std::abs(d.dot(a)) < 1e-9;
-  if (info.kind == core::SurfaceKind::cylinder) return std::abs(std::abs(d.dot(a)) - 1) < 1e-9;
-  return false;
+  if (d.norm() == 0) return false;
+  if (s.face_is_planar(f)) return std::abs(d.dot(a)) < 1e-9;
+  return s.surface_info(f).kind == core::SurfaceKind::cylinder &&
+         std::abs(std::abs(d.dot(a)) - 1) < 1e-9;
 }
 
-// Face f tapered to axis a: a plane neither along nor across it, or a cone about it.
+// Face f tapered to axis a: a planar face neither along nor across it, or a cone about it.
 bool tapered(const occ::Solid& s, FaceId f, const Vec3& a) {
-  const core::SurfaceInfo info = s.surface_info(f);
-  const double c = std::abs(axis_of(s, f).dot(a));
-  if (info.kind == core::SurfaceKind::plane) return c > 1e-6 && c < 1 - 1e-6;
-  if (info.kind == core::SurfaceKind::cone) return std::abs(c - 1) < 1e-9;
-  return false;
+  const Vec3 d = axis_of(s, f);
+  if (d.norm() == 0) return false;
+  const double c = std::abs(d.dot(a));
+  if (s.face_is_planar(f)) return c > 1e-6 && c < 1 - 1e-6;
+  return s.surface_info(f).kind == core::SurfaceKind::cone && std::abs(c - 1) < 1e-9;
 }
 
 }  // namespace
 
-std::vector<std::vector<FootPlane>> foot_plane_sets(const occ::Solid& solid) {
+std::vector<FootPlaneSet> foot_plane_sets(const occ::Solid& solid) {
   const double tol = 1e-7 * solid.diagonal();
   std::vector<Vec3> axes;
   for (FaceId f : solid.faces()) {
-    const core::SurfaceInfo info = solid.surface_info(f);
-    if (info.kind != core::SurfaceKind::plane && info.kind != core::SurfaceKind::cylinder) continue;
+    if (!solid.face_is_planar(f) && solid.surface_info(f).kind != core::SurfaceKind::cylinder)
+      continue;
     const Vec3 d = axis_of(solid, f);
     if (d.norm() == 0) continue;
     bool known = false;
     for (const Vec3& o : axes) known = known || std::abs(o.dot(d)) > 1 - 1e-9;
     if (!known) axes.push_back(d);
   }
-  std::vector<std::vector<FootPlane>> sets;
+  std::vector<FootPlaneSet> sets;
   for (const Vec3& a : axes) {
     // The solid's extent along a: a foot plane at either end cuts nothing off.
     double lo = 1e300, hi = -1e300;
@@ -84,10 +91,16 @@ std::vector<std::vector<FootPlane>> foot_plane_sets(const occ::Solid& solid) {
           }
         }
     }
-    if (!set.empty()) sets.push_back(std::move(set));
+    if (set.empty()) continue;
+    // The area of the planar faces across a: the axis a user would sweep along first.
+    double caps = 0;
+    for (FaceId f : solid.faces())
+      if (solid.face_is_planar(f) && std::abs(std::abs(axis_of(solid, f).dot(a)) - 1) < 1e-9)
+        caps += solid.area(f);
+    sets.push_back({a, std::move(set), caps});
   }
   std::stable_sort(sets.begin(), sets.end(),
-                   [](const auto& x, const auto& y) { return x.size() < y.size(); });
+                   [](const auto& x, const auto& y) { return x.cap_area > y.cap_area; });
   return sets;
 }
 

@@ -21,10 +21,17 @@ struct FootPlane {
   std::vector<core::EdgeId> edges;
 };
 
-// The sets to try, one per axis (the directions of the solid's planes and cylinders),
-// fewest planes first: the planes at the feet of the faces tapered to that axis (planes and
-// cones, neither parallel nor across it) where they meet a wall along an edge at one height
-// strictly inside the solid's extent along the axis.
-std::vector<std::vector<FootPlane>> foot_plane_sets(const occ::Solid& solid);
+// Per axis (the directions of the solid's planar faces and cylinders): the planes at the
+// feet of the faces tapered to it (planar faces neither along nor across it, cones about
+// it) where they meet a wall along an edge at one height strictly inside the solid's extent
+// along the axis; axes with none are left out.
+struct FootPlaneSet {
+  core::Vec3 axis;  // unit
+  std::vector<FootPlane> planes;
+  double cap_area = 0;  // of the planar faces across the axis
+};
+// The axes whose planar faces across them have the most area first (the axis a user would
+// sweep along: a chamfered block's z, not its chamfers' normals).
+std::vector<FootPlaneSet> foot_plane_sets(const occ::Solid& solid);
 
 }  // namespace vorohex::decompose::detail

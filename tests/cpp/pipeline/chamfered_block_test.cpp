@@ -24,11 +24,11 @@ TEST(FootPlanes, AChamferedBlockIsCutAcrossItsChamfersFoot) {
   // chamfers' own normals.
   const auto sets = decompose::detail::foot_plane_sets(block);
   ASSERT_GE(sets.size(), 3u);
-  ASSERT_EQ(sets[0].size(), 1u);
-  EXPECT_NEAR(std::abs(sets[0][0].normal.z()), 1, 1e-12);
-  EXPECT_NEAR(std::abs(sets[0][0].offset), 17, 1e-9);
-  EXPECT_EQ(sets[0][0].edges.size(), 4u);
-  EXPECT_EQ(sets[1].size(), 2u);
+  ASSERT_EQ(sets[0].planes.size(), 1u);
+  EXPECT_NEAR(std::abs(sets[0].axis.z()), 1, 1e-12);
+  EXPECT_NEAR(std::abs(sets[0].planes[0].offset), 17, 1e-9);
+  EXPECT_EQ(sets[0].planes[0].edges.size(), 4u);
+  EXPECT_EQ(sets[1].planes.size(), 2u);
   // The midpoint subdivision is poor; the mesher's cut is two blocks.
   EXPECT_LT(mesh::midpoint_coarse_quality(block), mesh::kPoorMidpointQuality);
   const decompose::PlaneCutResult cut = decompose::cut_as_the_mesher(block, {});
