@@ -522,13 +522,7 @@ PrismaticStructure prismatic_structure(const core::MeshDomain& solid, const Vec3
     for (const Vec3& a : axes) {
       PrismaticStructure s = structure_for(solid, a);
       if (!s.ok) {
-        double cap_area = 0;
-        for (FaceId f : solid.faces()) {
-          const core::SurfaceInfo info = solid.surface_info(f);
-          if (info.kind == core::SurfaceKind::plane &&
-              std::abs(std::abs(info.direction.normalized().dot(a)) - 1) < 1e-9)
-            cap_area += solid.area(f);
-        }
+        const double cap_area = area_across(solid, a);
         if (cap_area > most_cap_area) first_reason = s.reason, most_cap_area = cap_area;
         continue;
       }
@@ -549,13 +543,26 @@ PrismaticStructure prismatic_structure(const core::MeshDomain& solid, const Vec3
   return best;
 }
 
+double area_across(const core::MeshDomain& solid, const Vec3& axis) {
+  double area = 0;
+  for (FaceId f : solid.faces()) {
+    if (!solid.face_is_planar(f)) continue;
+    const auto wires = solid.face_wires(f);
+    if (wires.empty() || wires[0].empty()) continue;
+    const Vec3 n =
+        solid.face_normal(f, solid.vertex_point(solid.edge_first_vertex(wires[0][0].edge)));
+    if (std::abs(std::abs(n.normalized().dot(axis)) - 1) < 1e-9) area += solid.area(f);
+  }
+  return area;
+}
+
 EdgeInStructure edge_in_structure(const core::MeshDomain& solid, const PrismaticStructure& s,
                                   EdgeId e) {
   EdgeInStructure out;
   if (!s.ok || solid.edge_is_degenerated(e)) return out;
   const double tol = std::max(1e-6 * solid.diagonal(), 10 * solid.tolerance());
   double lo = 1e300, hi = -1e300;
-  const std::vector<Vec3> samples = solid.edge_points_by_length(e, 64);
+  const std::vector<Vec3> samples = solid.edge_points_by_length(e, 8);
   bool vertical = true;
   for (const Vec3& q : samples) {
     lo = std::min(lo, s.height(q));
@@ -579,16 +586,17 @@ EdgeInStructure edge_in_structure(const core::MeshDomain& solid, const Prismatic
     // point of e over a middle m: from the nearest sample, alternately onto e and back onto
     // the axis line through m (it converges, the edge being less steep than 60 degrees).
     auto flat = [&](const Vec3& q) { return Vec3(q - s.height(q) * s.axis); };
+    const std::vector<Vec3> fine = solid.edge_points_by_length(e, 64);
     double spacing = 0;
-    for (std::size_t i = 1; i < samples.size(); ++i)
-      spacing = std::max(spacing, (samples[i] - samples[i - 1]).norm());
+    for (std::size_t i = 1; i < fine.size(); ++i)
+      spacing = std::max(spacing, (fine[i] - fine[i - 1]).norm());
     for (EdgeId a : s.arrangement->edges()) {
       const Vec3 m = s.arrangement->edge_points_by_length(a, 2)[1];
       std::size_t best = 0;
-      for (std::size_t i = 1; i < samples.size(); ++i)
-        if ((flat(samples[i]) - flat(m)).norm() < (flat(samples[best]) - flat(m)).norm()) best = i;
-      if ((flat(samples[best]) - flat(m)).norm() > spacing + tol) continue;
-      Vec3 q = m + (s.height(samples[best]) - s.height(m)) * s.axis;
+      for (std::size_t i = 1; i < fine.size(); ++i)
+        if ((flat(fine[i]) - flat(m)).norm() < (flat(fine[best]) - flat(m)).norm()) best = i;
+      if ((flat(fine[best]) - flat(m)).norm() > spacing + tol) continue;
+      Vec3 q = m + (s.height(fine[best]) - s.height(m)) * s.axis;
       for (int k = 0; k < 100; ++k) {
         const Vec3 next = m + (s.height(solid.project_to_edge(e, q)) - s.height(m)) * s.axis;
         const bool still = (next - q).norm() <= 1e-3 * tol;

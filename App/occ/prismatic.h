@@ -54,6 +54,10 @@ struct PrismaticStructure {
 PrismaticStructure prismatic_structure(const core::MeshDomain& solid,
                                        const Vec3& axis = Vec3::Zero());
 
+// The area of the solid's planar faces across unit `axis` (planes, and B-splines that are
+// flat): the caps of a sweep along it, how much the solid looks swept that way.
+double area_across(const core::MeshDomain& solid, const Vec3& axis);
+
 // Where an edge of the solid lies in the structure: an edge at one height or on a sloped cap
 // over arrangement edges (their ids; their counts sum to the edge's), or an edge along the axis
 // over slabs (their indices; their layers sum to its count). Neither (empty) for a degenerated edge

@@ -613,7 +613,10 @@ class CheckCommand(unittest.TestCase):
         self.assertEqual(code, 2, stderr)
 
 
-if __name__ == "__main__":
+def main():
+    """Runs the tests of the script started (this one, test_cli_inspect, test_cli_fea) with
+    the vorohex binary and the examples folder from its arguments."""
+    global VOROHEX, EXAMPLES
     VOROHEX, EXAMPLES = sys.argv[1], sys.argv[2]
     result = unittest.main(argv=[sys.argv[0], "-v"], exit=False).result
     # A skip is reported to ctest as one (exit 77, SKIP_RETURN_CODE), with its reasons here;
@@ -621,3 +624,7 @@ if __name__ == "__main__":
     for test, reason in result.skipped:
         print("SKIPPED {}: {}".format(test.id(), reason))
     sys.exit(1 if not result.wasSuccessful() else 77 if result.skipped else 0)
+
+
+if __name__ == "__main__":
+    main()

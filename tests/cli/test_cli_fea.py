@@ -213,8 +213,4 @@ class FeaDecks(unittest.TestCase):
 
 
 if __name__ == "__main__":
-    test_cli.VOROHEX, test_cli.EXAMPLES = sys.argv[1], sys.argv[2]
-    result = unittest.main(argv=[sys.argv[0], "-v"], exit=False).result
-    for test, reason in result.skipped:
-        print("SKIPPED {}: {}".format(test.id(), reason))
-    sys.exit(1 if not result.wasSuccessful() else 77 if result.skipped else 0)
+    test_cli.main()

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "occ/prismatic.h"
+
 namespace vorohex::decompose::detail {
 
 using core::EdgeId;
@@ -11,53 +13,57 @@ using core::Vec3;
 
 namespace {
 
-// The axis of a planar face (its normal: a plane, or a B-spline that is flat, as lofts
-// leave them) or of a cylinder or cone, unit; zero for other faces.
-Vec3 axis_of(const occ::Solid& s, FaceId f) {
+// What a face is to the feet planes, found once: a planar face (a plane, or a B-spline that
+// is flat, as lofts leave them) with its unit normal, a cylinder or a cone with its unit
+// axis, or another face (no direction).
+struct FaceAxis {
+  enum Kind { other, planar, cylinder, cone } kind = other;
+  Vec3 d = Vec3::Zero();
+};
+
+FaceAxis face_axis(const occ::Solid& s, FaceId f) {
+  FaceAxis out;
   if (s.face_is_planar(f)) {
     const auto wires = s.face_wires(f);
-    if (wires.empty() || wires[0].empty()) return Vec3::Zero();
+    if (wires.empty() || wires[0].empty()) return out;
     const Vec3 n = s.face_normal(f, s.vertex_point(s.edge_first_vertex(wires[0][0].edge)));
-    return n.norm() > 0 ? Vec3(n.normalized()) : Vec3::Zero();
+    if (n.norm() > 0) out = {FaceAxis::planar, n.normalized()};
+    return out;
   }
   const core::SurfaceInfo info = s.surface_info(f);
-  if (info.kind != core::SurfaceKind::cylinder && info.kind != core::SurfaceKind::cone)
-    return Vec3::Zero();
-  return info.direction.norm() > 0 ? Vec3(info.direction.normalized()) : Vec3::Zero();
+  if (info.direction.norm() == 0) return out;
+  if (info.kind == core::SurfaceKind::cylinder)
+    out = {FaceAxis::cylinder, info.direction.normalized()};
+  if (info.kind == core::SurfaceKind::cone) out = {FaceAxis::cone, info.direction.normalized()};
+  return out;
 }
 
-// Face f parallel to axis a (a wall): a planar face whose normal is across it, a cylinder
-// along it.
-bool wall(const occ::Solid& s, FaceId f, const Vec3& a) {
-  const Vec3 d = axis_of(s, f);
-  if (d.norm() == 0) return false;
-  if (s.face_is_planar(f)) return std::abs(d.dot(a)) < 1e-9;
-  return s.surface_info(f).kind == core::SurfaceKind::cylinder &&
-         std::abs(std::abs(d.dot(a)) - 1) < 1e-9;
+// Parallel to axis a (a wall): a planar face whose normal is across it, a cylinder along it.
+bool wall(const FaceAxis& f, const Vec3& a) {
+  const double c = std::abs(f.d.dot(a));
+  return (f.kind == FaceAxis::planar && c < 1e-9) ||
+         (f.kind == FaceAxis::cylinder && std::abs(c - 1) < 1e-9);
 }
 
-// Face f tapered to axis a: a planar face neither along nor across it, or a cone about it.
-bool tapered(const occ::Solid& s, FaceId f, const Vec3& a) {
-  const Vec3 d = axis_of(s, f);
-  if (d.norm() == 0) return false;
-  const double c = std::abs(d.dot(a));
-  if (s.face_is_planar(f)) return c > 1e-6 && c < 1 - 1e-6;
-  return s.surface_info(f).kind == core::SurfaceKind::cone && std::abs(c - 1) < 1e-9;
+// Tapered to axis a: a planar face neither along nor across it, or a cone about it.
+bool tapered(const FaceAxis& f, const Vec3& a) {
+  const double c = std::abs(f.d.dot(a));
+  return (f.kind == FaceAxis::planar && c > 1e-6 && c < 1 - 1e-6) ||
+         (f.kind == FaceAxis::cone && std::abs(c - 1) < 1e-9);
 }
 
 }  // namespace
 
 std::vector<FootPlaneSet> foot_plane_sets(const occ::Solid& solid) {
   const double tol = 1e-7 * solid.diagonal();
+  std::vector<FaceAxis> faces(solid.num_faces() + 1);
   std::vector<Vec3> axes;
   for (FaceId f : solid.faces()) {
-    if (!solid.face_is_planar(f) && solid.surface_info(f).kind != core::SurfaceKind::cylinder)
-      continue;
-    const Vec3 d = axis_of(solid, f);
-    if (d.norm() == 0) continue;
+    const FaceAxis& fa = faces[f.value()] = face_axis(solid, f);
+    if (fa.kind != FaceAxis::planar && fa.kind != FaceAxis::cylinder) continue;
     bool known = false;
-    for (const Vec3& o : axes) known = known || std::abs(o.dot(d)) > 1 - 1e-9;
-    if (!known) axes.push_back(d);
+    for (const Vec3& o : axes) known = known || std::abs(o.dot(fa.d)) > 1 - 1e-9;
+    if (!known) axes.push_back(fa.d);
   }
   std::vector<FootPlaneSet> sets;
   for (const Vec3& a : axes) {
@@ -69,13 +75,14 @@ std::vector<FootPlaneSet> foot_plane_sets(const occ::Solid& solid) {
     }
     std::vector<FootPlane> set;
     for (FaceId f : solid.faces()) {
-      if (!tapered(solid, f, a)) continue;
+      if (!tapered(faces[f.value()], a)) continue;
       for (const auto& wire : solid.face_wires(f))
         for (const core::OrientedEdge& oe : wire) {
           const EdgeId e = oe.edge;
           if (solid.edge_is_degenerated(e)) continue;
           bool on_wall = false;
-          for (FaceId g : solid.edge_faces(e)) on_wall = on_wall || (g != f && wall(solid, g, a));
+          for (FaceId g : solid.edge_faces(e))
+            on_wall = on_wall || (g != f && wall(faces[g.value()], a));
           if (!on_wall) continue;
           const std::vector<Vec3> p = solid.edge_points_by_length(e, 8);
           double h0 = 1e300, h1 = -1e300;
@@ -91,14 +98,9 @@ std::vector<FootPlaneSet> foot_plane_sets(const occ::Solid& solid) {
           }
         }
     }
-    if (set.empty()) continue;
-    // The area of the planar faces across a: the axis a user would sweep along first.
-    double caps = 0;
-    for (FaceId f : solid.faces())
-      if (solid.face_is_planar(f) && std::abs(std::abs(axis_of(solid, f).dot(a)) - 1) < 1e-9)
-        caps += solid.area(f);
-    sets.push_back({a, std::move(set), caps});
+    if (!set.empty()) sets.push_back({a, std::move(set), occ::area_across(solid, a)});
   }
+  // The axis a user would sweep along first.
   std::stable_sort(sets.begin(), sets.end(),
                    [](const auto& x, const auto& y) { return x.cap_area > y.cap_area; });
   return sets;
