@@ -9,6 +9,7 @@
 
 #include "core/isolated_call.h"
 #include "core/progress.h"
+#include "grid/boundary_pillow.h"
 #include "io/named_groups.h"
 #include "mesh/tet_split.h"
 #include "pipeline/detail/fallback_bytes.h"
@@ -134,6 +135,56 @@ int finer_factor(const occ::Solid& solid, const grid::GridStats& first, std::siz
   return 0;
 }
 
+// An invalid grid mesh with inverted hexahedra gets a second pillow layer under its whole
+// boundary (grid/boundary_pillow.h) and is smoothed and checked again; used if valid.
+// The inverted hexahedra of a grid mesh mostly have two faces on the boundary across a model
+// edge, or a face squeezed between a feature chain and the core; in the layer each hexahedron
+// has one boundary face. HexMe n10 (a bent tube with a hole drilled out through its side): the
+// first grid's 175 inverted hexahedra all untangled (min 0.109), the 3 times finer grid's
+// down to 5, at boundary quads folded across an edge the grid did not capture.
+void pillowed_grid(const occ::Solid& solid, const MeshOptions& options,
+                   const core::SizeField& sizes, const core::Progress& progress,
+                   MeshResult& result) {
+  if (result.stats.scheme != "grid" || result.ok || result.mesh.num_hexes() == 0 ||
+      progress.cancelled() || !has_diagnostic(result.diagnostics, "inverted_elements") ||
+      has_diagnostic(result.diagnostics, "grid_pillow_failed"))
+    return;
+  MeshResult again;
+  again.stats = result.stats;
+  again.mesh = result.mesh;
+  again.absorbed = result.absorbed;
+  // What made the mesh stays said (the fallback, the grid's notes); what its smoothing and
+  // check said is said again of the new mesh.
+  for (const core::Diagnostic& d : result.diagnostics) {
+    bool from_check = d.severity == core::Severity::error || d.code == "smoothing_skipped" ||
+                      d.code == "edge_nodes_released";
+    for (const core::Diagnostic& c : result.check.diagnostics) from_check |= c.code == d.code;
+    if (!from_check) again.diagnostics.push_back(d);
+  }
+  const grid::BoundaryPillowResult p = grid::pillow_boundary(again.mesh);
+  if (again.mesh.num_hexes() > options.max_hexes) return;
+  detail::finish(again, solid, options, progress, sizes);
+  add_deviation(again, solid);
+  if (progress.cancelled()) return;
+  std::ostringstream s;
+  s << "The grid mesh (" << result.mesh.num_hexes() << " hexahedra) was invalid ("
+    << core::error_codes(result.diagnostics) << "); a second pillow layer was put under its "
+    << "boundary (" << p.hexes_added << " hexahedra, one per boundary quad) and smoothed";
+  if (again.ok) {
+    s << ": valid with min scaled Jacobian " << std::setprecision(3)
+      << again.check.scaled_jacobian.min << ", that mesh is used.";
+    again.diagnostics.push_back(core::make_warning("grid_pillowed", s.str()));
+    result = std::move(again);
+    return;
+  }
+  s << ", still invalid (" << core::error_codes(again.diagnostics) << "; "
+    << again.check.non_positive << " hexahedra inverted, volume error " << std::setprecision(3)
+    << 100 * std::abs(again.check.mesh_volume - again.check.cad_volume) /
+           std::max(std::abs(again.check.cad_volume), 1e-300)
+    << " %): the mesh before stands.";
+  result.diagnostics.push_back(core::make_info("grid_pillow_failed", s.str()));
+}
+
 // `first`: the stats of the grid that made `result`; the finer grid's once it replaces it.
 void finer_grid(const occ::Solid& solid, const MeshOptions& options, const core::SizeField& sizes,
                 const std::string& why, const core::Progress& progress,
@@ -158,6 +209,7 @@ void finer_grid(const occ::Solid& solid, const MeshOptions& options, const core:
   if (made) {
     detail::finish(finer, solid, options, budget, sizes);
     add_deviation(finer, solid);
+    pillowed_grid(solid, options, sizes, budget, finer);
   }
   if (progress.cancelled()) return;
   std::ostringstream s;
@@ -193,7 +245,10 @@ void finer_grid(const occ::Solid& solid, const MeshOptions& options, const core:
     s << ", it is not better (min scaled Jacobian " << finer_min << ")";
   else
     s << ", it is not valid" << (poor ? "" : " either") << " ("
-      << core::error_codes(finer.diagnostics) << ")";
+      << core::error_codes(finer.diagnostics) << ")"
+      << (has_diagnostic(finer.diagnostics, "grid_pillow_failed")
+              ? ", nor with a second pillow layer under its boundary"
+              : "");
   s << ": the first mesh stands.";
   result.diagnostics.push_back(core::make_info("grid_refined_failed", s.str()));
 }
@@ -499,6 +554,10 @@ FallbackOutcome run_fallback(const occ::Solid& solid, const MeshOptions& options
     detail::finish(result, solid, first_options, progress, sizes);
     add_deviation(result, solid);
     finer_grid(solid, options, sizes, why, progress, t0, grid_stats, result);
+    // Where no finer grid was made: its time is not the pillow layer's.
+    if (!has_diagnostic(result.diagnostics, "grid_refined") &&
+        !has_diagnostic(result.diagnostics, "grid_refined_failed"))
+      pillowed_grid(solid, options, sizes, progress, result);
     cusp_grid(solid, options, sizes, why, progress, t0, grid_stats, result);
     jittered_grid(solid, options, sizes, why, progress, t0, grid_stats, result);
   }

@@ -1,0 +1,85 @@
+#include "grid/boundary_pillow.h"
+
+#include <stdexcept>
+
+namespace vorohex::grid {
+
+BoundaryPillowResult pillow_boundary(core::HexMesh& mesh, double shrink) {
+  if (!(shrink > 0 && shrink < 1))
+    throw std::invalid_argument("pillow_boundary: shrink must be in (0, 1)");
+  BoundaryPillowResult r;
+  const std::vector<core::BoundaryFace> faces = core::boundary_faces(mesh);
+  if (faces.empty()) return r;
+  const std::vector<char> on_boundary = core::boundary_nodes(mesh);
+  const std::size_t n = mesh.num_nodes();
+
+  // Per boundary node: its interior edges (to nodes not on the boundary, counted once) and
+  // the sum of its hexahedra's centroids.
+  std::vector<int> interior_edges(n, 0), hexes_at(n, 0);
+  std::vector<std::int32_t> interior_end(n, -1);
+  std::vector<core::Vec3> centroid_sum(n, core::Vec3::Zero());
+  std::vector<std::vector<std::int32_t>> seen(n);  // interior neighbours already counted
+  for (std::size_t h = 0; h < mesh.num_hexes(); ++h) {
+    const core::HexNodes& hx = mesh.hex(core::HexId(std::int32_t(h)));
+    core::Vec3 c = core::Vec3::Zero();
+    for (std::int32_t v : hx) c += mesh.point(core::NodeId(v));
+    c /= 8.0;
+    for (std::int32_t v : hx)
+      if (on_boundary[v]) centroid_sum[v] += c, ++hexes_at[v];
+    for (const auto& e : core::kHexEdges) {
+      for (int s = 0; s < 2; ++s) {
+        const std::int32_t a = hx[e[s]], b = hx[e[1 - s]];
+        if (!on_boundary[a] || on_boundary[b]) continue;
+        std::vector<std::int32_t>& known = seen[a];
+        bool found = false;
+        for (std::int32_t k : known) found |= k == b;
+        if (found) continue;
+        known.push_back(b);
+        ++interior_edges[a];
+        interior_end[a] = b;
+      }
+    }
+  }
+
+  // The twins: numbered after the existing nodes, in node order.
+  std::vector<std::int32_t> twin(n, -1);
+  for (std::size_t v = 0; v < n; ++v) {
+    if (!on_boundary[v]) continue;
+    const core::Vec3 p = mesh.point(core::NodeId(std::int32_t(v)));
+    core::Vec3 q;
+    if (interior_edges[v] == 1)
+      q = p + shrink * (mesh.point(core::NodeId(interior_end[v])) - p);
+    else
+      q = p + std::min(1.0, 2 * shrink) * (centroid_sum[v] / double(hexes_at[v]) - p);
+    twin[v] = mesh.add_node(q).value();
+    ++r.nodes_added;
+  }
+
+  // Rebuild: the old hexahedra on the twins, then one hexahedron per boundary quad.
+  core::HexMesh out;
+  out.reserve(mesh.num_nodes(), mesh.num_hexes() + faces.size());
+  for (std::size_t v = 0; v < mesh.num_nodes(); ++v) {
+    const core::NodeId id{std::int32_t(v)};
+    out.add_node(mesh.point(id), mesh.node_class(id));
+  }
+  for (std::size_t h = 0; h < mesh.num_hexes(); ++h) {
+    const core::HexId id{std::int32_t(h)};
+    core::HexNodes hx = mesh.hex(id);
+    for (std::int32_t& v : hx)
+      if (std::size_t(v) < n && twin[v] >= 0) v = twin[v];
+    out.add_hex(hx, mesh.sub_volume(id));
+  }
+  for (const core::BoundaryFace& f : faces) {
+    const core::HexId id{f.hex};
+    const core::HexNodes& hx = mesh.hex(id);
+    const auto& c = core::kHexFaces[f.face];
+    core::HexNodes layer;
+    for (int i = 0; i < 4; ++i) layer[i] = twin[hx[c[i]]], layer[i + 4] = hx[c[i]];
+    out.add_hex(layer, mesh.sub_volume(id));
+    ++r.hexes_added;
+  }
+  mesh = std::move(out);
+  return r;
+}
+
+}  // namespace vorohex::grid
