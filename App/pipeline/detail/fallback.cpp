@@ -167,7 +167,8 @@ void pillowed_grid(const occ::Solid& solid, const MeshOptions& options,
   add_deviation(again, solid);
   if (progress.cancelled()) return;
   std::ostringstream s;
-  s << "The grid mesh (" << result.mesh.num_hexes() << " hexahedra) was invalid ("
+  s << "The grid mesh (" << result.mesh.num_hexes() << " hexahedra, "
+    << result.check.non_positive << " inverted) was invalid ("
     << core::error_codes(result.diagnostics) << "); a second pillow layer was put under its "
     << "boundary (" << p.hexes_added << " hexahedra, one per boundary quad) and smoothed";
   if (again.ok) {
@@ -599,6 +600,9 @@ FallbackOutcome run_fallback(const occ::Solid& solid, const MeshOptions& options
         "grid_invalid", "The grid mesher's mesh was invalid (" + grid_errors +
                             (has_diagnostic(result.diagnostics, "grid_refined_failed")
                                  ? "; and again on a finer grid"
+                                 : "") +
+                            (has_diagnostic(result.diagnostics, "grid_pillow_failed")
+                                 ? "; and with a second pillow layer under its boundary"
                                  : "") +
                             "); the tetrahedral fallback's mesh is valid and is used."));
     out.result = std::move(second);

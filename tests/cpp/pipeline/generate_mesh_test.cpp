@@ -501,6 +501,9 @@ TEST(GenerateMesh, AnInvalidGridMeshGivesTheTetSplitASecondChance) {
   // The finer grid (about 64,000 hexahedra at half the size) would pass max_hexes: it is
   // not tried, and the first grid is smoothed as usual.
   EXPECT_EQ(d->message.find("finer grid"), std::string::npos) << d->message;
+  // With no finer grid, the first grid mesh got a second pillow layer under its boundary
+  // (10,800 + 5,042 hexahedra, within max_hexes): its 2 inverted hexahedra stayed inverted.
+  EXPECT_NE(d->message.find("second pillow layer"), std::string::npos) << d->message;
   // Each error code once, though the smoothing and the check both report inverted hexes.
   EXPECT_EQ(d->message.find("inverted_elements, inverted_elements"), std::string::npos)
       << d->message;
