@@ -286,11 +286,45 @@ struct PartMesh {
   std::vector<core::Diagnostic> diagnostics;
 };
 
+// The boundary quads of `mesh` on face f of `solid`: every corner classified on f, on one of
+// its edges or at one of its vertices, and the quad's centre on f.
+std::vector<std::array<core::Vec3, 4>> quads_on_face(const core::HexMesh& mesh,
+                                                     const occ::Solid& solid, core::FaceId f) {
+  std::set<int> edges, vertices;
+  for (const auto& wire : solid.face_wires(f))
+    for (const core::OrientedEdge& oe : wire) {
+      edges.insert(oe.edge.value());
+      vertices.insert(solid.edge_first_vertex(oe.edge).value());
+      vertices.insert(solid.edge_last_vertex(oe.edge).value());
+    }
+  auto on = [&](std::int32_t n) {
+    const core::NodeClass c = mesh.node_classes()[n];
+    return (c.dim == 2 && c.id == f.value()) || (c.dim == 1 && edges.count(c.id)) ||
+           (c.dim == 0 && vertices.count(c.id));
+  };
+  std::vector<std::array<core::Vec3, 4>> out;
+  const double tol = 1e-6 * solid.diagonal();
+  for (const core::BoundaryFace& b : core::boundary_faces(mesh)) {
+    const core::HexNodes& h = mesh.hexes()[b.hex];
+    const auto& c = core::kHexFaces[b.face];
+    std::array<core::Vec3, 4> q;
+    bool all = true;
+    for (int i = 0; i < 4 && all; ++i) all = on(h[c[i]]), q[i] = mesh.points()[h[c[i]]];
+    if (!all) continue;
+    const core::Vec3 centre = 0.25 * (q[0] + q[1] + q[2] + q[3]);
+    if ((solid.project_to_face(f, centre) - centre).norm() > tol + 1e-3 * (q[2] - q[0]).norm())
+      continue;
+    out.push_back(q);
+  }
+  return out;
+}
+
 // `edge_nodes`: per part edge id, the nodes a neighbour meshed before it placed there
 // (empty: none yet).
 PartMesh mesh_part(const Part& part, const std::vector<int>& counts,
                    const SubVolumeMeshOptions& options, const core::Progress& progress,
-                   const std::vector<std::vector<core::Vec3>>& edge_nodes = {}) {
+                   const std::vector<std::vector<core::Vec3>>& edge_nodes = {},
+                   const std::vector<std::array<core::Vec3, 4>>& source_quads = {}) {
   PartMesh out;
   if (part.multisweep) {
     // Only the counts of shared edges are given: its cross-section chooses the others.
@@ -327,11 +361,19 @@ PartMesh mesh_part(const Part& part, const std::vector<int>& counts,
     o.avoid_sources = part.avoid_sources;
     o.size_field = options.size_field;
     o.edge_nodes = edge_nodes;
+    o.source_quads = source_quads;
     SweepResult r = sweep(part.solid, o, progress);
     if (!r.ok && r.folded > 0 && !progress.cancelled()) {  // the target's nodes along the axis
-      o.target_along_axis = true;
-      SweepResult along = sweep(part.solid, o, progress);
+      SweepOptions along_axis = o;
+      along_axis.target_along_axis = true;
+      SweepResult along = sweep(part.solid, along_axis, progress);
       if (along.ok || (along.folded > 0 && along.folded < r.folded)) r = std::move(along);
+    }
+    if (!r.ok && r.folded > 0 && !progress.cancelled()) {  // each layer within its boundary
+      SweepOptions smoothed = o;
+      smoothed.smooth_layers = true;
+      SweepResult other = sweep(part.solid, smoothed, progress);
+      if (other.ok || (other.folded > 0 && other.folded < r.folded)) r = std::move(other);
     }
     // Folded layers: untangled with the nodes on the faces shared with a neighbour kept
     // (both meshes of a shared face must stay the same).
@@ -407,6 +449,55 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
       b.sweep = flipped;
       b.avoid_sources = avoid;
     }
+  }
+
+  // Two sweeps whose targets are one shared face meshed freely (not four-sided: a hole in
+  // it) each put the far end's nodes there, which do not match: both take it as their
+  // source instead, when both can (a countersunk hole's block and slab, cut where the cone
+  // meets the cylinder: both swept towards the cut).
+  auto free_face = [](const occ::Solid& s, core::FaceId f) {
+    const auto wires = s.face_wires(f);
+    return wires.size() != 1 || wires[0].size() != 4;
+  };
+  for (int k = 0; k < n; ++k)
+    for (int j = k + 1; j < n; ++j) {
+      Part &a = parts[k], &b = parts[j];
+      if (!a.is_sweep() || !b.is_sweep() ||
+          a.whole_face[a.sweep.target.value()] != b.whole_face[b.sweep.target.value()] ||
+          !free_face(a.solid, a.sweep.target))
+        continue;
+      auto flip = [](const Part& p, std::vector<int>& avoid) {
+        for (core::FaceId f : p.solid.faces())
+          if (f != p.sweep.target) avoid.push_back(f.value());
+        return sweep_structure(p.solid, avoid);
+      };
+      std::vector<int> avoid_a, avoid_b;
+      const SweepStructure fa = flip(a, avoid_a), fb = flip(b, avoid_b);
+      if (fa.source != a.sweep.target || fb.source != b.sweep.target) continue;
+      a.sweep = fa, a.avoid_sources = avoid_a;
+      b.sweep = fb, b.avoid_sources = avoid_b;
+    }
+
+  // A sweep whose target is a face a multisweep shares, meshed freely: the multisweep meshes
+  // that face as a cap, the sweep would put the far end's nodes there; it takes the face as
+  // its source instead, when it can (a pocket with drafted walls cut at its floor: the slab
+  // with the tapered hole above the block).
+  for (Part& b : parts) {
+    if (!b.is_sweep() || !free_face(b.solid, b.sweep.target)) continue;
+    const int face = b.whole_face[b.sweep.target.value()];
+    bool with_multisweep = false;
+    for (const Part& a : parts)
+      if (a.multisweep)
+        for (std::size_t f = 1; f < a.whole_face.size(); ++f)
+          with_multisweep = with_multisweep || a.whole_face[f] == face;
+    if (!with_multisweep) continue;
+    std::vector<int> avoid;
+    for (core::FaceId f : b.solid.faces())
+      if (f != b.sweep.target) avoid.push_back(f.value());
+    const SweepStructure flipped = sweep_structure(b.solid, avoid);
+    if (flipped.source != b.sweep.target) continue;
+    b.sweep = flipped;
+    b.avoid_sources = avoid;
   }
 
   // Edges a neighbour has too (their counts are given to a multisweep).
@@ -541,6 +632,20 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
   std::vector<std::vector<std::vector<core::Vec3>>> given(n);
   for (int k = 0; k < n; ++k)
     if (!parts[k].multisweep && !placed.empty()) given[k] = given_to(parts[k]);
+  // A sweep's source that a multisweep meshed as a cap: its quads there (the boundary quads
+  // of the multisweep's mesh whose corners lie on that face or its edges and vertices).
+  std::vector<std::vector<std::array<core::Vec3, 4>>> given_source(n);
+  for (int k = 0; k < n; ++k) {
+    if (!parts[k].is_sweep()) continue;
+    const int face = parts[k].whole_face[parts[k].sweep.source.value()];
+    for (int j = 0; j < n && given_source[k].empty(); ++j) {
+      const Part& a = parts[j];
+      if (!a.multisweep || !meshed[j].ok) continue;
+      for (std::size_t f = 1; f < a.whole_face.size(); ++f)
+        if (a.whole_face[f] == face)
+          given_source[k] = quads_on_face(meshed[j].mesh, a.solid, core::FaceId(int(f)));
+    }
+  }
   std::atomic<int> next{0};
   const int threads = std::max(
       1, std::min(n, options.threads > 0 ? options.threads
@@ -550,7 +655,8 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
       if (stop.load()) break;
       if (parts[k].multisweep) continue;  // meshed above
       try {
-        meshed[k] = mesh_part(parts[k], counts[k], options, worker_progress, given[k]);
+        meshed[k] =
+            mesh_part(parts[k], counts[k], options, worker_progress, given[k], given_source[k]);
       } catch (const std::exception& e) {
         meshed[k].diagnostics.push_back(core::make_error("geometry_error", e.what()));
       }

@@ -2,8 +2,6 @@
 
 #include "core/option_checks.h"
 
-#include <Eigen/Eigenvalues>
-#include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -17,9 +15,12 @@
 #include "mesh/detail/grid_face.h"
 #include "mesh/detail/quad_quality.h"
 #include "mesh/detail/sizing.h"
+#include "mesh/detail/sweep_layers.h"
+#include "mesh/detail/sweep_source.h"
 #include "mesh/interval_assignment.h"
 #include "mesh/quad_face.h"
 #include "mesh/submap_face.h"
+#include "quality/scaled_jacobian.h"
 
 namespace vorohex::mesh {
 
@@ -30,6 +31,11 @@ using core::OrientedEdge;
 using core::Vec3;
 using core::VertexId;
 using Solid = core::MeshDomain;
+using detail::AffineFit;
+
+// The smoothed layers' sweep is kept only from this scaled Jacobian up (SweepOptions::
+// smooth_layers), as an untangled one is (smooth::untangle_folded).
+constexpr double kSmoothedLayersQuality = 0.3;
 
 void SweepOptions::validate() const {
   core::require_positive("SweepOptions.size", size);
@@ -348,6 +354,10 @@ bool set_target_counts(const Solid& solid, const SweepOptions& options, Plan& p)
 // The source by the general quad mesher (any face, holes included); false with its
 // diagnostics when it fails.
 bool mesh_source_unstructured(const Solid& solid, const SweepOptions& options, Plan& p) {
+  if (!options.source_quads.empty() &&
+      detail::source_from_quads(solid, p.topo.source, p.source_loops, options.source_quads,
+                                1e-6 * options.size, p.source_mesh))
+    return true;
   QuadFaceOptions qo;
   qo.size = options.size;
   qo.smoothing_passes = options.smoothing_passes;
@@ -581,54 +591,6 @@ Plan plan(const Solid& solid, const SweepOptions& options) {
   return p;
 }
 
-// Least-squares affine map between two point sets, well posed for (near-)planar sources:
-// in-plane coordinates of x in its principal frame are mapped by a 3x2 matrix, the
-// out-of-plane offset along the image normal scaled like the in-plane lengths.
-class AffineFit {
- public:
-  // Frame of the source points (computed once per source set).
-  explicit AffineFit(const std::vector<Vec3>& x) {
-    cx_ = Vec3::Zero();
-    for (const Vec3& p : x) cx_ += p;
-    cx_ /= double(x.size());
-    Eigen::Matrix3d c = Eigen::Matrix3d::Zero();
-    for (const Vec3& p : x) c += (p - cx_) * (p - cx_).transpose();
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(c);
-    n_ = es.eigenvectors().col(0);
-    e1_ = es.eigenvectors().col(2);
-    e2_ = n_.cross(e1_);
-    a_.reserve(x.size());
-    Eigen::Matrix2d g = Eigen::Matrix2d::Zero();
-    for (const Vec3& p : x) {
-      a_.emplace_back((p - cx_).dot(e1_), (p - cx_).dot(e2_));
-      g += a_.back() * a_.back().transpose();
-    }
-    ginv_ = g.inverse();
-  }
-  // Fits the map onto y (same order as x).
-  void fit(const std::vector<Vec3>& y) {
-    cy_ = Vec3::Zero();
-    for (const Vec3& p : y) cy_ += p;
-    cy_ /= double(y.size());
-    Eigen::Matrix<double, 3, 2> b = Eigen::Matrix<double, 3, 2>::Zero();
-    for (std::size_t i = 0; i < y.size(); ++i) b += (y[i] - cy_) * a_[i].transpose();
-    m_ = b * ginv_;
-    const Vec3 cr = m_.col(0).cross(m_.col(1));
-    const double len = cr.norm();
-    ny_ = len > 0 ? Vec3(cr / std::sqrt(len)) : Vec3::Zero();
-  }
-  Vec3 operator()(const Vec3& p) const {
-    const Vec3 d = p - cx_;
-    return cy_ + m_ * Eigen::Vector2d(d.dot(e1_), d.dot(e2_)) + d.dot(n_) * ny_;
-  }
-
- private:
-  Vec3 cx_, e1_, e2_, n_, cy_, ny_;
-  std::vector<Eigen::Vector2d> a_;
-  Eigen::Matrix2d ginv_;
-  Eigen::Matrix<double, 3, 2> m_;
-};
-
 }  // namespace
 
 SweepApplicability sweep_applicable(const core::MeshDomain& solid) {
@@ -824,6 +786,15 @@ SweepResult sweep(const core::MeshDomain& solid, const SweepOptions& options,
       if (cancelled()) return result;
     }
   }
+  // Or each layer the one below deformed to its boundary (the target too where its inner
+  // nodes are the source's images, put back on it).
+  if (options.smooth_layers && M > nb && K > 0) {
+    const bool free_target =
+        p.grid[0] == 0 && p.submap.empty() && detail::apex_vertices(solid, t.target).empty();
+    detail::smooth_layer_interiors(
+        P, M, nb, 1, free_target ? K : K - 1, sm.quads, 1e-4 * options.size, 500,
+        [&](int k, const Vec3& q) { return k == K ? solid.project_to_face(t.target, q) : q; });
+  }
 
   // Hexes: source quads run counter-clockwise about the source's outward normal, i.e.
   // clockwise seen from the next layer, so they are reversed for VTK order.
@@ -878,6 +849,22 @@ SweepResult sweep(const core::MeshDomain& solid, const SweepOptions& options,
                                                       ").",
                                                   {name(t.source), name(t.target)}));
     return result;
+  }
+  // Deformed layers that do not fold may still be poor (a sheared thin slab): below the bar
+  // untangling a folded sweep must reach (smooth::untangle_folded), the next try or scheme
+  // does better (HexMe n03: 0.12 before smoothing, 0.26 after; its multisweep 0.32).
+  if (options.smooth_layers) {
+    const std::vector<double> sj = quality::scaled_jacobians(mesh);
+    const double worst = sj.empty() ? 0 : *std::min_element(sj.begin(), sj.end());
+    if (worst < kSmoothedLayersQuality) {
+      std::ostringstream s;
+      s << "The sweep's layers deformed to their boundaries (between " << name(t.source) << " and "
+        << name(t.target) << ") do not fold, but their worst hexahedron has a scaled "
+        << "Jacobian of " << worst << " (< " << kSmoothedLayersQuality << ").";
+      result.diagnostics.push_back(
+          core::make_error("poor_elements", s.str(), {name(t.source), name(t.target)}));
+      return result;
+    }
   }
   result.ok = true;
   return result;

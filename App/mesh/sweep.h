@@ -10,6 +10,7 @@
 // and taper).
 #pragma once
 
+#include <array>
 #include <string>
 #include <utility>
 #include <vector>
@@ -49,6 +50,17 @@ struct SweepOptions {
   // cylinder to the inner, folds where the nearest points pull the nodes around the hole
   // sideways.
   bool target_along_axis = false;
+  // The inner nodes of every layer, and of the target where the source is meshed freely,
+  // as the layer below's deformed to the layer's boundary (mean value weights, step by step:
+  // mesh/detail/sweep_layers.h), not by affine maps. Tried where the layers fold both ways
+  // above: a countersunk hole's slab, swept from the small hole's plane to the large one's,
+  // folds where the affine images of the nodes by the small hole land in the large one.
+  bool smooth_layers = false;
+  // The source's quads as a neighbour meshed that face (corner points, either orientation):
+  // taken instead of meshing the source, where every node of its boundary is one of the
+  // sweep's own boundary nodes (else the source is meshed as usual). A multisweep and a sweep
+  // sharing a face mesh it alike this way (mesh_sub_volumes: the multisweep first).
+  std::vector<std::array<core::Vec3, 4>> source_quads;
   void validate() const;  // throws std::invalid_argument naming the bad field
 };
 

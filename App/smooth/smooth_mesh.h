@@ -90,8 +90,8 @@ SmoothResult smooth_mesh(core::HexMesh& mesh, const occ::Solid& solid, const Smo
 // a strong change of shape): smoothed and untangled as above (default options with the
 // scheme's local sizes, `fixed` nodes kept). True when no hex is left inverted and the minimum
 // scaled Jacobian reaches `min_quality` (below it, the next scheme or the fallback usually does
-// better: a block with a hole drilled at 30 degrees untangles to 0.04, its grid mesh has 0.43); the
-// nodes are moved either way.
+// better: a plate with a hole drilled at 30 degrees, swept by affine layers, untangled to 0.04,
+// its grid mesh has 0.43); the nodes are moved either way.
 bool untangle_folded(core::HexMesh& mesh, const occ::Solid& solid, const std::vector<char>& fixed,
                      const core::SizeField* size_field, const core::Progress& progress = {},
                      double min_quality = 0.3);

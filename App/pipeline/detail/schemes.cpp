@@ -81,6 +81,12 @@ class SweepScheme : public Scheme {
       mesh::SweepResult other = mesh::sweep(solid, along, progress);
       if (other.ok || (other.folded > 0 && other.folded < r.folded)) r = std::move(other);
     }
+    if (!r.ok && r.folded > 0 && !progress.cancelled()) {  // each layer within its boundary
+      mesh::SweepOptions smoothed = o;
+      smoothed.smooth_layers = true;
+      mesh::SweepResult other = mesh::sweep(solid, smoothed, progress);
+      if (other.ok || (other.folded > 0 && other.folded < r.folded)) r = std::move(other);
+    }
     if (!r.ok && r.folded > 0 && !progress.cancelled() &&
         smooth::untangle_folded(r.mesh, solid, {}, &size, progress))
       mesh::accept_untangled(r);

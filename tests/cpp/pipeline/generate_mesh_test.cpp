@@ -338,10 +338,11 @@ TEST(GenerateMesh, AFailingSchemeHandsOverToTheNext) {
 
 // A plate with a hole drilled off its normal: the sweep's layers follow the outline and
 // the hole by one affine map, which cannot follow a hole that moves across the layers, and
-// fold at its wall. The smoothing untangles them (sweep_untangled) and the sweep is kept
-// when it reaches 0.3 (10 degrees through 20: min 0.50, folded both ways; through 10 the
-// sweep from the other face does not fold: 0.55); drilled 30 degrees through 20 it
-// untangles only to 0.04, and the next scheme takes it.
+// fold at its wall. Drilled 10 degrees through 20, the layers deformed to their boundaries
+// (SweepOptions::smooth_layers) do not fold (min 0.50); 30 degrees through 20 they still
+// fold, fewer, and the smoothing untangles them (sweep_untangled) to 0.50: the sweep is kept
+// (it reaches 0.3). Before the deformed layers, 10 degrees was untangled from the affine
+// layers (0.50) and 30 degrees only to 0.04, and the grid took it (0.43).
 TEST(GenerateMesh, AFoldedSweepIsUntangledAndKeptWhenGoodEnough) {
   auto plate = [](double degrees, double thickness) {
     const double a = degrees * M_PI / 180;
@@ -357,20 +358,19 @@ TEST(GenerateMesh, AFoldedSweepIsUntangledAndKeptWhenGoodEnough) {
   const MeshResult r = generate_mesh(*thin, opt);
   ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
   EXPECT_EQ(r.stats.scheme, "sweep");
-  const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "sweep_untangled");
-  ASSERT_NE(d, nullptr);
-  EXPECT_EQ(d->severity, core::Severity::warning);
+  EXPECT_EQ(testing::find_diagnostic(r.diagnostics, "sweep_untangled"), nullptr);
   EXPECT_TRUE(r.check.valid);
   EXPECT_GE(r.check.scaled_jacobian.min, 0.3);
-  const std::unique_ptr<occ::Solid> thick = plate(30, 20);
-  ASSERT_TRUE(thick);
-  const MeshResult g = generate_mesh(*thick, opt);
+  const std::unique_ptr<occ::Solid> steep = plate(30, 20);
+  ASSERT_TRUE(steep);
+  const MeshResult g = generate_mesh(*steep, opt);
   ASSERT_TRUE(g.ok) << (g.diagnostics.empty() ? "" : core::format(g.diagnostics.back()));
-  EXPECT_NE(g.stats.scheme, "sweep");
-  EXPECT_EQ(testing::find_diagnostic(g.diagnostics, "sweep_untangled"), nullptr);
-  const core::Diagnostic* f = testing::find_diagnostic(g.diagnostics, "scheme_failed");
-  ASSERT_NE(f, nullptr);
-  EXPECT_NE(f->message.find("fold"), std::string::npos) << f->message;
+  EXPECT_EQ(g.stats.scheme, "sweep");
+  const core::Diagnostic* d = testing::find_diagnostic(g.diagnostics, "sweep_untangled");
+  ASSERT_NE(d, nullptr);
+  EXPECT_EQ(d->severity, core::Severity::warning);
+  EXPECT_TRUE(g.check.valid);
+  EXPECT_GE(g.check.scaled_jacobian.min, 0.3);
 }
 
 // HexMe n04 (a prism from a triangle with 15-degree corners to one with 50-degree corners,
