@@ -10,7 +10,8 @@ in each leg, a stepped plate with holes, a flanged pipe), a few more a user make
 day, and two whose faces come to a point (a boss tangent to a plate's round outline from
 inside; a lug whose round end is tangent to its tube, as HexMe i11), and the drilled and
 countersunk holes and filleted edges of PartDesign, chamfered edges and a pyramidal
-pocket. Writes bench/results/parts.md.
+pocket, countersunk holes in a plate and a flange, a pocket with drafted walls. Writes
+bench/results/parts.md.
 
 usage: run_parts.py [--build BUILD]
 """
@@ -150,6 +151,24 @@ def build_parts(work):
                                                V(7, 15, -1), V(7, 5, -1)]),
                              Part.Vertex(V(15, 10, 5))], True)
     parts["block with a pyramidal pocket"] = top.cut(pyramid)
+    # Holes and pockets that widen: a plate with two countersunk holes, a flange with four
+    # countersunk bolt holes, a block with a pocket whose walls are drafted (a loft from its
+    # floor's square to a larger one above the top, as PartDesign's SubtractiveLoft makes it).
+    plate = box(60, 40, 10)
+    for x in (15, 45):
+        plate = plate.cut(cyl(3, 10, (x, 20, 0))).cut(Part.makeCone(3, 6, 3, V(x, 20, 7)))
+    parts["plate with two countersunk holes"] = plate
+    flange = cyl(40, 10, (0, 0, 0)).cut(cyl(10, 10, (0, 0, 0)))
+    for i in range(4):
+        x, y = 25 * math.cos(math.pi / 2 * i), 25 * math.sin(math.pi / 2 * i)
+        flange = flange.cut(cyl(3, 10, (x, y, 0))).cut(Part.makeCone(3, 6, 3, V(x, y, 7)))
+    parts["flange with countersunk bolt holes"] = flange
+
+    def square(h, z):
+        return Part.makePolygon([V(20 - h, 20 - h, z), V(20 + h, 20 - h, z), V(20 + h, 20 + h, z),
+                                 V(20 - h, 20 + h, z), V(20 - h, 20 - h, z)])
+    parts["block with a drafted pocket"] = box(40, 40, 20).cut(
+        Part.makeLoft([square(5, 10), square(10.5, 21)], True))
     out = []
     for k, (name, shape) in enumerate(parts.items()):
         solid = refined(shape)

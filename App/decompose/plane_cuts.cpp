@@ -857,19 +857,30 @@ PlaneCutResult cut_as_the_mesher(const occ::Solid& solid, const PlaneCutOptions&
   }
   // Fourth: with planes across the feet of its tapered faces (a block with chamfered top
   // edges, which has no concave edge: a block and a tapered slab), each axis's set in turn,
-  // within the same share of the time as the planes around holes.
+  // within the same share of the time as the planes around holes. First without the planes
+  // of the faces tapered to that axis (a pocket with drafted walls: its walls' planes cut
+  // wedges off the block; cut at its floor alone, a block and a slab with a tapered hole,
+  // swept), then with them.
   const double feet_until = left() - std::min(0.25 * options.time_limit, kAroundSeconds);
   for (const detail::FootPlaneSet& set : detail::foot_plane_sets(solid)) {
-    if (left() <= feet_until) break;
-    std::vector<Plane> with = planes;
-    for (const detail::FootPlane& f : set.planes) {
-      Plane pl{f.normal, f.offset, f.face, f.edges};
-      pl.at_foot = true;
-      add_plane(with, pl, tol);
+    std::vector<Plane> untapered;
+    for (const Plane& pl : planes) {
+      const double c = std::abs(pl.normal.dot(set.axis));
+      if (c < 1e-6 || c > 1 - 1e-6) untapered.push_back(pl);
     }
-    PlaneCutResult feet =
-        cut_along(solid, std::move(with), cylinders, around_options, left() - feet_until, progress);
-    if (feet.ok) return feet;
+    for (bool all : {false, true}) {
+      if (all && untapered.size() == planes.size()) break;  // tried: the same planes
+      if (left() <= feet_until) return cut;
+      std::vector<Plane> with = all ? planes : untapered;
+      for (const detail::FootPlane& f : set.planes) {
+        Plane pl{f.normal, f.offset, f.face, f.edges};
+        pl.at_foot = true;
+        add_plane(with, pl, tol);
+      }
+      PlaneCutResult feet = cut_along(solid, std::move(with), cylinders, around_options,
+                                      left() - feet_until, progress);
+      if (feet.ok) return feet;
+    }
   }
   return cut;
 }

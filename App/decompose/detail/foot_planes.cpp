@@ -45,6 +45,11 @@ bool wall(const FaceAxis& f, const Vec3& a) {
          (f.kind == FaceAxis::cylinder && std::abs(c - 1) < 1e-9);
 }
 
+// Across axis a (a cap): a planar face whose normal is along it.
+bool cap(const FaceAxis& f, const Vec3& a) {
+  return f.kind == FaceAxis::planar && std::abs(std::abs(f.d.dot(a)) - 1) < 1e-9;
+}
+
 // Tapered to axis a: a planar face neither along nor across it, or a cone about it.
 bool tapered(const FaceAxis& f, const Vec3& a) {
   const double c = std::abs(f.d.dot(a));
@@ -80,10 +85,12 @@ std::vector<FootPlaneSet> foot_plane_sets(const occ::Solid& solid) {
         for (const core::OrientedEdge& oe : wire) {
           const EdgeId e = oe.edge;
           if (solid.edge_is_degenerated(e)) continue;
-          bool on_wall = false;
+          // A wall (a chamfer's foot, a countersink's), or a cap within the solid (the
+          // floor of a pocket with drafted walls).
+          bool foot = false;
           for (FaceId g : solid.edge_faces(e))
-            on_wall = on_wall || (g != f && wall(faces[g.value()], a));
-          if (!on_wall) continue;
+            foot = foot || (g != f && (wall(faces[g.value()], a) || cap(faces[g.value()], a)));
+          if (!foot) continue;
           const std::vector<Vec3> p = solid.edge_points_by_length(e, 8);
           double h0 = 1e300, h1 = -1e300;
           for (const Vec3& q : p) h0 = std::min(h0, a.dot(q)), h1 = std::max(h1, a.dot(q));
