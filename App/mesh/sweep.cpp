@@ -36,6 +36,11 @@ using detail::AffineFit;
 // The smoothed layers' sweep is kept only from this scaled Jacobian up (SweepOptions::
 // smooth_layers), as an untangled one is (smooth::untangle_folded).
 constexpr double kSmoothedLayersQuality = 0.3;
+// Nodes (per layer times layers) beyond which the layers are not deformed (each of the four
+// steps per layer takes up to 200 sweeps over a layer's nodes): the sweeps the tapered holes
+// need have a few thousand; sub-volumes of HexMe's industrial models that fold have more, and
+// their decompositions' time went to it (i13 33 -> 48 s).
+constexpr double kSmoothedLayersNodes = 200'000;
 
 void SweepOptions::validate() const {
   core::require_positive("SweepOptions.size", size);
@@ -789,11 +794,20 @@ SweepResult sweep(const core::MeshDomain& solid, const SweepOptions& options,
   // Or each layer the one below deformed to its boundary (the target too where its inner
   // nodes are the source's images, put back on it).
   if (options.smooth_layers && M > nb && K > 0) {
+    if (double(M) * K > kSmoothedLayersNodes) {
+      result.diagnostics.push_back(core::make_error(
+          "not_supported_yet", "The sweep's layers are not deformed to their boundaries beyond " +
+                                   std::to_string(int(kSmoothedLayersNodes)) + " nodes (" +
+                                   std::to_string(M * K) + ")."));
+      return result;
+    }
     const bool free_target =
         p.grid[0] == 0 && p.submap.empty() && detail::apex_vertices(solid, t.target).empty();
-    detail::smooth_layer_interiors(
-        P, M, nb, 1, free_target ? K : K - 1, sm.quads, 1e-4 * options.size, 500,
-        [&](int k, const Vec3& q) { return k == K ? solid.project_to_face(t.target, q) : q; });
+    const int sweeps = detail::smooth_layer_interiors(
+        P, M, nb, 1, free_target ? K : K - 1, sm.quads, 1e-3 * options.size, 200,
+        [&](int k, const Vec3& q) { return k == K ? solid.project_to_face(t.target, q) : q; },
+        [&] { return progress.cancelled(); });
+    if (sweeps < 0 && cancelled()) return result;
   }
 
   // Hexes: source quads run counter-clockwise about the source's outward normal, i.e.

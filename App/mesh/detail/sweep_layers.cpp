@@ -86,7 +86,8 @@ std::vector<std::vector<std::pair<int, double>>> mean_value_weights(
 
 int smooth_layer_interiors(std::vector<Vec3>& P, std::size_t M, std::size_t nb, int first, int last,
                            const std::vector<std::array<int, 4>>& quads, double tolerance,
-                           int max_sweeps, const std::function<Vec3(int, const Vec3&)>& onto) {
+                           int max_sweeps, const std::function<Vec3(int, const Vec3&)>& onto,
+                           const std::function<bool()>& cancelled) {
   // Layer k is layer k - 1 deformed to layer k's boundary in kSteps steps, the boundary moved
   // a step's share each time and the inner nodes put where the mean value weights of the
   // step before (which reproduce it) place them: each step's displacement spreads like a
@@ -104,6 +105,7 @@ int smooth_layer_interiors(std::vector<Vec3>& P, std::size_t M, std::size_t nb, 
     std::copy(below, below + M, cur.begin());
     from = cur;
     for (int step = 1; step <= kSteps; ++step) {
+      if (cancelled && cancelled()) return -1;
       const auto weights = mean_value_weights(cur.data(), M, nb, quads);
       const double w = double(step) / kSteps;
       for (std::size_t j = 0; j < nb; ++j) cur[j] = (1 - w) * from[j] + w * layer[j];

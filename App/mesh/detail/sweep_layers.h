@@ -42,10 +42,12 @@ class AffineFit {
 // step's share and the inner nodes go where the mean value weights (Floater) of the step
 // before put them (Gauss-Seidel sweeps until no node moves more than `tolerance`, at most
 // `max_sweeps`). `onto(k, p)`, when given, puts a point of layer k back on its surface (the
-// target face) in the last step. Returns the most sweeps one step took.
+// target face) in the last step. Returns the most sweeps one step took, or -1 where
+// `cancelled()` said so between steps (P then half done).
 int smooth_layer_interiors(std::vector<core::Vec3>& P, std::size_t M, std::size_t nb, int first,
                            int last, const std::vector<std::array<int, 4>>& quads, double tolerance,
                            int max_sweeps,
-                           const std::function<core::Vec3(int, const core::Vec3&)>& onto = {});
+                           const std::function<core::Vec3(int, const core::Vec3&)>& onto = {},
+                           const std::function<bool()>& cancelled = {});
 
 }  // namespace vorohex::mesh::detail
