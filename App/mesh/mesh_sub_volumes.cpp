@@ -62,6 +62,32 @@ struct Part {
   const char* scheme() const { return is_block() ? "map" : is_sweep() ? "sweep" : "multisweep"; }
 };
 
+// The sweep of `p` the other way: its target taken as source, every other face avoided as one
+// (sweep_structure); `ok` where its structure allows that.
+struct ReversedSweep {
+  bool ok = false;
+  SweepStructure sweep;
+  std::vector<int> avoid_sources;
+};
+ReversedSweep reversed(const Part& p) {
+  ReversedSweep r;
+  for (core::FaceId f : p.solid.faces())
+    if (f != p.sweep.target) r.avoid_sources.push_back(f.value());
+  r.sweep = sweep_structure(p.solid, r.avoid_sources);
+  r.ok = r.sweep.source == p.sweep.target;
+  return r;
+}
+void take(Part& p, ReversedSweep r) {
+  p.sweep = std::move(r.sweep);
+  p.avoid_sources = std::move(r.avoid_sources);
+}
+
+// A face the quad mesher meshes freely (not one loop of four edges: a hole in it).
+bool free_face(const occ::Solid& s, core::FaceId f) {
+  const auto wires = s.face_wires(f);
+  return wires.size() != 1 || wires[0].size() != 4;
+}
+
 // The interval problem over the curves of `pieces` (one per non-degenerated edge).
 struct Curves {
   IntervalProblem problem;
@@ -441,13 +467,7 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
     for (int j = 0; j < n; ++j) {
       Part& b = parts[j];
       if (j == k || !b.is_sweep() || b.whole_face[b.sweep.target.value()] != face) continue;
-      std::vector<int> avoid;  // every face but the shared one
-      for (core::FaceId f : b.solid.faces())
-        if (f != b.sweep.target) avoid.push_back(f.value());
-      const SweepStructure flipped = sweep_structure(b.solid, avoid);
-      if (flipped.source != b.sweep.target) continue;
-      b.sweep = flipped;
-      b.avoid_sources = avoid;
+      if (ReversedSweep r = reversed(b); r.ok) take(b, std::move(r));
     }
   }
 
@@ -455,10 +475,6 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
   // it) each put the far end's nodes there, which do not match: both take it as their
   // source instead, when both can (a countersunk hole's block and slab, cut where the cone
   // meets the cylinder: both swept towards the cut).
-  auto free_face = [](const occ::Solid& s, core::FaceId f) {
-    const auto wires = s.face_wires(f);
-    return wires.size() != 1 || wires[0].size() != 4;
-  };
   for (int k = 0; k < n; ++k)
     for (int j = k + 1; j < n; ++j) {
       Part &a = parts[k], &b = parts[j];
@@ -466,16 +482,10 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
           a.whole_face[a.sweep.target.value()] != b.whole_face[b.sweep.target.value()] ||
           !free_face(a.solid, a.sweep.target))
         continue;
-      auto flip = [](const Part& p, std::vector<int>& avoid) {
-        for (core::FaceId f : p.solid.faces())
-          if (f != p.sweep.target) avoid.push_back(f.value());
-        return sweep_structure(p.solid, avoid);
-      };
-      std::vector<int> avoid_a, avoid_b;
-      const SweepStructure fa = flip(a, avoid_a), fb = flip(b, avoid_b);
-      if (fa.source != a.sweep.target || fb.source != b.sweep.target) continue;
-      a.sweep = fa, a.avoid_sources = avoid_a;
-      b.sweep = fb, b.avoid_sources = avoid_b;
+      ReversedSweep ra = reversed(a), rb = reversed(b);
+      if (!ra.ok || !rb.ok) continue;
+      take(a, std::move(ra));
+      take(b, std::move(rb));
     }
 
   // A sweep whose target is a face a multisweep shares, meshed freely: the multisweep meshes
@@ -491,13 +501,7 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
         for (std::size_t f = 1; f < a.whole_face.size(); ++f)
           with_multisweep = with_multisweep || a.whole_face[f] == face;
     if (!with_multisweep) continue;
-    std::vector<int> avoid;
-    for (core::FaceId f : b.solid.faces())
-      if (f != b.sweep.target) avoid.push_back(f.value());
-    const SweepStructure flipped = sweep_structure(b.solid, avoid);
-    if (flipped.source != b.sweep.target) continue;
-    b.sweep = flipped;
-    b.avoid_sources = avoid;
+    if (ReversedSweep r = reversed(b); r.ok) take(b, std::move(r));
   }
 
   // Edges a neighbour has too (their counts are given to a multisweep).
