@@ -862,18 +862,18 @@ PlaneCutResult cut_as_the_mesher(const occ::Solid& solid, const PlaneCutOptions&
   // wedges off the block; cut at its floor alone, a block and a slab with a tapered hole,
   // swept), then with them.
   const double feet_until = left() - std::min(0.25 * options.time_limit, kAroundSeconds);
+  // Without the tapered faces' planes only where the cut at concave edges was a simple one
+  // (at most as many pieces as the planes around holes allow, as many surfaces as the cuts
+  // take): HexMe's industrial models whose cuts fail then split with fewer surfaces, each
+  // for nothing (i25 25 -> 38 s, i03 30 -> 42 s).
+  const bool simple = cut.pieces_before_merge <= kAroundPieces / 2 &&
+                      int(planes.size() + cylinders.size()) <= options.max_planes;
   for (const detail::FootPlaneSet& set : detail::foot_plane_sets(solid)) {
     std::vector<Plane> untapered;
     for (const Plane& pl : planes) {
       const double c = std::abs(pl.normal.dot(set.axis));
       if (c < 1e-6 || c > 1 - 1e-6) untapered.push_back(pl);
     }
-    // Without the tapered faces' planes only where the cut at concave edges was a simple one
-    // (at most as many pieces as the planes around holes allow, as many surfaces as the cuts
-    // take): HexMe's industrial models whose cuts fail then split with fewer surfaces, each
-    // for nothing (i25 25 -> 38 s, i03 30 -> 42 s).
-    const bool simple = cut.pieces_before_merge <= kAroundPieces / 2 &&
-                        int(planes.size() + cylinders.size()) <= options.max_planes;
     for (bool all : {false, true}) {
       if (!all && !simple) continue;
       if (all && simple && untapered.size() == planes.size()) break;  // tried: the same

@@ -1,5 +1,6 @@
 #include "grid/boundary_pillow.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace vorohex::grid {
@@ -13,12 +14,11 @@ BoundaryPillowResult pillow_boundary(core::HexMesh& mesh, double shrink) {
   const std::vector<char> on_boundary = core::boundary_nodes(mesh);
   const std::size_t n = mesh.num_nodes();
 
-  // Per boundary node: its interior edges (to nodes not on the boundary, counted once) and
-  // the sum of its hexahedra's centroids.
-  std::vector<int> interior_edges(n, 0), hexes_at(n, 0);
-  std::vector<std::int32_t> interior_end(n, -1);
+  // Per boundary node: the ends of its interior edges (nodes not on the boundary, each once)
+  // and the sum of its hexahedra's centroids.
+  std::vector<int> hexes_at(n, 0);
   std::vector<core::Vec3> centroid_sum(n, core::Vec3::Zero());
-  std::vector<std::vector<std::int32_t>> seen(n);  // interior neighbours already counted
+  std::vector<std::vector<std::int32_t>> inward(n);
   for (std::size_t h = 0; h < mesh.num_hexes(); ++h) {
     const core::HexNodes& hx = mesh.hex(core::HexId(std::int32_t(h)));
     core::Vec3 c = core::Vec3::Zero();
@@ -30,13 +30,8 @@ BoundaryPillowResult pillow_boundary(core::HexMesh& mesh, double shrink) {
       for (int s = 0; s < 2; ++s) {
         const std::int32_t a = hx[e[s]], b = hx[e[1 - s]];
         if (!on_boundary[a] || on_boundary[b]) continue;
-        std::vector<std::int32_t>& known = seen[a];
-        bool found = false;
-        for (std::int32_t k : known) found |= k == b;
-        if (found) continue;
-        known.push_back(b);
-        ++interior_edges[a];
-        interior_end[a] = b;
+        std::vector<std::int32_t>& ends = inward[a];
+        if (std::find(ends.begin(), ends.end(), b) == ends.end()) ends.push_back(b);
       }
     }
   }
@@ -47,8 +42,8 @@ BoundaryPillowResult pillow_boundary(core::HexMesh& mesh, double shrink) {
     if (!on_boundary[v]) continue;
     const core::Vec3 p = mesh.point(core::NodeId(std::int32_t(v)));
     core::Vec3 q;
-    if (interior_edges[v] == 1)
-      q = p + shrink * (mesh.point(core::NodeId(interior_end[v])) - p);
+    if (inward[v].size() == 1)
+      q = p + shrink * (mesh.point(core::NodeId(inward[v][0])) - p);
     else
       q = p + std::min(1.0, 2 * shrink) * (centroid_sum[v] / double(hexes_at[v]) - p);
     twin[v] = mesh.add_node(q).value();
@@ -66,7 +61,7 @@ BoundaryPillowResult pillow_boundary(core::HexMesh& mesh, double shrink) {
     const core::HexId id{std::int32_t(h)};
     core::HexNodes hx = mesh.hex(id);
     for (std::int32_t& v : hx)
-      if (std::size_t(v) < n && twin[v] >= 0) v = twin[v];
+      if (twin[v] >= 0) v = twin[v];
     out.add_hex(hx, mesh.sub_volume(id));
   }
   for (const core::BoundaryFace& f : faces) {

@@ -167,9 +167,9 @@ void pillowed_grid(const occ::Solid& solid, const MeshOptions& options,
   add_deviation(again, solid);
   if (progress.cancelled()) return;
   std::ostringstream s;
-  s << "The grid mesh (" << result.mesh.num_hexes() << " hexahedra, "
-    << result.check.non_positive << " inverted) was invalid ("
-    << core::error_codes(result.diagnostics) << "); a second pillow layer was put under its "
+  s << "The grid mesh (" << result.mesh.num_hexes() << " hexahedra, " << result.check.non_positive
+    << " inverted) was invalid (" << core::error_codes(result.diagnostics)
+    << "); a second pillow layer was put under its "
     << "boundary (" << p.hexes_added << " hexahedra, one per boundary quad) and smoothed";
   if (again.ok) {
     s << ": valid with min scaled Jacobian " << std::setprecision(3)
