@@ -139,6 +139,21 @@ def build_parts(work):
     top = box(30, 20, 10)
     parts["block with its top edges filleted"] = top.makeFillet(
         2, [e for e in top.Edges if e.BoundBox.ZMin > 10 - 1e-6])
+    # Rounded edges cut across the fillets' feet: a block with a hole and its outer top edges
+    # filleted, a plate with its hole's top edge filleted (a torus;
+    # tests/data/plate_hole_edge_fillet.step), and a block with its top and vertical edges
+    # filleted (a sphere's three-sided patch at each top corner;
+    # tests/data/block_top_vertical_fillets.step).
+    holed = box(40, 30, 10).cut(cyl(5, 10, (20, 15, 0)))
+    parts["block with a hole, its top edges filleted"] = holed.makeFillet(
+        2, [e for e in holed.Edges if e.BoundBox.ZMin > 10 - 1e-6 and
+            max(e.BoundBox.XLength, e.BoundBox.YLength) > 20])
+    plate = box(40, 30, 8).cut(cyl(5, 8, (20, 15, 0)))
+    parts["plate with its hole's edge filleted"] = plate.makeFillet(
+        1.5, [e for e in plate.Edges
+              if e.BoundBox.ZMin > 8 - 1e-6 and 9 < e.BoundBox.XLength < 11])
+    parts["block with its top and vertical edges filleted"] = top.makeFillet(
+        2, [e for e in top.Edges if e.BoundBox.ZMin > 10 - 1e-6 or e.BoundBox.ZLength > 9])
     # Part's Chamfer: a block with its four top edges chamfered (convex: the midpoint
     # subdivision's, 0.15, until cut across the chamfers' foot), and with its top and bottom
     # edges chamfered; a block with a pyramidal pocket (sloped caps of the multisweep).

@@ -562,7 +562,7 @@ std::string cut_kind_text(const PlaneCutResult& cut) {
   std::vector<std::string> kinds;
   if (concave) kinds.push_back("the faces at its concave edges");
   if (holes) kinds.push_back("planes around its holes");
-  if (feet) kinds.push_back("planes across the feet of its tapered faces");
+  if (feet) kinds.push_back("planes across the feet of its tapered or rounded faces");
   if (kinds.empty()) return "the faces at its concave edges";
   std::string t = kinds[0];
   for (std::size_t k = 1; k < kinds.size(); ++k)
@@ -855,12 +855,12 @@ PlaneCutResult cut_as_the_mesher(const occ::Solid& solid, const PlaneCutOptions&
                                       left() - until, progress, holes);
     if (around.ok) return around;
   }
-  // Fourth: with planes across the feet of its tapered faces (a block with chamfered top
-  // edges, which has no concave edge: a block and a tapered slab), each axis's set in turn,
-  // within the same share of the time as the planes around holes. First without the planes
-  // of the faces tapered to that axis (a pocket with drafted walls: its walls' planes cut
-  // wedges off the block; cut at its floor alone, a block and a slab with a tapered hole,
-  // swept), then with them.
+  // Fourth: with planes across the feet of its tapered or rounded faces (a block with
+  // chamfered or filleted top edges, which has no concave edge: a block and a slab), each
+  // axis's set in turn, within the same share of the time as the planes around holes. First
+  // without the planes of the faces tapered to that axis (a pocket with drafted walls: its
+  // walls' planes cut wedges off the block; cut at its floor alone, a block and a slab with
+  // a tapered hole, swept), then with them.
   const double feet_until = left() - std::min(0.25 * options.time_limit, kAroundSeconds);
   // Without the tapered faces' planes only where the cut at concave edges was a simple one
   // (at most as many pieces as the planes around holes allow, as many surfaces as the cuts

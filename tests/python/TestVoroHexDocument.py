@@ -405,6 +405,34 @@ class TestVoroHexObject(BoxDocument, unittest.TestCase):
         self.assertTrue(any("[midpoint_replaced]" in line for line in obj.Diagnostics),
                         list(obj.Diagnostics))
 
+    def test_part_fillet_on_a_plate_with_a_hole_is_cut_at_the_fillets_foot(self):
+        # A plate with a hole (Part's Cut), its top edges and the hole's top edge rounded
+        # by Part's Fillet feature: convex rounded edges, no concave edge to cut at; cut
+        # across the fillets' foot it is a plate and a slab whose fillets are its sides, both
+        # swept (the grid mesher's before).
+        box = self.doc.addObject("Part::Box", "Plate")
+        box.Length, box.Width, box.Height = 40, 30, 10
+        hole = self.doc.addObject("Part::Cylinder", "Hole")
+        hole.Radius, hole.Height = 5, 10
+        hole.Placement.Base = FreeCAD.Vector(20, 15, 0)
+        cut = self.doc.addObject("Part::Cut", "Cut")
+        cut.Base, cut.Tool = box, hole
+        self.doc.recompute()
+        fillet = self.doc.addObject("Part::Fillet", "Fillet")
+        fillet.Base = cut
+        top = [i + 1 for i, e in enumerate(cut.Shape.Edges)
+               if abs(e.BoundBox.ZMin - 10) < 1e-9 and abs(e.BoundBox.ZMax - 10) < 1e-9]
+        fillet.Edges = [(i, 2.0, 2.0) for i in top]
+        self.doc.recompute()
+        self.assertTrue(fillet.Shape.isValid())
+        obj = VoroHexObjects.makeHexMesh(self.doc, fillet)
+        self.doc.recompute()
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        self.assertEqual((obj.Scheme, obj.SubVolumeCount), ("sweep", 2))
+        self.assertGreaterEqual(obj.MinScaledJacobian, 0.3)
+        self.assertTrue(any("the plane across the foot of Face" in line
+                            for line in obj.Diagnostics), list(obj.Diagnostics))
+
     def test_recompute_with_smoothing_off_and_on(self):
         cyl = self.doc.addObject("Part::Cylinder", "Cylinder")
         cyl.Radius, cyl.Height = 5, 10

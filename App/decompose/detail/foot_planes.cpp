@@ -14,12 +14,30 @@ using core::Vec3;
 namespace {
 
 // What a face is to the feet planes, found once: a planar face (a plane, or a B-spline that
-// is flat, as lofts leave them) with its unit normal, a cylinder or a cone with its unit
-// axis, or another face (no direction).
+// is flat, as lofts leave them) with its unit normal, a cylinder, a cone or a torus with its
+// unit axis, or another face (no direction). `convex`: a cylinder or torus bulging out of
+// the solid (its axis, or its tube's centre circle, inside it: a rounded edge's fillet).
 struct FaceAxis {
-  enum Kind { other, planar, cylinder, cone } kind = other;
+  enum Kind { other, planar, cylinder, cone, torus } kind = other;
   Vec3 d = Vec3::Zero();
+  bool convex = false;
 };
+
+// Whether cylinder or torus f bulges out of the solid: its outward normal at a point of an
+// edge of it points away from the centre of its curvature there.
+bool bulges(const occ::Solid& s, FaceId f, const core::SurfaceInfo& info) {
+  const auto wires = s.face_wires(f);
+  if (wires.empty() || wires[0].empty()) return false;
+  const std::vector<Vec3> pts = s.edge_points_by_length(wires[0][0].edge, 2);
+  const Vec3 p = pts[pts.size() / 2];
+  const Vec3 d = info.direction.normalized();
+  Vec3 from_axis = (p - info.origin) - d * d.dot(p - info.origin);
+  if (info.kind == core::SurfaceKind::torus) {
+    if (from_axis.norm() == 0) return false;
+    from_axis = (p - info.origin) - from_axis.normalized() * info.radius;  // from the tube's centre
+  }
+  return s.face_normal(f, p).dot(from_axis) > 0;
+}
 
 FaceAxis face_axis(const occ::Solid& s, FaceId f) {
   FaceAxis out;
@@ -33,8 +51,10 @@ FaceAxis face_axis(const occ::Solid& s, FaceId f) {
   const core::SurfaceInfo info = s.surface_info(f);
   if (info.direction.norm() == 0) return out;
   if (info.kind == core::SurfaceKind::cylinder)
-    out = {FaceAxis::cylinder, info.direction.normalized()};
+    out = {FaceAxis::cylinder, info.direction.normalized(), bulges(s, f, info)};
   if (info.kind == core::SurfaceKind::cone) out = {FaceAxis::cone, info.direction.normalized()};
+  if (info.kind == core::SurfaceKind::torus)
+    out = {FaceAxis::torus, info.direction.normalized(), bulges(s, f, info)};
   return out;
 }
 
@@ -55,6 +75,17 @@ bool tapered(const FaceAxis& f, const Vec3& a) {
   const double c = std::abs(f.d.dot(a));
   return (f.kind == FaceAxis::planar && c > 1e-6 && c < 1 - 1e-6) ||
          (f.kind == FaceAxis::cone && std::abs(c - 1) < 1e-9);
+}
+
+// A rounded edge across axis a (a fillet): a cylinder across it or a torus about it, bulging
+// out of the solid. Where it meets a wall, tangent to it, the cut across its foot leaves it
+// on a slab that is a mapped block or a sweep (a block with its top edges filleted: a block
+// and a slab whose fillets are its sides); the concave fillet at a pocket's floor is no
+// foot: a cut there leaves a knife edge where it meets the floor tangentially.
+bool rounded(const FaceAxis& f, const Vec3& a) {
+  const double c = std::abs(f.d.dot(a));
+  return f.convex && ((f.kind == FaceAxis::cylinder && c < 1e-9) ||
+                      (f.kind == FaceAxis::torus && std::abs(c - 1) < 1e-9));
 }
 
 }  // namespace
@@ -80,7 +111,8 @@ std::vector<FootPlaneSet> foot_plane_sets(const occ::Solid& solid) {
     }
     std::vector<FootPlane> set;
     for (FaceId f : solid.faces()) {
-      if (!tapered(faces[f.value()], a)) continue;
+      const bool fillet = rounded(faces[f.value()], a);
+      if (!fillet && !tapered(faces[f.value()], a)) continue;
       for (const auto& wire : solid.face_wires(f))
         for (const core::OrientedEdge& oe : wire) {
           const EdgeId e = oe.edge;
@@ -89,7 +121,8 @@ std::vector<FootPlaneSet> foot_plane_sets(const occ::Solid& solid) {
           // floor of a pocket with drafted walls).
           bool foot = false;
           for (FaceId g : solid.edge_faces(e))
-            foot = foot || (g != f && (wall(faces[g.value()], a) || cap(faces[g.value()], a)));
+            foot = foot ||
+                   (g != f && (wall(faces[g.value()], a) || (!fillet && cap(faces[g.value()], a))));
           if (!foot) continue;
           const std::vector<Vec3> p = solid.edge_points_by_length(e, 8);
           double h0 = 1e300, h1 = -1e300;

@@ -3,7 +3,10 @@
 // one height. A block with its top edges chamfered is convex and has no concave edge, so
 // the cuts at concave edges never touch it, and no one scheme takes it well (the midpoint
 // subdivision: min scaled Jacobian 0.15); cut at the chamfers' foot it is a block and a
-// tapered slab swept from its wide face to its narrow one, what a Cubit user webcuts.
+// tapered slab swept from its wide face to its narrow one, what a Cubit user webcuts. A
+// rounded edge's fillet (a cylinder across the axis or a torus about it, bulging out of the
+// solid) has its foot where it meets a wall tangentially: a block with its top edges
+// filleted is a block and a slab whose sides the fillets are.
 // Internal to App/decompose (the plane cuts' fourth try, docs/decomposition.md).
 #pragma once
 
@@ -23,8 +26,9 @@ struct FootPlane {
 
 // Per axis (the directions of the solid's planar faces and cylinders): the planes at the
 // feet of the faces tapered to it (planar faces neither along nor across it, cones about
-// it) where they meet a wall along an edge at one height strictly inside the solid's extent
-// along the axis; axes with none are left out.
+// it) where they meet a wall or a cap, and of its convex fillets where they meet a wall,
+// along an edge at one height strictly inside the solid's extent along the axis; axes with
+// none are left out.
 struct FootPlaneSet {
   core::Vec3 axis;  // unit
   std::vector<FootPlane> planes;

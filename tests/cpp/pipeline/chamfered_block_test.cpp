@@ -12,6 +12,7 @@
 #include "fixtures/diagnostics.h"
 #include "fixtures/machined.h"
 #include "mesh/midpoint.h"
+#include "occ/shape_io.h"
 #include "pipeline/generate_mesh.h"
 
 namespace vorohex::pipeline {
@@ -34,12 +35,33 @@ TEST(FootPlanes, AChamferedBlockIsCutAcrossItsChamfersFoot) {
   const decompose::PlaneCutResult cut = decompose::cut_as_the_mesher(block, {});
   ASSERT_TRUE(cut.ok) << cut.why_not;
   EXPECT_EQ(cut.pieces.size(), 2u);
-  EXPECT_EQ(decompose::cut_kind_text(cut), "planes across the feet of its tapered faces");
+  EXPECT_EQ(decompose::cut_kind_text(cut),
+            "planes across the feet of its tapered or rounded faces");
   ASSERT_EQ(cut.surfaces.size(), 1u);
   EXPECT_TRUE(cut.surfaces[0].at_foot);
   EXPECT_EQ(
       decompose::surface_text(cut.surfaces[0], false).rfind("the plane across the foot of Face", 0),
       0u);
+}
+
+// A block with its four top edges filleted (FreeCAD's makeFillet, radius 2): the fillets are
+// cylinders across z bulging out of it; their feet on the walls (z = 8) give one plane, and
+// their edges on the top (at its extent's end) none.
+TEST(FootPlanes, AFilletedBlockIsCutAcrossItsFilletsFoot) {
+  const occ::ReadResult in =
+      occ::read_solid(std::string(VOROHEX_SOURCE_DIR) + "/tests/data/block_top_fillets.step");
+  ASSERT_TRUE(in.ok());
+  const auto sets = decompose::detail::foot_plane_sets(*in.solid);
+  ASSERT_GE(sets.size(), 1u);
+  EXPECT_NEAR(std::abs(sets[0].axis.z()), 1, 1e-12);
+  ASSERT_EQ(sets[0].planes.size(), 1u);
+  EXPECT_NEAR(std::abs(sets[0].planes[0].offset), 8, 1e-6);
+  EXPECT_EQ(sets[0].planes[0].edges.size(), 4u);
+  const decompose::PlaneCutResult cut = decompose::cut_as_the_mesher(*in.solid, {});
+  ASSERT_TRUE(cut.ok) << cut.why_not;
+  EXPECT_EQ(cut.pieces.size(), 2u);
+  EXPECT_EQ(decompose::cut_kind_text(cut),
+            "planes across the feet of its tapered or rounded faces");
 }
 
 TEST(GenerateMesh, AChamferedBlockIsABlockAndATaperedSlabNotAPoorMidpointSubdivision) {
