@@ -1,6 +1,7 @@
 #include "grid/boundary_pillow.h"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 namespace vorohex::grid {
@@ -75,6 +76,37 @@ BoundaryPillowResult pillow_boundary(core::HexMesh& mesh, double shrink) {
   }
   mesh = std::move(out);
   return r;
+}
+
+std::size_t flat_doublets(const core::HexMesh& mesh, double max_turn_degrees) {
+  const double min_cos = std::cos(max_turn_degrees * M_PI / 180);
+  const std::vector<core::BoundaryFace> faces = core::boundary_faces(mesh);
+  std::size_t count = 0;
+  // boundary_faces lists a hexahedron's quads together (hexahedron order).
+  for (std::size_t i = 0; i < faces.size();) {
+    std::size_t j = i;
+    while (j < faces.size() && faces[j].hex == faces[i].hex) ++j;
+    const core::HexNodes& hx = mesh.hex(core::HexId(faces[i].hex));
+    auto normal = [&](int face) {
+      const auto& c = core::kHexFaces[face];
+      const core::Vec3 d1 = mesh.point(core::NodeId(hx[c[2]])) - mesh.point(core::NodeId(hx[c[0]]));
+      const core::Vec3 d2 = mesh.point(core::NodeId(hx[c[3]])) - mesh.point(core::NodeId(hx[c[1]]));
+      const core::Vec3 n = d1.cross(d2);
+      return n.norm() > 0 ? core::Vec3(n.normalized()) : n;
+    };
+    bool flat = false;
+    for (std::size_t a = i; a < j && !flat; ++a)
+      for (std::size_t b = a + 1; b < j && !flat; ++b) {
+        const auto &fa = core::kHexFaces[faces[a].face], &fb = core::kHexFaces[faces[b].face];
+        int common = 0;  // faces across an edge share two nodes; opposite faces none
+        for (int x : fa)
+          for (int y : fb) common += x == y;
+        flat = common == 2 && normal(faces[a].face).dot(normal(faces[b].face)) > min_cos;
+      }
+    count += flat;
+    i = j;
+  }
+  return count;
 }
 
 }  // namespace vorohex::grid

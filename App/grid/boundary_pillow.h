@@ -27,4 +27,11 @@ struct BoundaryPillowResult {
 // std::invalid_argument for a shrink outside (0, 1).
 BoundaryPillowResult pillow_boundary(core::HexMesh& mesh, double shrink = 0.3);
 
+// The hexahedra with two boundary quads across an edge whose outward normals differ by less
+// than `max_turn_degrees`: the two faces lie nearly flat, so the hexahedron's own angle at
+// that edge is nearly 180 degrees and no smoothing opens it; the boundary pillow splits it
+// (each new hexahedron has one boundary quad). Where a structured mesh meets a fillet's
+// tangent edge: the top face and the last layer across the fillet.
+std::size_t flat_doublets(const core::HexMesh& mesh, double max_turn_degrees);
+
 }  // namespace vorohex::grid

@@ -467,6 +467,7 @@ MeshResult generate(const occ::Solid& solid, const MeshOptions& options,
   if (mesh_solid(solid, options, sizes, progress, result, &deferred)) {
     beside.cancel();
     detail::finish(result, solid, options, progress, sizes);
+    detail::pillow_flat_doublets(result, solid, options, progress, sizes);
     add_deviation(result, solid);
     return result;
   }

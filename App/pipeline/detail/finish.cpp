@@ -1,10 +1,13 @@
 #include "pipeline/detail/finish.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 
 #include "core/progress.h"
+#include "grid/boundary_pillow.h"
 #include "io/named_groups.h"
 #include "io/second_order.h"
 #include "quality/check_mesh.h"
@@ -137,6 +140,84 @@ void finish(MeshResult& result, const occ::Solid& solid, const MeshOptions& opti
                      "elements.";
   append(result.diagnostics, result.check.diagnostics);
   result.ok = result.check.valid && !core::has_error(result.diagnostics);
+}
+
+// Below this a structured mesh with flat doublets gets the pillow layer; the pillowed mesh
+// must be this much better to replace it. What two faces nearly flat means: outward normals
+// within kFlatTurn degrees (two layers across a 90-degree fillet: 22.5; a 45-degree chamfer's
+// slab, 45, is not one: 0.577 as it is).
+constexpr double kFlatPillowBar = 0.4;
+constexpr double kFlatPillowGain = 0.05;
+constexpr double kFlatTurn = 30;
+
+namespace {
+
+// The first-order mesh under a second-order one: its corner nodes (make_second_order adds the
+// mid-edge nodes after them) and hexahedra.
+core::HexMesh first_order(const core::HexMesh& mesh) {
+  std::size_t corners = mesh.num_nodes();
+  for (const core::MidEdgeNodes& m : mesh.mid_edge_nodes())
+    for (std::int32_t v : m) corners = std::min(corners, std::size_t(v));
+  core::HexMesh out;
+  out.reserve(corners, mesh.num_hexes());
+  for (std::size_t v = 0; v < corners; ++v) {
+    const core::NodeId id{std::int32_t(v)};
+    out.add_node(mesh.point(id), mesh.node_class(id));
+  }
+  for (std::size_t h = 0; h < mesh.num_hexes(); ++h) {
+    const core::HexId id{std::int32_t(h)};
+    out.add_hex(mesh.hex(id), mesh.sub_volume(id));
+  }
+  return out;
+}
+
+}  // namespace
+
+void pillow_flat_doublets(MeshResult& result, const occ::Solid& solid, const MeshOptions& options,
+                          const core::Progress& progress, const core::SizeField& sizes) {
+  if (!result.ok || result.stats.scheme == "grid" || result.stats.scheme == "tet-split" ||
+      result.mesh.num_hexes() == 0 || progress.cancelled() ||
+      result.check.scaled_jacobian.min >= kFlatPillowBar)
+    return;
+  // Second order: the pillow goes under its corners' mesh, whose mid-edge nodes finish makes
+  // again.
+  core::HexMesh corners =
+      result.mesh.order() == 2 ? first_order(result.mesh) : core::HexMesh(result.mesh);
+  const std::size_t flat = grid::flat_doublets(corners, kFlatTurn);
+  if (flat == 0) return;
+  MeshResult again;
+  again.stats = result.stats;
+  again.mesh = std::move(corners);
+  // What made the mesh stays said; what its smoothing and check said is said again.
+  for (const core::Diagnostic& d : result.diagnostics) {
+    bool from_check = d.code == "smoothing_skipped" || d.code == "edge_nodes_released";
+    for (const core::Diagnostic& c : result.check.diagnostics) from_check |= c.code == d.code;
+    if (!from_check) again.diagnostics.push_back(d);
+  }
+  const grid::BoundaryPillowResult p = grid::pillow_boundary(again.mesh);
+  if (again.mesh.num_hexes() > options.max_hexes) return;
+  finish(again, solid, options, progress, sizes);
+  if (progress.cancelled()) return;
+  const double before = result.check.scaled_jacobian.min;
+  const double after = again.check.scaled_jacobian.min;
+  std::ostringstream s;
+  s << std::setprecision(3) << flat << (flat == 1 ? " hexahedron has" : " hexahedra have")
+    << " two boundary quads nearly flat across an edge (a tangent edge, as a fillet's), where no "
+       "smoothing opens its angle; a pillow layer under the boundary ("
+    << p.hexes_added << " hexahedra, one per boundary quad)";
+  if (again.ok && after >= before + kFlatPillowGain) {
+    s << " raised the minimum scaled Jacobian from " << before << " to " << after
+      << ": that mesh is used.";
+    again.diagnostics.push_back(core::make_warning("boundary_pillowed", s.str()));
+    result = std::move(again);
+    return;
+  }
+  if (again.ok)
+    s << " gave min scaled Jacobian " << after;
+  else
+    s << " gave an invalid mesh (" << core::error_codes(again.diagnostics) << ")";
+  s << ", not better than " << before << ": the mesh stays.";
+  result.diagnostics.push_back(core::make_info("boundary_pillow_failed", s.str()));
 }
 
 }  // namespace vorohex::pipeline::detail

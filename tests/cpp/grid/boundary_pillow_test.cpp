@@ -86,6 +86,24 @@ TEST(BoundaryPillow, LoneHexahedronGetsSixAroundIt) {
   for (double v : quality::scaled_jacobians(m)) EXPECT_GT(v, 0.5);
 }
 
+// A hexahedron with two boundary quads across an edge whose normals differ by less than the
+// angle given is a flat doublet: a box's corner hexahedra (90 degrees) are not at 30, are at
+// 100; a hexahedron whose top face is bent down to 160 degrees at an edge with its side is.
+TEST(BoundaryPillow, FlatDoubletsAreTwoBoundaryQuadsNearlyFlatAcrossAnEdge) {
+  const core::HexMesh box = quality::testing::structured_grid(3, 2, 2);
+  EXPECT_EQ(grid::flat_doublets(box, 30), 0u);
+  EXPECT_EQ(grid::flat_doublets(box, 100), box.num_hexes());  // every one is on a corner or edge
+  core::HexMesh m;
+  // The face x = 1 leans in by 70 degrees: its normal turns 20 degrees from the top's (z).
+  const double t = std::tan(70 * M_PI / 180);
+  const core::Vec3 p[8] = {{0, 0, 0}, {1 + t, 0, 0}, {1 + t, 1, 0}, {0, 1, 0},
+                           {0, 0, 1}, {1, 0, 1},     {1, 1, 1},     {0, 1, 1}};
+  for (const core::Vec3& q : p) m.add_node(q);
+  m.add_hex({0, 1, 2, 3, 4, 5, 6, 7});
+  EXPECT_EQ(grid::flat_doublets(m, 30), 1u);
+  EXPECT_EQ(grid::flat_doublets(m, 15), 0u);
+}
+
 TEST(BoundaryPillow, RejectsShrinkOutsideTheUnitInterval) {
   core::HexMesh m = quality::testing::structured_grid(1, 1, 1);
   EXPECT_THROW(pillow_boundary(m, 0.0), std::invalid_argument);

@@ -154,6 +154,12 @@ TEST(GenerateMesh, HexMeI11IsASweepAndAMultisweepWithALadderAtItsCrescent) {
   EXPECT_EQ(r.stats.sub_volumes, 2);
   // Its worst hexes are at the crescent's point (0.16 measured when this was written).
   expect_valid_on_cad(r, *in.solid, 0.1);
+  // Two hexahedra there have two boundary quads nearly flat across an edge: the pillow layer
+  // is tried (0.166), not better, and the mesh stays as it was.
+  const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "boundary_pillow_failed");
+  ASSERT_NE(d, nullptr);
+  EXPECT_NE(d->message.find("the mesh stays"), std::string::npos) << d->message;
+  EXPECT_EQ(testing::find_diagnostic(r.diagnostics, "boundary_pillowed"), nullptr);
 }
 
 }  // namespace
