@@ -154,6 +154,28 @@ def build_parts(work):
               if e.BoundBox.ZMin > 8 - 1e-6 and 9 < e.BoundBox.XLength < 11])
     parts["block with its top and vertical edges filleted"] = top.makeFillet(
         2, [e for e in top.Edges if e.BoundBox.ZMin > 10 - 1e-6 or e.BoundBox.ZLength > 9])
+
+    def at(e, z):
+        return abs(e.BoundBox.ZMin - z) < 1e-6 and abs(e.BoundBox.ZMax - z) < 1e-6
+    # More fillets as FreeCAD users put them: on four holes' edges, on a pocketed block's outer
+    # top edges, on top and bottom edges, on a boss's top edge, and at a boss's root (concave:
+    # no foot to cut at).
+    plate4 = box(80, 50, 10)
+    for x, y in [(10, 10), (70, 10), (10, 40), (70, 40)]:
+        plate4 = plate4.cut(cyl(4, 10, (x, y, 0)))
+    parts["plate with four holes, their edges filleted"] = plate4.makeFillet(
+        1.5, [e for e in plate4.Edges if at(e, 10) and e.BoundBox.XLength < 9])
+    pocketed = box(60, 40, 20).cut(box(30, 20, 10, (15, 10, 10)))
+    parts["block with a pocket, its outer top edges filleted"] = pocketed.makeFillet(
+        3, [e for e in pocketed.Edges
+            if at(e, 20) and max(e.BoundBox.XLength, e.BoundBox.YLength) > 39])
+    parts["block with its top and bottom edges filleted"] = top.makeFillet(
+        2, [e for e in top.Edges if at(e, 10) or at(e, 0)])
+    bossed = box(60, 40, 10).fuse(cyl(8, 15, (30, 20, 10))).removeSplitter()
+    parts["plate with a boss, its top edge filleted"] = bossed.makeFillet(
+        2, [e for e in bossed.Edges if at(e, 25)])
+    parts["plate with a boss, its root filleted"] = bossed.makeFillet(
+        2, [e for e in bossed.Edges if at(e, 10) and e.BoundBox.XLength < 17])
     # Part's Chamfer: a block with its four top edges chamfered (convex: the midpoint
     # subdivision's, 0.15, until cut across the chamfers' foot), and with its top and bottom
     # edges chamfered; a block with a pyramidal pocket (sloped caps of the multisweep).
