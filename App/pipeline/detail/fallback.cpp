@@ -155,12 +155,7 @@ void pillowed_grid(const occ::Solid& solid, const MeshOptions& options,
   again.absorbed = result.absorbed;
   // What made the mesh stays said (the fallback, the grid's notes); what its smoothing and
   // check said is said again of the new mesh.
-  for (const core::Diagnostic& d : result.diagnostics) {
-    bool from_check = d.severity == core::Severity::error || d.code == "smoothing_skipped" ||
-                      d.code == "edge_nodes_released";
-    for (const core::Diagnostic& c : result.check.diagnostics) from_check |= c.code == d.code;
-    if (!from_check) again.diagnostics.push_back(d);
-  }
+  again.diagnostics = diagnostics_of_making(result);
   const grid::BoundaryPillowResult p = grid::pillow_boundary(again.mesh);
   if (again.mesh.num_hexes() > options.max_hexes) return;
   detail::finish(again, solid, options, progress, sizes);

@@ -150,6 +150,17 @@ constexpr double kFlatPillowBar = 0.4;
 constexpr double kFlatPillowGain = 0.05;
 constexpr double kFlatTurn = 30;
 
+std::vector<core::Diagnostic> diagnostics_of_making(const MeshResult& result) {
+  std::vector<core::Diagnostic> out;
+  for (const core::Diagnostic& d : result.diagnostics) {
+    bool from_check = d.severity == core::Severity::error || d.code == "smoothing_skipped" ||
+                      d.code == "edge_nodes_released";
+    for (const core::Diagnostic& c : result.check.diagnostics) from_check |= c.code == d.code;
+    if (!from_check) out.push_back(d);
+  }
+  return out;
+}
+
 namespace {
 
 // The first-order mesh under a second-order one: its corner nodes (make_second_order adds the
@@ -188,12 +199,7 @@ void pillow_flat_doublets(MeshResult& result, const occ::Solid& solid, const Mes
   MeshResult again;
   again.stats = result.stats;
   again.mesh = std::move(corners);
-  // What made the mesh stays said; what its smoothing and check said is said again.
-  for (const core::Diagnostic& d : result.diagnostics) {
-    bool from_check = d.code == "smoothing_skipped" || d.code == "edge_nodes_released";
-    for (const core::Diagnostic& c : result.check.diagnostics) from_check |= c.code == d.code;
-    if (!from_check) again.diagnostics.push_back(d);
-  }
+  again.diagnostics = diagnostics_of_making(result);
   const grid::BoundaryPillowResult p = grid::pillow_boundary(again.mesh);
   if (again.mesh.num_hexes() > options.max_hexes) return;
   finish(again, solid, options, progress, sizes);

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "core/progress.h"
 #include "core/size_field.h"
@@ -23,6 +24,10 @@ std::string type_of_scheme(const std::string& scheme);
 // smoothing_skipped); the check names what is wrong. Cancelled: error `cancelled`.
 void finish(MeshResult& result, const occ::Solid& solid, const MeshOptions& options,
             const core::Progress& progress, const core::SizeField& sizes);
+
+// What made result's mesh: its diagnostics without its errors and what its smoothing and
+// check said (those are said again of a mesh made from it and finished again).
+std::vector<core::Diagnostic> diagnostics_of_making(const MeshResult& result);
 
 // A structured mesh (not the fallbacks') below kFlatPillowBar with hexahedra whose two
 // boundary quads lie nearly flat across an edge (grid::flat_doublets: a fillet's tangent

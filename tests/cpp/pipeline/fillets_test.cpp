@@ -16,13 +16,14 @@
 namespace vorohex::pipeline {
 namespace {
 
-MeshResult mesh_file(const std::string& name, double size = 0) {
+MeshResult mesh_file(const std::string& name, double size = 0, int order = 1) {
   const occ::ReadResult in =
       occ::read_solid(std::string(VOROHEX_SOURCE_DIR) + "/tests/data/" + name);
   if (!in.ok()) throw std::runtime_error(name + " does not load");
   MeshOptions opt;
   opt.fallback = false;
   opt.size = size;
+  opt.order = order;
   return generate_mesh(*in.solid, opt);
 }
 
@@ -59,13 +60,7 @@ TEST(GenerateMesh, ABlockWithItsTopEdgesFilletedIsCutAtTheFilletsFootAndMapped) 
 // Second order: the pillow goes under the corners' mesh, and the mid-edge nodes are made
 // again on the pillowed one.
 TEST(GenerateMesh, ASecondOrderMeshIsPillowedUnderItsCorners) {
-  const occ::ReadResult in =
-      occ::read_solid(std::string(VOROHEX_SOURCE_DIR) + "/tests/data/block_top_fillets.step");
-  ASSERT_TRUE(in.ok());
-  MeshOptions opt;
-  opt.fallback = false;
-  opt.order = 2;
-  const MeshResult r = generate_mesh(*in.solid, opt);
+  const MeshResult r = mesh_file("block_top_fillets.step", 0, 2);
   ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
   EXPECT_EQ(r.mesh.order(), 2);
   EXPECT_EQ(r.mesh.num_hexes(), 1592u);
