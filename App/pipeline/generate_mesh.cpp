@@ -323,6 +323,7 @@ MeshResult generate_parts(const occ::Solid& whole, const MeshOptions& options,
         << " nodes merged.";
       result.diagnostics.push_back(core::make_info("solids_joined", s.str()));
       detail::finish(result, whole, options, progress, sizes);
+      detail::pillow_flat_doublets(result, whole, options, progress, sizes);
       return result;
     }
     if (progress.cancelled()) {
@@ -377,6 +378,7 @@ MeshResult generate_parts(const occ::Solid& whole, const MeshOptions& options,
     << " (with their edges and vertices) merged.";
   result.diagnostics.push_back(core::make_info("solids_joined", s.str()));
   detail::finish(result, whole, options, progress, sizes);
+  detail::pillow_flat_doublets(result, whole, options, progress, sizes);
   return result;
 }
 

@@ -186,9 +186,11 @@ core::HexMesh first_order(const core::HexMesh& mesh) {
 
 void pillow_flat_doublets(MeshResult& result, const occ::Solid& solid, const MeshOptions& options,
                           const core::Progress& progress, const core::SizeField& sizes) {
-  if (!result.ok || result.stats.scheme == "grid" || result.stats.scheme == "tet-split" ||
-      result.mesh.num_hexes() == 0 || progress.cancelled() ||
-      result.check.scaled_jacobian.min >= kFlatPillowBar)
+  // Not a fallback's mesh, nor several solids' where one of them is (scheme "sweep+grid").
+  const std::string& scheme = result.stats.scheme;
+  if (!result.ok || scheme.find("grid") != std::string::npos ||
+      scheme.find("tet-split") != std::string::npos || result.mesh.num_hexes() == 0 ||
+      progress.cancelled() || result.check.scaled_jacobian.min >= kFlatPillowBar)
     return;
   // Second order: the pillow goes under its corners' mesh, whose mid-edge nodes finish makes
   // again.

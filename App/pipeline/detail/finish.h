@@ -29,7 +29,8 @@ void finish(MeshResult& result, const occ::Solid& solid, const MeshOptions& opti
 // check said (those are said again of a mesh made from it and finished again).
 std::vector<core::Diagnostic> diagnostics_of_making(const MeshResult& result);
 
-// A structured mesh (not the fallbacks') below kFlatPillowBar with hexahedra whose two
+// A structured mesh (not the fallbacks', nor several solids' where one is a fallback's)
+// below kFlatPillowBar with hexahedra whose two
 // boundary quads lie nearly flat across an edge (grid::flat_doublets: a fillet's tangent
 // edge) gets a pillow layer under its whole boundary (grid::pillow_boundary), is finished
 // again, and is replaced where that mesh is valid and its minimum scaled Jacobian at least

@@ -69,6 +69,29 @@ TEST(GenerateMesh, ASecondOrderMeshIsPillowedUnderItsCorners) {
   EXPECT_GE(r.check.scaled_jacobian.min, 0.45);
 }
 
+// Several solids in one file (a 30 x 20 x 5 block under the filleted one, sharing its bottom
+// face; tests/data/block_and_filleted_block.step): meshed one by one and joined, then
+// pillowed as one mesh (0.386 -> 0.5), conforming across the shared face.
+TEST(GenerateMesh, SeveralSolidsJoinedArePillowedAsOneMesh) {
+  const occ::ReadResult in = occ::read_solid(
+      std::string(VOROHEX_SOURCE_DIR) + "/tests/data/block_and_filleted_block.step", [] {
+        occ::ReadOptions o;
+        o.several_solids = true;
+        return o;
+      }());
+  ASSERT_TRUE(in.ok());
+  ASSERT_EQ(in.solid->num_solids(), 2);
+  MeshOptions opt;
+  opt.fallback = false;
+  const MeshResult r = generate_mesh(*in.solid, opt);
+  ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
+  EXPECT_EQ(r.stats.sub_volumes, 2);
+  EXPECT_NE(testing::find_diagnostic(r.diagnostics, "boundary_pillowed"), nullptr);
+  EXPECT_TRUE(r.check.valid);
+  EXPECT_EQ(r.check.open_boundary_edges, 0u);
+  EXPECT_GE(r.check.scaled_jacobian.min, 0.45);
+}
+
 // The pillowed mesh is used only where it is better: on the plate its sweep is good as it is.
 TEST(GenerateMesh, AGoodStructuredMeshIsNotPillowed) {
   const MeshResult r = mesh_file("plate_hole_edge_fillet.step", 1.5);
