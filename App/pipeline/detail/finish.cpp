@@ -205,7 +205,15 @@ void pillow_flat_doublets(MeshResult& result, const occ::Solid& solid, const Mes
   const grid::BoundaryPillowResult p = grid::pillow_boundary(again.mesh);
   if (again.mesh.num_hexes() > options.max_hexes) return;
   finish(again, solid, options, progress, sizes);
-  if (progress.cancelled()) return;
+  if (progress.cancelled()) {  // as a cancel during the smoothing: no mesh handed over
+    result.diagnostics.push_back(core::make_error("cancelled", "Meshing was cancelled."));
+    result.ok = false;
+    result.mesh = core::HexMesh();
+    return;
+  }
+  // "Before smoothing" stays the mesh as its scheme made it, not the pillowed one.
+  again.stats.min_sj_before_smoothing = result.stats.min_sj_before_smoothing;
+  again.stats.mean_sj_before_smoothing = result.stats.mean_sj_before_smoothing;
   const double before = result.check.scaled_jacobian.min;
   const double after = again.check.scaled_jacobian.min;
   std::ostringstream s;
