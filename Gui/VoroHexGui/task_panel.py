@@ -508,8 +508,9 @@ class TaskPanel:
             self.obj.Part.ViewObject.Visibility = False  # so the mesh is seen
         if self.obj.ViewObject is not None:
             self.obj.ViewObject.Visibility = True
+        closing = self.close_when_done  # OK pressed: the panel closes, no trials for it
         self.finished(None, "done")
-        if unstructured_parts(self.obj.Scheme):
+        if unstructured_parts(self.obj.Scheme) and not closing:
             self.start_trials()
 
     def finished(self, status_text, progress_text):
@@ -542,6 +543,8 @@ class TaskPanel:
 
     # Not structured: a banner, and sizes that give a structured mesh -------------------
     def show_banner(self, text, colour="#8a5a00"):
+        if self.form is None:  # the panel has closed
+            return
         banner = self.form.lbl_banner
         banner.setText(text)
         banner.setStyleSheet("QLabel {{ background: {}; color: white; padding: 6px; "
@@ -562,7 +565,7 @@ class TaskPanel:
     def start_trials(self):
         part = self.obj.Part
         size = self.obj.SizeUsed
-        if part is None or size <= 0:
+        if part is None or size <= 0 or self.form is None:
             return
         self.trials = widgets.JobRunner(
             suggestion_job(part.Shape, VoroHexObjects.options_of(self.obj), trial_sizes(size)),
@@ -577,6 +580,8 @@ class TaskPanel:
 
     def on_trials(self, job):
         self.trials = None
+        if self.form is None:  # the panel closed while the sizes were tried
+            return
         try:
             found = job.result()
         except (VoroHexJobs.Cancelled, RuntimeError):
@@ -778,6 +783,7 @@ class TaskPanel:
         return True
 
     def _close(self):
+        self.stop_trials()  # its banner and button belong to this panel
         self.clear_highlights()
         gui_doc = FreeCADGui.getDocument(self.obj.Document.Name)
         if gui_doc is not None:

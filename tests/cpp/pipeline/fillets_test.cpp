@@ -8,6 +8,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <thread>
 
 #include "fixtures/diagnostics.h"
 #include "occ/shape_io.h"
@@ -90,6 +91,34 @@ TEST(GenerateMesh, SeveralSolidsJoinedArePillowedAsOneMesh) {
   EXPECT_TRUE(r.check.valid);
   EXPECT_EQ(r.check.open_boundary_edges, 0u);
   EXPECT_GE(r.check.scaled_jacobian.min, 0.45);
+}
+
+// Large fillets at a fine size: 40 x 20 x 10, top edges filleted at radius 5, size 1
+// (tests/data/block_top_fillets_r5.step). Where two fillets meet the top face, all three
+// tangent at its corner, the mapped slab's corner hexahedra reach 0.133 even pillowed: below
+// 0.2, so the grid mesher's mesh made beside the decomposition is taken (0.5).
+TEST(GenerateMesh, APoorDecompositionMeshGivesWayToTheFallbacksMadeBeside) {
+  if (std::thread::hardware_concurrency() < 2) GTEST_SKIP() << "no fallback beside on one core";
+  const occ::ReadResult in =
+      occ::read_solid(std::string(VOROHEX_SOURCE_DIR) + "/tests/data/block_top_fillets_r5.step");
+  ASSERT_TRUE(in.ok());
+  MeshOptions opt;
+  opt.size = 1;
+  const MeshResult r = generate_mesh(*in.solid, opt);
+  ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
+  EXPECT_EQ(r.stats.scheme, "grid");
+  const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "structured_replaced");
+  ASSERT_NE(d, nullptr);
+  EXPECT_NE(d->message.find("below 0.2"), std::string::npos) << d->message;
+  // Why the grid: said in its fallback warning, and the decomposition's cut is still named.
+  EXPECT_NE(testing::find_diagnostic(r.diagnostics, "decomposed"), nullptr);
+  EXPECT_TRUE(r.check.valid);
+  EXPECT_GE(r.check.scaled_jacobian.min, 0.45);
+  // At the default size (2.5) the same block stays structured (0.5, pillowed).
+  const MeshResult coarse = generate_mesh(*in.solid, MeshOptions{});
+  ASSERT_TRUE(coarse.ok);
+  EXPECT_EQ(coarse.stats.scheme, "map");
+  EXPECT_EQ(testing::find_diagnostic(coarse.diagnostics, "structured_replaced"), nullptr);
 }
 
 // The pillowed mesh is used only where it is better: on the plate its sweep is good as it is.
