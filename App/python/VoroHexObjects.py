@@ -100,6 +100,12 @@ def source_error(part, several=False):
     if part.isDerivedFrom("Mesh::Feature"):
         return ("'{}' is a triangle mesh, not a solid; convert it first (Part > Create shape "
                 "from mesh, then Part > Convert to solid)".format(part.Label))
+    # A feature whose last recompute failed still holds the shape of the one before: meshing
+    # it would mesh what the user no longer sees in the tree (a Body: its Tip feature).
+    for feature in (part, getattr(part, "Tip", None)):
+        if feature is not None and "Invalid" in getattr(feature, "State", []):
+            return ("'{}' failed to recompute, so its shape is the last one that did: fix it "
+                    "(the Report view says why) and recompute first".format(feature.Label))
     try:
         VoroHex.check_shape(part, several)
     except (TypeError, ValueError) as e:

@@ -433,6 +433,27 @@ class TestVoroHexObject(BoxDocument, unittest.TestCase):
         self.assertTrue(any("the plane across the foot of Face" in line
                             for line in obj.Diagnostics), list(obj.Diagnostics))
 
+    def test_a_feature_whose_recompute_failed_is_refused_not_meshed_stale(self):
+        # A fillet too large for its box fails to recompute and keeps its last good shape:
+        # the mesh refuses it by name instead of meshing the shape the tree no longer shows.
+        box = self.doc.addObject("Part::Box", "Block")
+        box.Length, box.Width, box.Height = 40, 20, 10
+        self.doc.recompute()
+        fillet = self.doc.addObject("Part::Fillet", "Fillet")
+        fillet.Base = box
+        top = [i + 1 for i, e in enumerate(box.Shape.Edges)
+               if abs(e.BoundBox.ZMin - 10) < 1e-9 and abs(e.BoundBox.ZMax - 10) < 1e-9]
+        fillet.Edges = [(i, 1.0, 1.0) for i in top]
+        self.doc.recompute()
+        self.assertTrue(fillet.Shape.isValid())
+        fillet.Edges = [(i, 12.0, 12.0) for i in top]
+        self.doc.recompute()
+        self.assertIn("Invalid", fillet.State)
+        error = VoroHexObjects.source_error(fillet, True)
+        self.assertIsNotNone(error)
+        self.assertIn("failed to recompute", error)
+        self.assertIn("Fillet", error)
+
     def test_recompute_with_smoothing_off_and_on(self):
         cyl = self.doc.addObject("Part::Cylinder", "Cylinder")
         cyl.Radius, cyl.Height = 5, 10
