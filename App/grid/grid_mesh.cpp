@@ -328,11 +328,17 @@ GridResult grid_mesh(const occ::Solid& solid, const GridOptions& options,
     for (std::size_t i = 0; i < joined.size() && i < 4; ++i) s << (i ? ", " : "") << joined[i];
     s << (joined.size() > 4 ? ", ...)" : ")");
   }
+  const bool optimised = options.laplacian_iterations > 0 || options.optimisation_passes > 0;
   s << ", " << r.stats.faces_captured << "/" << r.stats.faces << " faces; min scaled Jacobian "
-    << r.stats.min_sj_before_optimisation << " -> " << r.stats.min_sj << " after optimisation.";
+    << r.stats.min_sj_before_optimisation;
+  // Not optimised here (the pipeline's smoothing follows): the minimum as built, which the
+  // smoothing raises; a negative one read as the result's alarmed users.
+  if (optimised)
+    s << " -> " << r.stats.min_sj << " after optimisation.";
+  else
+    s << " as built, before the smoothing.";
   r.diagnostics.push_back(core::make_info("grid", s.str()));
   r.mesh = std::move(pillow.mesh);
-  const bool optimised = options.laplacian_iterations > 0 || options.optimisation_passes > 0;
   if (r.stats.inverted > 0 && optimised) {
     std::ostringstream e;
     e << r.stats.inverted << " of " << r.mesh.num_hexes() << " grid hexahedra are inverted "
