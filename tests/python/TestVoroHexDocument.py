@@ -16,6 +16,13 @@ import VoroHexParts
 from TestVoroHex import BoxDocument, femmesh_hex_volumes, figure6_shape, inp_c3d8_volumes, snapshot
 
 
+def edges_at_height(shape, z):
+    """The numbers (1-based, as Part's Fillet and Chamfer take them) of the shape's edges
+    lying at height z: a box's top edges."""
+    return [i + 1 for i, e in enumerate(shape.Edges)
+            if abs(e.BoundBox.ZMin - z) < 1e-9 and abs(e.BoundBox.ZMax - z) < 1e-9]
+
+
 class TestVoroHexObject(BoxDocument, unittest.TestCase):
 
     def make_l(self):
@@ -392,8 +399,7 @@ class TestVoroHexObject(BoxDocument, unittest.TestCase):
         self.doc.recompute()
         chamfer = self.doc.addObject("Part::Chamfer", "Chamfer")
         chamfer.Base = box
-        top = [i + 1 for i, e in enumerate(box.Shape.Edges)
-               if abs(e.BoundBox.ZMin - 20) < 1e-9 and abs(e.BoundBox.ZMax - 20) < 1e-9]
+        top = edges_at_height(box.Shape, 20)
         chamfer.Edges = [(i, 3.0, 3.0) for i in top]
         self.doc.recompute()
         self.assertEqual(len(chamfer.Shape.Faces), 10)
@@ -420,8 +426,7 @@ class TestVoroHexObject(BoxDocument, unittest.TestCase):
         self.doc.recompute()
         fillet = self.doc.addObject("Part::Fillet", "Fillet")
         fillet.Base = cut
-        top = [i + 1 for i, e in enumerate(cut.Shape.Edges)
-               if abs(e.BoundBox.ZMin - 10) < 1e-9 and abs(e.BoundBox.ZMax - 10) < 1e-9]
+        top = edges_at_height(cut.Shape, 10)
         fillet.Edges = [(i, 2.0, 2.0) for i in top]
         self.doc.recompute()
         self.assertTrue(fillet.Shape.isValid())
@@ -441,8 +446,7 @@ class TestVoroHexObject(BoxDocument, unittest.TestCase):
         self.doc.recompute()
         fillet = self.doc.addObject("Part::Fillet", "Fillet")
         fillet.Base = box
-        top = [i + 1 for i, e in enumerate(box.Shape.Edges)
-               if abs(e.BoundBox.ZMin - 10) < 1e-9 and abs(e.BoundBox.ZMax - 10) < 1e-9]
+        top = edges_at_height(box.Shape, 10)
         fillet.Edges = [(i, 1.0, 1.0) for i in top]
         self.doc.recompute()
         self.assertTrue(fillet.Shape.isValid())
