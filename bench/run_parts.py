@@ -176,6 +176,16 @@ def build_parts(work):
         2, [e for e in bossed.Edges if at(e, 25)])
     parts["plate with a boss, its root filleted"] = bossed.makeFillet(
         2, [e for e in bossed.Edges if at(e, 10) and e.BoundBox.XLength < 17])
+    # Chamfers and fillets on one part: the long top edges chamfered, the short ones and the
+    # hole's filleted (tests/data/block_chamfered_and_filleted.step): feet at two heights.
+    mixed = box(40, 20, 10).cut(cyl(4, 10, (20, 10, 0)))
+    mixed = mixed.makeChamfer(1.5, [e for e in mixed.Edges
+                                    if at(e, 10) and e.BoundBox.XLength > 39])
+    parts["block with chamfered and filleted top edges, a hole"] = mixed.makeFillet(
+        1, [e for e in mixed.Edges
+            if at(e, 10) and (e.Curve.TypeId == "Part::GeomCircle" or
+                              (e.BoundBox.XLength < 1e-6 and
+                               min(abs(e.BoundBox.XMin), abs(e.BoundBox.XMin - 40)) < 1e-6))])
     # Part's Chamfer: a block with its four top edges chamfered (convex: the midpoint
     # subdivision's, 0.15, until cut across the chamfers' foot), and with its top and bottom
     # edges chamfered; a block with a pyramidal pocket (sloped caps of the multisweep).

@@ -650,6 +650,20 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
           given_source[k] = quads_on_face(meshed[j].mesh, a.solid, core::FaceId(int(f)));
     }
   }
+  // A sweep whose source, meshed freely, is another sweep's target (a stack of slabs: a block,
+  // and slabs cut at a chamfer's and a fillet's feet at two heights) takes that sweep's quads
+  // there as its source, so it is meshed after it (below); each of the others on its own.
+  std::vector<int> after(n, -1);
+  for (int k = 0; k < n; ++k) {
+    if (!parts[k].is_sweep() || !given_source[k].empty() ||
+        !free_face(parts[k].solid, parts[k].sweep.source))
+      continue;
+    const int face = parts[k].whole_face[parts[k].sweep.source.value()];
+    for (int j = 0; j < n && after[k] < 0; ++j)
+      if (j != k && parts[j].is_sweep() &&
+          parts[j].whole_face[parts[j].sweep.target.value()] == face)
+        after[k] = j;
+  }
   std::atomic<int> next{0};
   const int threads = std::max(
       1, std::min(n, options.threads > 0 ? options.threads
@@ -657,7 +671,7 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
   auto work = [&] {
     for (int k; (k = next.fetch_add(1)) < n;) {
       if (stop.load()) break;
-      if (parts[k].multisweep) continue;  // meshed above
+      if (parts[k].multisweep || after[k] >= 0) continue;  // meshed above, or below
       try {
         meshed[k] =
             mesh_part(parts[k], counts[k], options, worker_progress, given[k], given_source[k]);
@@ -673,6 +687,28 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
       if (progress.cancelled()) stop = true;
       progress.report("sub_volumes", 0.1 + 0.8 * std::min(1.0, double(next.load()) / n));
     }
+  // The stacked sweeps, each once the one below it is meshed (a chain: as many passes).
+  for (bool progressed = true; progressed && !stop.load() && !progress.cancelled();) {
+    progressed = false;
+    for (int k = 0; k < n; ++k) {
+      const int j = after[k];
+      if (j < 0 || meshed[k].ok || !meshed[j].ok) continue;
+      given_source[k] = quads_on_face(meshed[j].mesh, parts[j].solid, parts[j].sweep.target);
+      try {
+        meshed[k] =
+            mesh_part(parts[k], counts[k], options, worker_progress, given[k], given_source[k]);
+      } catch (const std::exception& e) {
+        meshed[k].diagnostics.push_back(core::make_error("geometry_error", e.what()));
+      }
+      after[k] = -1;
+      progressed = true;
+    }
+  }
+  for (int k = 0; k < n; ++k)  // the one below failed (or the two are each other's)
+    if (after[k] >= 0 && !meshed[k].ok)
+      meshed[k].diagnostics.push_back(core::make_error(
+          "sub_volume_not_meshed", "its source is the target of " + sub_volume_name(after[k]) +
+                                       ", which was not meshed, so it was not meshed either"));
   result.stats.seconds_meshing = seconds_since(t1);
   if (stop.load() || progress.cancelled()) {
     result.diagnostics.push_back(

@@ -121,6 +121,23 @@ TEST(GenerateMesh, APoorDecompositionMeshGivesWayToTheFallbacksMadeBeside) {
   EXPECT_EQ(testing::find_diagnostic(coarse.diagnostics, "structured_replaced"), nullptr);
 }
 
+// Chamfers and fillets on one part (40 x 20 x 10 with a hole; its long top edges chamfered
+// 1.5, its short ones and the hole's filleted 1; tests/data/block_chamfered_and_filleted.step):
+// the feet at two heights cut a block and two slabs, three sweeps stacked, each slab's source
+// the target of the one below, meshed freely (the hole). Each takes the quads of the one below
+// there as its source, so they conform. Before, each meshed its own and the join failed
+// (non_conforming_interface): the grid's 16,040 hexahedra.
+TEST(GenerateMesh, StackedSweepsTakeTheQuadsOfTheOneBelowAsTheirSource) {
+  const MeshResult r = mesh_file("block_chamfered_and_filleted.step");
+  ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
+  EXPECT_EQ(r.stats.scheme, "sweep");
+  EXPECT_EQ(r.stats.sub_volumes, 3);
+  EXPECT_TRUE(r.check.valid);
+  EXPECT_EQ(r.check.open_boundary_edges, 0u);
+  EXPECT_LE(r.check.volume_rel_error, 0.01);
+  EXPECT_GE(r.check.scaled_jacobian.min, 0.5);
+}
+
 // The pillowed mesh is used only where it is better: on the plate its sweep is good as it is.
 TEST(GenerateMesh, AGoodStructuredMeshIsNotPillowed) {
   const MeshResult r = mesh_file("plate_hole_edge_fillet.step", 1.5);
