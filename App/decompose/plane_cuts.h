@@ -101,8 +101,8 @@ PlaneCutResult cut_at_concave_edges(const occ::Solid& solid, const PlaneCutOptio
 // else the cut at concave edges with planes around round holes too (a cross hole through a
 // tube, a hole along a block beside a boss: detail/hole_planes.h), for each set of them until
 // one is ok; else with planes across the feet of its tapered or rounded faces (a chamfered
-// or filleted block: detail/foot_planes.h), each axis's set until one is ok; all within what is left of
-// options.time_limit. Not ok: the first cut's result.
+// or filleted block: detail/foot_planes.h), each axis's set until one is ok; all within what is
+// left of options.time_limit. Not ok: the first cut's result.
 PlaneCutResult cut_as_the_mesher(const occ::Solid& solid, const PlaneCutOptions& options,
                                  const core::Progress& progress = {});
 

@@ -135,10 +135,6 @@ double min_scaled_jacobian(const core::HexMesh& mesh) {
   return sj.empty() ? 1 : *std::min_element(sj.begin(), sj.end());
 }
 
-// How mesh_solid hands a solid no structured scheme meshes to the fallback: at once (the
-// several-solids path, which smooths all solids' meshes together), or back to the caller
-// (`deferred`: `needed` and `why` set; the caller runs it, perhaps started beside the
-// decomposition by `before_decomposition`).
 // A decomposition's structured mesh below kPoorStructured after smoothing (and the pillow at
 // tangent edges) is compared with the fallback's mesh made beside the decomposition, which
 // gets up to kPoorStructuredWait seconds more to end, and replaced by it where that one is
@@ -151,6 +147,45 @@ constexpr double kPoorStructured = 0.2;
 constexpr double kPoorStructuredWait = 5;
 constexpr double kPoorStructuredGain = 0.05;
 
+// A decomposition's mesh `result`, still below kPoorStructured, against the fallback's mesh
+// made beside it (`made`: taken in time, into `fallback`; `why` says how poor `result` is).
+// True where `fallback` replaces it: valid and kPoorStructuredGain better; it then says what
+// made `result` (after the first `small` diagnostics where the tet split's second chance
+// starts with them too) and warns structured_replaced. Else `result` stays, with the info
+// structured_kept.
+bool replaced_by_fallback(MeshResult& result, FallbackOutcome& fallback, bool made,
+                          const std::string& why, std::size_t small) {
+  MeshResult& f = fallback.result;
+  std::ostringstream m;
+  m << why << "; the ";
+  if (made && f.ok &&
+      f.check.scaled_jacobian.min >= result.check.scaled_jacobian.min + kPoorStructuredGain) {
+    const std::vector<core::Diagnostic> making = detail::diagnostics_of_making(result);
+    const auto skip = std::ptrdiff_t(fallback.second_chance ? std::min(small, making.size()) : 0);
+    f.diagnostics.insert(f.diagnostics.begin() + skip, making.begin() + skip, making.end());
+    m << f.stats.scheme << " fallback's mesh, made beside it, is valid with min "
+      << std::setprecision(3) << f.check.scaled_jacobian.min << ": that mesh is used ("
+      << f.mesh.num_hexes() << " hexahedra).";
+    f.diagnostics.push_back(core::make_warning("structured_replaced", m.str()));
+    f.stats.local_sizes = result.stats.local_sizes;
+    return true;
+  }
+  m << "fallback's mesh made beside it ";
+  if (!made)
+    m << "was not ready within " << kPoorStructuredWait << " s more";
+  else if (!f.ok)
+    m << "is invalid (" << core::error_codes(f.diagnostics) << ")";
+  else
+    m << "is not better (min " << std::setprecision(3) << f.check.scaled_jacobian.min << ")";
+  m << ": the structured mesh stays.";
+  result.diagnostics.push_back(core::make_info("structured_kept", m.str()));
+  return false;
+}
+
+// How mesh_solid hands a solid no structured scheme meshes to the fallback: at once (the
+// several-solids path, which smooths all solids' meshes together), or back to the caller
+// (`deferred`: `needed` and `why` set; the caller runs it, perhaps started beside the
+// decomposition by `before_decomposition`).
 struct DeferredFallback {
   std::function<void()> before_decomposition;  // called when the decomposition starts
   bool needed = false;
@@ -502,11 +537,8 @@ MeshResult generate(const occ::Solid& solid, const MeshOptions& options,
   };
   if (mesh_solid(solid, options, sizes, progress, result, &deferred)) {
     // A decomposition's mesh poor before smoothing keeps the fallback beside running: where it
-    // stays poor, the better of the two is used (below).
-    if (beside.started()) {
-      const std::vector<double> sj = quality::scaled_jacobians(result.mesh);
-      if (sj.empty() || *std::min_element(sj.begin(), sj.end()) >= kPoorStructured) beside.cancel();
-    }
+    // stays poor, the better of the two is used.
+    if (beside.started() && min_scaled_jacobian(result.mesh) >= kPoorStructured) beside.cancel();
     detail::finish(result, solid, options, progress, sizes);
     detail::pillow_flat_doublets(result, solid, options, progress, sizes);
     add_deviation(result, solid);
@@ -526,32 +558,8 @@ MeshResult generate(const occ::Solid& solid, const MeshOptions& options,
         result.mesh = core::HexMesh();
         return result;
       }
-      MeshResult& f = outcome.result;
-      const double mine = result.check.scaled_jacobian.min;
-      if (made && f.ok && f.check.valid &&
-          f.check.scaled_jacobian.min >= mine + kPoorStructuredGain) {
-        const std::vector<core::Diagnostic> making = detail::diagnostics_of_making(result);
-        const auto skip =
-            std::ptrdiff_t(outcome.second_chance ? std::min(small.size(), making.size()) : 0);
-        f.diagnostics.insert(f.diagnostics.begin() + skip, making.begin() + skip, making.end());
-        std::ostringstream m;
-        m << why.str() << "; the " << f.stats.scheme << " fallback's mesh, made beside it, is valid"
-          << " with min " << std::setprecision(3) << f.check.scaled_jacobian.min
-          << ": that mesh is used (" << f.mesh.num_hexes() << " hexahedra).";
-        f.diagnostics.push_back(core::make_warning("structured_replaced", m.str()));
-        f.stats.local_sizes = result.stats.local_sizes;
-        return std::move(f);
-      }
-      std::ostringstream m;
-      m << why.str() << "; the fallback's mesh made beside it ";
-      if (!made)
-        m << "was not ready within " << kPoorStructuredWait << " s more";
-      else if (!f.ok)
-        m << "is invalid (" << core::error_codes(f.diagnostics) << ")";
-      else
-        m << "is not better (min " << std::setprecision(3) << f.check.scaled_jacobian.min << ")";
-      m << ": the structured mesh stays.";
-      result.diagnostics.push_back(core::make_info("structured_kept", m.str()));
+      if (replaced_by_fallback(result, outcome, made, why.str(), small.size()))
+        return std::move(outcome.result);
     }
     beside.cancel();
     return result;

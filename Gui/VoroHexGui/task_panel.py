@@ -565,7 +565,7 @@ class TaskPanel:
     def start_trials(self):
         part = self.obj.Part
         size = self.obj.SizeUsed
-        if part is None or size <= 0 or self.form is None:
+        if part is None or size <= 0:
             return
         self.trials = widgets.JobRunner(
             suggestion_job(part.Shape, VoroHexObjects.options_of(self.obj), trial_sizes(size)),

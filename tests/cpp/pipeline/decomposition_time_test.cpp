@@ -19,14 +19,14 @@ namespace {
 // of the decomposition's 60 s. On the block with its top edges alone filleted
 // (block_top_fillets.step, now cut at the fillets' feet and mapped), OCCT's split of that
 // graph's cut returned only after about 34 s, and the child running it was stopped at the
-// whole 60 s limit: the grid mesh, made beside it in 2 s, waited 47 s. Now the decomposition ends within the Voronoi step's 6 s and
-// their grace: stopped by the parent where the split runs on past them, or by its own
-// deadline where the split is interrupted in time (which of the two depends on where OCCT is
-// when the 6 s run out: on a loaded machine the split stopped itself). Either way the message
-// names the 6 s, never the whole limit.
+// whole 60 s limit: the grid mesh, made beside it in 2 s, waited 47 s. Now the decomposition ends
+// within the Voronoi step's 6 s and their grace: stopped by the parent where the split runs on past
+// them, or by its own deadline where the split is interrupted in time (which of the two depends on
+// where OCCT is when the 6 s run out: on a loaded machine the split stopped itself). Either way the
+// message names the 6 s, never the whole limit.
 TEST(GenerateMesh, AVoronoiSplitThatDoesNotReturnIsStoppedAtItsShareOfTheTime) {
-  const occ::ReadResult in =
-      occ::read_solid(std::string(VOROHEX_SOURCE_DIR) + "/tests/data/block_top_vertical_fillets.step");
+  const occ::ReadResult in = occ::read_solid(std::string(VOROHEX_SOURCE_DIR) +
+                                             "/tests/data/block_top_vertical_fillets.step");
   ASSERT_TRUE(in.ok());
   const MeshResult r = generate_mesh(*in.solid, MeshOptions{});
   ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
