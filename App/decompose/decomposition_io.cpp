@@ -204,7 +204,9 @@ PlaneCutSchemes plane_cut_schemes(const PlaneCutResult& cut, bool multisweep) {
     if (out.glue_error.empty()) out.glue_error = "the pieces could not be glued";
     return out;
   }
-  const mesh::SubVolumePlan plan = mesh::plan_sub_volumes(*glued.solid, multisweep);
+  // Solids of revolution too: a cut gives them only where it allowed them (the cylinders at
+  // concave fillets' feet).
+  const mesh::SubVolumePlan plan = mesh::plan_sub_volumes(*glued.solid, multisweep, true);
   out.ends.assign(cut.pieces.size(), {});
   for (std::size_t i = 0; i < plan.schemes.size() && i < out.schemes.size(); ++i) {
     out.schemes[i] = plan.schemes[i];

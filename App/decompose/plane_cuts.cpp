@@ -15,6 +15,7 @@
 #include "mesh/map_block.h"
 #include "mesh/mesh_sub_volumes.h"
 #include "mesh/multisweep.h"
+#include "mesh/revolve.h"
 #include "mesh/sweep.h"
 #include "occ/shape_io.h"
 #include "occ/split_solid.h"
@@ -52,6 +53,7 @@ struct Cylinder {
   occ::CutCylinder surface;
   FaceId face;
   std::vector<EdgeId> edges;
+  bool at_foot = false;  // through the foot of the concave fillet `face` (not its extension)
 };
 
 // Gluing the pieces of one exact split, or unions of them: they touch at faces and never
@@ -63,10 +65,12 @@ occ::GlueOptions touching_only() {
   return o;
 }
 
-// A block, a sweep or (`multisweep`) a prismatic part: what mesh::mesh_sub_volumes meshes.
-bool meshable(const occ::Solid& s, bool multisweep) {
+// A block, a sweep, a prismatic part (o.multisweep) or a solid of revolution (o.revolve):
+// what mesh::mesh_sub_volumes meshes.
+bool meshable(const occ::Solid& s, const PlaneCutOptions& o) {
   return mesh::map_block_applicable(s).ok || mesh::sweep_applicable(s).ok ||
-         (multisweep && mesh::multisweep_applicable(s).ok);
+         (o.multisweep && mesh::multisweep_applicable(s).ok) ||
+         (o.revolve && mesh::revolve_applicable(s).ok);
 }
 
 // The pieces glued (imprinting each other's edges where they touch).
@@ -76,24 +80,24 @@ occ::ReadResult glued(const std::vector<const occ::Solid*>& pieces) {
 
 // Each part of the glued pieces `g` a block, a sweep or prismatic (gluing imprints a
 // neighbour's edges); `why` (when given) names the first that is none.
-bool all_meshable(const occ::ReadResult& g, bool multisweep, std::string* why = nullptr) {
+bool all_meshable(const occ::ReadResult& g, const PlaneCutOptions& o, std::string* why = nullptr) {
   if (!g.ok()) {
     if (why) *why = g.diagnostics.empty() ? "they do not glue" : g.diagnostics[0].message;
     return false;
   }
   if (!why) {
     for (int k = 0; k < g.solid->num_solids(); ++k)
-      if (!meshable(g.solid->part(k), multisweep)) return false;
+      if (!meshable(g.solid->part(k), o)) return false;
     return true;
   }
-  const mesh::SubVolumePlan plan = mesh::plan_sub_volumes(*g.solid, multisweep);
+  const mesh::SubVolumePlan plan = mesh::plan_sub_volumes(*g.solid, o.multisweep, o.revolve);
   *why = plan.why_not;
   return plan.ok;
 }
 
-bool all_meshable(const std::vector<const occ::Solid*>& pieces, bool multisweep,
+bool all_meshable(const std::vector<const occ::Solid*>& pieces, const PlaneCutOptions& o,
                   std::string* why = nullptr) {
-  return all_meshable(glued(pieces), multisweep, why);
+  return all_meshable(glued(pieces), o, why);
 }
 
 // The same cylinder (axis line and radius within `tol`).
@@ -386,7 +390,8 @@ Touching touching(const std::vector<const occ::Solid*>& pieces, const occ::ReadR
 // merges took the whole 30 s and stopped at 37 pieces, among them stacked multisweeps whose
 // common cap the two mesh differently); so, 76 merges down to 4 pieces in 22 s.
 bool merge_keeps_meshable(const std::vector<occ::Solid>& pieces, const Touching& touch,
-                          std::size_t a, std::size_t b, const occ::Solid& u, bool multisweep) {
+                          std::size_t a, std::size_t b, const occ::Solid& u,
+                          const PlaneCutOptions& o) {
   std::vector<char> taken(pieces.size(), 0);
   taken[a] = taken[b] = 1;
   std::vector<std::size_t> near;
@@ -415,7 +420,7 @@ bool merge_keeps_meshable(const std::vector<occ::Solid>& pieces, const Touching&
     const occ::Solid part = r.solid->part(k);
     const int p = piece_of(part, boxes);
     if (p >= int(checked)) continue;
-    if (!meshable(part, multisweep)) return false;
+    if (!meshable(part, o)) return false;
   }
   return true;
 }
@@ -519,11 +524,12 @@ bool split_along(const occ::Solid& solid, std::vector<Plane>& planes,
 }  // namespace
 
 std::string surface_text(const CutSurface& s, bool with_edges) {
-  std::string t = std::string(s.cylinder      ? "the cylinder of "
-                              : s.tangent     ? "the plane tangent to the cylinder of "
-                              : s.around_hole ? "a plane around the hole of "
-                              : s.at_foot     ? "the plane across the foot of "
-                                              : "the plane of ") +
+  std::string t = std::string(s.cylinder && s.at_foot ? "the cylinder through the foot of "
+                              : s.cylinder            ? "the cylinder of "
+                              : s.tangent             ? "the plane tangent to the cylinder of "
+                              : s.around_hole         ? "a plane around the hole of "
+                              : s.at_foot             ? "the plane across the foot of "
+                                                      : "the plane of ") +
                   core::entity_name(s.face);
   if (!with_edges || s.edges.empty()) return t;
   t += " (at ";
@@ -556,13 +562,18 @@ std::string used_surfaces_text(const PlaneCutResult& cut, std::size_t at_most, b
 }
 
 std::string cut_kind_text(const PlaneCutResult& cut) {
-  bool holes = false, concave = false, feet = false;
+  bool holes = false, concave = false, feet = false, fillets = false;
   for (const CutSurface& s : cut.surfaces)
-    if (s.used) (s.around_hole ? holes : s.at_foot ? feet : concave) = true;
+    if (s.used)
+      (s.around_hole             ? holes
+       : s.at_foot && s.cylinder ? fillets
+       : s.at_foot               ? feet
+                                 : concave) = true;
   std::vector<std::string> kinds;
   if (concave) kinds.push_back("the faces at its concave edges");
   if (holes) kinds.push_back("planes around its holes");
   if (feet) kinds.push_back("planes across the feet of its tapered or rounded faces");
+  if (fillets) kinds.push_back("cylinders through the feet of its concave round fillets");
   if (kinds.empty()) return "the faces at its concave edges";
   std::string t = kinds[0];
   for (std::size_t k = 1; k < kinds.size(); ++k)
@@ -605,6 +616,17 @@ bool on_a_hole(const occ::Solid& piece, const std::vector<occ::CutCylinder>& hol
   return false;
 }
 
+// Whether every vertex of the piece lies within cylinder c (a piece of the boss a cylinder
+// through a fillet's foot cut out of its plate).
+bool within(const occ::Solid& piece, const occ::CutCylinder& c) {
+  const double tol = 1e-6 * piece.diagonal() + 1e-9 * c.radius;
+  for (core::VertexId v : piece.vertices()) {
+    const Vec3 d = piece.vertex_point(v) - c.origin;
+    if ((d - d.dot(c.axis) * c.axis).norm() > c.radius + tol) return false;
+  }
+  return true;
+}
+
 // Merges neighbouring pieces while the union is a block, a sweep or prismatic (and, when
 // `careful`, every piece around it stays so once glued: merge_keeps_meshable), each merge
 // taking one piece away, until none is left or the time is up. `volume`, `touch`: per piece.
@@ -635,12 +657,12 @@ void merge_neighbours(std::vector<occ::Solid>& pieces, std::vector<double>& volu
         // A union OCCT turned inside out, or that lost volume, is no union.
         const double both = volume[a] + volume[b], uv = u ? u->volume() : 0;
         if (!u || !(uv > 0) || std::abs(uv - both) > kVolumeTolerance * both ||
-            !meshable(*u, options.multisweep)) {
+            !meshable(*u, options)) {
           if (seconds() < options.time_limit) no_union.insert({id[a], id[b]});  // not cut short
           continue;
         }
         // Whether the neighbours stay meshable can change with later merges: not remembered.
-        if (careful && !merge_keeps_meshable(pieces, touch, a, b, *u, options.multisweep)) continue;
+        if (careful && !merge_keeps_meshable(pieces, touch, a, b, *u, options)) continue;
         std::vector<occ::Solid> next;
         std::vector<double> next_volume;
         std::vector<int> next_ids;
@@ -667,7 +689,8 @@ void merge_neighbours(std::vector<occ::Solid>& pieces, std::vector<double>& volu
 PlaneCutResult cut_along(const occ::Solid& solid, std::vector<Plane> planes,
                          std::vector<Cylinder> cylinders, PlaneCutOptions options,
                          double time_limit, const core::Progress& progress,
-                         const std::vector<occ::CutCylinder>& holes = {}) {
+                         const std::vector<occ::CutCylinder>& holes = {},
+                         const std::vector<occ::CutCylinder>& walls = {}) {
   options.time_limit = time_limit;
   PlaneCutResult r;
   const auto t0 = std::chrono::steady_clock::now();
@@ -686,7 +709,8 @@ PlaneCutResult cut_along(const occ::Solid& solid, std::vector<Plane> planes,
   progress.report("plane_cuts", 0.0);
   for (const Plane& pl : planes)
     r.surfaces.push_back({false, pl.tangent, pl.face, pl.edges, true, pl.around_hole, pl.at_foot});
-  for (const Cylinder& c : cylinders) r.surfaces.push_back({true, false, c.face, c.edges, true});
+  for (const Cylinder& c : cylinders)
+    r.surfaces.push_back({true, false, c.face, c.edges, true, false, c.at_foot});
   const double whole = solid.volume();
   std::vector<occ::Solid> pieces;
   std::vector<double> volume;  // per piece (an adaptive integration each: computed once)
@@ -716,7 +740,7 @@ PlaneCutResult cut_along(const occ::Solid& solid, std::vector<Plane> planes,
   constexpr std::size_t kGlueFirst = 60;
   if (pieces.size() > kGlueFirst)
     for (std::size_t k = 0; k < pieces.size(); ++k)
-      if (!meshable(pieces[k], options.multisweep)) {
+      if (!meshable(pieces[k], options)) {
         r.why_not = "the surfaces of its concave edges cut it into " +
                     std::to_string(pieces.size()) + " pieces, and piece " + std::to_string(k + 1) +
                     " is neither a block, a sweep nor prismatic on its own";
@@ -727,7 +751,7 @@ PlaneCutResult cut_along(const occ::Solid& solid, std::vector<Plane> planes,
   // Glued once: whether every piece has a scheme, and which touch (both merge passes start
   // from it; gluing HexMe i22's 80 pieces takes about a second).
   const occ::ReadResult cut_glued = glued(pointers(pieces));
-  if (!all_meshable(cut_glued, options.multisweep, &why)) {
+  if (!all_meshable(cut_glued, options, &why)) {
     r.why_not = "the surfaces of its concave edges cut it into " + std::to_string(pieces.size()) +
                 " pieces: " + why;
     r.pieces = std::move(pieces);
@@ -753,11 +777,18 @@ PlaneCutResult cut_along(const occ::Solid& solid, std::vector<Plane> planes,
   for (std::size_t k = 0; k < pieces.size() && !holes.empty(); ++k)
     if (on_a_hole(pieces[k], holes))
       for (std::size_t m = 0; m < pieces.size(); ++m) cut_touch[k][m] = cut_touch[m][k] = 0;
+  for (const occ::CutCylinder& c : walls) {
+    std::vector<char> inside(pieces.size());
+    for (std::size_t k = 0; k < pieces.size(); ++k) inside[k] = within(pieces[k], c);
+    for (std::size_t k = 0; k < pieces.size(); ++k)
+      for (std::size_t m = 0; m < pieces.size(); ++m)
+        if (inside[k] != inside[m]) cut_touch[k][m] = 0;
+  }
   const double cut_into = double(pieces.size());
   merge_neighbours(pieces, volume, cut_touch, options, /*careful=*/false, cut_into, seconds,
                    progress);
   bool fills = volumes_fill(pieces, whole, volume, r.why_not);
-  bool meshes = fills && all_meshable(pointers(pieces), options.multisweep, &why);
+  bool meshes = fills && all_meshable(pointers(pieces), options, &why);
   if (!meshes && seconds() < options.time_limit) {
     r.merges_checked_each = true;
     pieces = clones(cut);
@@ -766,7 +797,7 @@ PlaneCutResult cut_along(const occ::Solid& solid, std::vector<Plane> planes,
                      progress);
     fills = volumes_fill(pieces, whole, volume, r.why_not);
     // The merges were checked on their neighbourhoods; the whole is checked once more.
-    meshes = fills && all_meshable(pointers(pieces), options.multisweep, &why);
+    meshes = fills && all_meshable(pointers(pieces), options, &why);
   }
   progress.report("plane_cuts", 1.0);
   if (!fills) return r;
@@ -888,6 +919,42 @@ PlaneCutResult cut_as_the_mesher(const occ::Solid& solid, const PlaneCutOptions&
                                       left() - feet_until, progress);
       if (feet.ok) return feet;
     }
+  }
+  // Fifth: with cylinders through the feet of concave round fillets on their floors (a boss
+  // whose root is filleted has no concave edge: cut there, the boss with its fillet is a solid
+  // of revolution and the plate a sweep with a round hole), with what time is left.
+  const std::vector<detail::FootCylinder> fillets = detail::foot_cylinders(solid);
+  if (fillets.empty() || left() <= 0) return cut;
+  std::vector<Cylinder> with = cylinders;
+  for (const detail::FootCylinder& f : fillets) {
+    auto same = std::find_if(with.begin(), with.end(), [&](const Cylinder& c) {
+      return same_cylinder(c.surface, f.surface, tol);
+    });
+    if (same != with.end())
+      same->edges.push_back(f.edge);
+    else
+      with.push_back({f.surface, f.face, {f.edge}, true});
+  }
+  PlaneCutOptions revolved = around_options;
+  revolved.revolve = true;
+  // A piece within such a cylinder is not merged with one outside it (a column under the boss
+  // merged into the block below, the block's cap would be meshed unlike the boss's end).
+  std::vector<occ::CutCylinder> walls;
+  for (const detail::FootCylinder& f : fillets) walls.push_back(f.surface);
+  // With the planes across the feet along the fillets' axis too (the plate's own top edges
+  // filleted: a slab with a round hole over a block), then without.
+  std::vector<Plane> with_feet = planes;
+  for (const detail::FootPlaneSet& set : detail::foot_plane_sets(solid))
+    if (std::abs(set.axis.dot(fillets[0].surface.axis)) > 1 - 1e-9)
+      for (const detail::FootPlane& f : set.planes) {
+        Plane pl{f.normal, f.offset, f.face, f.edges};
+        pl.at_foot = true;
+        add_plane(with_feet, pl, tol);
+      }
+  for (const std::vector<Plane>* p : {&with_feet, &planes}) {
+    if (left() <= 0 || (p == &planes && with_feet.size() == planes.size())) break;
+    PlaneCutResult feet = cut_along(solid, *p, with, revolved, left(), progress, {}, walls);
+    if (feet.ok) return feet;
   }
   return cut;
 }

@@ -22,6 +22,7 @@ struct PlaneCutOptions {
   int max_pieces = 100;    // more pieces after cutting: not attempted (>= 2)
   double time_limit = 30;  // seconds for the whole (> 0); OCCT splits stop at it
   bool multisweep = true;  // pieces may be prismatic (multisweeps), not only blocks and sweeps
+  bool revolve = false;    // pieces may be solids of revolution (the cuts at concave fillets' feet)
   bool merge = true;       // false: the pieces of the cut as they are (each with a scheme)
   // Each cylinder a planar face touches tangently replaced by planes tangent to it (see
   // CutSurface): where the cut with the cylinders leaves knife edges.

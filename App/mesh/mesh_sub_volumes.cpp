@@ -4,6 +4,7 @@
 #include <atomic>
 #include <chrono>
 #include <future>
+#include <limits>
 #include <map>
 #include <memory>
 #include <set>
@@ -17,6 +18,7 @@
 #include "mesh/interval_assignment.h"
 #include "mesh/map_block.h"
 #include "mesh/multisweep.h"
+#include "mesh/revolve.h"
 #include "mesh/submap_face.h"
 #include "mesh/sweep.h"
 #include "occ/prismatic.h"
@@ -47,10 +49,12 @@ std::string sub_volume_name(int k) {
 struct Part {
   explicit Part(occ::Solid s) : solid(std::move(s)) {}
   occ::Solid solid;
-  std::array<std::vector<EdgeId>, 3> block;                  // non-empty: mapped block
-  SweepStructure sweep;                                      // else: sweep
-  bool multisweep = false;                                   // else: a multisweep (prismatic part)
-  std::shared_ptr<const occ::PrismaticStructure> prismatic;  // its structure
+  std::array<std::vector<EdgeId>, 3> block;  // non-empty: mapped block
+  SweepStructure sweep;                      // else: sweep
+  bool multisweep = false;                   // else: a multisweep (prismatic part)
+  bool revolve = false;                      // else: a solid of revolution
+  core::Vec3 origin = core::Vec3::Zero(), axis = core::Vec3::UnitZ();  // its axis
+  std::shared_ptr<const occ::PrismaticStructure> prismatic;            // its structure
   std::vector<bool> shared_edge;   // by part edge id: a neighbour has it too
   std::vector<int> shared_faces;   // part face ids shared with a neighbour
   std::vector<int> avoid_sources;  // part face ids its sweep avoids as source
@@ -58,8 +62,10 @@ struct Part {
   std::vector<int> whole_edge;     // by part edge id
   bool is_block() const { return !block[0].empty(); }
   bool is_sweep() const { return !is_block() && sweep.source.valid(); }
-  bool has_scheme() const { return is_block() || sweep.source.valid() || multisweep; }
-  const char* scheme() const { return is_block() ? "map" : is_sweep() ? "sweep" : "multisweep"; }
+  bool has_scheme() const { return is_block() || sweep.source.valid() || multisweep || revolve; }
+  const char* scheme() const {
+    return is_block() ? "map" : is_sweep() ? "sweep" : revolve ? "revolve" : "multisweep";
+  }
 };
 
 // The sweep of `p` the other way: its target taken as source, every other face avoided as one
@@ -86,6 +92,12 @@ void take(Part& p, ReversedSweep r) {
 bool free_face(const occ::Solid& s, core::FaceId f) {
   const auto wires = s.face_wires(f);
   return wires.size() != 1 || wires[0].size() != 4;
+}
+
+// A closed edge that is a circle (on a solid of revolution: a parallel about its axis).
+bool whole_circle(const occ::Solid& s, EdgeId e) {
+  return s.edge_first_vertex(e) == s.edge_last_vertex(e) &&
+         s.curve_info(e).kind == core::CurveKind::circle;
 }
 
 // The interval problem over the curves of `pieces` (one per non-degenerated edge).
@@ -154,6 +166,30 @@ void add_constraints(Curves& c, const occ::Solid& pieces, const Part& part, int 
   const std::string who = sub_volume_name(k);
   if (part.multisweep) {
     add_multisweep_constraints(c, pieces, part, who, o);
+    return;
+  }
+  if (part.revolve) {  // its circles in one count, the sectors; its meridian edges free
+    int first = -1;
+    for (EdgeId e : part.solid.edges()) {
+      if (part.solid.edge_is_degenerated(e)) continue;
+      const int k_e = cv(e);
+      if (!whole_circle(part.solid, e)) {
+        // A seam it shares is an edge of its section, which the quad mesher may mesh: even.
+        if (!part.shared_edge.empty() && part.shared_edge[e.value()])
+          c.problem.even.push_back(
+              {{k_e}, who + " (revolve): " + core::entity_name(e) + ", an edge of its section"});
+        continue;
+      }
+      if (first < 0) {
+        first = k_e;
+        const std::string why = who + " (revolve): its sectors";
+        c.problem.even.push_back({{k_e}, why + ", a multiple of 4", 4});
+        c.problem.at_least.push_back({{k_e}, 8, why + ", at least 8"});
+      } else {
+        c.problem.equal.push_back(
+            {{first}, {k_e}, who + " (revolve): its circles, one sector each"});
+      }
+    }
     return;
   }
   if (part.is_block()) {
@@ -237,7 +273,7 @@ void add_constraints(Curves& c, const occ::Solid& pieces, const Part& part, int 
 // source and target avoid the faces it shares with a neighbour where possible, else (or
 // instead of a sweep with chains of target edges) a multisweep (none: has_scheme() is
 // false).
-Part plan_part(const occ::Solid& pieces, int k, bool multisweep) {
+Part plan_part(const occ::Solid& pieces, int k, bool multisweep, bool revolve) {
   Part p(pieces.part(k));
   p.whole_edge = pieces.part_ids(p.solid, 1);
   p.block = map_block_edge_groups(p.solid);
@@ -261,6 +297,12 @@ Part plan_part(const occ::Solid& pieces, int k, bool multisweep) {
     p.prismatic = std::make_shared<occ::PrismaticStructure>(occ::prismatic_structure(p.solid));
     p.multisweep = p.prismatic->ok;
     if (p.multisweep) p.sweep = SweepStructure();
+  }
+  if (revolve && !p.has_scheme()) {
+    const RevolveApplicability a = revolve_applicable(p.solid);
+    p.revolve = a.ok;
+    p.origin = a.origin;
+    p.axis = a.axis;
   }
   return p;
 }
@@ -345,6 +387,62 @@ std::vector<std::array<core::Vec3, 4>> quads_on_face(const core::HexMesh& mesh,
   return out;
 }
 
+// The options of a solid of revolution meshed with the assigned counts: its sectors those of
+// its circles, starting at the vertex of a circle it shares, its shared seams' counts.
+RevolveOptions revolve_options(const Part& part, const std::vector<int>& counts,
+                               const SubVolumeMeshOptions& options) {
+  RevolveOptions o;
+  o.size = options.size;
+  o.max_intervals = options.max_intervals;
+  o.smoothing_passes = options.smoothing_passes;
+  o.size_field = options.size_field;
+  o.edge_intervals.assign(counts.size(), 0);
+  for (EdgeId e : part.solid.edges()) {
+    if (part.solid.edge_is_degenerated(e)) continue;
+    const bool circle = whole_circle(part.solid, e);
+    if (circle && o.sectors == 0) o.sectors = counts[e.value()];
+    if (!part.shared_edge.empty() && part.shared_edge[e.value()]) {
+      if (!circle) o.edge_intervals[e.value()] = counts[e.value()];
+      if (circle && !o.has_start)
+        o.has_start = true, o.start = part.solid.vertex_point(part.solid.edge_first_vertex(e));
+    }
+  }
+  return o;
+}
+
+PartMesh mesh_revolved_part(const Part& part, const std::vector<int>& counts,
+                            const SubVolumeMeshOptions& options, const core::Progress& progress) {
+  PartMesh out;
+  const RevolveOptions o = revolve_options(part, counts, options);
+  // Every circle it shares must start at a sector's angle (its neighbour meshes it from its
+  // vertex).
+  if (o.has_start && o.sectors > 0) {
+    const core::Vec3 u =
+        (o.start - part.origin - (o.start - part.origin).dot(part.axis) * part.axis).normalized();
+    const core::Vec3 v = part.axis.cross(u);
+    for (EdgeId e : part.solid.edges()) {
+      if (part.shared_edge.empty() || !part.shared_edge[e.value()] ||
+          part.solid.edge_is_degenerated(e) || !whole_circle(part.solid, e))
+        continue;
+      const core::Vec3 d = part.solid.vertex_point(part.solid.edge_first_vertex(e)) - part.origin;
+      const double turns =
+          std::atan2(d.dot(v), d.dot(u)) / (2 * 3.14159265358979323846) * o.sectors;
+      if (std::abs(turns - std::round(turns)) > 1e-6) {
+        out.diagnostics.push_back(
+            core::make_error("revolve_misaligned",
+                             "the circles it shares with its neighbours (" + core::entity_name(e) +
+                                 " among them) start at angles no common count of sectors meets"));
+        return out;
+      }
+    }
+  }
+  RevolveResult r = revolve(part.solid, o, progress);
+  out.ok = r.ok;
+  out.mesh = std::move(r.mesh);
+  out.diagnostics = std::move(r.diagnostics);
+  return out;
+}
+
 // `edge_nodes`: per part edge id, the nodes a neighbour meshed before it placed there
 // (empty: none yet).
 PartMesh mesh_part(const Part& part, const std::vector<int>& counts,
@@ -367,6 +465,8 @@ PartMesh mesh_part(const Part& part, const std::vector<int>& counts,
     out.ok = r.ok;
     out.mesh = std::move(r.mesh);
     out.diagnostics = std::move(r.diagnostics);
+  } else if (part.revolve) {
+    out = mesh_revolved_part(part, counts, options, progress);
   } else if (part.is_block()) {
     MapBlockOptions o;
     o.size = options.size;
@@ -436,7 +536,7 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
   std::vector<Part> parts;
   parts.reserve(n);
   for (int k = 0; k < n; ++k) {
-    Part p = plan_part(pieces, k, options.multisweep);
+    Part p = plan_part(pieces, k, options.multisweep, options.revolve);
     if (!p.has_scheme()) {
       result.diagnostics.push_back(
           core::make_error("no_scheme", no_scheme_message(p, k, n), {sub_volume_name(k)}));
@@ -560,6 +660,8 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
       for (std::size_t e = 1; e < counts[k].size(); ++e)
         if (p.shared_edge[e]) o.edge_intervals[e] = counts[k][e];
       predicted += multisweep_evaluate(p.solid, o).hexes;
+    } else if (p.revolve) {
+      predicted += revolve_evaluate(p.solid, revolve_options(p, counts[k], options)).hexes;
     } else if (p.is_block()) {
       predicted += std::size_t(counts[k][p.block[0][0].value()]) *
                    counts[k][p.block[1][0].value()] * counts[k][p.block[2][0].value()];
@@ -614,9 +716,11 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
       }
       return k;
     };
-    std::vector<std::pair<int, int>> order;  // (-splits, part)
+    std::vector<std::pair<int, int>> order;  // (-splits, part); solids of revolution first
     for (int k = 0; k < n; ++k)
-      if (parts[k].multisweep) order.emplace_back(-splits(parts[k]), k);
+      if (parts[k].multisweep || parts[k].revolve)
+        order.emplace_back(parts[k].revolve ? std::numeric_limits<int>::min() : -splits(parts[k]),
+                           k);
     std::sort(order.begin(), order.end());
     for (const auto& [ignored, k] : order) {
       const Part& p = parts[k];
@@ -635,7 +739,7 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
   }
   std::vector<std::vector<std::vector<core::Vec3>>> given(n);
   for (int k = 0; k < n; ++k)
-    if (!parts[k].multisweep && !placed.empty()) given[k] = given_to(parts[k]);
+    if (!parts[k].multisweep && !parts[k].revolve && !placed.empty()) given[k] = given_to(parts[k]);
   // A sweep's source that a multisweep meshed as a cap: its quads there (the boundary quads
   // of the multisweep's mesh whose corners lie on that face or its edges and vertices).
   std::vector<std::vector<std::array<core::Vec3, 4>>> given_source(n);
@@ -671,7 +775,8 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
   auto work = [&] {
     for (int k; (k = next.fetch_add(1)) < n;) {
       if (stop.load()) break;
-      if (parts[k].multisweep || after[k] >= 0) continue;  // meshed above, or below
+      if (parts[k].multisweep || parts[k].revolve || after[k] >= 0)
+        continue;  // meshed above, or below
       try {
         meshed[k] =
             mesh_part(parts[k], counts[k], options, worker_progress, given[k], given_source[k]);
@@ -742,12 +847,12 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
   return result;
 }
 
-SubVolumePlan plan_sub_volumes(const occ::Solid& pieces, bool multisweep) {
+SubVolumePlan plan_sub_volumes(const occ::Solid& pieces, bool multisweep, bool revolve) {
   SubVolumePlan plan;
   const int n = pieces.num_solids();
   plan.ok = n > 0;
   for (int k = 0; k < n; ++k) {
-    const Part p = plan_part(pieces, k, multisweep);
+    const Part p = plan_part(pieces, k, multisweep, revolve);
     if (p.has_scheme()) {
       plan.schemes.push_back(p.scheme());
       plan.reasons.emplace_back();

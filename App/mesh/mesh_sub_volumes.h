@@ -9,7 +9,11 @@
 // counts of the ones before it on the edges they share, and their counts are fixed in the
 // assignment of the others; where a multisweep's face mesh differs from its neighbour's (a
 // shared cap it meshes with unstructured quads, an edge its cross-section splits), nothing
-// is merged there and the validity check names the face.
+// is merged there and the validity check names the face. A sub-volume none of these takes
+// may be a solid of revolution (a boss with its filleted root, cut out of its plate along
+// the fillet's foot): revolved first, its circles all in one count (a multiple of 4), its
+// sectors starting at the vertex of a circle it shares, its shared seams in their assigned
+// counts; its neighbours take its nodes there.
 #pragma once
 
 #include <cstddef>
@@ -32,6 +36,7 @@ struct SubVolumeMeshOptions {
   std::size_t max_hexes = 50000000;  // more is refused before meshing (>= 1)
   int threads = 0;                   // sub-volumes meshed at once (0: the machine's cores)
   bool multisweep = true;            // a sub-volume may be a multisweep (else blocks, sweeps)
+  bool revolve = true;  // a sub-volume none of those takes may be a solid of revolution
   // Local sizes (null or uniform: `size` everywhere): the interval assignment's targets and
   // every piece's edge nodes and sweep sources follow them. Not owned.
   const core::SizeField* size_field = nullptr;
@@ -64,8 +69,8 @@ struct SubVolumeMeshResult {
 SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMeshOptions& options,
                                      const core::Progress& progress = {});
 
-// The scheme mesh_sub_volumes gives each sub-volume of `pieces` ("map", "sweep" or
-// "multisweep"; empty
+// The scheme mesh_sub_volumes gives each sub-volume of `pieces` ("map", "sweep", "multisweep"
+// or, with `revolve`, "revolve"; empty
 // for one that has none), without meshing: what a decomposition's merge pass asks of a
 // union once glued to its neighbours. `why_not` names the first sub-volume without one.
 struct SubVolumePlan {
@@ -74,6 +79,7 @@ struct SubVolumePlan {
   std::vector<std::string> reasons;  // per sub-volume: why it has none (empty when it has one)
   std::string why_not;
 };
-SubVolumePlan plan_sub_volumes(const occ::Solid& pieces, bool multisweep = true);
+SubVolumePlan plan_sub_volumes(const occ::Solid& pieces, bool multisweep = true,
+                               bool revolve = false);
 
 }  // namespace vorohex::mesh

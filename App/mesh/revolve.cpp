@@ -15,6 +15,7 @@
 
 namespace vorohex::mesh {
 
+using core::EdgeId;
 using core::NodeClass;
 using core::Vec3;
 using Vec2 = Eigen::Vector2d;
@@ -23,6 +24,14 @@ void RevolveOptions::validate() const {
   core::require_positive("RevolveOptions.size", size);
   core::require_at_least("RevolveOptions.max_intervals", max_intervals, 1);
   core::require_at_least("RevolveOptions.smoothing_passes", smoothing_passes, 0);
+  if (sectors != 0 && (sectors < 8 || sectors % 4 != 0))
+    throw std::invalid_argument(
+        "RevolveOptions.sectors must be 0 or a multiple of 4, at least 8 (got " +
+        std::to_string(sectors) + ")");
+  for (std::size_t e = 0; e < edge_intervals.size(); ++e)
+    if (edge_intervals[e] < 0)
+      throw std::invalid_argument("RevolveOptions.edge_intervals must not be negative (edge " +
+                                  std::to_string(e) + ")");
 }
 
 namespace {
@@ -96,6 +105,33 @@ Disc o_grid_disc(int m, int layers, double ratio) {
   return d;
 }
 
+// The section's edges that trace the solid's meridian edges given a count (a seam a neighbour
+// shares): matched by their ends' heights and radii (the section lies in another half-plane).
+std::vector<int> section_counts(const core::MeshDomain& solid, const occ::RevolutionStructure& s,
+                                const std::vector<int>& edge_intervals) {
+  const occ::Solid& sec = *s.section;
+  std::vector<int> fixed(std::size_t(sec.num_edges()) + 1, 0);
+  const double tol = std::max(1e-6 * solid.diagonal(), 10 * solid.tolerance());
+  auto hr = [&](const Vec3& p) { return Vec2(s.height(p), s.radius(p)); };
+  auto ends = [&](const core::MeshDomain& d, EdgeId e) {
+    const std::vector<Vec3> q = d.edge_points_by_length(e, 2);
+    return std::array<Vec2, 3>{hr(q[0]), hr(q[1]), hr(q[2])};
+  };
+  for (std::size_t e = 1; e < edge_intervals.size(); ++e) {
+    if (edge_intervals[e] <= 0 || solid.edge_is_degenerated(EdgeId(int(e)))) continue;
+    const auto a = ends(solid, EdgeId(int(e)));
+    if ((a[0] - a[2]).norm() <= tol) continue;  // a circle about the axis
+    for (EdgeId f : sec.edges()) {
+      const auto b = ends(sec, f);
+      const bool same = (a[1] - b[1]).norm() <= tol &&
+                        (((a[0] - b[0]).norm() <= tol && (a[2] - b[2]).norm() <= tol) ||
+                         ((a[0] - b[2]).norm() <= tol && (a[2] - b[0]).norm() <= tol));
+      if (same) fixed[f.value()] = edge_intervals[e];
+    }
+  }
+  return fixed;
+}
+
 struct Plan {
   occ::RevolutionStructure structure;
   FaceSetMesh section;
@@ -127,6 +163,8 @@ Plan plan(const core::MeshDomain& solid, const RevolveOptions& options,
     section_field = options.size_field->revolved(s.origin, s.axis, 16);
     fo.size_field = &section_field;
   }
+  if (!options.edge_intervals.empty())
+    fo.fixed_counts = section_counts(solid, s, options.edge_intervals);
   p.section = mesh_face_set(*s.section, fo, progress);
   if (!p.section.ok) {
     p.diagnostics = p.section.diagnostics;
@@ -145,7 +183,7 @@ Plan plan(const core::MeshDomain& solid, const RevolveOptions& options,
     p.diagnostics.push_back(core::make_error("too_many_intervals", m.str()));
     return p;
   }
-  const int m = std::max(2, int(quarter));
+  const int m = options.sectors > 0 ? options.sectors / 4 : std::max(2, int(quarter));
   p.sectors = 4 * m;
   const double tol = std::max(1e-6 * solid.diagonal(), 10 * solid.tolerance());
   for (const Vec3& q : p.section.points)
@@ -238,12 +276,22 @@ RevolveResult revolve(const core::MeshDomain& solid, const RevolveOptions& optio
   r.section_mean_quality = F.mean_quality;
   progress.report(stage, 0.2);
 
-  const Vec3 er = s.radial, et = s.axis.cross(s.radial);
+  // The section lies in the half-plane along `radial`; the sectors start at `er`, through
+  // the given start point where there is one (a neighbour meshes a circle it shares from
+  // that circle's vertex).
+  const Vec3 radial = s.radial;
+  Vec3 er = radial, et = s.axis.cross(radial);
+  if (options.has_start) {
+    const Vec3 d = options.start - s.origin;
+    const double phase = std::atan2(d.dot(et), d.dot(er));
+    er = std::cos(phase) * radial + std::sin(phase) * et;
+    et = s.axis.cross(er);
+  }
   std::vector<double> cosine(N), sine(N);
   for (int i = 0; i < N; ++i)
     cosine[i] = std::cos(2 * kPi * i / N), sine[i] = std::sin(2 * kPi * i / N);
   auto turned = [&](const Vec3& q, int i) {
-    const double h = s.height(q), rad = (q - s.origin - h * s.axis).dot(er);
+    const double h = s.height(q), rad = (q - s.origin - h * s.axis).dot(radial);
     return Vec3(s.origin + h * s.axis + rad * (cosine[i] * er + sine[i] * et));
   };
 

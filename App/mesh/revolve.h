@@ -24,6 +24,15 @@ struct RevolveOptions {
   // Local sizes (null or uniform: `size` everywhere): the section is graded where the field
   // asks at any angle; the sectors take the finest count any section node asks for. Not owned.
   const core::SizeField* size_field = nullptr;
+  // Meshed beside neighbours (mesh_sub_volumes): the sectors' count (0: from the size; else a
+  // multiple of 4, at least 8), a point off the axis the first sector's half-plane passes
+  // through (a vertex of a circle a neighbour shares: it meshes that circle from there), and
+  // per solid edge id (entry 0 unused; 0 or missing: free) the counts of meridian edges (a
+  // seam a neighbour shares).
+  int sectors = 0;
+  bool has_start = false;
+  core::Vec3 start = core::Vec3::Zero();
+  std::vector<int> edge_intervals;
   void validate() const;  // throws std::invalid_argument naming the bad field
 };
 

@@ -146,4 +146,57 @@ std::vector<FootPlaneSet> foot_plane_sets(const occ::Solid& solid) {
   return sets;
 }
 
+std::vector<FootCylinder> foot_cylinders(const occ::Solid& solid) {
+  const double tol = 1e-7 * solid.diagonal();
+  std::vector<FootCylinder> out;
+  for (FaceId f : solid.faces()) {
+    const FaceAxis fa = face_axis(solid, f);
+    if (fa.kind != FaceAxis::torus || fa.convex) continue;
+    const core::SurfaceInfo info = solid.surface_info(f);
+    for (const auto& wire : solid.face_wires(f))
+      for (const core::OrientedEdge& oe : wire) {
+        const EdgeId e = oe.edge;
+        if (solid.edge_is_degenerated(e) || solid.edge_first_vertex(e) != solid.edge_last_vertex(e))
+          continue;
+        bool floor = false;
+        for (FaceId g : solid.edge_faces(e))
+          floor = floor || (g != f && cap(face_axis(solid, g), fa.d));
+        if (!floor) continue;
+        // A circle about the axis: every point at one height and one radius.
+        const std::vector<Vec3> p = solid.edge_points_by_length(e, 8);
+        const Vec3 start = solid.vertex_point(solid.edge_first_vertex(e));
+        auto height = [&](const Vec3& q) { return fa.d.dot(q - info.origin); };
+        auto radial = [&](const Vec3& q) { return (q - info.origin) - height(q) * fa.d; };
+        const double r = radial(start).norm();
+        bool circle = r > 1e3 * tol;
+        for (const Vec3& q : p)
+          circle = circle && std::abs(height(q) - height(start)) <= 10 * tol &&
+                   std::abs(radial(q).norm() - r) <= 10 * tol;
+        if (!circle) continue;
+        occ::CutCylinder c;
+        c.origin = info.origin;
+        c.axis = fa.d;
+        c.seam = radial(start).normalized();
+        c.radius = r;
+        double lo = 1e300, hi = -1e300;
+        for (core::VertexId v : solid.vertices()) {
+          lo = std::min(lo, height(solid.vertex_point(v)));
+          hi = std::max(hi, height(solid.vertex_point(v)));
+        }
+        const core::BoundingBox box = solid.bounding_box();
+        for (int k = 0; k < 8; ++k) {
+          const Vec3 corner((k & 1) ? box.max.x() : box.min.x(),
+                            (k & 2) ? box.max.y() : box.min.y(),
+                            (k & 4) ? box.max.z() : box.min.z());
+          lo = std::min(lo, height(corner));
+          hi = std::max(hi, height(corner));
+        }
+        c.from = lo - 0.1 * solid.diagonal();
+        c.to = hi + 0.1 * solid.diagonal();
+        out.push_back({c, f, e});
+      }
+  }
+  return out;
+}
+
 }  // namespace vorohex::decompose::detail

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "occ/solid.h"
+#include "occ/split_solid.h"
 
 namespace vorohex::decompose::detail {
 
@@ -37,5 +38,19 @@ struct FootPlaneSet {
 // The axes whose planar faces across them have the most area first (the axis a user would
 // sweep along: a chamfered block's z, not its chamfers' normals).
 std::vector<FootPlaneSet> foot_plane_sets(const occ::Solid& solid);
+
+// The cylinder through the foot of a concave round fillet on its floor: a torus about an axis
+// (a boss's root filleted) that meets a planar face across that axis tangentially along a
+// whole circle. Cut along the coaxial cylinder through that circle, across the floor at a
+// right angle, the boss and its fillet come out of the plate as a solid of revolution, and
+// the plate keeps a round hole: no knife edge (a cut along the floor would leave one where
+// the fillet meets it tangentially). The cylinder's seam passes through the circle's vertex,
+// so that the circles the pieces share start where the cut's own circles do.
+struct FootCylinder {
+  occ::CutCylinder surface;  // along the solid's whole extent on its axis
+  core::FaceId face;         // the fillet
+  core::EdgeId edge;         // its foot
+};
+std::vector<FootCylinder> foot_cylinders(const occ::Solid& solid);
 
 }  // namespace vorohex::decompose::detail

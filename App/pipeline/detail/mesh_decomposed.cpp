@@ -118,6 +118,7 @@ bool mesh_pieces(const occ::Solid& solid, const IsolatedDecomposition& d,
     s << (first ? "" : ", ") << k << " "
       << (name == "map"          ? "mapped"
           : name == "multisweep" ? "multiswept"
+          : name == "revolve"    ? "revolved"
                                  : "swept"),
         first = false;
   s << "), meshed with one interval assignment over " << m.stats.curves << " curves and "

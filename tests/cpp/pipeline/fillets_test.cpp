@@ -3,7 +3,9 @@
 // they meet the walls, tangent to them) into a block and a slab whose fillets are its sides,
 // each mapped or swept. Before, both were the grid mesher's (the block in 8 s: no scheme
 // takes it whole, it has no concave edge, and its Voronoi graph's split did not return).
-// A fillet at a pocket's floor (concave) has no foot: the cut there would leave a knife edge.
+// A fillet at a pocket's floor (concave) has no foot on a wall: the cut along the floor
+// would leave a knife edge. A boss's root fillet (a concave torus) is cut through its foot on
+// the plate along the coaxial cylinder instead: the boss is revolved.
 #include <gtest/gtest.h>
 
 #include <stdexcept>
@@ -155,6 +157,27 @@ TEST(GenerateMesh, APlateWithItsHolesEdgeFilletedIsCutAtTheFilletsFootAndSwept) 
   EXPECT_EQ(r.stats.scheme, "sweep");
   expect_cut_at_the_foot_of_a_fillet(r);
   EXPECT_GE(r.check.scaled_jacobian.min, 0.45);
+}
+
+// 60 x 40 x 10 with a boss of radius 8 and height 15, its root filleted with radius 2 and
+// the plate's two short top edges too (FreeCAD's Fillet; tests/data/plate_boss_root_fillet.step).
+// It has no concave edge: the grid mesher's before (29,664 hexahedra, 7 s). Cut across the
+// plate fillets' feet and along the cylinder through the root fillet's foot: a block and a
+// slab with a round hole, swept, and the boss with its fillet, revolved.
+TEST(GenerateMesh, ABossWithItsRootFilletedIsCutAtTheFilletsFootAndRevolved) {
+  const MeshResult r = mesh_file("plate_boss_root_fillet.step");
+  ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
+  EXPECT_EQ(r.stats.scheme, "sweep+revolve");
+  EXPECT_EQ(r.stats.sub_volumes, 3);
+  EXPECT_TRUE(r.check.valid);
+  EXPECT_EQ(r.check.open_boundary_edges, 0u);
+  EXPECT_LE(r.check.volume_rel_error, 0.01);
+  EXPECT_GE(r.check.scaled_jacobian.min, 0.45);
+  const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "decomposed");
+  ASSERT_NE(d, nullptr);
+  EXPECT_NE(d->message.find("the cylinder through the foot of Face"), std::string::npos)
+      << d->message;
+  EXPECT_NE(d->message.find("1 revolved"), std::string::npos) << d->message;
 }
 
 }  // namespace
