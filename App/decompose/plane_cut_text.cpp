@@ -1,0 +1,76 @@
+// The words that say why a plane cut is where it is (PlaneCutResult's surfaces): the
+// surfaces used, the kinds of cut, the ones left out.
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "decompose/plane_cuts.h"
+
+namespace vorohex::decompose {
+
+std::string surface_text(const CutSurface& s, bool with_edges) {
+  std::string t = std::string(s.cylinder && s.at_foot ? "the cylinder through the foot of "
+                              : s.cylinder            ? "the cylinder of "
+                              : s.tangent             ? "the plane tangent to the cylinder of "
+                              : s.around_hole         ? "a plane around the hole of "
+                              : s.at_foot             ? "the plane across the foot of "
+                                                      : "the plane of ") +
+                  core::entity_name(s.face);
+  if (!with_edges || s.edges.empty()) return t;
+  t += " (at ";
+  for (std::size_t k = 0; k < s.edges.size(); ++k)
+    t += (k ? ", " : "") + core::entity_name(s.edges[k]);
+  return t + ")";
+}
+
+std::string used_surfaces_text(const PlaneCutResult& cut, std::size_t at_most, bool with_edges) {
+  // The planes around one hole are named once, with their number ("4 planes around the hole
+  // of Face5").
+  std::vector<std::pair<std::string, int>> named;
+  for (const CutSurface& s : cut.surfaces) {
+    if (!s.used) continue;
+    const std::string t = surface_text(s, with_edges);
+    if (s.around_hole && !named.empty() && named.back().first == t)
+      ++named.back().second;
+    else
+      named.push_back({t, 1});
+  }
+  std::string t;
+  std::size_t shown = 0;
+  for (const auto& [text, n] : named) {
+    if (shown == at_most) break;
+    t += (shown++ ? ", " : "") +
+         (n > 1 ? std::to_string(n) + " planes" + text.substr(text.find(" around")) : text);
+  }
+  if (named.size() > shown) t += " and " + std::to_string(named.size() - shown) + " more";
+  return t;
+}
+
+std::string cut_kind_text(const PlaneCutResult& cut) {
+  bool holes = false, concave = false, feet = false, fillets = false;
+  for (const CutSurface& s : cut.surfaces)
+    if (s.used)
+      (s.around_hole             ? holes
+       : s.at_foot && s.cylinder ? fillets
+       : s.at_foot               ? feet
+                                 : concave) = true;
+  std::vector<std::string> kinds;
+  if (concave) kinds.push_back("the faces at its concave edges");
+  if (holes) kinds.push_back("planes around its holes");
+  if (feet) kinds.push_back("planes across the feet of its tapered or rounded faces");
+  if (fillets) kinds.push_back("cylinders through the feet of its concave round fillets");
+  if (kinds.empty()) return "the faces at its concave edges";
+  std::string t = kinds[0];
+  for (std::size_t k = 1; k < kinds.size(); ++k)
+    t += (k + 1 == kinds.size() ? " and " : ", ") + kinds[k];
+  return t;
+}
+
+std::string left_out_text(const PlaneCutResult& cut) {
+  std::string t;
+  for (const CutSurface& s : cut.surfaces)
+    if (!s.used) t += (t.empty() ? "" : ", ") + surface_text(s, false);
+  return t;
+}
+
+}  // namespace vorohex::decompose
