@@ -176,6 +176,31 @@ def build_parts(work):
         2, [e for e in bossed.Edges if at(e, 25)])
     parts["plate with a boss, its root filleted"] = bossed.makeFillet(
         2, [e for e in bossed.Edges if at(e, 10) and e.BoundBox.XLength < 17])
+    # Bosses whose roots are rounded or chamfered (concave: cut through the foot on the plate
+    # along the coaxial cylinder, the boss is revolved): the root alone, filleted or chamfered,
+    # a bored boss, two bosses, a boss among bolt holes; a round pocket whose floor is filleted
+    # (its wall's foot has no cut that leaves no knife edge: still the grid's).
+    def circle(e):
+        return e.Curve.TypeId == "Part::GeomCircle"
+    parts["plate with a boss, only its root filleted"] = bossed.makeFillet(
+        2, [e for e in bossed.Edges if at(e, 10) and circle(e)])
+    parts["plate with a boss, its root chamfered"] = bossed.makeChamfer(
+        2, [e for e in bossed.Edges if at(e, 10) and circle(e)])
+    bored = bossed.cut(cyl(4, 25, (30, 20, 0)))
+    parts["plate with a bored boss, its root filleted"] = bored.makeFillet(
+        2, [e for e in bored.Edges if at(e, 10) and circle(e) and e.Curve.Radius > 7])
+    two = box(80, 40, 10).fuse(cyl(7, 12, (20, 20, 10))).fuse(
+        cyl(7, 12, (60, 20, 10))).removeSplitter()
+    parts["plate with two bosses, their roots filleted"] = two.makeFillet(
+        1.5, [e for e in two.Edges if at(e, 10) and circle(e)])
+    bolted = box(80, 50, 8).fuse(cyl(10, 12, (40, 25, 8))).removeSplitter()
+    for x, y in [(10, 10), (70, 10), (10, 40), (70, 40)]:
+        bolted = bolted.cut(cyl(3, 8, (x, y, 0)))
+    parts["plate with bolt holes and a boss, its root filleted"] = bolted.makeFillet(
+        3, [e for e in bolted.Edges if at(e, 8) and circle(e) and e.Curve.Radius > 9])
+    pocket = box(60, 40, 20).cut(cyl(10, 10, (30, 20, 10))).removeSplitter()
+    parts["block with a round pocket, its floor filleted"] = pocket.makeFillet(
+        2, [e for e in pocket.Edges if at(e, 10) and circle(e)])
     # Chamfers and fillets on one part: the long top edges chamfered, the short ones and the
     # hole's filleted (tests/data/block_chamfered_and_filleted.step): feet at two heights.
     mixed = box(40, 20, 10).cut(cyl(4, 10, (20, 10, 0)))

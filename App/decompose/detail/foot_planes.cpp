@@ -146,21 +146,35 @@ std::vector<FootPlaneSet> foot_plane_sets(const occ::Solid& solid) {
   return sets;
 }
 
+// Whether faces f and g meet at edge e at a convex angle (more than a degree short of flat,
+// seen from inside the solid).
+bool convex_edge(const occ::Solid& s, EdgeId e, FaceId f, FaceId g) {
+  const std::vector<Vec3> p = s.edge_points_by_length(e, 16);
+  const Vec3 m = p[8], t = (p[9] - p[7]).normalized();
+  const double eps = 1e-3 * s.diagonal();
+  Vec3 into = s.face_normal(f, m).cross(t).normalized();  // from the edge into f, across it
+  if (s.distance_to_face(f, m + eps * into) > s.distance_to_face(f, m - eps * into)) into = -into;
+  return into.dot(s.face_normal(g, m)) < -std::sin(M_PI / 180);
+}
+
 std::vector<FootCylinder> foot_cylinders(const occ::Solid& solid) {
   const double tol = 1e-7 * solid.diagonal();
   std::vector<FootCylinder> out;
   for (FaceId f : solid.faces()) {
     const FaceAxis fa = face_axis(solid, f);
-    if (fa.kind != FaceAxis::torus || fa.convex) continue;
+    if (!(fa.kind == FaceAxis::torus && !fa.convex) && fa.kind != FaceAxis::cone) continue;
     const core::SurfaceInfo info = solid.surface_info(f);
     for (const auto& wire : solid.face_wires(f))
       for (const core::OrientedEdge& oe : wire) {
         const EdgeId e = oe.edge;
         if (solid.edge_is_degenerated(e) || solid.edge_first_vertex(e) != solid.edge_last_vertex(e))
           continue;
+        // On a floor: a planar face across the axis, which it meets tangentially (a fillet) or
+        // at a concave edge (a chamfer), not at a convex one (a countersink's rim).
         bool floor = false;
         for (FaceId g : solid.edge_faces(e))
-          floor = floor || (g != f && cap(face_axis(solid, g), fa.d));
+          floor =
+              floor || (g != f && cap(face_axis(solid, g), fa.d) && !convex_edge(solid, e, f, g));
         if (!floor) continue;
         // A circle about the axis: every point at one height and one radius.
         const std::vector<Vec3> p = solid.edge_points_by_length(e, 8);

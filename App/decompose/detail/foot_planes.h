@@ -39,9 +39,9 @@ struct FootPlaneSet {
 // sweep along: a chamfered block's z, not its chamfers' normals).
 std::vector<FootPlaneSet> foot_plane_sets(const occ::Solid& solid);
 
-// The cylinder through the foot of a concave round fillet on its floor: a torus about an axis
-// (a boss's root filleted) that meets a planar face across that axis tangentially along a
-// whole circle. Cut along the coaxial cylinder through that circle, across the floor at a
+// The cylinder through the foot of a concave round fillet or a chamfer on its floor: a torus
+// or a cone about an axis (a boss's root filleted or chamfered) that meets a planar face across
+// that axis along a whole circle, tangentially or at a concave edge. Cut along the coaxial cylinder through that circle, across the floor at a
 // right angle, the boss and its fillet come out of the plate as a solid of revolution, and
 // the plate keeps a round hole: no knife edge (a cut along the floor would leave one where
 // the fillet meets it tangentially). The cylinder's seam passes through the circle's vertex,

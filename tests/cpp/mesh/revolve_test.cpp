@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <stdexcept>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -142,6 +144,55 @@ TEST(Revolve, SectionsFromTheFacesTraces) {
     EXPECT_GT(c.scaled_jacobian.min, 0);
     EXPECT_NEAR(c.mesh_volume, solid->volume(), 0.02 * solid->volume());
   }
+}
+
+// Beside neighbours (mesh_sub_volumes): the sectors' count given, the first sector through a
+// given point, a meridian edge's count given to the section; a count that is no multiple of
+// 4 is refused by name.
+TEST(Revolve, SectorsAndTheirStartAndSeamCountsCanBeGiven) {
+  const occ::Solid shaft = testing::make_stepped_shaft();
+  const occ::RevolutionStructure s = occ::revolution_structure(shaft);
+  ASSERT_TRUE(s.ok) << s.reason;
+  RevolveOptions o;
+  o.size = 3;
+  o.sectors = 28;
+  o.has_start = true;
+  // A point a quarter of a turn and a little from the section's own half-plane.
+  const core::Vec3 across = s.axis.cross(s.radial);
+  o.start = s.origin + 10 * (std::cos(1.0) * s.radial + std::sin(1.0) * across);
+  const RevolveResult r = revolve(shaft, o);
+  ASSERT_TRUE(r.ok);
+  EXPECT_EQ(r.sectors, 28);
+  // Every revolved node off the axis lies at an angle 1 + 2 pi k / 28 about the axis.
+  std::size_t off_axis = 0;
+  for (std::size_t i = 0; i < r.mesh.num_nodes(); ++i) {
+    const core::Vec3 d = r.mesh.points()[i] - s.origin;
+    const core::Vec3 radial = d - d.dot(s.axis) * s.axis;
+    if (radial.norm() < s.core_radius + 1e-6) continue;  // the O-grid core's own nodes
+    ++off_axis;
+    const double turns =
+        (std::atan2(radial.dot(across), radial.dot(s.radial)) - 1.0) / (2 * M_PI) * 28;
+    EXPECT_NEAR(turns, std::round(turns), 1e-9) << "node " << i;
+  }
+  EXPECT_GT(off_axis, 0u);
+  EXPECT_TRUE(quality::check_mesh(r.mesh, &shaft, {}).valid);
+  // A seam's count: the section's edge along it takes it.
+  int seam = 0;
+  for (core::EdgeId e : shaft.edges())
+    if (!shaft.edge_is_degenerated(e) && shaft.edge_first_vertex(e) != shaft.edge_last_vertex(e) &&
+        shaft.curve_info(e).kind == core::CurveKind::line)
+      seam = e.value();
+  ASSERT_GT(seam, 0);
+  RevolveOptions counted = o;
+  counted.edge_intervals.assign(shaft.num_edges() + 1, 0);
+  const double length = shaft.edge_length(core::EdgeId(seam));
+  counted.edge_intervals[seam] = 2 * int(std::ceil(length / o.size)) + 2;
+  const RevolveResult finer = revolve(shaft, counted);
+  ASSERT_TRUE(finer.ok);
+  EXPECT_GT(finer.mesh.num_hexes(), r.mesh.num_hexes());
+  RevolveOptions bad;
+  bad.sectors = 10;
+  EXPECT_THROW(revolve(shaft, bad), std::invalid_argument);
 }
 
 }  // namespace
