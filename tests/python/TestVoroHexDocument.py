@@ -438,6 +438,37 @@ class TestVoroHexObject(BoxDocument, unittest.TestCase):
         self.assertTrue(any("the plane across the foot of Face" in line
                             for line in obj.Diagnostics), list(obj.Diagnostics))
 
+    def test_part_fillet_on_a_boss_root_is_cut_at_its_foot_and_revolved(self):
+        # A plate and a round boss fused (Part's Fusion, refined), the boss's root rounded by
+        # Part's Fillet: a concave fillet, no concave edge left; cut along the cylinder
+        # through the fillet's foot on the plate, the plate is a sweep with a round hole and
+        # the boss with its fillet a solid of revolution (the grid mesher's before).
+        box = self.doc.addObject("Part::Box", "Plate")
+        box.Length, box.Width, box.Height = 60, 40, 10
+        boss = self.doc.addObject("Part::Cylinder", "Boss")
+        boss.Radius, boss.Height = 8, 15
+        boss.Placement.Base = FreeCAD.Vector(30, 20, 10)
+        fusion = self.doc.addObject("Part::MultiFuse", "Fusion")
+        fusion.Shapes = [box, boss]
+        fusion.Refine = True
+        self.doc.recompute()
+        root = [i + 1 for i, e in enumerate(fusion.Shape.Edges)
+                if e.Curve.TypeId == "Part::GeomCircle"
+                and abs(e.BoundBox.ZMin - 10) < 1e-6 and abs(e.BoundBox.ZMax - 10) < 1e-6]
+        self.assertEqual(len(root), 1)
+        fillet = self.doc.addObject("Part::Fillet", "Fillet")
+        fillet.Base = fusion
+        fillet.Edges = [(root[0], 2.0, 2.0)]
+        self.doc.recompute()
+        self.assertTrue(fillet.Shape.isValid())
+        obj = VoroHexObjects.makeHexMesh(self.doc, fillet)
+        self.doc.recompute()
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        self.assertEqual(obj.Scheme, "sweep+revolve")
+        self.assertGreaterEqual(obj.MinScaledJacobian, 0.5)
+        self.assertTrue(any("the cylinder through the foot of Face" in line
+                            for line in obj.Diagnostics), list(obj.Diagnostics))
+
     def test_a_feature_whose_recompute_failed_is_refused_not_meshed_stale(self):
         # A fillet too large for its box fails to recompute and keeps its last good shape:
         # the mesh refuses it by name instead of meshing the shape the tree no longer shows.
