@@ -9,12 +9,13 @@
 namespace vorohex::decompose {
 
 std::string surface_text(const CutSurface& s, bool with_edges) {
-  std::string t = std::string(s.cylinder && s.at_foot ? "the cylinder through the foot of "
-                              : s.cylinder            ? "the cylinder of "
-                              : s.tangent             ? "the plane tangent to the cylinder of "
-                              : s.around_hole         ? "a plane around the hole of "
-                              : s.at_foot             ? "the plane across the foot of "
-                                                      : "the plane of ") +
+  std::string t = std::string(s.cylinder && s.ring      ? "a cylinder around the pocket rounded by "
+                              : s.cylinder && s.at_foot ? "the cylinder through the foot of "
+                              : s.cylinder              ? "the cylinder of "
+                              : s.tangent               ? "the plane tangent to the cylinder of "
+                              : s.around_hole           ? "a plane around the hole of "
+                              : s.at_foot               ? "the plane across the foot of "
+                                                        : "the plane of ") +
                   core::entity_name(s.face);
   if (!with_edges || s.edges.empty()) return t;
   t += " (at ";

@@ -54,6 +54,7 @@ struct Cylinder {
   FaceId face;
   std::vector<EdgeId> edges;
   bool at_foot = false;  // through the foot of the concave fillet `face` (not its extension)
+  bool ring = false;     // beyond the wall of the round pocket whose floor `face` rounds
 };
 
 // Gluing the pieces of one exact split, or unions of them: they touch at faces and never
@@ -641,7 +642,7 @@ PlaneCutResult cut_along(const occ::Solid& solid, std::vector<Plane> planes,
   for (const Plane& pl : planes)
     r.surfaces.push_back({false, pl.tangent, pl.face, pl.edges, true, pl.around_hole, pl.at_foot});
   for (const Cylinder& c : cylinders)
-    r.surfaces.push_back({true, false, c.face, c.edges, true, false, c.at_foot});
+    r.surfaces.push_back({true, false, c.face, c.edges, true, false, c.at_foot, c.ring});
   const double whole = solid.volume();
   std::vector<occ::Solid> pieces;
   std::vector<double> volume;  // per piece (an adaptive integration each: computed once)
@@ -861,10 +862,11 @@ PlaneCutResult cut_as_the_mesher(const occ::Solid& solid, const PlaneCutOptions&
     auto same = std::find_if(with.begin(), with.end(), [&](const Cylinder& c) {
       return same_cylinder(c.surface, f.surface, tol);
     });
-    if (same != with.end())
+    if (same != with.end() && !f.ring)
       same->edges.push_back(f.edge);
-    else
-      with.push_back({f.surface, f.face, {f.edge}, true});
+    else if (same == with.end())
+      with.push_back(
+          {f.surface, f.face, f.ring ? std::vector<EdgeId>{} : std::vector{f.edge}, true, f.ring});
   }
   PlaneCutOptions revolved = around_options;
   revolved.revolve = true;

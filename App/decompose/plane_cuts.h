@@ -51,6 +51,9 @@ struct CutSurface {
   // A plane across an axis at the foot of the tapered `face`, at `edges` where it meets a
   // wall (cut_as_the_mesher's fourth try: a block with chamfered top edges).
   bool at_foot = false;
+  // A cylinder around a round pocket whose floor `face` rounds, as far beyond its wall as the
+  // fillet's foot is inside it (the fifth try: the pocket's fillet on a ring of revolution).
+  bool ring = false;
 };
 
 struct PlaneCutResult {

@@ -159,56 +159,77 @@ bool convex_edge(const occ::Solid& s, EdgeId e, FaceId f, FaceId g) {
 
 std::vector<FootCylinder> foot_cylinders(const occ::Solid& solid) {
   const double tol = 1e-7 * solid.diagonal();
+  // The heights of the solid's box corners along an axis: a cylinder along the whole solid.
+  const core::BoundingBox box = solid.bounding_box();
+  auto along_the_solid = [&](occ::CutCylinder& c) {
+    double lo = 1e300, hi = -1e300;
+    for (int k = 0; k < 8; ++k) {
+      const Vec3 corner((k & 1) ? box.max.x() : box.min.x(), (k & 2) ? box.max.y() : box.min.y(),
+                        (k & 4) ? box.max.z() : box.min.z());
+      lo = std::min(lo, c.axis.dot(corner - c.origin));
+      hi = std::max(hi, c.axis.dot(corner - c.origin));
+    }
+    c.from = lo - 0.1 * solid.diagonal();
+    c.to = hi + 0.1 * solid.diagonal();
+  };
   std::vector<FootCylinder> out;
   for (FaceId f : solid.faces()) {
     const FaceAxis fa = face_axis(solid, f);
     if (!(fa.kind == FaceAxis::torus && !fa.convex) && fa.kind != FaceAxis::cone) continue;
     const core::SurfaceInfo info = solid.surface_info(f);
+    auto height = [&](const Vec3& q) { return fa.d.dot(q - info.origin); };
+    auto radial = [&](const Vec3& q) { return (q - info.origin) - height(q) * fa.d; };
+    // The radius of edge e if it is a whole circle about the axis, else 0.
+    auto circle_radius = [&](EdgeId e) {
+      if (solid.edge_is_degenerated(e) || solid.edge_first_vertex(e) != solid.edge_last_vertex(e))
+        return 0.0;
+      const Vec3 start = solid.vertex_point(solid.edge_first_vertex(e));
+      const double r = radial(start).norm();
+      if (r <= 1e3 * tol) return 0.0;
+      for (const Vec3& q : solid.edge_points_by_length(e, 8))
+        if (std::abs(height(q) - height(start)) > 10 * tol ||
+            std::abs(radial(q).norm() - r) > 10 * tol)
+          return 0.0;
+      return r;
+    };
+    int floor_foot = -1;  // in out
+    double wall = 0;      // the radius of its foot on a hole's or pocket's wall
     for (const auto& wire : solid.face_wires(f))
       for (const core::OrientedEdge& oe : wire) {
         const EdgeId e = oe.edge;
-        if (solid.edge_is_degenerated(e) || solid.edge_first_vertex(e) != solid.edge_last_vertex(e))
-          continue;
+        const double r = circle_radius(e);
+        if (r == 0) continue;
         // On a floor: a planar face across the axis, which it meets tangentially (a fillet) or
-        // at a concave edge (a chamfer), not at a convex one (a countersink's rim).
+        // at a concave edge (a chamfer), not at a convex one (a countersink's rim). On a wall:
+        // a cylinder about the axis that does not bulge out (a pocket's, not a boss's).
         bool floor = false;
-        for (FaceId g : solid.edge_faces(e))
-          floor =
-              floor || (g != f && cap(face_axis(solid, g), fa.d) && !convex_edge(solid, e, f, g));
+        for (FaceId g : solid.edge_faces(e)) {
+          if (g == f) continue;
+          const FaceAxis ga = face_axis(solid, g);
+          floor = floor || (cap(ga, fa.d) && !convex_edge(solid, e, f, g));
+          if (ga.kind == FaceAxis::cylinder && !ga.convex && std::abs(ga.d.dot(fa.d)) > 1 - 1e-9)
+            wall = r;
+        }
         if (!floor) continue;
-        // A circle about the axis: every point at one height and one radius.
-        const std::vector<Vec3> p = solid.edge_points_by_length(e, 8);
-        const Vec3 start = solid.vertex_point(solid.edge_first_vertex(e));
-        auto height = [&](const Vec3& q) { return fa.d.dot(q - info.origin); };
-        auto radial = [&](const Vec3& q) { return (q - info.origin) - height(q) * fa.d; };
-        const double r = radial(start).norm();
-        bool circle = r > 1e3 * tol;
-        for (const Vec3& q : p)
-          circle = circle && std::abs(height(q) - height(start)) <= 10 * tol &&
-                   std::abs(radial(q).norm() - r) <= 10 * tol;
-        if (!circle) continue;
         occ::CutCylinder c;
         c.origin = info.origin;
         c.axis = fa.d;
-        c.seam = radial(start).normalized();
+        c.seam = radial(solid.vertex_point(solid.edge_first_vertex(e))).normalized();
         c.radius = r;
-        double lo = 1e300, hi = -1e300;
-        for (core::VertexId v : solid.vertices()) {
-          lo = std::min(lo, height(solid.vertex_point(v)));
-          hi = std::max(hi, height(solid.vertex_point(v)));
-        }
-        const core::BoundingBox box = solid.bounding_box();
-        for (int k = 0; k < 8; ++k) {
-          const Vec3 corner((k & 1) ? box.max.x() : box.min.x(),
-                            (k & 2) ? box.max.y() : box.min.y(),
-                            (k & 4) ? box.max.z() : box.min.z());
-          lo = std::min(lo, height(corner));
-          hi = std::max(hi, height(corner));
-        }
-        c.from = lo - 0.1 * solid.diagonal();
-        c.to = hi + 0.1 * solid.diagonal();
+        along_the_solid(c);
         out.push_back({c, f, e});
+        floor_foot = int(out.size()) - 1;
       }
+    // A fillet or chamfer at a round pocket's floor: the ring between its foot on the floor and
+    // a cylinder as far beyond the wall is a solid of revolution (a cut along the wall itself
+    // would leave a knife edge where the fillet meets it tangentially); its seam where the
+    // floor foot's is.
+    if (floor_foot >= 0 && wall > out[floor_foot].surface.radius) {
+      FootCylinder ring = out[floor_foot];
+      ring.surface.radius = 2 * wall - out[floor_foot].surface.radius;
+      ring.ring = true;
+      out.push_back(ring);
+    }
   }
   return out;
 }

@@ -41,15 +41,20 @@ std::vector<FootPlaneSet> foot_plane_sets(const occ::Solid& solid);
 
 // The cylinder through the foot of a concave round fillet or a chamfer on its floor: a torus
 // or a cone about an axis (a boss's root filleted or chamfered) that meets a planar face across
-// that axis along a whole circle, tangentially or at a concave edge. Cut along the coaxial cylinder through that circle, across the floor at a
-// right angle, the boss and its fillet come out of the plate as a solid of revolution, and
-// the plate keeps a round hole: no knife edge (a cut along the floor would leave one where
-// the fillet meets it tangentially). The cylinder's seam passes through the circle's vertex,
-// so that the circles the pieces share start where the cut's own circles do.
+// that axis along a whole circle, tangentially or at a concave edge. Cut along the coaxial cylinder
+// through that circle, across the floor at a right angle, the boss and its fillet come out of the
+// plate as a solid of revolution, and the plate keeps a round hole: no knife edge (a cut along the
+// floor would leave one where the fillet meets it tangentially). At a round pocket's floor, where
+// the fillet also meets the pocket's wall, a second cylinder beyond the wall. The cylinders' seams
+// pass through the circle's vertex, so that the circles the pieces share start where the cut's own
+// circles do.
 struct FootCylinder {
   occ::CutCylinder surface;  // along the solid's whole extent on its axis
   core::FaceId face;         // the fillet
   core::EdgeId edge;         // its foot
+  // A cylinder beyond a round pocket's wall, as far from it as the foot on the floor, which
+  // leaves the pocket's fillet or chamfer on a ring of revolution (the foot's face and edge).
+  bool ring = false;
 };
 std::vector<FootCylinder> foot_cylinders(const occ::Solid& solid);
 

@@ -1,8 +1,8 @@
-// The cylinders through the feet of concave round fillets and chamfers on their floors: a
-// boss whose root is filleted (a torus meeting the plate's top tangentially) or chamfered (a
-// cone meeting it at a concave edge), each in FreeCAD's Fillet and Chamfer
-// (tests/data/plate_boss_root_fillet.step, plate_boss_root_chamfer.step); a countersink's cone
-// meets the top at a convex edge and gives none.
+// The cylinders through the feet of concave round fillets and chamfers on their floors (and
+// beyond a round pocket's wall): a boss whose root is filleted (a torus meeting the plate's top
+// tangentially) or chamfered (a cone meeting it at a concave edge), each in FreeCAD's Fillet and
+// Chamfer (tests/data/plate_boss_root_fillet.step, plate_boss_root_chamfer.step); a countersink's
+// cone meets the top at a convex edge and gives none.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -27,7 +27,8 @@ occ::Solid read(const std::string& name) {
 // foot on the plate is the circle of radius 10 at z = 10, the cylinder along z through it.
 void expect_the_boss_foot(const occ::Solid& s) {
   const std::vector<FootCylinder> feet = foot_cylinders(s);
-  ASSERT_EQ(feet.size(), 1u);
+  ASSERT_EQ(feet.size(), 1u);  // no ring: the boss's side bulges out
+  EXPECT_FALSE(feet[0].ring);
   const occ::CutCylinder& c = feet[0].surface;
   EXPECT_NEAR(c.radius, 10, 1e-6);
   EXPECT_NEAR(std::abs(c.axis.z()), 1, 1e-9);
@@ -51,6 +52,21 @@ TEST(FootCylinders, ABossWithItsRootFilletedOrChamferedHasOne) {
     SCOPED_TRACE("chamfered");
     expect_the_boss_foot(read("plate_boss_root_chamfer.step"));
   }
+}
+
+// A 60 x 40 x 20 block with a round pocket of radius 10 and depth 10 whose floor is filleted
+// by 2 (tests/data/round_pocket_floor_fillet.step): the cylinder through the foot on the floor
+// (radius 8), and the ring's beyond the wall as far as that (radius 12), both seamed at the
+// foot circle's vertex.
+TEST(FootCylinders, ARoundPocketsFloorFilletHasOneOnTheFloorAndOneBeyondTheWall) {
+  const occ::Solid s = read("round_pocket_floor_fillet.step");
+  const std::vector<FootCylinder> feet = foot_cylinders(s);
+  ASSERT_EQ(feet.size(), 2u);
+  EXPECT_FALSE(feet[0].ring);
+  EXPECT_NEAR(feet[0].surface.radius, 8, 1e-6);
+  EXPECT_TRUE(feet[1].ring);
+  EXPECT_NEAR(feet[1].surface.radius, 12, 1e-6);
+  EXPECT_NEAR(feet[0].surface.seam.dot(feet[1].surface.seam), 1, 1e-12);
 }
 
 TEST(FootCylinders, ACountersinkOrAHoleEdgeFilletHasNone) {
