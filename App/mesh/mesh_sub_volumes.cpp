@@ -94,10 +94,38 @@ bool free_face(const occ::Solid& s, core::FaceId f) {
   return wires.size() != 1 || wires[0].size() != 4;
 }
 
-// A closed edge that is a circle (on a solid of revolution: a parallel about its axis).
-bool whole_circle(const occ::Solid& s, EdgeId e) {
-  return s.edge_first_vertex(e) == s.edge_last_vertex(e) &&
-         s.curve_info(e).kind == core::CurveKind::circle;
+const double kPi = 3.14159265358979323846;
+
+// The share of a turn edge e of a solid of revolution spans about its axis (1 for a whole
+// circle), 0 for an edge that is no circle about it.
+double turns_about_axis(const Part& part, EdgeId e) {
+  const occ::Solid& s = part.solid;
+  if (s.edge_is_degenerated(e) || s.curve_info(e).kind != core::CurveKind::circle) return 0;
+  const std::vector<core::Vec3> p = s.edge_points_by_length(e, 32);
+  auto across = [&](const core::Vec3& q) {
+    const core::Vec3 d = q - part.origin;
+    return core::Vec3(d - d.dot(part.axis) * part.axis);
+  };
+  double angle = 0;
+  for (std::size_t i = 0; i + 1 < p.size(); ++i) {
+    const core::Vec3 a = across(p[i]), b = across(p[i + 1]);
+    angle += std::atan2(a.cross(b).dot(part.axis), a.dot(b));
+  }
+  const double t = std::abs(angle) / (2 * kPi);
+  return t > 1e-6 ? t : 0;  // a meridian circle (a torus's seam) turns by nothing
+}
+
+// A share t of a turn as p / q with q 1, 2 or 4 (an arc between vertices a quarter of a turn
+// apart); q = 0 for another share.
+struct Share {
+  int p = 0, q = 0;
+};
+Share quarter_share(double t) {
+  for (int q : {1, 2, 4}) {
+    const int p = int(std::lround(t * q));
+    if (p >= 1 && std::abs(t * q - p) <= 1e-6) return {p, q};
+  }
+  return {};
 }
 
 // The interval problem over the curves of `pieces` (one per non-degenerated edge).
@@ -168,27 +196,38 @@ void add_constraints(Curves& c, const occ::Solid& pieces, const Part& part, int 
     add_multisweep_constraints(c, pieces, part, who, o);
     return;
   }
-  if (part.revolve) {  // its circles in one count, the sectors; its meridian edges free
-    int first = -1;
+  if (part.revolve) {  // its circles in the sectors' count, its meridian edges free
+    double radius = 0;
+    std::vector<double> turns(part.solid.num_edges() + 1, 0);
+    for (EdgeId e : part.solid.edges()) {
+      turns[e.value()] = turns_about_axis(part, e);
+      if (turns[e.value()] > 0) radius = std::max(radius, part.solid.curve_info(e).radius);
+    }
+    int sectors = -1;
     for (EdgeId e : part.solid.edges()) {
       if (part.solid.edge_is_degenerated(e)) continue;
       const int k_e = cv(e);
-      if (!whole_circle(part.solid, e)) {
+      const double t = turns[e.value()];
+      if (t <= 0) {
         // A seam it shares is an edge of its section, which the quad mesher may mesh: even.
         if (!part.shared_edge.empty() && part.shared_edge[e.value()])
           c.problem.even.push_back(
               {{k_e}, who + " (revolve): " + core::entity_name(e) + ", an edge of its section"});
         continue;
       }
-      if (first < 0) {
-        first = k_e;
+      if (sectors < 0) {
+        sectors = c.problem.add_curve(2 * kPi * radius, who + " sectors");
         const std::string why = who + " (revolve): its sectors";
-        c.problem.even.push_back({{k_e}, why + ", a multiple of 4", 4});
-        c.problem.at_least.push_back({{k_e}, 8, why + ", at least 8"});
-      } else {
-        c.problem.equal.push_back(
-            {{first}, {k_e}, who + " (revolve): its circles, one sector each"});
+        c.problem.even.push_back({{sectors}, why + ", a multiple of 4", 4});
+        c.problem.at_least.push_back({{sectors}, 8, why + ", at least 8"});
       }
+      // q times its count is p sectors, its share of a turn p / q (q 1, 2 or 4: an arc between
+      // vertices a quarter of a turn apart); an arc of another share is left to its neighbour
+      // (its nodes then miss the sectors, and the check says where).
+      if (const Share sh = quarter_share(t); sh.q > 0)
+        c.problem.equal.push_back(
+            {std::vector<int>(sh.q, k_e), std::vector<int>(sh.p, sectors),
+             who + " (revolve): " + core::entity_name(e) + ", its share of the sectors"});
     }
     return;
   }
@@ -399,40 +438,47 @@ RevolveOptions revolve_options(const Part& part, const std::vector<int>& counts,
   o.edge_intervals.assign(counts.size(), 0);
   for (EdgeId e : part.solid.edges()) {
     if (part.solid.edge_is_degenerated(e)) continue;
-    const bool circle = whole_circle(part.solid, e);
-    if (circle && o.sectors == 0) o.sectors = counts[e.value()];
+    const double t = turns_about_axis(part, e);
+    const bool circle = t > 0;
+    if (const Share sh = quarter_share(t); sh.q > 0 && o.sectors == 0 && counts[e.value()] > 0)
+      o.sectors = counts[e.value()] * sh.q / sh.p;
     if (!part.shared_edge.empty() && part.shared_edge[e.value()]) {
       if (!circle) o.edge_intervals[e.value()] = counts[e.value()];
       if (circle && !o.has_start)
         o.has_start = true, o.start = part.solid.vertex_point(part.solid.edge_first_vertex(e));
     }
   }
+  if (o.sectors < 8 || o.sectors % 4 != 0) o.sectors = 0;  // an arc of no quarter's share
   return o;
 }
 
 PartMesh mesh_revolved_part(const Part& part, const std::vector<int>& counts,
-                            const SubVolumeMeshOptions& options, const core::Progress& progress) {
+                            const SubVolumeMeshOptions& options, const core::Progress& progress,
+                            const std::vector<std::vector<core::Vec3>>& edge_nodes) {
   PartMesh out;
-  const RevolveOptions o = revolve_options(part, counts, options);
-  // Every circle it shares must start at a sector's angle (its neighbour meshes it from its
-  // vertex).
+  RevolveOptions o = revolve_options(part, counts, options);
+  o.edge_nodes = edge_nodes;
+  // Every circle or arc it shares must end at sectors' angles (its neighbour meshes it from
+  // its vertices).
   if (o.has_start && o.sectors > 0) {
     const core::Vec3 u =
         (o.start - part.origin - (o.start - part.origin).dot(part.axis) * part.axis).normalized();
     const core::Vec3 v = part.axis.cross(u);
     for (EdgeId e : part.solid.edges()) {
       if (part.shared_edge.empty() || !part.shared_edge[e.value()] ||
-          part.solid.edge_is_degenerated(e) || !whole_circle(part.solid, e))
+          turns_about_axis(part, e) <= 0)
         continue;
-      const core::Vec3 d = part.solid.vertex_point(part.solid.edge_first_vertex(e)) - part.origin;
-      const double turns =
-          std::atan2(d.dot(v), d.dot(u)) / (2 * 3.14159265358979323846) * o.sectors;
-      if (std::abs(turns - std::round(turns)) > 1e-6) {
-        out.diagnostics.push_back(
-            core::make_error("revolve_misaligned",
-                             "the circles it shares with its neighbours (" + core::entity_name(e) +
-                                 " among them) start at angles no common count of sectors meets"));
-        return out;
+      for (const core::VertexId x :
+           {part.solid.edge_first_vertex(e), part.solid.edge_last_vertex(e)}) {
+        const core::Vec3 d = part.solid.vertex_point(x) - part.origin;
+        const double turns = std::atan2(d.dot(v), d.dot(u)) / (2 * kPi) * o.sectors;
+        if (std::abs(turns - std::round(turns)) > 1e-6) {
+          out.diagnostics.push_back(core::make_error(
+              "revolve_misaligned",
+              "the circles it shares with its neighbours (" + core::entity_name(e) +
+                  " among them) end at angles no common count of sectors meets"));
+          return out;
+        }
       }
     }
   }
@@ -466,7 +512,7 @@ PartMesh mesh_part(const Part& part, const std::vector<int>& counts,
     out.mesh = std::move(r.mesh);
     out.diagnostics = std::move(r.diagnostics);
   } else if (part.revolve) {
-    out = mesh_revolved_part(part, counts, options, progress);
+    out = mesh_revolved_part(part, counts, options, progress, edge_nodes);
   } else if (part.is_block()) {
     MapBlockOptions o;
     o.size = options.size;
@@ -716,10 +762,12 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
       }
       return k;
     };
-    std::vector<std::pair<int, int>> order;  // (-splits, part); solids of revolution first
+    // (-splits, part); solids of revolution after them, taking their nodes on the seams they
+    // share (a multisweep's slabs put nodes at its levels there), before the others.
+    std::vector<std::pair<int, int>> order;
     for (int k = 0; k < n; ++k)
       if (parts[k].multisweep || parts[k].revolve)
-        order.emplace_back(parts[k].revolve ? std::numeric_limits<int>::min() : -splits(parts[k]),
+        order.emplace_back(parts[k].revolve ? std::numeric_limits<int>::max() : -splits(parts[k]),
                            k);
     std::sort(order.begin(), order.end());
     for (const auto& [ignored, k] : order) {

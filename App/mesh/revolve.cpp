@@ -105,31 +105,57 @@ Disc o_grid_disc(int m, int layers, double ratio) {
   return d;
 }
 
-// The section's edges that trace the solid's meridian edges given a count (a seam a neighbour
-// shares): matched by their ends' heights and radii (the section lies in another half-plane).
-std::vector<int> section_counts(const core::MeshDomain& solid, const occ::RevolutionStructure& s,
-                                const std::vector<int>& edge_intervals) {
+// The section's edge that traces the solid's meridian edge e (a seam a neighbour shares),
+// matched by their ends' heights and radii (the section lies in another half-plane): its id
+// (0: none, or e is a circle about the axis) and whether it runs the other way.
+struct SectionEdge {
+  int id = 0;
+  bool reversed = false;
+};
+SectionEdge section_edge(const core::MeshDomain& solid, const occ::RevolutionStructure& s,
+                         EdgeId e) {
   const occ::Solid& sec = *s.section;
-  std::vector<int> fixed(std::size_t(sec.num_edges()) + 1, 0);
   const double tol = std::max(1e-6 * solid.diagonal(), 10 * solid.tolerance());
   auto hr = [&](const Vec3& p) { return Vec2(s.height(p), s.radius(p)); };
-  auto ends = [&](const core::MeshDomain& d, EdgeId e) {
-    const std::vector<Vec3> q = d.edge_points_by_length(e, 2);
+  auto ends = [&](const core::MeshDomain& d, EdgeId x) {
+    const std::vector<Vec3> q = d.edge_points_by_length(x, 2);
     return std::array<Vec2, 3>{hr(q[0]), hr(q[1]), hr(q[2])};
   };
-  for (std::size_t e = 1; e < edge_intervals.size(); ++e) {
-    if (edge_intervals[e] <= 0 || solid.edge_is_degenerated(EdgeId(int(e)))) continue;
-    const auto a = ends(solid, EdgeId(int(e)));
-    if ((a[0] - a[2]).norm() <= tol) continue;  // a circle about the axis
-    for (EdgeId f : sec.edges()) {
-      const auto b = ends(sec, f);
-      const bool same = (a[1] - b[1]).norm() <= tol &&
-                        (((a[0] - b[0]).norm() <= tol && (a[2] - b[2]).norm() <= tol) ||
-                         ((a[0] - b[2]).norm() <= tol && (a[2] - b[0]).norm() <= tol));
-      if (same) fixed[f.value()] = edge_intervals[e];
-    }
+  if (solid.edge_is_degenerated(e)) return {};
+  const auto a = ends(solid, e);
+  if ((a[0] - a[2]).norm() <= tol) return {};  // a circle about the axis
+  for (EdgeId f : sec.edges()) {
+    const auto b = ends(sec, f);
+    if ((a[1] - b[1]).norm() > tol) continue;
+    if ((a[0] - b[0]).norm() <= tol && (a[2] - b[2]).norm() <= tol) return {f.value(), false};
+    if ((a[0] - b[2]).norm() <= tol && (a[2] - b[0]).norm() <= tol) return {f.value(), true};
   }
-  return fixed;
+  return {};
+}
+
+// The section's counts and given nodes from the solid's meridian edges' (options.edge_intervals,
+// options.edge_nodes), turned into the section's half-plane.
+void given_on_section(const core::MeshDomain& solid, const occ::RevolutionStructure& s,
+                      const RevolveOptions& options, FaceSetOptions& fo) {
+  const std::size_t n = std::size_t(s.section->num_edges()) + 1;
+  fo.fixed_counts.assign(n, 0);
+  fo.given_edge_points.assign(n, {});
+  const std::size_t edges = std::max(options.edge_intervals.size(), options.edge_nodes.size());
+  for (std::size_t e = 1; e < edges; ++e) {
+    const int count = e < options.edge_intervals.size() ? options.edge_intervals[e] : 0;
+    const bool nodes = e < options.edge_nodes.size() && options.edge_nodes[e].size() >= 2;
+    if (count <= 0 && !nodes) continue;
+    const SectionEdge f = section_edge(solid, s, EdgeId(int(e)));
+    if (f.id == 0) continue;
+    if (count > 0) fo.fixed_counts[f.id] = count;
+    if (!nodes) continue;
+    std::vector<Vec3> q;
+    for (const Vec3& p : options.edge_nodes[e])
+      q.push_back(s.origin + s.height(p) * s.axis + s.radius(p) * s.radial);
+    if (f.reversed) std::reverse(q.begin(), q.end());
+    fo.fixed_counts[f.id] = int(q.size()) - 1;
+    fo.given_edge_points[f.id] = std::move(q);
+  }
 }
 
 struct Plan {
@@ -163,8 +189,8 @@ Plan plan(const core::MeshDomain& solid, const RevolveOptions& options,
     section_field = options.size_field->revolved(s.origin, s.axis, 16);
     fo.size_field = &section_field;
   }
-  if (!options.edge_intervals.empty())
-    fo.fixed_counts = section_counts(solid, s, options.edge_intervals);
+  if (!options.edge_intervals.empty() || !options.edge_nodes.empty())
+    given_on_section(solid, s, options, fo);
   p.section = mesh_face_set(*s.section, fo, progress);
   if (!p.section.ok) {
     p.diagnostics = p.section.diagnostics;

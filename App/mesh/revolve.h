@@ -33,6 +33,9 @@ struct RevolveOptions {
   bool has_start = false;
   core::Vec3 start = core::Vec3::Zero();
   std::vector<int> edge_intervals;
+  // Per solid edge id (entry 0 unused; empty: free): a meridian edge's nodes as a neighbour
+  // meshed before placed them, first to last vertex (its count and positions are kept).
+  std::vector<std::vector<core::Vec3>> edge_nodes;
   void validate() const;  // throws std::invalid_argument naming the bad field
 };
 

@@ -213,5 +213,22 @@ TEST(GenerateMesh, ARoundPocketWithItsFloorFilletedHasItsFilletOnARevolvedRing) 
       << d->message;
 }
 
+// A plate 80 x 40 x 12 with a boss of radius 8 whose root is filleted by 2 and a pocket
+// 20 x 20 x 6 beside it (tests/data/plate_boss_root_fillet_and_pocket.step): the plate around
+// the boss is a multisweep (the pocket's floor is a level), meshed first; the revolved boss
+// takes its nodes on the seam they share (a node at the pocket floor's height among them), and
+// the circles they share are split into arcs where the pocket wall's plane touched the cut
+// cylinder (a quarter of a turn apart: each arc its share of the sectors). Before, the grid's.
+TEST(GenerateMesh, ARevolvedBossTakesTheNodesOfTheMultisweepBesideIt) {
+  const MeshResult r = mesh_file("plate_boss_root_fillet_and_pocket.step");
+  ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
+  EXPECT_EQ(r.stats.sub_volumes, 2);
+  EXPECT_NE(r.stats.scheme.find("revolve"), std::string::npos) << r.stats.scheme;
+  EXPECT_NE(r.stats.scheme.find("multisweep"), std::string::npos) << r.stats.scheme;
+  EXPECT_TRUE(r.check.valid);
+  EXPECT_LE(r.check.volume_rel_error, 0.01);
+  EXPECT_GE(r.check.scaled_jacobian.min, 0.5);
+}
+
 }  // namespace
 }  // namespace vorohex::pipeline
