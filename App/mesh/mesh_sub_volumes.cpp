@@ -14,6 +14,7 @@
 #include "core/option_checks.h"
 #include "core/progress.h"
 #include "mesh/assemble.h"
+#include "mesh/detail/revolved_part.h"
 #include "mesh/detail/sizing.h"
 #include "mesh/interval_assignment.h"
 #include "mesh/map_block.h"
@@ -94,38 +95,17 @@ bool free_face(const occ::Solid& s, core::FaceId f) {
   return wires.size() != 1 || wires[0].size() != 4;
 }
 
-const double kPi = 3.14159265358979323846;
-
-// The share of a turn edge e of a solid of revolution spans about its axis (1 for a whole
-// circle), 0 for an edge that is no circle about it.
-double turns_about_axis(const Part& part, EdgeId e) {
-  const occ::Solid& s = part.solid;
-  if (s.edge_is_degenerated(e) || s.curve_info(e).kind != core::CurveKind::circle) return 0;
-  const std::vector<core::Vec3> p = s.edge_points_by_length(e, 32);
-  auto across = [&](const core::Vec3& q) {
-    const core::Vec3 d = q - part.origin;
-    return core::Vec3(d - d.dot(part.axis) * part.axis);
-  };
-  double angle = 0;
-  for (std::size_t i = 0; i + 1 < p.size(); ++i) {
-    const core::Vec3 a = across(p[i]), b = across(p[i + 1]);
-    angle += std::atan2(a.cross(b).dot(part.axis), a.dot(b));
-  }
-  const double t = std::abs(angle) / (2 * kPi);
-  return t > 1e-6 ? t : 0;  // a meridian circle (a torus's seam) turns by nothing
+// A sub-volume revolved (detail/revolved_part.h) and the options it is revolved with.
+detail::RevolvedPart revolved(const Part& p) {
+  return {p.solid, p.origin, p.axis, p.shared_edge};
 }
-
-// A share t of a turn as p / q with q 1, 2 or 4 (an arc between vertices a quarter of a turn
-// apart); q = 0 for another share.
-struct Share {
-  int p = 0, q = 0;
-};
-Share quarter_share(double t) {
-  for (int q : {1, 2, 4}) {
-    const int p = int(std::lround(t * q));
-    if (p >= 1 && std::abs(t * q - p) <= 1e-6) return {p, q};
-  }
-  return {};
+RevolveOptions revolve_options(const SubVolumeMeshOptions& options) {
+  RevolveOptions o;
+  o.size = options.size;
+  o.max_intervals = options.max_intervals;
+  o.smoothing_passes = options.smoothing_passes;
+  o.size_field = options.size_field;
+  return o;
 }
 
 // The interval problem over the curves of `pieces` (one per non-degenerated edge).
@@ -196,39 +176,8 @@ void add_constraints(Curves& c, const occ::Solid& pieces, const Part& part, int 
     add_multisweep_constraints(c, pieces, part, who, o);
     return;
   }
-  if (part.revolve) {  // its circles in the sectors' count, its meridian edges free
-    double radius = 0;
-    std::vector<double> turns(part.solid.num_edges() + 1, 0);
-    for (EdgeId e : part.solid.edges()) {
-      turns[e.value()] = turns_about_axis(part, e);
-      if (turns[e.value()] > 0) radius = std::max(radius, part.solid.curve_info(e).radius);
-    }
-    int sectors = -1;
-    for (EdgeId e : part.solid.edges()) {
-      if (part.solid.edge_is_degenerated(e)) continue;
-      const int k_e = cv(e);
-      const double t = turns[e.value()];
-      if (t <= 0) {
-        // A seam it shares is an edge of its section, which the quad mesher may mesh: even.
-        if (!part.shared_edge.empty() && part.shared_edge[e.value()])
-          c.problem.even.push_back(
-              {{k_e}, who + " (revolve): " + core::entity_name(e) + ", an edge of its section"});
-        continue;
-      }
-      if (sectors < 0) {
-        sectors = c.problem.add_curve(2 * kPi * radius, who + " sectors");
-        const std::string why = who + " (revolve): its sectors";
-        c.problem.even.push_back({{sectors}, why + ", a multiple of 4", 4});
-        c.problem.at_least.push_back({{sectors}, 8, why + ", at least 8"});
-      }
-      // q times its count is p sectors, its share of a turn p / q (q 1, 2 or 4: an arc between
-      // vertices a quarter of a turn apart); an arc of another share is left to its neighbour
-      // (its nodes then miss the sectors, and the check says where).
-      if (const Share sh = quarter_share(t); sh.q > 0)
-        c.problem.equal.push_back(
-            {std::vector<int>(sh.q, k_e), std::vector<int>(sh.p, sectors),
-             who + " (revolve): " + core::entity_name(e) + ", its share of the sectors"});
-    }
+  if (part.revolve) {
+    detail::add_revolved_constraints(c.problem, revolved(part), cv, who);
     return;
   }
   if (part.is_block()) {
@@ -426,69 +375,6 @@ std::vector<std::array<core::Vec3, 4>> quads_on_face(const core::HexMesh& mesh,
   return out;
 }
 
-// The options of a solid of revolution meshed with the assigned counts: its sectors those of
-// its circles, starting at the vertex of a circle it shares, its shared seams' counts.
-RevolveOptions revolve_options(const Part& part, const std::vector<int>& counts,
-                               const SubVolumeMeshOptions& options) {
-  RevolveOptions o;
-  o.size = options.size;
-  o.max_intervals = options.max_intervals;
-  o.smoothing_passes = options.smoothing_passes;
-  o.size_field = options.size_field;
-  o.edge_intervals.assign(counts.size(), 0);
-  for (EdgeId e : part.solid.edges()) {
-    if (part.solid.edge_is_degenerated(e)) continue;
-    const double t = turns_about_axis(part, e);
-    const bool circle = t > 0;
-    if (const Share sh = quarter_share(t); sh.q > 0 && o.sectors == 0 && counts[e.value()] > 0)
-      o.sectors = counts[e.value()] * sh.q / sh.p;
-    if (!part.shared_edge.empty() && part.shared_edge[e.value()]) {
-      if (!circle) o.edge_intervals[e.value()] = counts[e.value()];
-      if (circle && !o.has_start)
-        o.has_start = true, o.start = part.solid.vertex_point(part.solid.edge_first_vertex(e));
-    }
-  }
-  if (o.sectors < 8 || o.sectors % 4 != 0) o.sectors = 0;  // an arc of no quarter's share
-  return o;
-}
-
-PartMesh mesh_revolved_part(const Part& part, const std::vector<int>& counts,
-                            const SubVolumeMeshOptions& options, const core::Progress& progress,
-                            const std::vector<std::vector<core::Vec3>>& edge_nodes) {
-  PartMesh out;
-  RevolveOptions o = revolve_options(part, counts, options);
-  o.edge_nodes = edge_nodes;
-  // Every circle or arc it shares must end at sectors' angles (its neighbour meshes it from
-  // its vertices).
-  if (o.has_start && o.sectors > 0) {
-    const core::Vec3 u =
-        (o.start - part.origin - (o.start - part.origin).dot(part.axis) * part.axis).normalized();
-    const core::Vec3 v = part.axis.cross(u);
-    for (EdgeId e : part.solid.edges()) {
-      if (part.shared_edge.empty() || !part.shared_edge[e.value()] ||
-          turns_about_axis(part, e) <= 0)
-        continue;
-      for (const core::VertexId x :
-           {part.solid.edge_first_vertex(e), part.solid.edge_last_vertex(e)}) {
-        const core::Vec3 d = part.solid.vertex_point(x) - part.origin;
-        const double turns = std::atan2(d.dot(v), d.dot(u)) / (2 * kPi) * o.sectors;
-        if (std::abs(turns - std::round(turns)) > 1e-6) {
-          out.diagnostics.push_back(core::make_error(
-              "revolve_misaligned",
-              "the circles it shares with its neighbours (" + core::entity_name(e) +
-                  " among them) end at angles no common count of sectors meets"));
-          return out;
-        }
-      }
-    }
-  }
-  RevolveResult r = revolve(part.solid, o, progress);
-  out.ok = r.ok;
-  out.mesh = std::move(r.mesh);
-  out.diagnostics = std::move(r.diagnostics);
-  return out;
-}
-
 // `edge_nodes`: per part edge id, the nodes a neighbour meshed before it placed there
 // (empty: none yet).
 PartMesh mesh_part(const Part& part, const std::vector<int>& counts,
@@ -512,7 +398,11 @@ PartMesh mesh_part(const Part& part, const std::vector<int>& counts,
     out.mesh = std::move(r.mesh);
     out.diagnostics = std::move(r.diagnostics);
   } else if (part.revolve) {
-    out = mesh_revolved_part(part, counts, options, progress, edge_nodes);
+    RevolveResult r = detail::mesh_revolved(revolved(part), revolve_options(options), counts,
+                                            edge_nodes, progress);
+    out.ok = r.ok;
+    out.mesh = std::move(r.mesh);
+    out.diagnostics = std::move(r.diagnostics);
   } else if (part.is_block()) {
     MapBlockOptions o;
     o.size = options.size;
@@ -707,7 +597,9 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
         if (p.shared_edge[e]) o.edge_intervals[e] = counts[k][e];
       predicted += multisweep_evaluate(p.solid, o).hexes;
     } else if (p.revolve) {
-      predicted += revolve_evaluate(p.solid, revolve_options(p, counts[k], options)).hexes;
+      predicted += revolve_evaluate(p.solid, detail::revolved_options(
+                                                 revolved(p), revolve_options(options), counts[k]))
+                       .hexes;
     } else if (p.is_block()) {
       predicted += std::size_t(counts[k][p.block[0][0].value()]) *
                    counts[k][p.block[1][0].value()] * counts[k][p.block[2][0].value()];
