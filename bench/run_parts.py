@@ -178,8 +178,9 @@ def build_parts(work):
         2, [e for e in bossed.Edges if at(e, 10) and e.BoundBox.XLength < 17])
     # Bosses whose roots are rounded or chamfered (concave: cut through the foot on the plate
     # along the coaxial cylinder, the boss is revolved): the root alone, filleted or chamfered,
-    # a bored boss, two bosses, a boss among bolt holes; a round pocket whose floor is filleted
-    # (its wall's foot has no cut that leaves no knife edge: still the grid's).
+    # a bored boss, two bosses, a boss among bolt holes, a boss beside a pocket (the plate a
+    # multisweep), a flange's hub; a round pocket and a counterbore whose floor is filleted (cut
+    # at the floor's foot and beyond the wall: the ring between revolved).
     def circle(e):
         return e.Curve.TypeId == "Part::GeomCircle"
     parts["plate with a boss, only its root filleted"] = bossed.makeFillet(
@@ -201,6 +202,20 @@ def build_parts(work):
     pocket = box(60, 40, 20).cut(cyl(10, 10, (30, 20, 10))).removeSplitter()
     parts["block with a round pocket, its floor filleted"] = pocket.makeFillet(
         2, [e for e in pocket.Edges if at(e, 10) and circle(e)])
+    bored_pocket = pocket.cut(cyl(4, 10, (30, 20, 0))).removeSplitter()
+    parts["counterbore, its floor filleted"] = bored_pocket.makeFillet(
+        2, [e for e in bored_pocket.Edges if at(e, 10) and circle(e) and e.Curve.Radius > 9])
+    beside = box(80, 40, 12).fuse(cyl(8, 10, (20, 20, 12))).removeSplitter().cut(
+        box(20, 20, 6, (45, 10, 6)))
+    parts["plate with a boss, its root filleted, and a pocket"] = beside.makeFillet(
+        2, [e for e in beside.Edges if at(e, 12) and circle(e)])
+    hub = cyl(40, 8, (0, 0, 0)).fuse(cyl(15, 30, (0, 0, 8))).removeSplitter()
+    for i in range(4):
+        a = math.pi / 2 * i + 0.3
+        hub = hub.cut(cyl(4, 8, (28 * math.cos(a), 28 * math.sin(a), 0)))
+    hub = hub.cut(cyl(8, 38, (0, 0, 0)))
+    parts["flange with bolt holes, its hub's root filleted"] = hub.makeFillet(
+        3, [e for e in hub.Edges if at(e, 8) and circle(e) and abs(e.Curve.Radius - 15) < 1e-6])
     # Chamfers and fillets on one part: the long top edges chamfered, the short ones and the
     # hole's filleted (tests/data/block_chamfered_and_filleted.step): feet at two heights.
     mixed = box(40, 20, 10).cut(cyl(4, 10, (20, 10, 0)))
