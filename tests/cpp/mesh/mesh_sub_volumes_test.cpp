@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "decompose/decompose.h"
+#include "fixtures/diagnostics.h"
 #include "fixtures/solids.h"
 #include "mesh/sweep.h"
 #include "occ/primitives.h"
@@ -21,11 +22,7 @@
 namespace vorohex::mesh {
 namespace {
 
-std::string messages(const std::vector<core::Diagnostic>& ds) {
-  std::string s;
-  for (const auto& d : ds) s += core::format(d) + "\n";
-  return s;
-}
+using testing::messages;
 
 struct Pieces {
   std::unique_ptr<occ::Solid> glued;

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "decompose/plane_cuts.h"
+#include "fixtures/diagnostics.h"
 #include "mesh/mesh_sub_volumes.h"
 #include "occ/shape_io.h"
 #include "quality/check_mesh.h"
@@ -18,11 +19,7 @@
 namespace vorohex::mesh {
 namespace {
 
-std::string messages(const std::vector<core::Diagnostic>& ds) {
-  std::string s;
-  for (const auto& d : ds) s += core::format(d) + "\n";
-  return s;
-}
+using testing::messages;
 
 TEST(RevolvedSubVolumes, ABossWithItsRootFilletedIsRevolvedBesideItsPlate) {
   const occ::ReadResult in =

@@ -30,6 +30,23 @@ MeshResult mesh_file(const std::string& name, double size = 0, int order = 1) {
   return generate_mesh(*in.solid, opt);
 }
 
+// A valid mesh of a decomposition into `pieces` sub-volumes (0: any number) whose schemes
+// include `scheme`, conforming and closed, its volume within 1 %, at least `min`; its
+// decomposition's text names `cut` where given.
+void expect_decomposed(const MeshResult& r, const std::string& scheme, int pieces, double min,
+                       const std::string& cut = "") {
+  EXPECT_NE(r.stats.scheme.find(scheme), std::string::npos) << r.stats.scheme;
+  if (pieces > 0) EXPECT_EQ(r.stats.sub_volumes, pieces);
+  EXPECT_TRUE(r.check.valid);
+  EXPECT_EQ(r.check.open_boundary_edges, 0u);
+  EXPECT_LE(r.check.volume_rel_error, 0.01);
+  EXPECT_GE(r.check.scaled_jacobian.min, min);
+  if (cut.empty()) return;
+  const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "decomposed");
+  ASSERT_NE(d, nullptr);
+  EXPECT_NE(d->message.find(cut), std::string::npos) << d->message;
+}
+
 void expect_cut_at_the_foot_of_a_fillet(const MeshResult& r) {
   EXPECT_TRUE(r.check.valid);
   EXPECT_EQ(r.stats.sub_volumes, 2);
@@ -133,11 +150,7 @@ TEST(GenerateMesh, StackedSweepsTakeTheQuadsOfTheOneBelowAsTheirSource) {
   const MeshResult r = mesh_file("block_chamfered_and_filleted.step");
   ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
   EXPECT_EQ(r.stats.scheme, "sweep");
-  EXPECT_EQ(r.stats.sub_volumes, 3);
-  EXPECT_TRUE(r.check.valid);
-  EXPECT_EQ(r.check.open_boundary_edges, 0u);
-  EXPECT_LE(r.check.volume_rel_error, 0.01);
-  EXPECT_GE(r.check.scaled_jacobian.min, 0.5);
+  expect_decomposed(r, "sweep", 3, 0.5);
 }
 
 // The pillowed mesh is used only where it is better: on the plate its sweep is good as it is.
@@ -168,15 +181,9 @@ TEST(GenerateMesh, ABossWithItsRootFilletedIsCutAtTheFilletsFootAndRevolved) {
   const MeshResult r = mesh_file("plate_boss_root_fillet.step");
   ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
   EXPECT_EQ(r.stats.scheme, "sweep+revolve");
-  EXPECT_EQ(r.stats.sub_volumes, 3);
-  EXPECT_TRUE(r.check.valid);
-  EXPECT_EQ(r.check.open_boundary_edges, 0u);
-  EXPECT_LE(r.check.volume_rel_error, 0.01);
-  EXPECT_GE(r.check.scaled_jacobian.min, 0.45);
+  expect_decomposed(r, "revolve", 3, 0.45, "the cylinder through the foot of Face");
   const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "decomposed");
   ASSERT_NE(d, nullptr);
-  EXPECT_NE(d->message.find("the cylinder through the foot of Face"), std::string::npos)
-      << d->message;
   EXPECT_NE(d->message.find("1 revolved"), std::string::npos) << d->message;
 }
 
@@ -189,9 +196,7 @@ TEST(GenerateMesh, ABossWithItsRootChamferedIsCutAtTheChamfersFootAndRevolved) {
   const MeshResult r = mesh_file("plate_boss_root_chamfer.step");
   ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
   EXPECT_EQ(r.stats.scheme, "sweep+revolve");
-  EXPECT_TRUE(r.check.valid);
-  EXPECT_LE(r.check.volume_rel_error, 0.01);
-  EXPECT_GE(r.check.scaled_jacobian.min, 0.5);
+  expect_decomposed(r, "revolve", 2, 0.5);
 }
 
 // A 60 x 40 x 20 block with a round pocket of radius 10, its floor filleted by 2
@@ -202,15 +207,7 @@ TEST(GenerateMesh, ABossWithItsRootChamferedIsCutAtTheChamfersFootAndRevolved) {
 TEST(GenerateMesh, ARoundPocketWithItsFloorFilletedHasItsFilletOnARevolvedRing) {
   const MeshResult r = mesh_file("round_pocket_floor_fillet.step");
   ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
-  EXPECT_EQ(r.stats.sub_volumes, 3);
-  EXPECT_NE(r.stats.scheme.find("revolve"), std::string::npos) << r.stats.scheme;
-  EXPECT_TRUE(r.check.valid);
-  EXPECT_LE(r.check.volume_rel_error, 0.01);
-  EXPECT_GE(r.check.scaled_jacobian.min, 0.45);
-  const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "decomposed");
-  ASSERT_NE(d, nullptr);
-  EXPECT_NE(d->message.find("a cylinder around the pocket rounded by Face"), std::string::npos)
-      << d->message;
+  expect_decomposed(r, "revolve", 3, 0.45, "a cylinder around the pocket rounded by Face");
 }
 
 // A plate 80 x 40 x 12 with a boss of radius 8 whose root is filleted by 2 and a pocket
@@ -222,12 +219,8 @@ TEST(GenerateMesh, ARoundPocketWithItsFloorFilletedHasItsFilletOnARevolvedRing) 
 TEST(GenerateMesh, ARevolvedBossTakesTheNodesOfTheMultisweepBesideIt) {
   const MeshResult r = mesh_file("plate_boss_root_fillet_and_pocket.step");
   ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
-  EXPECT_EQ(r.stats.sub_volumes, 2);
-  EXPECT_NE(r.stats.scheme.find("revolve"), std::string::npos) << r.stats.scheme;
-  EXPECT_NE(r.stats.scheme.find("multisweep"), std::string::npos) << r.stats.scheme;
-  EXPECT_TRUE(r.check.valid);
-  EXPECT_LE(r.check.volume_rel_error, 0.01);
-  EXPECT_GE(r.check.scaled_jacobian.min, 0.5);
+  expect_decomposed(r, "revolve", 2, 0.5);
+  expect_decomposed(r, "multisweep", 2, 0.5);
 }
 
 }  // namespace
