@@ -100,15 +100,71 @@ void MeshOptions::validate() const {
 namespace {
 MeshResult generate(const occ::Solid& solid, const MeshOptions& options,
                     const core::Progress& progress);
+MeshResult generate_once(const occ::Solid& solid, const MeshOptions& options,
+                         const core::Progress& progress);
 }  // namespace
 
 const std::vector<std::string>& scheme_names() {
   return detail::scheme_names();
 }
 
+namespace {
+
+// A second-order mesh left off the CAD because mid-edge nodes put on a curved face folded an
+// element (one element across a concave fillet: the ring of a round pocket's filleted floor at
+// the automatic size) is made again at half the size, up to twice, where that stays within
+// max_hexes; the finer mesh is used where valid (warning size_reduced_for_second_order).
+// FreeCAD's panel asks for second order by default.
+constexpr int kSecondOrderHalvings = 2;
+
+bool straightened_off_cad(const MeshResult& r) {
+  bool straightened = false, off = false;
+  for (const core::Diagnostic& d : r.diagnostics) {
+    straightened |= d.code == "mid_nodes_straightened";
+    off |= d.code == "nodes_off_cad";
+  }
+  return straightened && off && !r.ok;
+}
+
+}  // namespace
+
 MeshResult generate_mesh(const occ::Solid& solid, const MeshOptions& options,
                          const core::Progress& progress) {
   options.validate();
+  const auto t0 = std::chrono::steady_clock::now();
+  MeshResult r = generate_once(solid, options, progress);
+  MeshOptions finer = options;
+  for (int k = 0; k < kSecondOrderHalvings && options.order == 2 && straightened_off_cad(r) &&
+                  r.stats.size_used > 0 && !progress.cancelled();
+       ++k) {
+    finer.size = r.stats.size_used / 2;
+    if (double(r.mesh.num_hexes()) * 8 > double(options.max_hexes)) break;
+    if (options.time_limit > 0) {  // the limit holds for all the runs together
+      finer.time_limit = options.time_limit - seconds_since(t0);
+      if (finer.time_limit <= 0) break;
+    }
+    MeshResult again = generate_once(solid, finer, progress);
+    if (!again.ok && !straightened_off_cad(again)) break;
+    std::ostringstream m;
+    m << "At size " << r.stats.size_used << " the second-order mesh had nodes off the CAD "
+      << "(mid-edge nodes put on a curved face folded an element, and were put back straight); "
+      << "made again at size " << finer.size;
+    if (again.ok) {
+      m << ", it is valid: that mesh is used, with " << again.mesh.num_hexes()
+        << " hexahedra, finer than the size asked for.";
+      again.diagnostics.insert(again.diagnostics.begin(),
+                               core::make_warning("size_reduced_for_second_order", m.str()));
+      return again;
+    }
+    r = std::move(again);
+  }
+  return r;
+}
+
+namespace {
+// One run, stopped at options.time_limit.
+MeshResult generate_once(const occ::Solid& solid, const MeshOptions& options,
+                         const core::Progress& progress) {
   if (!(options.time_limit > 0)) return generate(solid, options, progress);
   const core::Progress limited = progress.with_time_limit(options.time_limit);
   MeshResult r = generate(solid, options, limited);
@@ -128,7 +184,6 @@ MeshResult generate_mesh(const occ::Solid& solid, const MeshOptions& options,
   return r;
 }
 
-namespace {
 // The smallest scaled Jacobian of a mesh's hexahedra (1 for an empty mesh).
 double min_scaled_jacobian(const core::HexMesh& mesh) {
   const std::vector<double> sj = quality::scaled_jacobians(mesh);

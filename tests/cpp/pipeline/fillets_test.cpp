@@ -210,6 +210,21 @@ TEST(GenerateMesh, ARoundPocketWithItsFloorFilletedHasItsFilletOnARevolvedRing) 
   expect_decomposed(r, "revolve", 3, 0.45, "a cylinder around the pocket rounded by Face");
 }
 
+// The same pocket in second order (FreeCAD's panel asks for it by default): at the automatic
+// size one element spans the fillet across the ring, and the mid-edge nodes put on the fillet
+// fold it; they are put back straight, off the CAD, and the mesh was invalid (nodes_off_cad).
+// Made again at half the size, it is valid, and says so.
+TEST(GenerateMesh, ASecondOrderMeshOffTheCadIsMadeAgainAtHalfTheSize) {
+  const MeshResult r = mesh_file("round_pocket_floor_fillet.step", 0, 2);
+  ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
+  expect_decomposed(r, "revolve", 3, 0.45);
+  const core::Diagnostic* d =
+      testing::find_diagnostic(r.diagnostics, "size_reduced_for_second_order");
+  ASSERT_NE(d, nullptr);
+  EXPECT_LT(r.stats.size_used, 0.51 * 3.7417);
+  EXPECT_EQ(testing::find_diagnostic(r.diagnostics, "nodes_off_cad"), nullptr);
+}
+
 // A plate 80 x 40 x 12 with a boss of radius 8 whose root is filleted by 2 and a pocket
 // 20 x 20 x 6 beside it (tests/data/plate_boss_root_fillet_and_pocket.step): the plate around
 // the boss is a multisweep (the pocket's floor is a level), meshed first; the revolved boss
