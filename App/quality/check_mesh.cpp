@@ -392,6 +392,18 @@ void check_against_cad(const HexMesh& mesh, const occ::Solid& cad, const CheckOp
     }
     return bent;
   };
+  auto adjacent = [&](const std::vector<int>& fa, const std::vector<int>& fb) {
+    for (int a : fa)
+      for (int b : fb)
+        if (a == b || edges_between.count({std::min(a, b), std::max(a, b)})) return true;
+    return false;
+  };
+  auto bridges = [&](const std::array<std::int32_t, 4>& n) {
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j)
+        if (!adjacent(node_faces(n[i]), node_faces(n[j]))) return true;
+    return false;
+  };
   for (std::uint32_t q : boundary) {
     const auto n = quad_nodes(mesh, q);
     bool on_cad = true;
@@ -412,6 +424,11 @@ void check_against_cad(const HexMesh& mesh, const occ::Solid& cad, const CheckOp
       common.swap(kept);
     }
     if (common.empty() && count_across(n)) continue;
+    // Two of its nodes on faces that do not meet (no common face, no edge between them): it
+    // bridges the solid, no chord of its surface (a grid mesh that lost the material under a
+    // blind pocket's floor lined the hole with quads from the floor to the bottom face, and
+    // their allowance excused the missing 7.8 % of the volume).
+    if (common.empty() && bridges(n)) continue;
     const double dist = common.empty() ? cad.distance_to_boundary(centre)
                                        : cad.distance_to_face(core::FaceId(common[0]), centre);
     chord += area * dist;
