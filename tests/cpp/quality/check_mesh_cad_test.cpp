@@ -151,6 +151,29 @@ TEST(CheckMeshCad, CavityIsClosedButMissesVolume) {
   EXPECT_NEAR(r.max_boundary_distance, 1.0, 1e-9);
 }
 
+// A 3 x 3 x 1 plate meshed with a hole through its middle cell: every node lies on the CAD,
+// the boundary is closed, but the hole's lining quads have two nodes on the bottom face and
+// two on the top, faces that do not meet: they bridge the solid and are no chords of its
+// surface. Their allowance (area times their centres' distance, 0.5 each) excused the
+// missing ninth twice over, as a grid mesh that lost the material under a blind pocket's
+// floor was valid; now it is volume_mismatch.
+TEST(CheckMeshCad, QuadsBridgingFacesThatDoNotMeetGetNoChordAllowance) {
+  const occ::Solid plate = occ::make_box(3, 3, 1);
+  const HexMesh full = structured_grid(3, 3, 1);
+  HexMesh m;
+  for (const Vec3& p : full.points()) m.add_node(p);
+  for (std::size_t h = 0; h < full.num_hexes(); ++h)
+    if (h != 4) m.add_hex(full.hexes()[h]);
+  classify_by_geometry(m, plate);
+  const CheckReport r = check_mesh(m, &plate);
+  EXPECT_FALSE(r.valid);
+  EXPECT_EQ(r.open_boundary_edges, 0u);
+  EXPECT_LT(r.max_boundary_distance, 1e-9);
+  EXPECT_NEAR(r.volume_rel_error, 1.0 / 9.0, 1e-9);
+  EXPECT_LT(r.volume_allowance, 1e-6);
+  EXPECT_NE(find(r, "volume_mismatch"), nullptr);
+}
+
 TEST(CheckMeshCad, UnmergedBlocksHaveNodesOffCadButRightVolume) {
   const occ::Solid box = occ::make_box(4, 2, 2);
   HexMesh m = structured_grid(2, 2, 2);
