@@ -431,12 +431,9 @@ class MeshResult:
     @property
     def message(self):
         """One line for the user: the errors, else 'ok' with the counts."""
-        errs = self.errors + ([] if self.ok else [d for d in self.check_report.diagnostics
-                                                   if d.severity == "error"])
         # The check's errors are among the result's too: each said once.
-        seen = set()
-        errs = [d for d in errs
-                if (d.code, d.message) not in seen and not seen.add((d.code, d.message))]
+        errs = list({(d.code, d.message): d for d in self.errors + ([] if self.ok else [
+            d for d in self.check_report.diagnostics if d.severity == "error"])}.values())
         if errs or not self.ok:
             return "; ".join(_describe(d) for d in errs) or "meshing failed"
         s = self.stats
