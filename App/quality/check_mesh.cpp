@@ -398,10 +398,15 @@ void check_against_cad(const HexMesh& mesh, const occ::Solid& cad, const CheckOp
         if (a == b || edges_between.count({std::min(a, b), std::max(a, b)})) return true;
     return false;
   };
+  // Only where every node is classified on the CAD (a mesh read from a file, unclassified, is
+  // measured against the whole boundary: its quads keep their allowance).
   auto bridges = [&](const std::array<std::int32_t, 4>& n) {
+    std::array<std::vector<int>, 4> faces;
+    for (int i = 0; i < 4; ++i)
+      if ((faces[i] = node_faces(n[i])).empty()) return false;
     for (int i = 0; i < 4; ++i)
       for (int j = i + 1; j < 4; ++j)
-        if (!adjacent(node_faces(n[i]), node_faces(n[j]))) return true;
+        if (!adjacent(faces[i], faces[j])) return true;
     return false;
   };
   for (std::uint32_t q : boundary) {
