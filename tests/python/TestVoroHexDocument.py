@@ -469,6 +469,24 @@ class TestVoroHexObject(BoxDocument, unittest.TestCase):
         self.assertTrue(any("the cylinder through the foot of Face" in line
                             for line in obj.Diagnostics), list(obj.Diagnostics))
 
+    def test_a_failed_mesh_says_each_error_once(self):
+        # A round pocket whose floor is filleted (tests/data), second order as the panel's
+        # default, with too few hexahedra allowed to make it again at half the size: the
+        # mid-edge nodes on the fillet leave nodes off the CAD, an error both in the mesh's
+        # diagnostics and in its check's. The object's message said it twice.
+        hexme = os.environ.get("VOROHEX_HEXME")
+        self.assertTrue(hexme, "VOROHEX_HEXME: the repository's tests/data/hexme (ctest sets it)")
+        data = os.path.dirname(hexme)
+        part = self.doc.addObject("Part::Feature", "Pocket")
+        part.Shape = Part.read(os.path.join(data, "round_pocket_floor_fillet.step"))
+        self.doc.recompute()
+        obj = VoroHexObjects.makeHexMesh(self.doc, part)
+        obj.ElementOrder, obj.MaxHexes = "2nd", 2000
+        self.doc.recompute()
+        self.assertEqual(obj.Status, "error")
+        self.assertEqual(obj.Message.count("lie off the CAD boundary"), 1, obj.Message)
+        self.assertIn("Give a smaller size", obj.Message)
+
     def test_a_feature_whose_recompute_failed_is_refused_not_meshed_stale(self):
         # A fillet too large for its box fails to recompute and keeps its last good shape:
         # the mesh refuses it by name instead of meshing the shape the tree no longer shows.
