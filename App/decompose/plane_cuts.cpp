@@ -125,7 +125,7 @@ void add_plane(std::vector<Plane>& planes, Plane pl, double tol) {
 // another kind (no exact surface to cut along).
 bool concave_surfaces(const occ::Solid& s, std::vector<Plane>& planes,
                       std::vector<Cylinder>& cylinders, std::string& why) {
-  const double diag = s.diagonal(), eps = 1e-3 * diag, tol = 1e-7 * diag;
+  const double tol = 1e-7 * s.diagonal();
   for (EdgeId e : s.edges()) {
     if (s.edge_is_degenerated(e)) continue;
     const std::vector<FaceId> faces = s.edge_faces(e);
@@ -135,12 +135,8 @@ bool concave_surfaces(const occ::Solid& s, std::vector<Plane>& planes,
     const std::vector<Vec3> p = s.edge_points_by_length(e, 16);
     const Vec3 m = p[8];
     const Vec3 t = (p[9] - p[7]).normalized();
-    const Vec3 n1 = s.face_normal(faces[0], m), n2 = s.face_normal(faces[1], m);
-    // The direction from the edge into the first face, across the edge.
-    Vec3 d1 = n1.cross(t).normalized();
-    if (s.distance_to_face(faces[0], m + eps * d1) > s.distance_to_face(faces[0], m - eps * d1))
-      d1 = -d1;
-    if (d1.dot(n2) <= std::sin(M_PI / 180)) continue;  // convex or smooth
+    if (detail::turn_across(s, m, t, faces[0], faces[1]) <= std::sin(M_PI / 180))
+      continue;  // convex or smooth
     // What each face gives to cut along: its plane, or its cylinder. A concave edge needs
     // one cut, so a face of another kind (a cone, a torus, a B-spline) is left out when the
     // other face gives one.
@@ -158,19 +154,7 @@ bool concave_surfaces(const occ::Solid& s, std::vector<Plane>& planes,
     }
     for (int k = 0; k < 2; ++k) {
       if (round[k]) {
-        // Along the whole solid: the axial range of the bounding box's corners.
-        const core::BoundingBox box = s.bounding_box();
-        double lo = 0, hi = 0;
-        for (int c = 0; c < 8; ++c) {
-          const Vec3 corner((c & 1) ? box.max.x() : box.min.x(),
-                            (c & 2) ? box.max.y() : box.min.y(),
-                            (c & 4) ? box.max.z() : box.min.z());
-          const double t = (corner - cyl[k].origin).dot(cyl[k].axis);
-          lo = c ? std::min(lo, t) : t;
-          hi = c ? std::max(hi, t) : t;
-        }
-        cyl[k].from = lo - 0.1 * diag;
-        cyl[k].to = hi + 0.1 * diag;
+        detail::along_the_solid(s, cyl[k]);
         bool known = false;
         for (Cylinder& c : cylinders)
           if (!known && same_cylinder(c.surface, cyl[k], tol)) known = true, c.edges.push_back(e);

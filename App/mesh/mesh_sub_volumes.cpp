@@ -55,7 +55,8 @@ struct Part {
   bool multisweep = false;                   // else: a multisweep (prismatic part)
   bool revolve = false;                      // else: a solid of revolution
   core::Vec3 origin = core::Vec3::Zero(), axis = core::Vec3::UnitZ();  // its axis
-  std::shared_ptr<const occ::PrismaticStructure> prismatic;            // its structure
+  std::vector<double> turns;  // by part edge id: detail::turns_about_axis (a revolve's)
+  std::shared_ptr<const occ::PrismaticStructure> prismatic;  // its structure
   std::vector<bool> shared_edge;   // by part edge id: a neighbour has it too
   std::vector<int> shared_faces;   // part face ids shared with a neighbour
   std::vector<int> avoid_sources;  // part face ids its sweep avoids as source
@@ -97,7 +98,7 @@ bool free_face(const occ::Solid& s, core::FaceId f) {
 
 // A sub-volume revolved (detail/revolved_part.h) and the options it is revolved with.
 detail::RevolvedPart revolved(const Part& p) {
-  return {p.solid, p.origin, p.axis, p.shared_edge};
+  return {p.solid, p.origin, p.axis, p.shared_edge, p.turns};
 }
 RevolveOptions revolve_options(const SubVolumeMeshOptions& options) {
   RevolveOptions o;
@@ -291,6 +292,7 @@ Part plan_part(const occ::Solid& pieces, int k, bool multisweep, bool revolve) {
     p.revolve = a.ok;
     p.origin = a.origin;
     p.axis = a.axis;
+    if (p.revolve) p.turns = detail::turns_about_axis(p.solid, p.origin, p.axis);
   }
   return p;
 }

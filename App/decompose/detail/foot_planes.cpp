@@ -146,32 +146,39 @@ std::vector<FootPlaneSet> foot_plane_sets(const occ::Solid& solid) {
   return sets;
 }
 
+double turn_across(const occ::Solid& s, const Vec3& m, const Vec3& t, FaceId f, FaceId g) {
+  const double eps = 1e-3 * s.diagonal();
+  Vec3 into = s.face_normal(f, m).cross(t).normalized();
+  if (s.distance_to_face(f, m + eps * into) > s.distance_to_face(f, m - eps * into)) into = -into;
+  return into.dot(s.face_normal(g, m));
+}
+
+void along_the_solid(const occ::Solid& s, occ::CutCylinder& c) {
+  const core::BoundingBox box = s.bounding_box();
+  double lo = 1e300, hi = -1e300;
+  for (int k = 0; k < 8; ++k) {
+    const Vec3 corner((k & 1) ? box.max.x() : box.min.x(), (k & 2) ? box.max.y() : box.min.y(),
+                      (k & 4) ? box.max.z() : box.min.z());
+    lo = std::min(lo, c.axis.dot(corner - c.origin));
+    hi = std::max(hi, c.axis.dot(corner - c.origin));
+  }
+  c.from = lo - 0.1 * s.diagonal();
+  c.to = hi + 0.1 * s.diagonal();
+}
+
+namespace {
+
 // Whether faces f and g meet at edge e at a convex angle (more than a degree short of flat,
 // seen from inside the solid).
 bool convex_edge(const occ::Solid& s, EdgeId e, FaceId f, FaceId g) {
   const std::vector<Vec3> p = s.edge_points_by_length(e, 16);
-  const Vec3 m = p[8], t = (p[9] - p[7]).normalized();
-  const double eps = 1e-3 * s.diagonal();
-  Vec3 into = s.face_normal(f, m).cross(t).normalized();  // from the edge into f, across it
-  if (s.distance_to_face(f, m + eps * into) > s.distance_to_face(f, m - eps * into)) into = -into;
-  return into.dot(s.face_normal(g, m)) < -std::sin(M_PI / 180);
+  return turn_across(s, p[8], (p[9] - p[7]).normalized(), f, g) < -std::sin(M_PI / 180);
 }
+
+}  // namespace
 
 std::vector<FootCylinder> foot_cylinders(const occ::Solid& solid) {
   const double tol = 1e-7 * solid.diagonal();
-  // The heights of the solid's box corners along an axis: a cylinder along the whole solid.
-  const core::BoundingBox box = solid.bounding_box();
-  auto along_the_solid = [&](occ::CutCylinder& c) {
-    double lo = 1e300, hi = -1e300;
-    for (int k = 0; k < 8; ++k) {
-      const Vec3 corner((k & 1) ? box.max.x() : box.min.x(), (k & 2) ? box.max.y() : box.min.y(),
-                        (k & 4) ? box.max.z() : box.min.z());
-      lo = std::min(lo, c.axis.dot(corner - c.origin));
-      hi = std::max(hi, c.axis.dot(corner - c.origin));
-    }
-    c.from = lo - 0.1 * solid.diagonal();
-    c.to = hi + 0.1 * solid.diagonal();
-  };
   std::vector<FootCylinder> out;
   for (FaceId f : solid.faces()) {
     const FaceAxis fa = face_axis(solid, f);
@@ -216,7 +223,7 @@ std::vector<FootCylinder> foot_cylinders(const occ::Solid& solid) {
         c.axis = fa.d;
         c.seam = radial(solid.vertex_point(solid.edge_first_vertex(e))).normalized();
         c.radius = r;
-        along_the_solid(c);
+        along_the_solid(solid, c);
         out.push_back({c, f, e});
         floor_foot = int(out.size()) - 1;
       }

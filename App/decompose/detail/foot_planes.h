@@ -58,4 +58,14 @@ struct FootCylinder {
 };
 std::vector<FootCylinder> foot_cylinders(const occ::Solid& solid);
 
+// Shared with the cuts at concave edges (plane_cuts.cpp):
+// How faces f and g meet at point m of their common edge (tangent t there): the direction
+// from the edge into f, across it, against g's outward normal. Above sin(1 degree) the edge
+// is concave, below minus that convex, between them smooth.
+double turn_across(const occ::Solid& s, const core::Vec3& m, const core::Vec3& t, core::FaceId f,
+                   core::FaceId g);
+// c.from and c.to set so that the cylinder runs along the solid's whole extent on its axis
+// (the heights of its bounding box's corners, a tenth of the diagonal beyond).
+void along_the_solid(const occ::Solid& s, occ::CutCylinder& c);
+
 }  // namespace vorohex::decompose::detail

@@ -31,31 +31,32 @@ bool shared(const RevolvedPart& part, EdgeId e) {
 
 }  // namespace
 
-double turns_about_axis(const RevolvedPart& part, EdgeId e) {
-  const occ::Solid& s = part.solid;
-  if (s.edge_is_degenerated(e) || s.curve_info(e).kind != core::CurveKind::circle) return 0;
-  const std::vector<Vec3> p = s.edge_points_by_length(e, 32);
+std::vector<double> turns_about_axis(const occ::Solid& s, const Vec3& origin, const Vec3& axis) {
+  std::vector<double> turns(std::size_t(s.num_edges()) + 1, 0);
   auto across = [&](const Vec3& q) {
-    const Vec3 d = q - part.origin;
-    return Vec3(d - d.dot(part.axis) * part.axis);
+    const Vec3 d = q - origin;
+    return Vec3(d - d.dot(axis) * axis);
   };
-  double angle = 0;
-  for (std::size_t i = 0; i + 1 < p.size(); ++i) {
-    const Vec3 a = across(p[i]), b = across(p[i + 1]);
-    angle += std::atan2(a.cross(b).dot(part.axis), a.dot(b));
+  for (EdgeId e : s.edges()) {
+    if (s.edge_is_degenerated(e) || s.curve_info(e).kind != core::CurveKind::circle) continue;
+    const std::vector<Vec3> p = s.edge_points_by_length(e, 32);
+    double angle = 0;
+    for (std::size_t i = 0; i + 1 < p.size(); ++i) {
+      const Vec3 a = across(p[i]), b = across(p[i + 1]);
+      angle += std::atan2(a.cross(b).dot(axis), a.dot(b));
+    }
+    const double t = std::abs(angle) / (2 * kPi);
+    turns[e.value()] = t > 1e-6 ? t : 0;
   }
-  const double t = std::abs(angle) / (2 * kPi);
-  return t > 1e-6 ? t : 0;
+  return turns;
 }
 
 void add_revolved_constraints(IntervalProblem& problem, const RevolvedPart& part,
                               const std::function<int(EdgeId)>& curve, const std::string& who) {
+  const std::vector<double>& turns = part.turns;
   double radius = 0;
-  std::vector<double> turns(part.solid.num_edges() + 1, 0);
-  for (EdgeId e : part.solid.edges()) {
-    turns[e.value()] = turns_about_axis(part, e);
+  for (EdgeId e : part.solid.edges())
     if (turns[e.value()] > 0) radius = std::max(radius, part.solid.curve_info(e).radius);
-  }
   int sectors = -1;
   for (EdgeId e : part.solid.edges()) {
     if (part.solid.edge_is_degenerated(e)) continue;
@@ -88,7 +89,7 @@ RevolveOptions revolved_options(const RevolvedPart& part, RevolveOptions o,
   o.edge_intervals.assign(counts.size(), 0);
   for (EdgeId e : part.solid.edges()) {
     if (part.solid.edge_is_degenerated(e) || std::size_t(e.value()) >= counts.size()) continue;
-    const double t = turns_about_axis(part, e);
+    const double t = part.turns[e.value()];
     const bool circle = t > 0;
     if (const Share sh = quarter_share(t); sh.q > 0 && o.sectors == 0 && counts[e.value()] > 0)
       o.sectors = counts[e.value()] * sh.q / sh.p;
@@ -115,7 +116,7 @@ RevolveResult mesh_revolved(const RevolvedPart& part, const RevolveOptions& base
     const Vec3 u = (d0 - d0.dot(part.axis) * part.axis).normalized();
     const Vec3 v = part.axis.cross(u);
     for (EdgeId e : part.solid.edges()) {
-      if (!shared(part, e) || turns_about_axis(part, e) <= 0) continue;
+      if (!shared(part, e) || part.turns[e.value()] <= 0) continue;
       for (const core::VertexId x :
            {part.solid.edge_first_vertex(e), part.solid.edge_last_vertex(e)}) {
         const Vec3 d = part.solid.vertex_point(x) - part.origin;

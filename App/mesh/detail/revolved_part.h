@@ -16,15 +16,18 @@
 
 namespace vorohex::mesh::detail {
 
+// Per edge id of `solid` (entry 0 unused): the share of a turn the edge spans about the axis
+// through `origin` along unit `axis` (1 for a whole circle), 0 for an edge that is no circle
+// about it (a meridian circle, a torus's seam, turns by nothing).
+std::vector<double> turns_about_axis(const occ::Solid& solid, const core::Vec3& origin,
+                                     const core::Vec3& axis);
+
 struct RevolvedPart {
   const occ::Solid& solid;
   core::Vec3 origin, axis;               // its axis (unit)
   const std::vector<bool>& shared_edge;  // by edge id: a neighbour has it too
+  const std::vector<double>& turns;      // by edge id: turns_about_axis
 };
-
-// The share of a turn edge e spans about the axis (1 for a whole circle), 0 for an edge that
-// is no circle about it (a meridian circle, a torus's seam, turns by nothing).
-double turns_about_axis(const RevolvedPart& part, core::EdgeId e);
 
 // Its circles' counts as their shares of a curve of sectors (a multiple of 4, at least 8; an
 // arc between vertices a quarter of a turn apart its share, an arc of another share left to
