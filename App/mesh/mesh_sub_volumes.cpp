@@ -60,6 +60,7 @@ struct Part {
   std::vector<bool> shared_edge;   // by part edge id: a neighbour has it too
   std::vector<int> shared_faces;   // part face ids shared with a neighbour
   std::vector<int> avoid_sources;  // part face ids its sweep avoids as source
+  bool imprinted = false;          // its sweep's linking sides may carry imprints (sweep.h)
   std::vector<int> whole_face;     // by part face id
   std::vector<int> whole_edge;     // by part edge id
   bool is_block() const { return !block[0].empty(); }
@@ -81,7 +82,7 @@ ReversedSweep reversed(const Part& p) {
   ReversedSweep r;
   for (core::FaceId f : p.solid.faces())
     if (f != p.sweep.target) r.avoid_sources.push_back(f.value());
-  r.sweep = sweep_structure(p.solid, r.avoid_sources);
+  r.sweep = sweep_structure(p.solid, r.avoid_sources, p.imprinted);
   r.ok = r.sweep.source == p.sweep.target;
   return r;
 }
@@ -192,11 +193,34 @@ void add_constraints(Curves& c, const occ::Solid& pieces, const Part& part, int 
     return;
   }
   const SweepStructure& s = part.sweep;
-  // Every linking edge is a curve of the problem, also a lone one (a cylinder's seam).
-  if (!s.linking.empty()) cv(s.linking[0]);
-  for (std::size_t i = 1; i < s.linking.size(); ++i)
-    c.problem.equal.push_back(
-        {{cv(s.linking[0])}, {cv(s.linking[i])}, who + " (sweep): its layers"});
+  // Every linking edge is a curve of the problem, also a lone one (a cylinder's seam); a
+  // linking chain (a neighbour's vertices imprinted on a linking side) sums to the layers,
+  // each of its edges at least one.
+  auto chain = [&](const std::vector<EdgeId>& edges) {
+    std::vector<int> curves;
+    for (EdgeId e : edges) curves.push_back(cv(e));
+    if (curves.size() > 1)
+      for (int k : curves)
+        c.problem.at_least.push_back({{k}, 1, who + " (sweep): a chain of linking edges"});
+    return curves;
+  };
+  std::vector<std::vector<int>> sides;
+  for (const std::vector<EdgeId>& edges : s.linking) sides.push_back(chain(edges));
+  for (std::size_t i = 1; i < sides.size(); ++i)
+    c.problem.equal.push_back({sides[0], sides[i], who + " (sweep): its layers"});
+  // The edges between two faces of a stack of linking faces: across as the source edge
+  // below, on one layer.
+  for (const SweepStructure::Level& level : s.levels) {
+    std::vector<int> across, below0, below1;
+    for (EdgeId e : level.across) across.push_back(cv(e));
+    for (EdgeId e : level.below0) below0.push_back(cv(e));
+    for (EdgeId e : level.below1) below1.push_back(cv(e));
+    c.problem.equal.push_back({{cv(level.source)}, across, who + " (sweep): across a stack"});
+    c.problem.equal.push_back({below0, below1, who + " (sweep): a stack's edge on a layer"});
+    if (across.size() > 1)
+      for (int k : across)
+        c.problem.at_least.push_back({{k}, 1, who + " (sweep): a chain across a stack"});
+  }
   for (const auto& loop : s.loops)
     for (const auto& [src, tgt] : loop) {
       std::vector<int> across;
@@ -262,8 +286,9 @@ void add_constraints(Curves& c, const occ::Solid& pieces, const Part& part, int 
 // source and target avoid the faces it shares with a neighbour where possible, else (or
 // instead of a sweep with chains of target edges) a multisweep (none: has_scheme() is
 // false).
-Part plan_part(const occ::Solid& pieces, int k, bool multisweep, bool revolve) {
+Part plan_part(const occ::Solid& pieces, int k, bool multisweep, bool revolve, bool imprinted) {
   Part p(pieces.part(k));
+  p.imprinted = imprinted;
   p.whole_edge = pieces.part_ids(p.solid, 1);
   p.block = map_block_edge_groups(p.solid);
   if (p.is_block()) return p;
@@ -276,12 +301,13 @@ Part plan_part(const occ::Solid& pieces, int k, bool multisweep, bool revolve) {
       p.shared_faces.push_back(int(f));
   p.whole_face = whole_face;
   p.avoid_sources = p.shared_faces;
-  p.sweep = sweep_structure(p.solid, p.avoid_sources);
+  p.sweep = sweep_structure(p.solid, p.avoid_sources, imprinted);
   // A sweep whose target sides are chains (a neighbour's vertices imprinted there) is a
   // weaker structure than a prismatic part: the multisweep takes such a part when it can.
-  bool chains = false;
+  bool chains = !p.sweep.levels.empty();  // a stack of linking faces: weaker still
   for (const auto& loop : p.sweep.loops)
     for (const auto& st : loop) chains = chains || st.second.size() > 1;
+  for (const auto& side : p.sweep.linking) chains = chains || side.size() > 1;
   if (multisweep && (!p.sweep.source.valid() || chains)) {
     p.prismatic = std::make_shared<occ::PrismaticStructure>(occ::prismatic_structure(p.solid));
     p.multisweep = p.prismatic->ok;
@@ -382,7 +408,8 @@ std::vector<std::array<core::Vec3, 4>> quads_on_face(const core::HexMesh& mesh,
 PartMesh mesh_part(const Part& part, const std::vector<int>& counts,
                    const SubVolumeMeshOptions& options, const core::Progress& progress,
                    const std::vector<std::vector<core::Vec3>>& edge_nodes = {},
-                   const std::vector<std::array<core::Vec3, 4>>& source_quads = {}) {
+                   const std::vector<std::array<core::Vec3, 4>>& source_quads = {},
+                   const std::vector<std::array<core::Vec3, 4>>& target_quads = {}) {
   PartMesh out;
   if (part.multisweep) {
     // Only the counts of shared edges are given: its cross-section chooses the others.
@@ -426,6 +453,8 @@ PartMesh mesh_part(const Part& part, const std::vector<int>& counts,
     o.size_field = options.size_field;
     o.edge_nodes = edge_nodes;
     o.source_quads = source_quads;
+    o.target_quads = target_quads;
+    o.imprinted = part.imprinted;
     SweepResult r = sweep(part.solid, o, progress);
     if (!r.ok && r.folded > 0 && !progress.cancelled()) {  // the target's nodes along the axis
       SweepOptions along_axis = o;
@@ -474,7 +503,7 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
   std::vector<Part> parts;
   parts.reserve(n);
   for (int k = 0; k < n; ++k) {
-    Part p = plan_part(pieces, k, options.multisweep, options.revolve);
+    Part p = plan_part(pieces, k, options.multisweep, options.revolve, true);
     if (!p.has_scheme()) {
       result.diagnostics.push_back(
           core::make_error("no_scheme", no_scheme_message(p, k, n), {sub_volume_name(k)}));
@@ -525,6 +554,44 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
       take(a, std::move(ra));
       take(b, std::move(rb));
     }
+
+  // Sweeps meeting two by two at faces meshed freely, in a row or a ring, where two still
+  // have one such face as their target (the strips around a pocket's floor fillets, ended by
+  // mitre planes at its corners: a ring of four): from one of them on, each after it takes
+  // the face it shares with the one before as its source, so that every face is meshed once
+  // and carried on (a ring's last target is its first source: given to it, below).
+  {
+    auto face = [&](const Part& p, core::FaceId f) { return p.whole_face[f.value()]; };
+    std::vector<char> done(n, 0);
+    for (int k = 0; k < n; ++k) {
+      if (!parts[k].is_sweep() || done[k] || !free_face(parts[k].solid, parts[k].sweep.target))
+        continue;
+      bool twice = false;
+      for (int j = 0; j < n && !twice; ++j)
+        twice = j != k && parts[j].is_sweep() &&
+                face(parts[j], parts[j].sweep.target) == face(parts[k], parts[k].sweep.target);
+      if (!twice) continue;
+      done[k] = 1;
+      for (int cur = k;;) {
+        const int shared = face(parts[cur], parts[cur].sweep.target);
+        if (!free_face(parts[cur].solid, parts[cur].sweep.target)) break;
+        int next = -1;
+        for (int j = 0; j < n && next < 0; ++j)
+          if (!done[j] && parts[j].is_sweep() &&
+              (face(parts[j], parts[j].sweep.target) == shared ||
+               face(parts[j], parts[j].sweep.source) == shared))
+            next = j;
+        if (next < 0) break;
+        if (face(parts[next], parts[next].sweep.source) != shared) {
+          ReversedSweep r = reversed(parts[next]);
+          if (!r.ok) break;
+          take(parts[next], std::move(r));
+        }
+        done[next] = 1;
+        cur = next;
+      }
+    }
+  }
 
   // A sweep whose target is a face a multisweep shares, meshed freely: the multisweep meshes
   // that face as a cap, the sweep would put the far end's nodes there; it takes the face as
@@ -710,6 +777,16 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
           parts[j].whole_face[parts[j].sweep.target.value()] == face)
         after[k] = j;
   }
+  // A ring of such sweeps (each one's source the one before's target): one of them meshes its
+  // source freely, and the one before it takes those quads as its target.
+  std::vector<int> target_from(n, -1);
+  for (int k = 0; k < n; ++k) {
+    int j = after[k];
+    for (int steps = 0; j >= 0 && j != k && steps < n; ++steps) j = after[j];
+    if (j != k) continue;
+    target_from[after[k]] = k;
+    after[k] = -1;
+  }
   std::atomic<int> next{0};
   const int threads = std::max(
       1, std::min(n, options.threads > 0 ? options.threads
@@ -738,12 +815,15 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
   for (bool progressed = true; progressed && !stop.load() && !progress.cancelled();) {
     progressed = false;
     for (int k = 0; k < n; ++k) {
-      const int j = after[k];
-      if (j < 0 || meshed[k].ok || !meshed[j].ok) continue;
+      const int j = after[k], t = target_from[k];
+      if (j < 0 || meshed[k].ok || !meshed[j].ok || (t >= 0 && !meshed[t].ok)) continue;
       given_source[k] = quads_on_face(meshed[j].mesh, parts[j].solid, parts[j].sweep.target);
+      const auto given_target =
+          t >= 0 ? quads_on_face(meshed[t].mesh, parts[t].solid, parts[t].sweep.source)
+                 : std::vector<std::array<core::Vec3, 4>>();
       try {
-        meshed[k] =
-            mesh_part(parts[k], counts[k], options, worker_progress, given[k], given_source[k]);
+        meshed[k] = mesh_part(parts[k], counts[k], options, worker_progress, given[k],
+                              given_source[k], given_target);
       } catch (const std::exception& e) {
         meshed[k].diagnostics.push_back(core::make_error("geometry_error", e.what()));
       }
@@ -789,12 +869,13 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
   return result;
 }
 
-SubVolumePlan plan_sub_volumes(const occ::Solid& pieces, bool multisweep, bool revolve) {
+SubVolumePlan plan_sub_volumes(const occ::Solid& pieces, bool multisweep, bool revolve,
+                               bool imprinted) {
   SubVolumePlan plan;
   const int n = pieces.num_solids();
   plan.ok = n > 0;
   for (int k = 0; k < n; ++k) {
-    const Part p = plan_part(pieces, k, multisweep, revolve);
+    const Part p = plan_part(pieces, k, multisweep, revolve, imprinted);
     if (p.has_scheme()) {
       plan.schemes.push_back(p.scheme());
       plan.reasons.emplace_back();

@@ -79,7 +79,10 @@ struct SubVolumePlan {
   std::vector<std::string> reasons;  // per sub-volume: why it has none (empty when it has one)
   std::string why_not;
 };
+// `imprinted`: a sweep's linking sides may be chains of edges and stacks of faces where
+// neighbours imprinted theirs (mesh/sweep.h), where no sweep without them is found; meshing
+// allows them (it takes the sweeps without them first, so a plan made without them holds).
 SubVolumePlan plan_sub_volumes(const occ::Solid& pieces, bool multisweep = true,
-                               bool revolve = false);
+                               bool revolve = false, bool imprinted = false);
 
 }  // namespace vorohex::mesh

@@ -17,6 +17,7 @@
 #include "mesh/detail/sizing.h"
 #include "mesh/detail/sweep_layers.h"
 #include "mesh/detail/sweep_source.h"
+#include "mesh/detail/sweep_topology.h"
 #include "mesh/interval_assignment.h"
 #include "mesh/quad_face.h"
 #include "mesh/submap_face.h"
@@ -50,208 +51,16 @@ void SweepOptions::validate() const {
 
 namespace {
 
-// An edge with the direction it is read in (points from first to last when forward).
-struct Directed {
-  EdgeId edge;
-  bool forward = true;
-};
-
-// The linking face of one source edge. m runs along the source edge in the source loop's
-// direction, from its start vertex b (m = 0) to its end vertex a; k runs source -> target.
-// The target side is a chain of edges meeting at side vertices (a straight or smooth
-// continuation, about 180 degrees on the linking face): a neighbour glued to the target
-// imprints its own vertices there (a seam placed elsewhere, a T-junction).
-struct Link {
-  FaceId face;
-  Directed source;               // as the source loop reads it
-  std::vector<Directed> target;  // read from b' (above b) to a', one edge or a chain
-  Directed col0;                 // linking edge at b, read source -> target
-  Directed col1;                 // linking edge at a, read source -> target
-  VertexId b, b_target;
-};
-
-// Largest turn, in degrees, between consecutive edges of a target chain at their common
-// vertex (the direction of the chain changes less than this: a side vertex).
-const double kSideTurn = 30;
-
-struct Topology {
-  FaceId source, target;
-  std::vector<std::vector<Link>> loops;  // per source wire, per edge in wire order
-  double link_length = 0;                // mean length of the linking edges
-};
+using detail::Directed;
+using detail::Link;
+using Topology = detail::SweepTopology;
+using detail::chain_edges;
 
 std::string name(FaceId f) {
   return core::entity_name(f);
 }
 std::string name(EdgeId e) {
   return core::entity_name(e);
-}
-
-VertexId start_of(const Solid& s, const OrientedEdge& e) {
-  return e.forward ? s.edge_first_vertex(e.edge) : s.edge_last_vertex(e.edge);
-}
-VertexId end_of(const Solid& s, const OrientedEdge& e) {
-  return e.forward ? s.edge_last_vertex(e.edge) : s.edge_first_vertex(e.edge);
-}
-
-// The turn (degrees) from edge a to edge b at the vertex where a ends and b starts, both as
-// a wire reads them: the angle between a's direction arriving there and b's leaving it.
-double chain_turn(const Solid& s, const OrientedEdge& a, const OrientedEdge& b) {
-  auto ends = [&](const OrientedEdge& e) {
-    std::vector<Vec3> p = s.edge_points_by_length(e.edge, 16);
-    if (!e.forward) std::reverse(p.begin(), p.end());
-    return p;
-  };
-  const std::vector<Vec3> pa = ends(a), pb = ends(b);
-  const Vec3 ta = pa[pa.size() - 1] - pa[pa.size() - 2], tb = pb[1] - pb[0];
-  const double c = ta.normalized().dot(tb.normalized());
-  return std::acos(std::clamp(c, -1.0, 1.0)) * 180 / M_PI;
-}
-
-// Whether e bounds face f on both sides (its seam) and no other face.
-bool is_seam_of(const Solid& s, EdgeId e, FaceId f) {
-  for (FaceId g : s.edge_faces(e))
-    if (g != f) return false;
-  return true;
-}
-
-// The sweep structure with `S` as source, or the reason why there is none.
-std::string find_topology(const Solid& s, FaceId S, Topology& topo) {
-  topo = Topology();
-  topo.source = S;
-  std::set<int> source_edges, linking_faces, source_vertices;
-  const auto wires = s.face_wires(S);
-  for (const auto& w : wires)
-    for (const OrientedEdge& oe : w) {
-      source_edges.insert(oe.edge.value());
-      source_vertices.insert(s.edge_first_vertex(oe.edge).value());
-      source_vertices.insert(s.edge_last_vertex(oe.edge).value());
-    }
-  FaceId T;
-  std::set<int> target_edges;
-  std::set<int> link_edges;
-  double link_sum = 0;
-  for (const auto& w : wires) {
-    std::vector<Link> loop;
-    for (const OrientedEdge& oe : w) {
-      if (s.edge_is_degenerated(oe.edge)) return name(oe.edge) + " is degenerated";
-      FaceId L;
-      for (FaceId f : s.edge_faces(oe.edge))
-        if (f != S) L = f;
-      if (!L.valid()) return name(oe.edge) + " bounds " + name(S) + " only (a seam)";
-      if (!linking_faces.insert(L.value()).second)
-        return name(L) + " touches " + name(S) + " along more than one edge";
-      const auto lw = s.face_wires(L);
-      const int nq = lw.empty() ? 0 : int(lw[0].size());
-      if (lw.size() != 1 || nq < 4)
-        return name(L) + " is not four-sided (" + std::to_string(lw.size()) + " wires, " +
-               std::to_string(nq) + " edges)";
-      const auto& q = lw[0];
-      int i = -1;
-      for (int c = 0; c < nq; ++c)
-        if (q[c].edge == oe.edge) i = c;
-      if (i < 0) return name(L) + " has an inconsistent wire";
-      const OrientedEdge &up = q[(i + 1) % nq], &down = q[(i + nq - 1) % nq];
-      // Between the linking edges: the target side, one edge or a chain of side vertices.
-      std::vector<OrientedEdge> opp;
-      for (int c = 2; c < nq - 1; ++c) opp.push_back(q[(i + c) % nq]);
-      for (std::size_t c = 1; c < opp.size(); ++c)
-        if (chain_turn(s, opp[c - 1], opp[c]) > kSideTurn)
-          return name(L) + " is not four-sided (1 wires, " + std::to_string(nq) + " edges; " +
-                 name(opp[c - 1].edge) + " and " + name(opp[c].edge) + " meet at a corner)";
-      bool on_source = source_edges.count(up.edge.value()) || source_edges.count(down.edge.value());
-      for (const OrientedEdge& o : opp) on_source = on_source || source_edges.count(o.edge.value());
-      if (on_source) return name(L) + " has more than one edge on " + name(S);
-      for (const OrientedEdge& o : opp) {
-        FaceId other;
-        for (FaceId f : s.edge_faces(o.edge))
-          if (f != L) other = f;
-        if (!other.valid() || other == S) return name(o.edge) + " does not reach a target face";
-        if (!T.valid()) T = other;
-        if (other != T)
-          return "the edges opposite " + name(S) + " lie on " + name(T) + " and " + name(other);
-        target_edges.insert(o.edge.value());
-      }
-      for (std::size_t c = 1; c < opp.size(); ++c)
-        if (source_vertices.count(start_of(s, opp[c]).value()))
-          return name(S) + " and " + name(T) + " share a vertex";
-      Link link;
-      link.face = L;
-      link.source = {oe.edge, oe.forward};
-      for (const OrientedEdge& o : opp) link.target.push_back({o.edge, o.forward});
-      link.col0 = {up.edge, up.forward};
-      link.col1 = {down.edge, !down.forward};
-      link.b = start_of(s, oe);
-      link.b_target = end_of(s, up);
-      if (start_of(s, up) != link.b) return name(L) + " has an inconsistent wire";
-      for (const OrientedEdge& e : {up, down}) {
-        if (source_vertices.count(end_of(s, e).value()) &&
-            source_vertices.count(start_of(s, e).value()))
-          return name(e.edge) + " joins two vertices of " + name(S);
-        if (link_edges.insert(e.edge.value()).second) link_sum += s.edge_length(e.edge);
-      }
-      loop.push_back(link);
-    }
-    for (std::size_t c = 0; c < loop.size(); ++c)
-      if (loop[c].col1.edge != loop[(c + 1) % loop.size()].col0.edge)
-        return name(loop[c].face) + " and " + name(loop[(c + 1) % loop.size()].face) +
-               " do not share a linking edge";
-    topo.loops.push_back(std::move(loop));
-  }
-  if (!T.valid()) return name(S) + " has no edges";
-  if (linking_faces.count(T.value())) return name(T) + " is both a linking and the target face";
-  if (int(linking_faces.size()) + 2 != s.num_faces())
-    return "besides " + name(S) + ", " + name(T) + " and " + std::to_string(linking_faces.size()) +
-           " linking faces the solid has other faces";
-  std::set<int> t_all;
-  for (const auto& w : s.face_wires(T))
-    for (const OrientedEdge& oe : w) {
-      // A cone's apex (a degenerated edge) and its seam (an edge of the target alone) bound
-      // no linking face: a drill point's cone is the target of a sweep from a disc, its
-      // apex where the line along the axis through the disc's centre meets it.
-      if (s.edge_is_degenerated(oe.edge)) continue;
-      if (is_seam_of(s, oe.edge, T)) continue;
-      t_all.insert(oe.edge.value());
-      if (source_vertices.count(s.edge_first_vertex(oe.edge).value()))
-        return name(S) + " and " + name(T) + " share a vertex";
-    }
-  if (t_all != target_edges) return name(T) + " has edges that no linking face reaches";
-  topo.target = T;
-  topo.link_length = link_edges.empty() ? 0 : link_sum / link_edges.size();
-  return "";
-}
-
-// Among all sources, the pair with the shortest linking edges, then the largest source.
-std::string choose(const Solid& s, Topology& best, const std::vector<int>& avoid = {}) {
-  std::string first_reason;
-  bool found = false;
-  auto avoided = [&](FaceId f) {
-    return std::find(avoid.begin(), avoid.end(), f.value()) != avoid.end();
-  };
-  for (FaceId f : s.faces()) {
-    Topology t;
-    const std::string why = find_topology(s, f, t);
-    if (!why.empty()) {
-      if (first_reason.empty()) first_reason = "with " + name(f) + " as source, " + why;
-      continue;
-    }
-    if (!found) {
-      best = std::move(t);
-      found = true;
-      continue;
-    }
-    // A source to avoid loses to any other; then the shortest links, the largest source.
-    if (avoided(f) != avoided(best.source)) {
-      if (!avoided(f)) best = std::move(t);
-      continue;
-    }
-    const double tol = 1e-9 * std::max(1.0, best.link_length);
-    if (t.link_length < best.link_length - tol ||
-        (t.link_length <= best.link_length + tol && s.area(f) > s.area(best.source) * (1 + 1e-9)))
-      best = std::move(t);
-  }
-  if (found) return "";
-  return "no two faces are joined by four-sided linking faces (" + first_reason + ")";
 }
 
 std::vector<Vec3> read_edge(const Solid& s, const Directed& d, int n, const core::SizeField* field,
@@ -397,15 +206,38 @@ Plan plan_given(const Solid& solid, const SweepOptions& options, Plan p) {
   };
   for (const auto& loop : t.loops)
     for (const Link& l : loop)
-      for (const Directed& c : {l.col0, l.col1}) {
-        const int k = given(c.edge);
+      for (const std::vector<Directed>* chain : {&l.col0, &l.col1}) {
+        int k = 0;
+        std::string names;
+        for (const Directed& c : *chain) {
+          const int m = given(c.edge);
+          if (m < 1) k = -1;
+          if (k >= 0) k += m;
+          names += (names.empty() ? "" : " + ") + name(c.edge);
+        }
         if (k < 1 || k > options.max_intervals || (p.layers != 0 && k != p.layers))
-          return refuse(name(c.edge) + " has " + std::to_string(k) +
+          return refuse(names + " has " + std::to_string(k) +
                             " intervals, other linking "
                             "edges " +
                             std::to_string(p.layers),
-                        {name(c.edge)});
+                        {name(chain->front().edge)});
         p.layers = k;
+      }
+  auto sum = [&](const std::vector<Directed>& chain, std::size_t n) {
+    int k = 0;
+    for (std::size_t c = 0; c < n; ++c) k += std::max(0, given(chain[c].edge));
+    return k;
+  };
+  for (const auto& loop : t.loops)
+    for (const Link& l : loop)
+      for (std::size_t j = 0; j < l.separators.size(); ++j) {
+        const int n = given(l.source.edge), across = sum(l.separators[j], l.separators[j].size());
+        if (across != n ||
+            sum(l.col0, std::size_t(l.below0[j])) != sum(l.col1, std::size_t(l.below1[j])))
+          return refuse(name(l.separators[j].front().edge) + ", between " + name(l.face) +
+                            " and the faces above it, lies on no layer (" + std::to_string(across) +
+                            " intervals across, " + std::to_string(n) + " on the source edge)",
+                        {name(l.separators[j].front().edge)});
       }
   for (std::size_t li = 0; li < t.loops.size(); ++li) {
     const auto& loop = t.loops[li];
@@ -469,11 +301,77 @@ Plan plan_given(const Solid& solid, const SweepOptions& options, Plan p) {
   return p;
 }
 
+bool has_stacks(const Topology& t) {
+  for (const auto& loop : t.loops)
+    for (const Link& l : loop)
+      if (!l.stack.empty()) return true;
+  return false;
+}
+
+// Intervals per edge id for a sweep whose linking sides are stacks of faces: every linking
+// side the same count (the layers), each source edge the count of its target chain and of
+// each separator above it, each separator on one layer (the linking edges below it on both
+// sides sum to the same), each source loop even (at least 4, or 6 with holes), each edge of a
+// chain at least one. False with why where no counts satisfy them.
+bool stack_intervals(const Solid& solid, const Topology& t, const SweepOptions& options,
+                     std::vector<int>& intervals, std::string& why) {
+  IntervalProblem ip;
+  std::map<int, int> curve;  // edge id -> curve
+  auto cv = [&](EdgeId e) {
+    auto [it, added] = curve.emplace(e.value(), int(ip.lengths.size()));
+    if (added)
+      ip.add_curve(solid.edge_length(e), name(e),
+                   detail::edge_segments(solid, e, options.size, options.size_field));
+    return it->second;
+  };
+  auto curves = [&](const std::vector<Directed>& chain, std::size_t n) {
+    std::vector<int> out;
+    for (std::size_t c = 0; c < n; ++c) out.push_back(cv(chain[c].edge));
+    if (chain.size() > 1)
+      for (int k : out) ip.at_least.push_back({{k}, 1, "an edge of a chain"});
+    return out;
+  };
+  std::vector<int> layers;
+  for (const auto& loop : t.loops) {
+    std::vector<int> sources;
+    for (const Link& l : loop) {
+      const int src = cv(l.source.edge);
+      sources.push_back(src);
+      const std::vector<int> c0 = curves(l.col0, l.col0.size()), c1 = curves(l.col1, l.col1.size());
+      if (layers.empty()) layers = c0;
+      ip.equal.push_back({layers, c0, "the layers"});
+      ip.equal.push_back({layers, c1, "the layers"});
+      ip.equal.push_back({{src}, curves(l.target, l.target.size()), "across a linking face"});
+      for (std::size_t j = 0; j < l.separators.size(); ++j) {
+        ip.equal.push_back(
+            {{src}, curves(l.separators[j], l.separators[j].size()), "across a face of a stack"});
+        ip.equal.push_back({curves(l.col0, std::size_t(l.below0[j])),
+                            curves(l.col1, std::size_t(l.below1[j])), "a separator on a layer"});
+      }
+    }
+    ip.even.push_back({sources, "a source loop"});
+    ip.at_least.push_back({sources, t.loops.size() == 1 ? 4 : 6, "a source loop"});
+  }
+  IntervalOptions io;
+  io.size = options.size;
+  io.max_intervals = options.max_intervals;
+  const IntervalResult r = assign_intervals(ip, io);
+  if (!r.ok()) {
+    why = r.diagnostics.empty() ? "no intervals fit the stacks of linking faces"
+                                : r.diagnostics.front().message;
+    return false;
+  }
+  intervals.assign(std::size_t(solid.num_edges()) + 1, 0);
+  for (const auto& [edge, c] : curve) intervals[std::size_t(edge)] = r.intervals[std::size_t(c)];
+  return true;
+}
+
 Plan plan(const Solid& solid, const SweepOptions& options) {
   options.validate();
   Plan p;
   try {
-    const std::string why = choose(solid, p.topo, options.avoid_sources);
+    const std::string why =
+        detail::choose_sweep_topology(solid, p.topo, options.avoid_sources, options.imprinted);
     if (!why.empty()) {
       p.diagnostics.push_back(
           core::make_error("not_applicable", "The solid is not a one-to-one sweep: " + why + "."));
@@ -488,16 +386,32 @@ Plan plan(const Solid& solid, const SweepOptions& options) {
       return p;
     };
     if (!options.edge_intervals.empty()) return plan_given(solid, options, std::move(p));
+    if (has_stacks(t)) {  // the layers of its separators: one interval assignment
+      SweepOptions given = options;
+      std::string why;
+      if (!stack_intervals(solid, t, options, given.edge_intervals, why)) {
+        p.diagnostics.push_back(core::make_error("intervals_infeasible", why, {name(t.source)}));
+        return p;
+      }
+      return plan_given(solid, given, std::move(p));
+    }
     // Layers: with local sizes, the finest count a linking edge asks for (a sweep has one
     // layer count for all).
     double layer_target = t.link_length / options.size;
     if (detail::graded(options.size_field))
       for (const auto& loop : t.loops)
         for (const Link& l : loop)
-          layer_target =
-              std::max(layer_target,
-                       detail::edge_segments(solid, l.col0.edge, options.size, options.size_field));
-    const double k = std::max(1.0, std::round(layer_target));
+          for (const std::vector<Directed>* chain : {&l.col0, &l.col1}) {
+            double segments = 0;
+            for (const Directed& c : *chain)
+              segments += detail::edge_segments(solid, c.edge, options.size, options.size_field);
+            layer_target = std::max(layer_target, segments);
+          }
+    // At least one layer per edge of the longest linking chain (its vertices are nodes).
+    std::size_t longest_chain = 1;
+    for (const auto& loop : t.loops)
+      for (const Link& l : loop) longest_chain = std::max(longest_chain, l.col0.size());
+    const double k = std::max(double(longest_chain), std::round(layer_target));
     if (k > options.max_intervals) return too_many(t.link_length, k, {});
     p.layers = int(k);
     // A submappable source (an L, a T, a stepped outline): counts from one interval
@@ -598,11 +512,11 @@ Plan plan(const Solid& solid, const SweepOptions& options) {
 
 }  // namespace
 
-SweepApplicability sweep_applicable(const core::MeshDomain& solid) {
+SweepApplicability sweep_applicable(const core::MeshDomain& solid, bool imprinted) {
   SweepApplicability a;
   try {
     Topology t;
-    a.reason = choose(solid, t);
+    a.reason = detail::choose_sweep_topology(solid, t, {}, imprinted);
     if (a.reason.empty()) a.source = t.source, a.target = t.target;
   } catch (const std::exception& e) {
     a.reason = std::string("its topology cannot be explored (") + e.what() + ")";
@@ -611,12 +525,12 @@ SweepApplicability sweep_applicable(const core::MeshDomain& solid) {
   return a;
 }
 
-SweepStructure sweep_structure(const core::MeshDomain& solid,
-                               const std::vector<int>& avoid_sources) {
+SweepStructure sweep_structure(const core::MeshDomain& solid, const std::vector<int>& avoid_sources,
+                               bool imprinted) {
   SweepStructure out;
   Topology t;
   try {
-    if (!choose(solid, t, avoid_sources).empty()) return out;
+    if (!detail::choose_sweep_topology(solid, t, avoid_sources, imprinted).empty()) return out;
   } catch (const std::exception&) {
     return out;
   }
@@ -629,8 +543,17 @@ SweepStructure sweep_structure(const core::MeshDomain& solid,
       std::vector<EdgeId> across;
       for (const Directed& d : l.target) across.push_back(d.edge);
       out.loops.back().emplace_back(l.source.edge, std::move(across));
-      for (const Directed& c : {l.col0, l.col1})
-        if (seen.insert(c.edge.value()).second) out.linking.push_back(c.edge);
+      for (const std::vector<Directed>* chain : {&l.col0, &l.col1})
+        if (seen.insert(chain->front().edge.value()).second)
+          out.linking.push_back(chain_edges(*chain));
+      for (std::size_t j = 0; j < l.separators.size(); ++j) {
+        SweepStructure::Level level;
+        level.source = l.source.edge;
+        level.across = chain_edges(l.separators[j]);
+        for (int c = 0; c < l.below0[j]; ++c) level.below0.push_back(l.col0[c].edge);
+        for (int c = 0; c < l.below1[j]; ++c) level.below1.push_back(l.col1[c].edge);
+        out.levels.push_back(std::move(level));
+      }
     }
   }
   return out;
@@ -678,6 +601,7 @@ SweepResult sweep(const core::MeshDomain& solid, const SweepOptions& options,
     return true;
   };
 
+  bool target_mismatch = false;
   try {
     // Linking faces: transfinite interpolation of their four edge rows, projected if curved.
     std::size_t j0 = 0;
@@ -688,34 +612,67 @@ SweepResult sweep(const core::MeshDomain& solid, const SweepOptions& options,
         const int n = p.counts[l][e];
         const core::SizeField* f = options.size_field;
         const auto& g = options.edge_nodes;
-        std::vector<NodeClass> ct;
+        std::vector<NodeClass> ct, c0_class, c1_class;
         const auto rs = read_edge(solid, link.source, n, f, g),
                    rt = read_chain(solid, link.target, p.target_counts[l][e], f, g, ct);
-        const auto c0 = read_edge(solid, link.col0, K, f, g),
-                   c1 = read_edge(solid, link.col1, K, f, g);
-        const bool curved = !solid.face_is_planar(link.face);
+        const auto c0 = read_chain(solid, link.col0, chain_counts(solid, link.col0, K, options), f,
+                                   g, c0_class),
+                   c1 = read_chain(solid, link.col1, chain_counts(solid, link.col1, K, options), f,
+                                   g, c1_class);
+        if (c0.size() != std::size_t(K) + 1 || c1.size() != std::size_t(K) + 1)
+          throw std::logic_error("linking chain shorter than its edges");
+        // The rows between which each face of the stack is interpolated: the source edge's,
+        // each separator's (on the layer of its vertices on the linking chains), the target's.
+        std::vector<int> row_k{0};
+        std::vector<std::vector<Vec3>> rows{rs};
+        std::vector<std::vector<NodeClass>> row_class{{}};
+        auto layer_of = [&](const std::vector<Directed>& chain, int below) {
+          const std::vector<int> counts = chain_counts(solid, chain, K, options);
+          int k = 0;
+          for (int c = 0; c < below; ++c) k += counts[std::size_t(c)];
+          return k;
+        };
+        for (std::size_t sj = 0; sj < link.separators.size(); ++sj) {
+          const int k = layer_of(link.col0, link.below0[sj]);
+          if (k != layer_of(link.col1, link.below1[sj]) || k <= row_k.back() || k >= K)
+            throw std::logic_error("a separator of a stack of linking faces lies on no layer");
+          std::vector<NodeClass> cls;
+          rows.push_back(read_chain(solid, link.separators[sj],
+                                    chain_counts(solid, link.separators[sj], n, options), f, g,
+                                    cls));
+          row_k.push_back(k);
+          row_class.push_back(std::move(cls));
+        }
+        row_k.push_back(K);
+        rows.push_back(rt);
+        row_class.push_back(ct);
         for (int m = 0; m < n; ++m) {
           const double s = double(m) / n;
           const std::size_t j = j0 + m;
+          std::size_t seg = 0;  // the face of the stack: rows seg and seg + 1
           for (int k = 0; k <= K; ++k) {
-            const double w = double(k) / K;
+            while (seg + 2 < row_k.size() && k > row_k[seg + 1]) ++seg;
+            const FaceId face = seg == 0 ? link.face : link.stack[seg - 1];
+            const int ka = row_k[seg], kb = row_k[seg + 1];
+            const double w = double(k - ka) / (kb - ka);
+            const std::vector<Vec3>&ra = rows[seg], &rb = rows[seg + 1];
             Vec3 q;
             NodeClass c;
             if (k == 0) {
               q = rs[m];
               c = m == 0 ? NodeClass::on(link.b) : NodeClass::on(link.source.edge);
-            } else if (k == K) {
-              q = rt[m];
-              c = m == 0 ? NodeClass::on(link.b_target) : ct[m];
             } else if (m == 0) {
               q = c0[k];
-              c = NodeClass::on(link.col0.edge);
+              c = k == K ? NodeClass::on(link.b_target) : c0_class[k];
+            } else if (k == kb) {
+              q = rb[m];
+              c = row_class[seg + 1][m];
             } else {
-              q = (1 - s) * c0[k] + s * c1[k] + (1 - w) * rs[m] + w * rt[m] -
-                  ((1 - s) * (1 - w) * rs[0] + s * (1 - w) * rs[n] + (1 - s) * w * rt[0] +
-                   s * w * rt[n]);
-              if (curved) q = solid.project_to_face(link.face, q);
-              c = NodeClass::on(link.face);
+              q = (1 - s) * c0[k] + s * c1[k] + (1 - w) * ra[m] + w * rb[m] -
+                  ((1 - s) * (1 - w) * ra[0] + s * (1 - w) * ra[n] + (1 - s) * w * rb[0] +
+                   s * w * rb[n]);
+              if (!solid.face_is_planar(face)) q = solid.project_to_face(face, q);
+              c = NodeClass::on(face);
             }
             P[id(k, j)] = q;
             C[id(k, j)] = c;
@@ -758,6 +715,9 @@ SweepResult sweep(const core::MeshDomain& solid, const SweepOptions& options,
                                          : solid.project_to_face(t.target, image);
       C[id(K, j)] = NodeClass::on(t.target);
     }
+    target_mismatch = !options.target_quads.empty() &&
+                      !detail::onto_target_quads(P, std::size_t(K) * M, M, nb, options.target_quads,
+                                                 options.size);
     for (core::VertexId v : apexes) {
       const Vec3 apex = solid.vertex_point(v);
       std::size_t nearest = M;
@@ -770,6 +730,15 @@ SweepResult sweep(const core::MeshDomain& solid, const SweepOptions& options,
   } catch (const std::exception& e) {
     result.diagnostics.push_back(core::make_error(
         "geometry_error", std::string("Placing the sweep's boundary nodes failed: ") + e.what()));
+    return result;
+  }
+  if (target_mismatch) {
+    result.diagnostics.push_back(
+        core::make_error("target_mismatch",
+                         "The quads a neighbour meshed on the target " + name(t.target) +
+                             " are not the image of the source's: their inner nodes do not pair up "
+                             "with the swept ones.",
+                         {name(t.target)}));
     return result;
   }
   if (cancelled()) return result;

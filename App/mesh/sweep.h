@@ -1,12 +1,12 @@
 // One-to-one sweeping: a solid with a source face (planar or curved, with holes), a target
 // face, and linking faces that each have one wire of four sides (one edge on the source, a
 // chain of edges on the target that meet at side vertices, where the chain turns by less
-// than 30 degrees: a neighbour's vertex imprinted there, and two linking edges; the
-// target may have an apex inside, a drill point's cone, reached along the axis). The
-// source is meshed by quad_face, the target by the same topology mapped (least-squares
-// affine map of the boundary loops, projected), the linking faces by transfinite
-// interpolation (projected when curved), and the inner layers by the blend of the source-
-// and target-based least-squares affine maps onto each layer's boundary (tolerates twist
+// than 30 degrees: a neighbour's vertex imprinted there, and two linking sides, each an
+// edge or such a chain: mesh/detail/sweep_topology.h; the target may have an apex inside, a drill
+// point's cone, reached along the axis). The source is meshed by quad_face, the target by the same
+// topology mapped (least-squares affine map of the boundary loops, projected), the linking faces by
+// transfinite interpolation (projected when curved), and the inner layers by the blend of the
+// source- and target-based least-squares affine maps onto each layer's boundary (tolerates twist
 // and taper).
 #pragma once
 
@@ -61,6 +61,14 @@ struct SweepOptions {
   // sweep's own boundary nodes (else the source is meshed as usual). A multisweep and a sweep
   // sharing a face mesh it alike this way (mesh_sub_volumes: the multisweep first).
   std::vector<std::array<core::Vec3, 4>> source_quads;
+  // The target's quads as a neighbour meshed that face (corner points): the target's inner
+  // nodes are put on theirs, each mapped node on the nearest, one to one (else an error,
+  // `target_mismatch`). A ring of sweeps meeting at faces meshed freely (the strips around a
+  // pocket's floor fillets, ended by mitre planes at its corners): the last one's target is
+  // the first one's source, all of them the same quads carried round.
+  std::vector<std::array<core::Vec3, 4>> target_quads;
+  // A sub-volume glued to its neighbours (as sweep_applicable's `imprinted`).
+  bool imprinted = false;
   void validate() const;  // throws std::invalid_argument naming the bad field
 };
 
@@ -73,7 +81,9 @@ struct SweepApplicability {
 // Finds a source/target pair: two faces sharing no vertex such that every other face is a
 // four-sided linking face joining their loops. Among several pairs it prefers the shortest
 // linking edges (fewest layers), then the largest source face.
-SweepApplicability sweep_applicable(const core::MeshDomain& solid);
+// `imprinted`: a sub-volume glued to its neighbours, whose linking sides may then be chains of
+// edges and stacks of faces where they imprinted theirs (mesh/detail/sweep_topology.h).
+SweepApplicability sweep_applicable(const core::MeshDomain& solid, bool imprinted = false);
 
 // The chosen sweep's structure (what an interval assignment must respect): empty when
 // sweep_applicable refuses.
@@ -83,12 +93,22 @@ struct SweepStructure {
   // its linking face (one, or a chain meeting at side vertices: their intervals sum to the
   // source edge's).
   std::vector<std::vector<std::pair<core::EdgeId, std::vector<core::EdgeId>>>> loops;
-  std::vector<core::EdgeId> linking;  // every linking edge (all have the layer count)
+  // Every linking side: one edge, or a chain meeting at side vertices (a neighbour's
+  // vertices imprinted there); each sums to the layer count.
+  std::vector<std::vector<core::EdgeId>> linking;
+  // Per edge between two faces of a stack of linking faces (one edge or a chain): the source
+  // edge below it (their intervals sum to its), and the linking edges below it on either side
+  // (theirs sum to the same: it lies on one layer).
+  struct Level {
+    core::EdgeId source;
+    std::vector<core::EdgeId> across, below0, below1;
+  };
+  std::vector<Level> levels;
 };
 // `avoid_sources`: face ids not to take as the source while another pair exists (faces
 // shared with a neighbour: their mesh is then the projection of the far end's).
 SweepStructure sweep_structure(const core::MeshDomain& solid,
-                               const std::vector<int>& avoid_sources = {});
+                               const std::vector<int>& avoid_sources = {}, bool imprinted = false);
 
 struct SweepEstimate {
   int layers = 0;

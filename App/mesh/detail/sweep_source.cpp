@@ -1,6 +1,7 @@
 #include "mesh/detail/sweep_source.h"
 
 #include <algorithm>
+#include <limits>
 #include <utility>
 
 #include "mesh/detail/quad_quality.h"
@@ -44,6 +45,36 @@ bool source_from_quads(const core::MeshDomain& solid, core::FaceId source,
   m.ok = true;
   measure_quads(solid, source, m);
   out = std::move(m);
+  return true;
+}
+
+bool onto_target_quads(std::vector<core::Vec3>& P, std::size_t base, std::size_t m, std::size_t nb,
+                       const std::vector<std::array<core::Vec3, 4>>& quads, double size) {
+  using core::Vec3;
+  const double tol = 1e-6 * size;
+  std::vector<Vec3> inner;  // distinct corners that are not boundary nodes
+  for (const auto& q : quads)
+    for (const Vec3& c : q) {
+      bool known = false;
+      for (std::size_t j = 0; j < nb && !known; ++j) known = (P[base + j] - c).norm() <= tol;
+      for (std::size_t i = 0; i < inner.size() && !known; ++i) known = (inner[i] - c).norm() <= tol;
+      if (!known) inner.push_back(c);
+    }
+  if (inner.size() != m - nb) return false;
+  std::vector<char> used(inner.size(), 0);
+  for (std::size_t j = nb; j < m; ++j) {
+    const Vec3 p = P[base + j];
+    std::size_t best = inner.size();
+    for (std::size_t i = 0; i < inner.size(); ++i)
+      if (!used[i] && (best == inner.size() || (inner[i] - p).norm() < (inner[best] - p).norm()))
+        best = i;
+    double room = std::numeric_limits<double>::infinity();  // to its nearest other node
+    for (std::size_t i = 0; i < m; ++i)
+      if (i != j) room = std::min(room, (P[base + i] - p).norm());
+    if (best == inner.size() || (inner[best] - p).norm() > 0.5 * room) return false;
+    used[best] = 1;
+    P[base + j] = inner[best];
+  }
   return true;
 }
 

@@ -1,6 +1,7 @@
 // A sweep's source face mesh taken from a neighbour that meshed the same face (mesh/sweep.h,
 // SweepOptions::source_quads): a multisweep meshes a face it shares with a sweep as a cap;
-// the sweep takes those quads as its source, so that the two meshes of the face are one.
+// the sweep takes those quads as its source, so that the two meshes of the face are one. And
+// its target's (SweepOptions::target_quads: a ring of sweeps, the last one's target).
 #pragma once
 
 #include <array>
@@ -23,5 +24,12 @@ bool source_from_quads(const core::MeshDomain& solid, core::FaceId source,
                        const std::vector<std::vector<core::Vec3>>& loops,
                        const std::vector<std::array<core::Vec3, 4>>& quads, double tol,
                        QuadFaceMesh& out);
+
+// The target's quads as a neighbour meshed that face (SweepOptions::target_quads): the swept
+// target nodes P[base + nb .. base + m) (its inner nodes; P[base .. base + nb) its boundary)
+// moved onto the quads' inner corners, each to the nearest, one to one, within half the
+// distance to its nearest other node. False (P partly moved) where they do not pair up.
+bool onto_target_quads(std::vector<core::Vec3>& P, std::size_t base, std::size_t m, std::size_t nb,
+                       const std::vector<std::array<core::Vec3, 4>>& quads, double size);
 
 }  // namespace vorohex::mesh::detail

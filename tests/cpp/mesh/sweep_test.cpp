@@ -230,7 +230,7 @@ TEST(SweepGivenIntervals, UsesThemAndRefusesCountsThatDoNotFit) {
   SweepOptions o;
   o.size = 0.25;
   o.edge_intervals.assign(l.num_edges() + 1, 0);
-  for (core::EdgeId e : s.linking) o.edge_intervals[e.value()] = 3;
+  for (const auto& side : s.linking) o.edge_intervals[side.at(0).value()] = 3;
   for (const auto& [src, tgt] : s.loops[0]) {
     const int n = 2 * int(std::lround(l.edge_length(src) / 0.5));
     o.edge_intervals[src.value()] = o.edge_intervals[tgt.at(0).value()] = n;
@@ -241,7 +241,7 @@ TEST(SweepGivenIntervals, UsesThemAndRefusesCountsThatDoNotFit) {
   EXPECT_EQ(sweep_evaluate(l, o).hexes, r.mesh.num_hexes());
 
   SweepOptions bad = o;
-  bad.edge_intervals[s.linking[1].value()] = 4;  // layers disagree
+  bad.edge_intervals[s.linking[1].at(0).value()] = 4;  // layers disagree
   SweepResult rb = sweep(l, bad);
   EXPECT_FALSE(rb.ok);
   ASSERT_FALSE(rb.diagnostics.empty());
