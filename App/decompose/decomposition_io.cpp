@@ -205,8 +205,9 @@ PlaneCutSchemes plane_cut_schemes(const PlaneCutResult& cut, bool multisweep) {
     return out;
   }
   // Solids of revolution too: a cut gives them only where it allowed them (the cylinders at
-  // concave fillets' feet).
-  const mesh::SubVolumePlan plan = mesh::plan_sub_volumes(*glued.solid, multisweep, true);
+  // concave fillets' feet); sweeps whose linking sides carry their neighbours' imprints, as
+  // the mesher takes them (a fillet's strip ended by mitres).
+  const mesh::SubVolumePlan plan = mesh::plan_sub_volumes(*glued.solid, multisweep, true, true);
   out.ends.assign(cut.pieces.size(), {});
   for (std::size_t i = 0; i < plan.schemes.size() && i < out.schemes.size(); ++i) {
     out.schemes[i] = plan.schemes[i];

@@ -14,8 +14,10 @@ std::string surface_text(const CutSurface& s, bool with_edges) {
                               : s.cylinder              ? "the cylinder of "
                               : s.tangent               ? "the plane tangent to the cylinder of "
                               : s.around_hole           ? "a plane around the hole of "
-                              : s.at_foot               ? "the plane across the foot of "
-                                                        : "the plane of ") +
+                              : s.beyond  ? "a plane as far beyond the wall as the foot of "
+                              : s.mitre   ? "the mitre plane of "
+                              : s.at_foot ? "the plane across the foot of "
+                                          : "the plane of ") +
                   core::entity_name(s.face);
   if (!with_edges || s.edges.empty()) return t;
   t += " (at ";
@@ -48,17 +50,20 @@ std::string used_surfaces_text(const PlaneCutResult& cut, std::size_t at_most, b
 }
 
 std::string cut_kind_text(const PlaneCutResult& cut) {
-  bool holes = false, concave = false, feet = false, fillets = false;
+  bool holes = false, concave = false, feet = false, fillets = false, strips = false;
   for (const CutSurface& s : cut.surfaces)
     if (s.used)
       (s.around_hole             ? holes
+       : s.beyond || s.mitre     ? strips
        : s.at_foot && s.cylinder ? fillets
        : s.at_foot               ? feet
                                  : concave) = true;
   std::vector<std::string> kinds;
   if (concave) kinds.push_back("the faces at its concave edges");
   if (holes) kinds.push_back("planes around its holes");
-  if (feet) kinds.push_back("planes across the feet of its tapered or rounded faces");
+  if (feet && !strips) kinds.push_back("planes across the feet of its tapered or rounded faces");
+  if (strips)
+    kinds.push_back("planes along the strips of its fillets on floors, ended at their mitres");
   if (fillets) kinds.push_back("cylinders through the feet of its concave round fillets");
   if (kinds.empty()) return "the faces at its concave edges";
   std::string t = kinds[0];

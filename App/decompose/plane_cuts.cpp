@@ -10,6 +10,8 @@
 #include <sstream>
 
 #include "core/option_checks.h"
+#include "decompose/detail/cut_surfaces.h"
+#include "decompose/detail/fillet_strips.h"
 #include "decompose/detail/foot_planes.h"
 #include "decompose/detail/hole_planes.h"
 #include "mesh/map_block.h"
@@ -38,24 +40,10 @@ namespace {
 // exact surfaces, so only the volume integration's error (1e-11 relative each) remains.
 const double kVolumeTolerance = 1e-6;
 
-struct Plane {
-  Vec3 normal;                // unit
-  double offset = 0;          // normal . x = offset
-  FaceId face;                // the model face it extends (the first found)
-  std::vector<EdgeId> edges;  // the concave edges it is taken at
-  bool tangent = false;       // tangent to the cylinder of `face`, in its place
-  bool around_hole = false;   // around the hole of `face` (detail/hole_planes.h)
-  bool at_foot = false;       // across the foot of the tapered `face` (detail/foot_planes.h)
-};
-
-// A cylinder to cut along, the model face it extends and the concave edges it is taken at.
-struct Cylinder {
-  occ::CutCylinder surface;
-  FaceId face;
-  std::vector<EdgeId> edges;
-  bool at_foot = false;  // through the foot of the concave fillet `face` (not its extension)
-  bool ring = false;     // beyond the wall of the round pocket whose floor `face` rounds
-};
+using detail::add_plane;
+using detail::Cylinder;
+using detail::Plane;
+using detail::same_cylinder;
 
 // Gluing the pieces of one exact split, or unions of them: they touch at faces and never
 // cross, so OCCT's general fuse need not intersect their faces (HexMe i22: 65% of the
@@ -68,8 +56,9 @@ occ::GlueOptions touching_only() {
 
 // A block, a sweep, a prismatic part (o.multisweep) or a solid of revolution (o.revolve):
 // what mesh::mesh_sub_volumes meshes.
-bool meshable(const occ::Solid& s, const PlaneCutOptions& o) {
-  return mesh::map_block_applicable(s).ok || mesh::sweep_applicable(s).ok ||
+// `glued`: a piece glued to the others (its sweep's linking sides may carry their imprints).
+bool meshable(const occ::Solid& s, const PlaneCutOptions& o, bool glued = false) {
+  return mesh::map_block_applicable(s).ok || mesh::sweep_applicable(s, glued).ok ||
          (o.multisweep && mesh::multisweep_applicable(s).ok) ||
          (o.revolve && mesh::revolve_applicable(s).ok);
 }
@@ -81,197 +70,26 @@ occ::ReadResult glued(const std::vector<const occ::Solid*>& pieces) {
 
 // Each part of the glued pieces `g` a block, a sweep or prismatic (gluing imprints a
 // neighbour's edges); `why` (when given) names the first that is none.
-bool all_meshable(const occ::ReadResult& g, const PlaneCutOptions& o, std::string* why = nullptr) {
+bool all_meshable(const occ::ReadResult& g, const PlaneCutOptions& o, std::string* why = nullptr,
+                  bool imprinted = false) {
   if (!g.ok()) {
     if (why) *why = g.diagnostics.empty() ? "they do not glue" : g.diagnostics[0].message;
     return false;
   }
   if (!why) {
     for (int k = 0; k < g.solid->num_solids(); ++k)
-      if (!meshable(g.solid->part(k), o)) return false;
+      if (!meshable(g.solid->part(k), o, imprinted)) return false;
     return true;
   }
-  const mesh::SubVolumePlan plan = mesh::plan_sub_volumes(*g.solid, o.multisweep, o.revolve);
+  const mesh::SubVolumePlan plan =
+      mesh::plan_sub_volumes(*g.solid, o.multisweep, o.revolve, imprinted);
   *why = plan.why_not;
   return plan.ok;
 }
 
 bool all_meshable(const std::vector<const occ::Solid*>& pieces, const PlaneCutOptions& o,
-                  std::string* why = nullptr) {
-  return all_meshable(glued(pieces), o, why);
-}
-
-// The same cylinder (axis line and radius within `tol`).
-bool same_cylinder(const occ::CutCylinder& a, const occ::CutCylinder& b, double tol) {
-  if (std::abs(a.axis.dot(b.axis)) < 1 - 1e-9 || std::abs(a.radius - b.radius) > tol) return false;
-  const Vec3 d = b.origin - a.origin;
-  return (d - d.dot(a.axis) * a.axis).norm() <= tol;
-}
-
-// Adds `pl` to `planes` unless it is there (same plane within tol: its edges join it).
-void add_plane(std::vector<Plane>& planes, Plane pl, double tol) {
-  if (pl.normal.x() + 1e-12 * pl.normal.y() + 1e-24 * pl.normal.z() < 0)
-    pl.normal = -pl.normal, pl.offset = -pl.offset;
-  for (Plane& q : planes)
-    if (q.normal.dot(pl.normal) > 1 - 1e-9 && std::abs(q.offset - pl.offset) <= tol) {
-      q.edges.insert(q.edges.end(), pl.edges.begin(), pl.edges.end());
-      return;
-    }
-  planes.push_back(std::move(pl));
-}
-
-// The surfaces of the faces at concave edges: planes, and cylinders (a post of round
-// section on a plate, a round boss); false (with why) when a concave edge has a face of
-// another kind (no exact surface to cut along).
-bool concave_surfaces(const occ::Solid& s, std::vector<Plane>& planes,
-                      std::vector<Cylinder>& cylinders, std::string& why) {
-  const double tol = 1e-7 * s.diagonal();
-  for (EdgeId e : s.edges()) {
-    if (s.edge_is_degenerated(e)) continue;
-    const std::vector<FaceId> faces = s.edge_faces(e);
-    if (faces.size() != 2) continue;
-    // The middle and the tangent there (a chord around it: a closed edge such as a
-    // circle starts and ends at one point).
-    const std::vector<Vec3> p = s.edge_points_by_length(e, 16);
-    const Vec3 m = p[8];
-    const Vec3 t = (p[9] - p[7]).normalized();
-    if (detail::turn_across(s, m, t, faces[0], faces[1]) <= std::sin(M_PI / 180))
-      continue;  // convex or smooth
-    // What each face gives to cut along: its plane, or its cylinder. A concave edge needs
-    // one cut, so a face of another kind (a cone, a torus, a B-spline) is left out when the
-    // other face gives one.
-    bool planar[2], round[2];
-    occ::CutCylinder cyl[2];
-    for (int k = 0; k < 2; ++k) {
-      planar[k] = s.face_is_planar(faces[k]);
-      round[k] = !planar[k] && occ::face_cylinder(s, faces[k], &cyl[k]);
-    }
-    if (!planar[0] && !round[0] && !planar[1] && !round[1]) {
-      why = "its concave " + core::entity_name(e) + " lies between the curved " +
-            core::entity_name(faces[0]) + " and " + core::entity_name(faces[1]) +
-            " (neither a plane nor a cylinder to cut along)";
-      return false;
-    }
-    for (int k = 0; k < 2; ++k) {
-      if (round[k]) {
-        detail::along_the_solid(s, cyl[k]);
-        bool known = false;
-        for (Cylinder& c : cylinders)
-          if (!known && same_cylinder(c.surface, cyl[k], tol)) known = true, c.edges.push_back(e);
-        if (!known) cylinders.push_back({cyl[k], faces[k], {e}});
-        continue;
-      }
-      if (!planar[k]) continue;
-      const Vec3 n = s.face_normal(faces[k], m);
-      add_plane(planes, {n, n.dot(m), faces[k], {e}}, tol);
-    }
-  }
-  return true;
-}
-
-// A planar face of the solid that touches cylinder c tangently along a line (HexMe i14: a
-// lug as wide as the tube it stands on, its sides tangent to the tube); its unit normal in
-// `n`. Cut along the cylinder, the piece beyond it would come to an edge of zero angle
-// there.
-bool tangent_planar_face(const occ::Solid& s, const occ::CutCylinder& c, Vec3& n) {
-  const double tol = 1e-6 * s.diagonal();
-  for (FaceId f : s.faces()) {
-    if (!s.face_is_planar(f)) continue;
-    const core::SurfaceInfo info = s.surface_info(f);
-    if (info.kind != core::SurfaceKind::plane) continue;
-    const Vec3 fn = info.direction.normalized();
-    if (std::abs(fn.dot(c.axis)) > 1e-9) continue;
-    const double d = fn.dot(c.origin - info.origin);  // the axis's distance from the plane
-    if (std::abs(std::abs(d) - c.radius) > tol) continue;
-    // The line of contact, sampled over the face's extent along the axis.
-    const Vec3 q = c.origin - d * fn;
-    const core::BoundingBox box = s.face_bounding_box(f);
-    double lo = 0, hi = 0;
-    for (int k = 0; k < 8; ++k) {
-      const Vec3 corner((k & 1) ? box.max.x() : box.min.x(), (k & 2) ? box.max.y() : box.min.y(),
-                        (k & 4) ? box.max.z() : box.min.z());
-      const double t = (corner - q).dot(c.axis);
-      lo = k ? std::min(lo, t) : t;
-      hi = k ? std::max(hi, t) : t;
-    }
-    for (int k = 1; k < 8; ++k)
-      if (s.distance_to_face(f, q + (lo + (hi - lo) * k / 8.0) * c.axis) <= tol) {
-        n = fn;
-        return true;
-      }
-  }
-  return false;
-}
-
-// Each cylinder a planar face touches tangently is replaced by the planes tangent to it at
-// right angles to that face, on the sides where its concave edges are (a lug on a tube: the
-// plane across the tube's top, above which the lug is a plain sweep). False when none is.
-bool tangent_planes_instead(const occ::Solid& s, std::vector<Plane>& planes,
-                            std::vector<Cylinder>& cylinders) {
-  const double tol = 1e-7 * s.diagonal();
-  bool replaced = false;
-  std::vector<Cylinder> kept;
-  for (Cylinder& c : cylinders) {
-    Vec3 n;
-    if (!tangent_planar_face(s, c.surface, n)) {
-      kept.push_back(std::move(c));
-      continue;
-    }
-    const Vec3 m = c.surface.axis.cross(n).normalized();
-    bool side[2] = {false, false};  // the concave edges beyond +m, beyond -m
-    for (EdgeId e : c.edges) {
-      const double h = m.dot(s.edge_points_by_length(e, 2)[1] - c.surface.origin);
-      if (std::abs(h) > 0.05 * c.surface.radius) side[h < 0] = true;
-    }
-    if (!side[0] && !side[1]) {
-      kept.push_back(std::move(c));
-      continue;
-    }
-    for (int k = 0; k < 2; ++k)
-      if (side[k]) {
-        const Vec3 mk = k ? Vec3(-m) : m;
-        add_plane(planes, {mk, mk.dot(c.surface.origin) + c.surface.radius, c.face, c.edges, true},
-                  tol);
-      }
-    replaced = true;
-  }
-  cylinders = std::move(kept);
-  return replaced;
-}
-
-// Whether a piece has an edge where its two faces meet at an angle near zero (a knife)
-// that is no such edge of the solid: a cut surface tangent to a face of the solid (HexMe
-// i14's lug cut off its tube along the tube's cylinder, to which the lug's sides are
-// tangent). No hexahedron along such an edge is good; the sweeps' layers fold there.
-bool adds_knife_edges(const occ::Solid& solid, const std::vector<occ::Solid>& pieces) {
-  const double cos_knife = std::cos(3 * M_PI / 180);
-  const double tol = 1e-6 * solid.diagonal();
-  auto knife = [&](const occ::Solid& s, EdgeId e, const Vec3& m) {
-    const std::vector<FaceId> faces = s.edge_faces(e);
-    return faces.size() == 2 &&
-           s.face_normal(faces[0], m).dot(s.face_normal(faces[1], m)) < -cos_knife;
-  };
-  for (const occ::Solid& p : pieces)
-    for (EdgeId e : p.edges()) {
-      if (p.edge_is_degenerated(e)) continue;
-      const Vec3 m = p.edge_points_by_length(e, 2)[1];
-      if (!knife(p, e, m)) continue;
-      const EdgeId own = solid.nearest_edge(m);
-      if ((solid.project_to_edge(own, m) - m).norm() <= tol && knife(solid, own, m)) continue;
-      return true;
-    }
-  return false;
-}
-
-// A square on the plane covering the solid (its tool face for the splitter).
-std::vector<Vec3> covering_square(const occ::Solid& s, const Plane& pl) {
-  const core::BoundingBox box = s.bounding_box();
-  const Vec3 centre = 0.5 * (box.min + box.max);
-  const Vec3 c = centre - (pl.normal.dot(centre) - pl.offset) * pl.normal;
-  const Vec3 any = std::abs(pl.normal.x()) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
-  const Vec3 u = pl.normal.cross(any).normalized(), v = pl.normal.cross(u);
-  const double h = 2 * s.diagonal();
-  return {c - h * u - h * v, c + h * u - h * v, c + h * u + h * v, c - h * u + h * v};
+                  std::string* why = nullptr, bool imprinted = false) {
+  return all_meshable(glued(pieces), o, why, imprinted);
 }
 
 // The cut's own check: every piece has volume, and they fill the solid (OCCT's split of a
@@ -430,7 +248,7 @@ bool split_at_once(const occ::Solid& solid, const std::vector<Plane>& planes,
                    std::vector<occ::Solid>& pieces, std::vector<double>& volumes, std::string& why,
                    bool& timed_out) {
   std::vector<std::vector<Vec3>> tools;
-  for (const Plane& pl : planes) tools.push_back(covering_square(solid, pl));
+  for (const Plane& pl : planes) tools.push_back(detail::tool_of(solid, pl));
   std::vector<occ::CutCylinder> round;
   for (const Cylinder& c : cylinders) round.push_back(c.surface);
   occ::SplitResult split =
@@ -534,6 +352,23 @@ bool on_a_hole(const occ::Solid& piece, const std::vector<occ::CutCylinder>& hol
 
 // Whether every vertex of the piece lies within cylinder c (a piece of the boss a cylinder
 // through a fillet's foot cut out of its plate).
+// The strip between two parallel planes normal . x = lo and = hi (a fillet's strip, between the
+// plane across its foot and the plane beyond its wall).
+struct Band {
+  Vec3 normal;
+  double lo = 0, hi = 0;
+};
+
+// Whether every vertex of the piece lies in the band.
+bool within(const occ::Solid& piece, const Band& b) {
+  const double tol = 1e-6 * piece.diagonal();
+  for (core::VertexId v : piece.vertices()) {
+    const double h = b.normal.dot(piece.vertex_point(v));
+    if (h < b.lo - tol || h > b.hi + tol) return false;
+  }
+  return true;
+}
+
 bool within(const occ::Solid& piece, const occ::CutCylinder& c) {
   const double tol = 1e-6 * piece.diagonal() + 1e-9 * c.radius;
   for (core::VertexId v : piece.vertices()) {
@@ -606,7 +441,9 @@ PlaneCutResult cut_along(const occ::Solid& solid, std::vector<Plane> planes,
                          std::vector<Cylinder> cylinders, PlaneCutOptions options,
                          double time_limit, const core::Progress& progress,
                          const std::vector<occ::CutCylinder>& holes = {},
-                         const std::vector<occ::CutCylinder>& walls = {}) {
+                         const std::vector<occ::CutCylinder>& walls = {},
+                         const std::vector<Band>& bands = {}) {
+  const bool merge_to_schemes = !bands.empty();
   options.time_limit = time_limit;
   PlaneCutResult r;
   const auto t0 = std::chrono::steady_clock::now();
@@ -624,7 +461,8 @@ PlaneCutResult cut_along(const occ::Solid& solid, std::vector<Plane> planes,
   }
   progress.report("plane_cuts", 0.0);
   for (const Plane& pl : planes)
-    r.surfaces.push_back({false, pl.tangent, pl.face, pl.edges, true, pl.around_hole, pl.at_foot});
+    r.surfaces.push_back({false, pl.tangent, pl.face, pl.edges, true, pl.around_hole, pl.at_foot,
+                          false, pl.beyond, pl.mitre});
   for (const Cylinder& c : cylinders)
     r.surfaces.push_back({true, false, c.face, c.edges, true, false, c.at_foot, c.ring});
   const double whole = solid.volume();
@@ -666,8 +504,10 @@ PlaneCutResult cut_along(const occ::Solid& solid, std::vector<Plane> planes,
   std::string why;
   // Glued once: whether every piece has a scheme, and which touch (both merge passes start
   // from it; gluing HexMe i22's 80 pieces takes about a second).
+  // `merge_to_schemes`: pieces that have a scheme only once merged (the halves of a corner
+  // that the mitre between two fillets' strips cuts: each joins its strip) are merged first.
   const occ::ReadResult cut_glued = glued(pointers(pieces));
-  if (!all_meshable(cut_glued, options, &why)) {
+  if (!all_meshable(cut_glued, options, &why) && !(merge_to_schemes && cut_glued.ok())) {
     r.why_not = "the surfaces of its concave edges cut it into " + std::to_string(pieces.size()) +
                 " pieces: " + why;
     r.pieces = std::move(pieces);
@@ -693,6 +533,21 @@ PlaneCutResult cut_along(const occ::Solid& solid, std::vector<Plane> planes,
   for (std::size_t k = 0; k < pieces.size() && !holes.empty(); ++k)
     if (on_a_hole(pieces[k], holes))
       for (std::size_t m = 0; m < pieces.size(); ++m) cut_touch[k][m] = cut_touch[m][k] = 0;
+  // A piece in a fillet's strip is merged only with pieces in a strip with it (the strip's
+  // middle with the halves of its corners, not with the blocks beside it).
+  if (!bands.empty()) {
+    std::vector<std::vector<char>> in(pieces.size(), std::vector<char>(bands.size(), 0));
+    std::vector<char> any(pieces.size(), 0);
+    for (std::size_t k = 0; k < pieces.size(); ++k)
+      for (std::size_t b = 0; b < bands.size(); ++b)
+        any[k] |= in[k][b] = within(pieces[k], bands[b]);
+    for (std::size_t k = 0; k < pieces.size(); ++k)
+      for (std::size_t m = 0; m < pieces.size(); ++m) {
+        bool common = false;
+        for (std::size_t b = 0; b < bands.size(); ++b) common = common || (in[k][b] && in[m][b]);
+        if ((any[k] || any[m]) && !common) cut_touch[k][m] = 0;
+      }
+  }
   for (const occ::CutCylinder& c : walls) {
     std::vector<char> inside(pieces.size());
     for (std::size_t k = 0; k < pieces.size(); ++k) inside[k] = within(pieces[k], c);
@@ -705,6 +560,7 @@ PlaneCutResult cut_along(const occ::Solid& solid, std::vector<Plane> planes,
                    progress);
   bool fills = volumes_fill(pieces, whole, volume, r.why_not);
   bool meshes = fills && all_meshable(pointers(pieces), options, &why);
+  std::vector<occ::Solid> first = meshes ? std::vector<occ::Solid>() : clones(pieces);
   if (!meshes && seconds() < options.time_limit) {
     r.merges_checked_each = true;
     pieces = clones(cut);
@@ -714,6 +570,20 @@ PlaneCutResult cut_along(const occ::Solid& solid, std::vector<Plane> planes,
     fills = volumes_fill(pieces, whole, volume, r.why_not);
     // The merges were checked on their neighbourhoods; the whole is checked once more.
     meshes = fills && all_meshable(pointers(pieces), options, &why);
+  }
+  // Still not: the first merge's pieces, then these, whose sweeps' linking sides carry their
+  // neighbours' imprints (strips around a pocket's floor fillets ended by mitre planes, the
+  // blocks beside them split at the other strips' ends): mesh/sweep.h `imprinted`.
+  if (!meshes && fills && seconds() < options.time_limit) {
+    std::string imprinted_why;
+    if (!first.empty() && volumes_fill(first, whole, volume, r.why_not) &&
+        all_meshable(pointers(first), options, &imprinted_why, true)) {
+      pieces = std::move(first);
+      meshes = true;
+    } else if (volumes_fill(pieces, whole, volume, r.why_not) &&
+               all_meshable(pointers(pieces), options, &imprinted_why, true)) {
+      meshes = true;
+    }
   }
   progress.report("plane_cuts", 1.0);
   if (!fills) return r;
@@ -736,10 +606,10 @@ PlaneCutResult cut_at_concave_edges(const occ::Solid& solid, const PlaneCutOptio
   std::vector<Plane> planes;
   std::vector<Cylinder> cylinders;
   PlaneCutResult r;
-  if (!concave_surfaces(solid, planes, cylinders, r.why_not)) return r;
+  if (!detail::concave_surfaces(solid, planes, cylinders, r.why_not)) return r;
   std::vector<Plane> tangent_planes = planes;
   std::vector<Cylinder> other_cylinders = cylinders;
-  const bool tangent = tangent_planes_instead(solid, tangent_planes, other_cylinders);
+  const bool tangent = detail::tangent_planes_instead(solid, tangent_planes, other_cylinders);
   if (options.tangent_planes) {
     if (!tangent) {
       r.why_not = "no cylinder it is cut along is touched tangently by a planar face";
@@ -750,8 +620,58 @@ PlaneCutResult cut_at_concave_edges(const occ::Solid& solid, const PlaneCutOptio
   }
   r = cut_along(solid, std::move(planes), std::move(cylinders), options, options.time_limit,
                 progress);
-  r.knife_edges = !options.tangent_planes && tangent && adds_knife_edges(solid, r.pieces);
+  r.knife_edges = !options.tangent_planes && tangent && detail::adds_knife_edges(solid, r.pieces);
   return r;
+}
+
+// The fifth try: the planes of the strips that the concave fillets along floors lie on, ended
+// by the planes of their mitres (detail/fillet_strips.h), with the concave edges' planes
+// except those of the faces the fillets are tangent to, within `seconds`.
+PlaneCutResult cut_at_fillet_strips(const occ::Solid& solid, const PlaneCutOptions& options,
+                                    const core::Progress& progress, double seconds) {
+  PlaneCutResult none;
+  const detail::FilletStrips strips = detail::fillet_strips(solid);
+  std::vector<Plane> planes;
+  std::vector<Cylinder> cylinders;
+  if (strips.planes.empty() || seconds <= 0 ||
+      !detail::concave_surfaces(solid, planes, cylinders, none.why_not))
+    return none;
+  const double tol = 1e-7 * solid.diagonal();
+  std::vector<Plane> with;
+  for (const Plane& pl : planes) {
+    bool tangent = false;  // the plane of a floor or a wall a fillet touches
+    for (FaceId f : strips.tangent_faces) {
+      const Vec3 p = solid.vertex_point(solid.edge_first_vertex(solid.face_wires(f)[0][0].edge));
+      tangent =
+          tangent || (std::abs(pl.normal.dot(solid.face_normal(f, p).normalized())) > 1 - 1e-9 &&
+                      std::abs(pl.normal.dot(p) - pl.offset) <= 1e3 * tol);
+    }
+    if (!tangent) with.push_back(pl);
+  }
+  for (const detail::StripPlane& sp : strips.planes) {
+    Plane pl{sp.normal, sp.offset, sp.face, sp.edges};
+    pl.at_foot = sp.kind == detail::StripPlane::across;
+    pl.beyond = sp.kind == detail::StripPlane::beyond;
+    pl.mitre = sp.kind == detail::StripPlane::mitre;
+    pl.quad = sp.quad;
+    add_plane(with, pl, tol);
+  }
+  std::vector<Cylinder> other;
+  for (const Cylinder& c : cylinders)
+    if (std::find(strips.fillets.begin(), strips.fillets.end(), c.face) == strips.fillets.end())
+      other.push_back(c);
+  cylinders = std::move(other);
+  PlaneCutOptions o = options;
+  o.time_limit = seconds;
+  std::vector<Band> bands;
+  for (std::size_t k = 0; k + 1 < strips.planes.size(); ++k)
+    if (strips.planes[k].kind == detail::StripPlane::across &&
+        strips.planes[k + 1].kind == detail::StripPlane::beyond) {
+      const double a = strips.planes[k].offset, b = strips.planes[k + 1].offset;
+      bands.push_back({strips.planes[k].normal, std::min(a, b), std::max(a, b)});
+    }
+  return cut_along(solid, std::move(with), std::move(cylinders), o, seconds, progress, {}, {},
+                   bands);
 }
 
 PlaneCutResult cut_as_the_mesher(const occ::Solid& solid, const PlaneCutOptions& options,
@@ -781,7 +701,7 @@ PlaneCutResult cut_as_the_mesher(const occ::Solid& solid, const PlaneCutOptions&
   std::vector<Plane> planes;
   std::vector<Cylinder> cylinders;
   std::string why;
-  if (left() <= 0 || !concave_surfaces(solid, planes, cylinders, why)) return cut;
+  if (left() <= 0 || !detail::concave_surfaces(solid, planes, cylinders, why)) return cut;
   constexpr double kAroundSeconds = 4;
   PlaneCutOptions around_options = options;
   around_options.max_pieces = std::min(options.max_pieces, kAroundPieces);
@@ -836,9 +756,13 @@ PlaneCutResult cut_as_the_mesher(const occ::Solid& solid, const PlaneCutOptions&
       if (feet.ok) return feet;
     }
   }
-  // Fifth: with cylinders through the feet of concave round fillets on their floors (a boss
+  // Fifth: the strips of the concave fillets along floors, ended at their mitres (a pocket
+  // whose floor edges are rounded), within what time is left (cut_at_fillet_strips).
+  // Sixth: with cylinders through the feet of concave round fillets on their floors (a boss
   // whose root is filleted has no concave edge: cut there, the boss with its fillet is a solid
   // of revolution and the plate a sweep with a round hole), with what time is left.
+  if (PlaneCutResult strips = cut_at_fillet_strips(solid, options, progress, left()); strips.ok)
+    return strips;
   const std::vector<detail::FootCylinder> fillets = detail::foot_cylinders(solid);
   if (fillets.empty() || left() <= 0) return cut;
   std::vector<Cylinder> with = cylinders;

@@ -52,8 +52,15 @@ struct CutSurface {
   // wall (cut_as_the_mesher's fourth try: a block with chamfered top edges).
   bool at_foot = false;
   // A cylinder around a round pocket whose floor `face` rounds, as far beyond its wall as the
-  // fillet's foot is inside it (the fifth try: the pocket's fillet on a ring of revolution).
+  // fillet's foot is inside it (the sixth try: the pocket's fillet on a ring of revolution).
   bool ring = false;
+  // A plane as far beyond the wall that the concave fillet `face` rounds at a floor as its foot
+  // on the floor is inside it (the fifth try: the strips fillets along floors lie on; the
+  // plane across the foot is `at_foot`).
+  bool beyond = false;
+  // The plane between two such strips where their fillets meet at a corner (`face` one of
+  // them, `edges` their mitre), cut only between the strips' planes.
+  bool mitre = false;
 };
 
 struct PlaneCutResult {
