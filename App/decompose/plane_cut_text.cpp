@@ -1,5 +1,6 @@
 // The words that say why a plane cut is where it is (PlaneCutResult's surfaces): the
 // surfaces used, the kinds of cut, the ones left out.
+#include <algorithm>
 #include <string>
 #include <utility>
 #include <vector>
@@ -27,11 +28,36 @@ std::string surface_text(const CutSurface& s, bool with_edges) {
 }
 
 std::string used_surfaces_text(const PlaneCutResult& cut, std::size_t at_most, bool with_edges) {
+  // The planes of fillets' strips are named once per fillet, with their mitres counted ("the
+  // strips of Face3 and Face7 (across their feet and as far beyond their walls), ended at 4
+  // mitre planes").
+  std::vector<core::FaceId> strips;
+  int mitres = 0;
+  for (const CutSurface& s : cut.surfaces)
+    if (s.used && s.beyond)
+      strips.push_back(s.face);
+    else if (s.used && s.mitre)
+      ++mitres;
+  auto on_a_strip = [&](const CutSurface& s) {
+    return s.beyond || s.mitre ||
+           (s.at_foot && !s.cylinder &&
+            std::find(strips.begin(), strips.end(), s.face) != strips.end());
+  };
   // The planes around one hole are named once, with their number ("4 planes around the hole
   // of Face5").
   std::vector<std::pair<std::string, int>> named;
+  if (!strips.empty()) {
+    std::string t = "the strips of ";
+    for (std::size_t k = 0; k < strips.size(); ++k)
+      t += (k == 0 ? "" : k + 1 == strips.size() ? " and " : ", ") + core::entity_name(strips[k]);
+    t += std::string(strips.size() > 1 ? " (across their feet and as far beyond their walls)"
+                                       : " (across its foot and as far beyond its wall)");
+    if (mitres > 0)
+      t += ", ended at " + std::to_string(mitres) + (mitres > 1 ? " mitre planes" : " mitre plane");
+    named.push_back({t, 1});
+  }
   for (const CutSurface& s : cut.surfaces) {
-    if (!s.used) continue;
+    if (!s.used || on_a_strip(s)) continue;
     const std::string t = surface_text(s, with_edges);
     if (s.around_hole && !named.empty() && named.back().first == t)
       ++named.back().second;

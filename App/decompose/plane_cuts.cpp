@@ -454,8 +454,12 @@ PlaneCutResult cut_along(const occ::Solid& solid, std::vector<Plane> planes,
     r.why_not = "it has no concave edge to cut at";
     return r;
   }
-  if (int(planes.size() + cylinders.size()) > options.max_planes) {
-    r.why_not = "its concave edges give " + std::to_string(planes.size() + cylinders.size()) +
+  // Bounded planes (mitres, each within a corner of two strips) do not count.
+  const auto whole_surfaces =
+      cylinders.size() + std::size_t(std::count_if(planes.begin(), planes.end(),
+                                                   [](const Plane& p) { return p.quad.empty(); }));
+  if (int(whole_surfaces) > options.max_planes) {
+    r.why_not = "its concave edges give " + std::to_string(whole_surfaces) +
                 " cut surfaces, more than " + std::to_string(options.max_planes);
     return r;
   }

@@ -140,6 +140,7 @@ struct Plan {
   // Per source loop edge: the intervals of each target edge across (one, or a chain's).
   std::vector<std::vector<std::vector<int>>> target_counts;
   std::vector<std::vector<Vec3>> source_loops;  // source boundary nodes per loop
+  std::vector<int> edge_intervals;              // per edge id where the plan assigned them (stacks)
   QuadFaceMesh source_mesh;
   std::vector<core::Diagnostic> diagnostics;
 };
@@ -393,6 +394,7 @@ Plan plan(const Solid& solid, const SweepOptions& options) {
         p.diagnostics.push_back(core::make_error("intervals_infeasible", why, {name(t.source)}));
         return p;
       }
+      p.edge_intervals = given.edge_intervals;
       return plan_given(solid, given, std::move(p));
     }
     // Layers: with local sizes, the finest count a linking edge asks for (a sweep has one
@@ -575,6 +577,9 @@ SweepResult sweep(const core::MeshDomain& solid, const SweepOptions& options,
   Plan p = plan(solid, options);  // throws std::invalid_argument on bad options
   result.diagnostics = std::move(p.diagnostics);
   if (!p.ok) return result;
+  // The counts along chains: the plan's own where it assigned them.
+  SweepOptions planned = options;
+  if (!p.edge_intervals.empty()) planned.edge_intervals = p.edge_intervals;
   const Topology& t = p.topo;
   const QuadFaceMesh& sm = p.source_mesh;
   result.source = t.source;
@@ -615,9 +620,9 @@ SweepResult sweep(const core::MeshDomain& solid, const SweepOptions& options,
         std::vector<NodeClass> ct, c0_class, c1_class;
         const auto rs = read_edge(solid, link.source, n, f, g),
                    rt = read_chain(solid, link.target, p.target_counts[l][e], f, g, ct);
-        const auto c0 = read_chain(solid, link.col0, chain_counts(solid, link.col0, K, options), f,
+        const auto c0 = read_chain(solid, link.col0, chain_counts(solid, link.col0, K, planned), f,
                                    g, c0_class),
-                   c1 = read_chain(solid, link.col1, chain_counts(solid, link.col1, K, options), f,
+                   c1 = read_chain(solid, link.col1, chain_counts(solid, link.col1, K, planned), f,
                                    g, c1_class);
         if (c0.size() != std::size_t(K) + 1 || c1.size() != std::size_t(K) + 1)
           throw std::logic_error("linking chain shorter than its edges");
@@ -627,7 +632,7 @@ SweepResult sweep(const core::MeshDomain& solid, const SweepOptions& options,
         std::vector<std::vector<Vec3>> rows{rs};
         std::vector<std::vector<NodeClass>> row_class{{}};
         auto layer_of = [&](const std::vector<Directed>& chain, int below) {
-          const std::vector<int> counts = chain_counts(solid, chain, K, options);
+          const std::vector<int> counts = chain_counts(solid, chain, K, planned);
           int k = 0;
           for (int c = 0; c < below; ++c) k += counts[std::size_t(c)];
           return k;
@@ -638,7 +643,7 @@ SweepResult sweep(const core::MeshDomain& solid, const SweepOptions& options,
             throw std::logic_error("a separator of a stack of linking faces lies on no layer");
           std::vector<NodeClass> cls;
           rows.push_back(read_chain(solid, link.separators[sj],
-                                    chain_counts(solid, link.separators[sj], n, options), f, g,
+                                    chain_counts(solid, link.separators[sj], n, planned), f, g,
                                     cls));
           row_k.push_back(k);
           row_class.push_back(std::move(cls));

@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "decompose/decompose.h"
 #include "fixtures/diagnostics.h"
 #include "fixtures/solids.h"
@@ -185,6 +187,53 @@ TEST(MeshSubVolumes, ASweepTakesATargetSplitByItsNeighbour) {
   EXPECT_EQ(check.non_manifold_quads, 0u);
   EXPECT_EQ(check.open_boundary_edges, 0u);
   EXPECT_GE(check.scaled_jacobian.min, 0.3);
+}
+
+// A bar 3 long with two blocks on its side (split at x = 1.5) and two on its top (split at
+// x = 1): glued, the bar's side and top are two faces each, and its bottom and other side carry
+// the splits' vertices on their edges. No face of the bar is a source that four-sided faces
+// join to one target, so no sweep without its neighbours' imprints takes it; with them it
+// is a sweep along x whose linking sides are stacks of faces (their edges between on a layer)
+// and chains of edges, and every piece conforms.
+TEST(MeshSubVolumes, ASweepsLinkingSidesMayBeStacksOfFacesItsNeighboursSplit) {
+  const occ::Solid bar = occ::make_box(3, 1, 1);
+  const occ::Solid side0 = occ::make_box(1.5, 1, 1, {0, 1, 0});
+  const occ::Solid side1 = occ::make_box(1.5, 1, 1, {1.5, 1, 0});
+  const occ::Solid top0 = occ::make_box(1, 1, 1, {0, 0, 1});
+  const occ::Solid top1 = occ::make_box(2, 1, 1, {1, 0, 1});
+  occ::ReadResult glued = occ::glue_solids({&bar, &side0, &side1, &top0, &top1}, "The pieces");
+  ASSERT_TRUE(glued.ok()) << messages(glued.diagnostics);
+  int k = -1;  // the bar
+  for (int i = 0; i < glued.solid->num_solids(); ++i)
+    if (std::abs(glued.solid->part(i).volume() - 3) < 1e-9) k = i;
+  ASSERT_GE(k, 0);
+  const occ::Solid& part = glued.solid->part(k);
+  EXPECT_FALSE(sweep_applicable(part).ok);
+  const SweepStructure s = sweep_structure(part, {}, /*imprinted=*/true);
+  ASSERT_TRUE(s.source.valid());
+  EXPECT_EQ(s.levels.size(), 2u);  // the side's and the top's edges between their faces
+  EXPECT_FALSE(plan_sub_volumes(*glued.solid, false).ok);
+  const SubVolumePlan plan = plan_sub_volumes(*glued.solid, false, false, /*imprinted=*/true);
+  ASSERT_TRUE(plan.ok) << plan.why_not;
+  EXPECT_EQ(plan.schemes[std::size_t(k)], "sweep");
+  SubVolumeMeshOptions o;
+  o.size = 0.5;
+  o.multisweep = false;
+  const SubVolumeMeshResult m = mesh_sub_volumes(*glued.solid, o);
+  ASSERT_TRUE(m.ok) << messages(m.diagnostics);
+  const quality::CheckReport check = quality::check_mesh(m.mesh, glued.solid.get());
+  EXPECT_TRUE(check.valid) << messages(check.diagnostics);
+  EXPECT_EQ(check.non_manifold_quads, 0u);
+  EXPECT_EQ(check.open_boundary_edges, 0u);
+  EXPECT_GE(check.scaled_jacobian.min, 0.9);
+  // Standing alone (no intervals given) the sweep assigns its own, the edges between the
+  // stacks' faces on layers.
+  SweepOptions alone;
+  alone.size = 0.4;
+  alone.imprinted = true;
+  const SweepResult r = sweep(part, alone);
+  ASSERT_TRUE(r.ok) << messages(r.diagnostics);
+  EXPECT_GE(r.layers, 6);
 }
 
 }  // namespace

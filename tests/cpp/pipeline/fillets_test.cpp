@@ -238,5 +238,33 @@ TEST(GenerateMesh, ARevolvedBossTakesTheNodesOfTheMultisweepBesideIt) {
   expect_decomposed(r, "multisweep", 2, 0.5);
 }
 
+// A plate 60 x 40 x 15 with a pocket 30 x 20 x 8, its floor edges filleted with radius 3 in
+// FreeCAD's Fillet (tests/data/pocket_floor_fillet.step): each fillet on a strip between the
+// plane across its foot and a plane as far beyond its wall, the strips meeting at the mitres
+// of the pocket's corners: four sweeps from mitre to mitre (in a ring: the last one's target
+// the first one's source) and blocks. Before, the grid's (4,510 hexahedra).
+TEST(GenerateMesh, APocketWithItsFloorFilletedIsSweptAlongItsFilletsStrips) {
+  const MeshResult r = mesh_file("pocket_floor_fillet.step");
+  ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
+  expect_decomposed(r, "sweep", 21, 0.4,
+                    "the strips of Face3, Face7, Face9 and Face14 (across their feet and as far "
+                    "beyond their walls), ended at 4 mitre planes");
+  expect_decomposed(r, "map", 21, 0.4);
+  EXPECT_LT(r.mesh.num_hexes(), 1500u);
+}
+
+// A rectangular boss 24 x 12 x 8 whose root is filleted with radius 2, and a plate with two
+// pockets whose floors are (tests/data/plate_rect_boss_root_fillet.step,
+// two_pockets_floor_fillet.step; before, the grid's: 78,006 hexahedra for the two pockets).
+TEST(GenerateMesh, ABossWithItsRootFilletedAndTwoPocketsAreSweptAlongTheirStrips) {
+  for (const char* name : {"plate_rect_boss_root_fillet.step", "two_pockets_floor_fillet.step"}) {
+    SCOPED_TRACE(name);
+    const MeshResult r = mesh_file(name);
+    ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
+    expect_decomposed(r, "sweep", 0, 0.45, "mitre planes");
+    EXPECT_LT(r.mesh.num_hexes(), 1500u);
+  }
+}
+
 }  // namespace
 }  // namespace vorohex::pipeline
