@@ -256,6 +256,30 @@ def build_parts(work):
                                  V(20 - h, 20 + h, z), V(20 - h, 20 - h, z)])
     parts["block with a drafted pocket"] = box(40, 40, 20).cut(
         Part.makeLoft([square(5, 10), square(10.5, 21)], True))
+    # Rectangular pockets whose floor edges are filleted (the fillets meet at mitres in the
+    # corners), a rectangular boss whose root is, two pockets, a pocket near the plate's edge,
+    # and a pocket whose vertical corners are rounded too (the fillets meet in tori there).
+    def floor_edges(s, z, x0, x1, y0, y1):
+        return [e for e in s.Edges if at(e, z) and e.BoundBox.XMin > x0 - 1e-6 and
+                e.BoundBox.XMax < x1 + 1e-6 and e.BoundBox.YMin > y0 - 1e-6 and
+                e.BoundBox.YMax < y1 + 1e-6]
+    rect = refined(box(60, 40, 15).cut(box(30, 20, 8, (15, 10, 7))))
+    parts["plate with a pocket, its floor edges filleted"] = rect.makeFillet(
+        3, floor_edges(rect, 7, 15, 45, 10, 30))
+    rboss = refined(box(60, 40, 10).fuse(box(24, 12, 8, (18, 14, 10))))
+    parts["plate with a rectangular boss, its root filleted"] = rboss.makeFillet(
+        2, floor_edges(rboss, 10, 18, 42, 14, 26))
+    two = refined(box(80, 40, 12).cut(box(20, 20, 6, (8, 10, 6))).cut(box(24, 20, 6, (44, 10, 6))))
+    parts["plate with two pockets, their floor edges filleted"] = two.makeFillet(
+        2.5, floor_edges(two, 6, 8, 68, 10, 30))
+    near = refined(box(50, 30, 12).cut(box(20, 14, 7, (3, 8, 5))))
+    parts["plate with a pocket near its edge, its floor filleted"] = near.makeFillet(
+        2, floor_edges(near, 5, 3, 23, 8, 22))
+    corners = [e for e in rect.Edges if e.BoundBox.ZLength > 7.9 and e.BoundBox.ZMin > 6.9 and
+               14 < e.BoundBox.XMin < 46 and 9 < e.BoundBox.YMin < 31]
+    rounded = refined(rect.makeFillet(5, corners))
+    parts["plate with a pocket, its corners and floor filleted"] = rounded.makeFillet(
+        3, floor_edges(rounded, 7, 15, 45, 10, 30))
     out = []
     for k, (name, shape) in enumerate(parts.items()):
         solid = refined(shape)

@@ -93,13 +93,14 @@ struct PlaneCutResult {
 // when none).
 std::string left_out_text(const PlaneCutResult& cut);
 // "the plane of Face7 (at Edge12, Edge14)"; without the edges: "the plane of Face7"; "the
-// plane tangent to the cylinder of Face3" for a tangent plane.
+// plane tangent to the cylinder of Face3" for a tangent plane, "the mitre plane of Face3".
 std::string surface_text(const CutSurface& surface, bool with_edges = true);
 // What the cut went along, for "Cut along ...": "the faces at its concave edges", "planes
 // around its holes", or "the faces at its concave edges and planes around its holes".
 std::string cut_kind_text(const PlaneCutResult& cut);
 // The surfaces used, the first `at_most` named ("the plane of Face3, the cylinder of Face9
-// and 4 more"; the planes around one hole once, "4 planes around the hole of Face5"), with
+// and 4 more"; the planes around one hole once, "4 planes around the hole of Face5"; the
+// fillets' strips once, "the strips of Face3 and Face7 (...), ended at 4 mitre planes"), with
 // their concave edges when `with_edges`.
 std::string used_surfaces_text(const PlaneCutResult& cut, std::size_t at_most = 6,
                                bool with_edges = false);
@@ -112,8 +113,11 @@ PlaneCutResult cut_at_concave_edges(const occ::Solid& solid, const PlaneCutOptio
 // else the cut at concave edges with planes around round holes too (a cross hole through a
 // tube, a hole along a block beside a boss: detail/hole_planes.h), for each set of them until
 // one is ok; else with planes across the feet of its tapered or rounded faces (a chamfered
-// or filleted block: detail/foot_planes.h), each axis's set until one is ok; all within what is
-// left of options.time_limit. Not ok: the first cut's result.
+// or filleted block: detail/foot_planes.h), each axis's set until one is ok; else along the
+// strips of concave fillets on floors, ended at their mitres (a pocket whose floor edges are
+// filleted: detail/fillet_strips.h); else with cylinders through the feet of concave round
+// fillets and chamfers (a boss whose root is filleted: detail/foot_planes.h); all within what
+// is left of options.time_limit. Not ok: the first cut's result.
 PlaneCutResult cut_as_the_mesher(const occ::Solid& solid, const PlaneCutOptions& options,
                                  const core::Progress& progress = {});
 
