@@ -10,7 +10,8 @@ in each leg, a stepped plate with holes, a flanged pipe), a few more a user make
 day, and two whose faces come to a point (a boss tangent to a plate's round outline from
 inside; a lug whose round end is tangent to its tube, as HexMe i11), and the drilled and
 countersunk holes and filleted edges of PartDesign, chamfered edges and a pyramidal
-pocket, countersunk holes in a plate and a flange, a pocket with drafted walls. Writes
+pocket, countersunk holes in a plate and a flange, a pocket with drafted walls, bosses and
+pockets whose roots and floors are filleted (round and rectangular). Writes
 bench/results/parts.md.
 
 usage: run_parts.py [--build BUILD]
