@@ -469,6 +469,50 @@ class TestVoroHexObject(BoxDocument, unittest.TestCase):
         self.assertTrue(any("the cylinder through the foot of Face" in line
                             for line in obj.Diagnostics), list(obj.Diagnostics))
 
+    def test_part_design_pocket_with_its_floor_filleted_is_swept_along_the_fillets(self):
+        # PartDesign as a user builds it: a Pad of a sketched rectangle, a Pocket sketched on
+        # its top face, a Fillet on the pocket's four floor edges (they meet at mitres in the
+        # corners). Cut across the fillets' feet, beyond the walls and along the mitres, each
+        # fillet lies on a strip swept from mitre to mitre, the rest blocks (the grid
+        # mesher's before).
+        import Sketcher  # noqa: F401  (the sketches' type)
+        V = FreeCAD.Vector
+
+        def rectangle(sketch, x0, y0, x1, y1):
+            corners = [V(x0, y0, 0), V(x1, y0, 0), V(x1, y1, 0), V(x0, y1, 0)]
+            for i in range(4):
+                sketch.addGeometry(Part.LineSegment(corners[i], corners[(i + 1) % 4]))
+
+        body = self.doc.addObject("PartDesign::Body", "Body")
+        base = body.newObject("Sketcher::SketchObject", "PlateSketch")
+        base.Support, base.MapMode = (self.doc.getObject("XY_Plane"), [""]), "FlatFace"
+        rectangle(base, 0, 0, 60, 40)
+        pad = body.newObject("PartDesign::Pad", "Pad")
+        pad.Profile, pad.Length = base, 15
+        self.doc.recompute()
+        top = next(i + 1 for i, f in enumerate(pad.Shape.Faces)
+                   if abs(f.CenterOfMass.z - 15) < 1e-9)
+        sketch = body.newObject("Sketcher::SketchObject", "PocketSketch")
+        sketch.Support, sketch.MapMode = (pad, ["Face{}".format(top)]), "FlatFace"
+        rectangle(sketch, 15, 10, 45, 30)
+        pocket = body.newObject("PartDesign::Pocket", "Pocket")
+        pocket.Profile, pocket.Length = sketch, 8
+        self.doc.recompute()
+        floor = ["Edge{}".format(i) for i in edges_at_height(pocket.Shape, 7)]
+        self.assertEqual(len(floor), 4)
+        fillet = body.newObject("PartDesign::Fillet", "Fillet")
+        fillet.Base, fillet.Radius = (pocket, floor), 3
+        self.doc.recompute()
+        self.assertTrue(fillet.isValid() and fillet.Shape.isValid())
+        obj = VoroHexObjects.makeHexMesh(self.doc, body)
+        self.doc.recompute()
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        self.assertEqual(obj.Scheme, "map+sweep")
+        self.assertEqual(obj.SubVolumeCount, 21)
+        self.assertGreaterEqual(obj.MinScaledJacobian, 0.4)
+        self.assertTrue(any("ended at 4 mitre planes" in line for line in obj.Diagnostics),
+                        list(obj.Diagnostics))
+
     def test_a_failed_mesh_says_each_error_once(self):
         # A round pocket whose floor is filleted (tests/data), second order as the panel's
         # default, with too few hexahedra allowed to make it again at half the size: the
