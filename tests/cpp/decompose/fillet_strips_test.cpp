@@ -11,16 +11,14 @@
 #include <string>
 
 #include "decompose/detail/fillet_strips.h"
+#include "fixtures/solids.h"
 #include "occ/shape_io.h"
 
 namespace vorohex::decompose::detail {
 namespace {
 
 occ::Solid read(const std::string& name) {
-  const occ::ReadResult in =
-      occ::read_solid(std::string(VOROHEX_SOURCE_DIR) + "/tests/data/" + name);
-  if (!in.ok()) throw std::runtime_error(name + " does not load");
-  return std::move(*in.solid);
+  return testing::read_test_data(name);
 }
 
 // The offsets of the whole planes of `kind` with normal along axis `a` (0 x, 1 y), sorted.

@@ -11,16 +11,14 @@
 
 #include "decompose/detail/foot_planes.h"
 #include "fixtures/machined.h"
+#include "fixtures/solids.h"
 #include "occ/shape_io.h"
 
 namespace vorohex::decompose::detail {
 namespace {
 
 occ::Solid read(const std::string& name) {
-  const occ::ReadResult in =
-      occ::read_solid(std::string(VOROHEX_SOURCE_DIR) + "/tests/data/" + name);
-  if (!in.ok()) throw std::runtime_error(name + " does not load");
-  return std::move(*in.solid);
+  return testing::read_test_data(name);
 }
 
 // 60 x 40 x 10 with a boss of radius 8 at (30, 20), its root filleted or chamfered by 2: the

@@ -156,6 +156,21 @@ TEST(MeshSubVolumes, ThePlanJudgesPiecesGluedToTheirNeighbours) {
   EXPECT_GE(check.scaled_jacobian.min, 0.3);
 }
 
+// The glued pieces meshed without multisweeps at `size`: one valid mesh, conforming and
+// closed, at least `min`.
+void expect_one_conforming_mesh(const occ::Solid& glued, double size, double min) {
+  SubVolumeMeshOptions o;
+  o.size = size;
+  o.multisweep = false;
+  const SubVolumeMeshResult m = mesh_sub_volumes(glued, o);
+  ASSERT_TRUE(m.ok) << messages(m.diagnostics);
+  const quality::CheckReport check = quality::check_mesh(m.mesh, &glued);
+  EXPECT_TRUE(check.valid) << messages(check.diagnostics);
+  EXPECT_EQ(check.non_manifold_quads, 0u);
+  EXPECT_EQ(check.open_boundary_edges, 0u);
+  EXPECT_GE(check.scaled_jacobian.min, min);
+}
+
 // Two coaxial cylinders stacked, their seams on opposite sides: gluing imprints each seam's
 // vertex on the other's circle, so each lateral face has five edges, its far circle a chain
 // of two arcs meeting at a side vertex. Each is still a sweep towards the shared disc (the
@@ -177,16 +192,7 @@ TEST(MeshSubVolumes, ASweepTakesATargetSplitByItsNeighbour) {
   const SubVolumePlan plan = plan_sub_volumes(*glued.solid, /*multisweep=*/false);
   ASSERT_TRUE(plan.ok) << plan.why_not;
   EXPECT_EQ(plan.schemes, (std::vector<std::string>{"sweep", "sweep"}));
-  SubVolumeMeshOptions o;
-  o.size = 0.8;
-  o.multisweep = false;
-  const SubVolumeMeshResult m = mesh_sub_volumes(*glued.solid, o);
-  ASSERT_TRUE(m.ok) << messages(m.diagnostics);
-  const quality::CheckReport check = quality::check_mesh(m.mesh, glued.solid.get());
-  EXPECT_TRUE(check.valid) << messages(check.diagnostics);
-  EXPECT_EQ(check.non_manifold_quads, 0u);
-  EXPECT_EQ(check.open_boundary_edges, 0u);
-  EXPECT_GE(check.scaled_jacobian.min, 0.3);
+  expect_one_conforming_mesh(*glued.solid, 0.8, 0.3);
 }
 
 // A bar 3 long with two blocks on its side (split at x = 1.5) and two on its top (split at
@@ -216,16 +222,7 @@ TEST(MeshSubVolumes, ASweepsLinkingSidesMayBeStacksOfFacesItsNeighboursSplit) {
   const SubVolumePlan plan = plan_sub_volumes(*glued.solid, false, false, /*imprinted=*/true);
   ASSERT_TRUE(plan.ok) << plan.why_not;
   EXPECT_EQ(plan.schemes[std::size_t(k)], "sweep");
-  SubVolumeMeshOptions o;
-  o.size = 0.5;
-  o.multisweep = false;
-  const SubVolumeMeshResult m = mesh_sub_volumes(*glued.solid, o);
-  ASSERT_TRUE(m.ok) << messages(m.diagnostics);
-  const quality::CheckReport check = quality::check_mesh(m.mesh, glued.solid.get());
-  EXPECT_TRUE(check.valid) << messages(check.diagnostics);
-  EXPECT_EQ(check.non_manifold_quads, 0u);
-  EXPECT_EQ(check.open_boundary_edges, 0u);
-  EXPECT_GE(check.scaled_jacobian.min, 0.9);
+  expect_one_conforming_mesh(*glued.solid, 0.5, 0.9);
   // Standing alone (no intervals given) the sweep assigns its own, the edges between the
   // stacks' faces on layers.
   SweepOptions alone;
