@@ -17,6 +17,7 @@ std::string surface_text(const CutSurface& s, bool with_edges) {
                               : s.around_hole           ? "a plane around the hole of "
                               : s.beyond  ? "a plane as far beyond the wall as the foot of "
                               : s.mitre   ? "the mitre plane of "
+                              : s.corner  ? "the plane where a strip turns round "
                               : s.at_foot ? "the plane across the foot of "
                                           : "the plane of ") +
                   core::entity_name(s.face);
@@ -31,17 +32,19 @@ std::string used_surfaces_text(const PlaneCutResult& cut, std::size_t at_most, b
   // The planes of fillets' strips are named once per fillet, with their mitres counted ("the
   // strips of Face3 and Face7 (across their feet and as far beyond their walls), ended at 4
   // mitre planes").
-  std::vector<core::FaceId> strips;
+  std::vector<core::FaceId> strips, corners;
   int mitres = 0;
-  for (const CutSurface& s : cut.surfaces)
-    if (s.used && s.beyond)
-      strips.push_back(s.face);
-    else if (s.used && s.mitre)
-      ++mitres;
+  auto in = [](const std::vector<core::FaceId>& v, core::FaceId f) {
+    return std::find(v.begin(), v.end(), f) != v.end();
+  };
+  for (const CutSurface& s : cut.surfaces) {
+    if (s.used && s.beyond) strips.push_back(s.face);
+    if (s.used && s.mitre) ++mitres;
+    if (s.used && s.corner && !in(corners, s.face)) corners.push_back(s.face);
+  }
   auto on_a_strip = [&](const CutSurface& s) {
-    return s.beyond || s.mitre ||
-           (s.at_foot && !s.cylinder &&
-            std::find(strips.begin(), strips.end(), s.face) != strips.end());
+    return s.beyond || s.mitre || s.corner || (s.at_foot && !s.cylinder && in(strips, s.face)) ||
+           (s.cylinder && (s.at_foot || s.ring) && in(corners, s.face));
   };
   // The planes around one hole are named once, with their number ("4 planes around the hole
   // of Face5").
@@ -54,6 +57,14 @@ std::string used_surfaces_text(const PlaneCutResult& cut, std::size_t at_most, b
                                        : " (across its foot and as far beyond its wall)");
     if (mitres > 0)
       t += ", ended at " + std::to_string(mitres) + (mitres > 1 ? " mitre planes" : " mitre plane");
+    if (!corners.empty()) {
+      t += std::string(mitres > 0 ? " and" : ",") + " turning round " +
+           std::to_string(corners.size()) +
+           (corners.size() > 1 ? " rounded corners (" : " rounded corner (");
+      for (std::size_t k = 0; k < corners.size(); ++k)
+        t += (k ? ", " : "") + core::entity_name(corners[k]);
+      t += ") on sectors of cylinders";
+    }
     named.push_back({t, 1});
   }
   for (const CutSurface& s : cut.surfaces) {
@@ -79,17 +90,16 @@ std::string cut_kind_text(const PlaneCutResult& cut) {
   bool holes = false, concave = false, feet = false, fillets = false, strips = false;
   for (const CutSurface& s : cut.surfaces)
     if (s.used)
-      (s.around_hole             ? holes
-       : s.beyond || s.mitre     ? strips
-       : s.at_foot && s.cylinder ? fillets
-       : s.at_foot               ? feet
-                                 : concave) = true;
+      (s.around_hole                     ? holes
+       : s.beyond || s.mitre || s.corner ? strips
+       : s.at_foot && s.cylinder         ? fillets
+       : s.at_foot                       ? feet
+                                         : concave) = true;
   std::vector<std::string> kinds;
   if (concave) kinds.push_back("the faces at its concave edges");
   if (holes) kinds.push_back("planes around its holes");
   if (feet && !strips) kinds.push_back("planes across the feet of its tapered or rounded faces");
-  if (strips)
-    kinds.push_back("planes along the strips of its fillets on floors, ended at their mitres");
+  if (strips) kinds.push_back("planes along the strips of its fillets on floors");
   if (fillets) kinds.push_back("cylinders through the feet of its concave round fillets");
   if (kinds.empty()) return "the faces at its concave edges";
   std::string t = kinds[0];

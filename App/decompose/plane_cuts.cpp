@@ -466,9 +466,10 @@ PlaneCutResult cut_along(const occ::Solid& solid, std::vector<Plane> planes,
   progress.report("plane_cuts", 0.0);
   for (const Plane& pl : planes)
     r.surfaces.push_back({false, pl.tangent, pl.face, pl.edges, true, pl.around_hole, pl.at_foot,
-                          false, pl.beyond, pl.mitre});
+                          false, pl.beyond, pl.mitre, pl.corner});
   for (const Cylinder& c : cylinders)
-    r.surfaces.push_back({true, false, c.face, c.edges, true, false, c.at_foot, c.ring});
+    r.surfaces.push_back(
+        {true, false, c.face, c.edges, true, false, c.at_foot, c.ring, false, false, c.corner});
   const double whole = solid.volume();
   std::vector<occ::Solid> pieces;
   std::vector<double> volume;  // per piece (an adaptive integration each: computed once)
@@ -657,6 +658,7 @@ PlaneCutResult cut_at_fillet_strips(const occ::Solid& solid, const PlaneCutOptio
     pl.at_foot = sp.kind == detail::StripPlane::across;
     pl.beyond = sp.kind == detail::StripPlane::beyond;
     pl.mitre = sp.kind == detail::StripPlane::mitre;
+    pl.corner = sp.kind == detail::StripPlane::corner;
     pl.quad = sp.quad;
     add_plane(with, pl, tol);
   }
@@ -665,6 +667,10 @@ PlaneCutResult cut_at_fillet_strips(const occ::Solid& solid, const PlaneCutOptio
     if (std::find(strips.fillets.begin(), strips.fillets.end(), c.face) == strips.fillets.end())
       other.push_back(c);
   cylinders = std::move(other);
+  for (const detail::StripCylinder& c : strips.cylinders) {  // sectors round rounded corners
+    Cylinder cyl{c.surface, c.face, {c.edge}, true, c.beyond, true};
+    cylinders.push_back(cyl);
+  }
   PlaneCutOptions o = options;
   o.time_limit = seconds;
   std::vector<Band> bands;

@@ -61,6 +61,9 @@ struct CutSurface {
   // The plane between two such strips where their fillets meet at a corner (`face` one of
   // them, `edges` their mitre), cut only between the strips' planes.
   bool mitre = false;
+  // The plane through a rounded corner's axis where a straight strip meets the corner's
+  // (`face` the corner's fillet); the corner's cylinders are `at_foot` and `ring`.
+  bool corner = false;
 };
 
 struct PlaneCutResult {

@@ -775,8 +775,8 @@ SweepResult sweep(const core::MeshDomain& solid, const SweepOptions& options,
                                    std::to_string(M * K) + ")."));
       return result;
     }
-    const bool free_target =
-        p.grid[0] == 0 && p.submap.empty() && detail::apex_vertices(solid, t.target).empty();
+    const bool free_target = p.grid[0] == 0 && p.submap.empty() && options.target_quads.empty() &&
+                             detail::apex_vertices(solid, t.target).empty();
     const int sweeps = detail::smooth_layer_interiors(
         P, M, nb, 1, free_target ? K : K - 1, sm.quads, 1e-3 * options.size, 200,
         [&](int k, const Vec3& q) { return k == K ? solid.project_to_face(t.target, q) : q; },

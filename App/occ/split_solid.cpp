@@ -278,7 +278,7 @@ SplitResult split_solid(const Solid& solid, const std::vector<std::vector<Vec3>>
     for (const CutCylinder& c : cylinders) {
       const gp_Ax3 frame(pnt(c.origin), gp_Dir(c.axis.x(), c.axis.y(), c.axis.z()),
                          gp_Dir(c.seam.x(), c.seam.y(), c.seam.z()));
-      BRepBuilderAPI_MakeFace mf(gp_Cylinder(frame, c.radius), 0, 2 * M_PI, c.from, c.to);
+      BRepBuilderAPI_MakeFace mf(gp_Cylinder(frame, c.radius), 0, c.angle, c.from, c.to);
       if (mf.IsDone()) tool_list.Append(mf.Face());
     }
     TopoDS_Shape result = solid.impl().solid;

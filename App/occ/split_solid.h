@@ -3,6 +3,7 @@
 // pieces are new solids whose coplanar faces and collinear edges are unified.
 #pragma once
 
+#include <cmath>
 #include <memory>
 #include <string>
 #include <vector>
@@ -40,6 +41,9 @@ struct CutCylinder {
   Vec3 seam{1, 0, 0};  // where the round face's seam lies (the model face's, so they agree)
   double radius = 0;
   double from = 0, to = 0;
+  // The turn it spans from `seam` about `axis` (radians, right-handed): a sector where less
+  // than a whole turn (the corner of a strip round a pocket's rounded corner).
+  double angle = 2 * M_PI;
 };
 
 // The same with cylinders among the tools (curved faces at concave edges extended).

@@ -22,6 +22,7 @@ struct Plane {
   bool at_foot = false;             // across the foot of the tapered `face` (detail/foot_planes.h)
   bool beyond = false;           // beyond the wall a fillet `face` rounds (detail/fillet_strips.h)
   bool mitre = false;            // between two fillets' strips, `face` one of them
+  bool corner = false;           // where a straight strip meets a rounded corner's
   std::vector<core::Vec3> quad;  // a mitre's corners: the tool is that quad, not the whole plane
 };
 
@@ -32,6 +33,7 @@ struct Cylinder {
   std::vector<core::EdgeId> edges;
   bool at_foot = false;  // through the foot of the concave fillet `face` (not its extension)
   bool ring = false;     // beyond the wall of the round pocket whose floor `face` rounds
+  bool corner = false;   // a sector round a rounded corner of fillets' strips (`face` its own)
 };
 
 // The same cylinder (axis line and radius within `tol`).

@@ -1,5 +1,7 @@
 #include "decompose/detail/fillet_strips.h"
 
+#include "decompose/detail/foot_planes.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -89,6 +91,66 @@ bool cross(const Vec3& p, const Vec3& u, const Vec3& q, const Vec3& v, Vec3& at)
   return true;
 }
 
+// A floor fillet's rounded corner: a surface of revolution (or a torus) about an axis along
+// the floor's normal, tangent to the floor along an arc of radius `foot` about it and to a
+// coaxial wall cylinder along an arc of radius `wall`, between two straight fillets (its two
+// other edges, each in a plane through the axis: `end` the direction of that plane from it).
+struct Corner {
+  FaceId face, floor, wall_face;
+  Vec3 origin = Vec3::Zero(), axis = Vec3::Zero();
+  double foot = 0, wall = 0;
+  EdgeId foot_edge, wall_edge;
+  int fillet[2] = {-1, -1};  // in the fillets found
+  EdgeId profile[2];
+  Vec3 end[2];
+};
+
+bool corner_of(const occ::Solid& s, FaceId f, const std::vector<Fillet>& fillets, Corner& out) {
+  const core::SurfaceInfo info = s.surface_info(f);
+  if ((info.kind != core::SurfaceKind::torus && info.kind != core::SurfaceKind::revolution) ||
+      info.direction.norm() == 0)
+    return false;
+  const auto wires = s.face_wires(f);
+  if (wires.size() != 1 || wires[0].size() != 4) return false;
+  out.face = f;
+  out.axis = info.direction.normalized();
+  out.origin = info.origin;
+  const double tol = 1e-6 * s.diagonal();
+  auto off_axis = [&](const Vec3& p) {
+    const Vec3 d = p - out.origin;
+    return Vec3(d - out.axis * out.axis.dot(d));
+  };
+  int ends = 0;
+  for (const core::OrientedEdge& oe : wires[0]) {
+    FaceId g;
+    for (FaceId h : s.edge_faces(oe.edge))
+      if (h != f) g = h;
+    if (!g.valid()) return false;
+    const core::CurveInfo c = s.curve_info(oe.edge);
+    const bool about_axis = c.kind == core::CurveKind::circle && parallel(c.direction, out.axis) &&
+                            off_axis(c.origin).norm() <= tol;
+    const core::SurfaceInfo gi = s.surface_info(g);
+    if (about_axis && s.face_is_planar(g)) {
+      out.floor = g, out.foot = c.radius, out.foot_edge = oe.edge;
+    } else if (about_axis && gi.kind == core::SurfaceKind::cylinder &&
+               parallel(gi.direction, out.axis) && off_axis(gi.origin).norm() <= tol) {
+      out.wall_face = g, out.wall = c.radius, out.wall_edge = oe.edge;
+    } else {
+      int k = -1;
+      for (std::size_t i = 0; i < fillets.size(); ++i)
+        if (fillets[i].face == g) k = int(i);
+      if (k < 0 || ends == 2) return false;
+      const std::vector<Vec3> p = s.edge_points_by_length(oe.edge, 2);
+      const Vec3 r = off_axis(p[1]);
+      if (r.norm() <= tol) return false;
+      out.fillet[ends] = k, out.profile[ends] = oe.edge, out.end[ends] = r.normalized();
+      ++ends;
+    }
+  }
+  return ends == 2 && out.floor.valid() && out.wall_face.valid() && out.foot > 0 &&
+         std::abs(out.wall - out.foot) > tol && 2 * out.wall - out.foot > tol;
+}
+
 }  // namespace
 
 FilletStrips fillet_strips(const occ::Solid& solid) {
@@ -150,6 +212,94 @@ FilletStrips fillet_strips(const occ::Solid& solid) {
       strip[i] = strip[j] = 1;
       floor_side[i] = fa, floor_side[j] = fb;
     }
+  // Rounded corners between straight fillets on one floor (none of them at a mitre).
+  std::vector<Corner> corners;
+  for (FaceId f : solid.faces()) {
+    Corner c;
+    if (!corner_of(solid, f, fillets, c)) continue;
+    bool fits = true;
+    for (int k : c.fillet) {
+      const Fillet& fl = fillets[std::size_t(k)];
+      fits = fits && !strip[std::size_t(k)] &&
+             (fl.side[0].plane == c.floor || fl.side[1].plane == c.floor) &&
+             std::abs(fl.radius - std::abs(c.wall - c.foot)) <= 1e3 * tol;
+    }
+    if (fits) corners.push_back(c);
+  }
+  std::vector<int> corners_of(fillets.size(), 0);
+  for (const Corner& c : corners)
+    for (int k : c.fillet) ++corners_of[std::size_t(k)];
+  auto extent = [&](const Vec3& n, const Vec3& at, double& lo, double& hi) {
+    lo = 1e300, hi = -1e300;
+    for (int c = 0; c < 8; ++c) {
+      const Vec3 corner((c & 1) ? box.max.x() : box.min.x(), (c & 2) ? box.max.y() : box.min.y(),
+                        (c & 4) ? box.max.z() : box.min.z());
+      lo = std::min(lo, n.dot(corner - at)), hi = std::max(hi, n.dot(corner - at));
+    }
+    lo -= 0.1 * solid.diagonal(), hi += 0.1 * solid.diagonal();
+  };
+  // The quad over segment a-b across the whole solid along n.
+  auto column = [&](const Vec3& a, const Vec3& b, const Vec3& n) {
+    double lo, hi;
+    extent(n, a, lo, hi);
+    return std::vector<Vec3>{a + lo * n, b + lo * n, b + hi * n, a + hi * n};
+  };
+  for (std::size_t i = 0; i < fillets.size(); ++i) {
+    if (strip[i] || corners_of[i] != 2) continue;
+    const Fillet& f = fillets[i];
+    Corner const* c0 = nullptr;
+    for (const Corner& c : corners)
+      if (c.fillet[0] == int(i) || c.fillet[1] == int(i)) c0 = &c;
+    const int fs = f.side[0].plane == c0->floor ? 0 : 1;
+    const Tangent &floor = f.side[fs], &wall = f.side[1 - fs];
+    const Vec3 n = floor.normal;
+    const Vec3 normal = n.cross(f.axis).normalized();
+    const Vec3 a = solid.vertex_point(solid.edge_first_vertex(floor.edge));
+    const Vec3 b = solid.vertex_point(solid.edge_last_vertex(floor.edge));
+    const double shift = 2 * normal.dot(wall.point - floor.point);  // to the far plane
+    out.fillets.push_back(f.face);
+    out.planes.push_back(
+        {normal, normal.dot(a), f.face, {floor.edge}, StripPlane::across, column(a, b, n)});
+    out.planes.push_back({normal,
+                          normal.dot(a) + shift,
+                          f.face,
+                          {wall.edge},
+                          StripPlane::beyond,
+                          column(a + shift * normal, b + shift * normal, n)});
+    for (FaceId g : {floor.plane, wall.plane})
+      if (std::find(out.tangent_faces.begin(), out.tangent_faces.end(), g) ==
+          out.tangent_faces.end())
+        out.tangent_faces.push_back(g);
+  }
+  for (const Corner& c : corners) {
+    if (corners_of[std::size_t(c.fillet[0])] != 2 || corners_of[std::size_t(c.fillet[1])] != 2)
+      continue;
+    // The sector from one straight strip's end to the other's, turning right-handed about
+    // the axis.
+    Vec3 from = c.end[0], to = c.end[1];
+    if (from.cross(to).dot(c.axis) < 0) std::swap(from, to);
+    const double angle = std::atan2(from.cross(to).dot(c.axis), from.dot(to));
+    const double far = 2 * c.wall - c.foot;
+    for (bool beyond : {false, true}) {
+      occ::CutCylinder cyl;
+      cyl.origin = c.origin, cyl.axis = c.axis, cyl.seam = from, cyl.angle = angle;
+      cyl.radius = beyond ? far : c.foot;
+      along_the_solid(solid, cyl);
+      out.cylinders.push_back({cyl, c.face, beyond ? c.wall_edge : c.foot_edge, beyond});
+    }
+    for (int e = 0; e < 2; ++e) {
+      const Vec3 inner = c.origin + c.foot * c.end[e], outer = c.origin + far * c.end[e];
+      const Vec3 normal = c.end[e].cross(c.axis).normalized();
+      out.planes.push_back({normal,
+                            normal.dot(inner),
+                            c.face,
+                            {c.profile[e]},
+                            StripPlane::corner,
+                            column(inner, outer, c.axis)});
+    }
+    out.fillets.push_back(c.face);
+    out.fillets.push_back(c.wall_face);
+  }
   for (std::size_t i = 0; i < fillets.size(); ++i) {
     if (!strip[i]) continue;
     const Fillet& f = fillets[i];

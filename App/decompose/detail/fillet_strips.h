@@ -17,21 +17,37 @@
 #include <vector>
 
 #include "occ/solid.h"
+#include "occ/split_solid.h"
 
 namespace vorohex::decompose::detail {
 
-// A cut surface: the plane normal . x = offset, or the quad `quad` (a mitre, bounded).
+// A cut surface: the plane normal . x = offset, or the quad `quad` (bounded).
 struct StripPlane {
   core::Vec3 normal;  // unit
   double offset = 0;
   core::FaceId face;                // the fillet
   std::vector<core::EdgeId> edges;  // its foot (across), its wall's foot (beyond), the mitre
-  enum Kind { across, beyond, mitre } kind = across;
-  std::vector<core::Vec3> quad;  // a mitre's corners (empty for the others)
+  // `corner`: the plane through a rounded corner's axis where a straight strip meets the
+  // corner's.
+  enum Kind { across, beyond, mitre, corner } kind = across;
+  std::vector<core::Vec3> quad;  // its corners where bounded (mitres, corners, and the
+                                 // straight strips' planes between rounded corners)
+};
+
+// At a pocket's rounded corner (its vertical edges filleted too: the floor fillet turns round
+// the corner on a surface of revolution about the corner's axis), the strip turns on a sector
+// of a ring: between the cylinder through the fillet's foot on the floor and the one as far
+// beyond the corner's wall, from one straight strip's end to the other's.
+struct StripCylinder {
+  occ::CutCylinder surface;  // a sector (`angle` < 2 pi)
+  core::FaceId face;         // the corner's fillet
+  core::EdgeId edge;         // its foot (inner) or its wall's foot (beyond)
+  bool beyond = false;
 };
 
 struct FilletStrips {
   std::vector<StripPlane> planes;
+  std::vector<StripCylinder> cylinders;
   // The planar faces the fillets are tangent to (floors and walls): their own planes are no
   // cut (each would leave a knife edge along a fillet).
   std::vector<core::FaceId> tangent_faces;

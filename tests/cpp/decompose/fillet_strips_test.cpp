@@ -80,6 +80,33 @@ TEST(FilletStrips, ABossRootFilletsLieOnStripsToo) {
   expect_near(offsets(strips, StripPlane::beyond, 1), {16, 24});
 }
 
+// The same pocket with its vertical corners rounded by 5 before its floor (FreeCAD's Fillet
+// twice): the floor fillet turns round each corner on a surface of revolution. The straight
+// strips' planes are quads between the corners' axes, and at each corner the strip turns on a
+// quarter of a ring between the cylinder through the foot (radius 2) and the one as far beyond
+// the corner's wall (radius 8), ended by the planes through the corner's axis.
+TEST(FilletStrips, APocketsRoundedCornersTurnTheStripsOnSectorsOfRings) {
+  const FilletStrips strips = fillet_strips(read("pocket_rounded_corners_floor_fillet.step"));
+  expect_near(offsets(strips, StripPlane::across, 0), {18, 42});
+  expect_near(offsets(strips, StripPlane::beyond, 1), {7, 33});
+  int corners = 0;
+  for (const StripPlane& p : strips.planes) {
+    EXPECT_NE(p.kind, StripPlane::mitre);
+    EXPECT_EQ(p.quad.size(), 4u);  // all bounded: the straight strips end at the corners
+    corners += p.kind == StripPlane::corner;
+  }
+  EXPECT_EQ(corners, 8);
+  ASSERT_EQ(strips.cylinders.size(), 8u);
+  for (const StripCylinder& c : strips.cylinders) {
+    EXPECT_NEAR(c.surface.radius, c.beyond ? 8 : 2, 1e-6);
+    EXPECT_NEAR(c.surface.angle, M_PI / 2, 1e-6);
+    EXPECT_NEAR(std::abs(c.surface.axis.z()), 1, 1e-9);
+    const double x = c.surface.origin.x(), y = c.surface.origin.y();
+    EXPECT_TRUE(std::abs(x - 20) < 1e-6 || std::abs(x - 40) < 1e-6) << x;
+    EXPECT_TRUE(std::abs(y - 15) < 1e-6 || std::abs(y - 25) < 1e-6) << y;
+  }
+}
+
 TEST(FilletStrips, ConvexFilletsAndARoundPocketsFloorHaveNone) {
   EXPECT_TRUE(fillet_strips(read("block_top_fillets.step")).planes.empty());
   EXPECT_TRUE(fillet_strips(read("round_pocket_floor_fillet.step")).planes.empty());

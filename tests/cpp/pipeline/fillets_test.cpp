@@ -266,5 +266,21 @@ TEST(GenerateMesh, ABossWithItsRootFilletedAndTwoPocketsAreSweptAlongTheirStrips
   }
 }
 
+// The pocket with its vertical corners rounded by 5 too, and a rectangular boss whose vertical
+// edges are rounded by 3 and its root by 2 (tests/data/pocket_rounded_corners_floor_fillet.step,
+// plate_rounded_boss_root_fillet.step): the strips turn round the corners on quarter rings,
+// each swept round the corner's axis; all ten sub-volumes are sweeps. Before, the grid's
+// (the pocket: 4,530 hexahedra at 0.500).
+TEST(GenerateMesh, RoundedCornersTurnTheFilletsStripsOnSweptQuarterRings) {
+  const MeshResult r = mesh_file("pocket_rounded_corners_floor_fillet.step");
+  ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
+  expect_decomposed(r, "sweep", 10, 0.6, "turning round 4 rounded corners");
+  EXPECT_EQ(r.stats.scheme, "sweep");
+  EXPECT_LT(r.mesh.num_hexes(), 1500u);
+  const MeshResult b = mesh_file("plate_rounded_boss_root_fillet.step");
+  ASSERT_TRUE(b.ok) << (b.diagnostics.empty() ? "" : core::format(b.diagnostics.back()));
+  expect_decomposed(b, "sweep", 0, 0.45, "turning round 4 rounded corners");
+}
+
 }  // namespace
 }  // namespace vorohex::pipeline
