@@ -281,6 +281,10 @@ def build_parts(work):
     rounded = refined(rect.makeFillet(5, corners))
     parts["plate with a pocket, its corners and floor filleted"] = rounded.makeFillet(
         3, floor_edges(rounded, 7, 15, 45, 10, 30))
+    rounded_boss = refined(rboss.makeFillet(3, [e for e in rboss.Edges
+                                                if e.BoundBox.ZLength > 7.9 and e.BoundBox.ZMin > 9.9]))
+    parts["plate with a rounded rectangular boss, its root filleted"] = rounded_boss.makeFillet(
+        2, floor_edges(rounded_boss, 10, 18, 42, 14, 26))
     out = []
     for k, (name, shape) in enumerate(parts.items()):
         solid = refined(shape)
