@@ -10,8 +10,10 @@
 // only between the crossing of their feet's planes and the crossing of their far planes.
 // Each strip is then a sweep from mitre to mitre, and the rest blocks (the pieces beside a
 // strip split where the other strips end: its sweep's linking sides carry their imprints,
-// mesh/sweep.h `imprinted`).
-// Internal to App/decompose (the plane cuts' sixth try, docs/decomposition.md).
+// mesh/sweep.h `imprinted`). Where the pocket's corners are rounded too, the fillet turns
+// round each corner on a surface of revolution, and the strip on a quarter ring (StripCylinder
+// sectors, ended by planes through the corner's axis), swept round that axis.
+// Internal to App/decompose (the plane cuts' fifth try, docs/decomposition.md).
 #pragma once
 
 #include <vector>
