@@ -151,6 +151,20 @@ bool corner_of(const occ::Solid& s, FaceId f, const std::vector<Fillet>& fillets
          std::abs(out.wall - out.foot) > tol && 2 * out.wall - out.foot > tol;
 }
 
+// The quad over segment a-b across the whole solid along unit n (a tenth of its diagonal
+// beyond its extent): a bounded cut's tool.
+std::vector<Vec3> column(const occ::Solid& solid, const Vec3& a, const Vec3& b, const Vec3& n) {
+  const core::BoundingBox box = solid.bounding_box();
+  double lo = 1e300, hi = -1e300;
+  for (int c = 0; c < 8; ++c) {
+    const Vec3 corner((c & 1) ? box.max.x() : box.min.x(), (c & 2) ? box.max.y() : box.min.y(),
+                      (c & 4) ? box.max.z() : box.min.z());
+    lo = std::min(lo, n.dot(corner - a)), hi = std::max(hi, n.dot(corner - a));
+  }
+  lo -= 0.1 * solid.diagonal(), hi += 0.1 * solid.diagonal();
+  return {a + lo * n, b + lo * n, b + hi * n, a + hi * n};
+}
+
 }  // namespace
 
 FilletStrips fillet_strips(const occ::Solid& solid) {
@@ -160,7 +174,6 @@ FilletStrips fillet_strips(const occ::Solid& solid) {
     Fillet fl;
     if (fillet_of(solid, f, fl)) fillets.push_back(fl);
   }
-  const core::BoundingBox box = solid.bounding_box();
   const double tol = 1e-7 * solid.diagonal();
   std::vector<char> strip(fillets.size(), 0);
   std::vector<int> floor_side(fillets.size(), -1);
@@ -192,14 +205,6 @@ FilletStrips fillet_strips(const occ::Solid& solid) {
       if (!cross(floor_a.point, a.axis, floor_b.point, b.axis, inner) ||
           !cross(far_a, a.axis, far_b, b.axis, outer) || (outer - inner).norm() <= 1e3 * tol)
         continue;
-      // Along the floor's normal, a tenth of the diagonal beyond the solid's extent.
-      double lo = 1e300, hi = -1e300;
-      for (int c = 0; c < 8; ++c) {
-        const Vec3 corner((c & 1) ? box.max.x() : box.min.x(), (c & 2) ? box.max.y() : box.min.y(),
-                          (c & 4) ? box.max.z() : box.min.z());
-        lo = std::min(lo, n.dot(corner - inner)), hi = std::max(hi, n.dot(corner - inner));
-      }
-      lo -= 0.1 * solid.diagonal(), hi += 0.1 * solid.diagonal();
       StripPlane m;
       m.normal = (outer - inner).cross(n).normalized();
       m.offset = m.normal.dot(inner);
@@ -207,7 +212,7 @@ FilletStrips fillet_strips(const occ::Solid& solid) {
       const EdgeId e = common_edge(solid, a.face, b.face);
       if (e.valid()) m.edges = {e};
       m.kind = StripPlane::mitre;
-      m.quad = {inner + lo * n, outer + lo * n, outer + hi * n, inner + hi * n};
+      m.quad = column(solid, inner, outer, n);
       mitres.push_back(m);
       strip[i] = strip[j] = 1;
       floor_side[i] = fa, floor_side[j] = fb;
@@ -229,21 +234,6 @@ FilletStrips fillet_strips(const occ::Solid& solid) {
   std::vector<int> corners_of(fillets.size(), 0);
   for (const Corner& c : corners)
     for (int k : c.fillet) ++corners_of[std::size_t(k)];
-  auto extent = [&](const Vec3& n, const Vec3& at, double& lo, double& hi) {
-    lo = 1e300, hi = -1e300;
-    for (int c = 0; c < 8; ++c) {
-      const Vec3 corner((c & 1) ? box.max.x() : box.min.x(), (c & 2) ? box.max.y() : box.min.y(),
-                        (c & 4) ? box.max.z() : box.min.z());
-      lo = std::min(lo, n.dot(corner - at)), hi = std::max(hi, n.dot(corner - at));
-    }
-    lo -= 0.1 * solid.diagonal(), hi += 0.1 * solid.diagonal();
-  };
-  // The quad over segment a-b across the whole solid along n.
-  auto column = [&](const Vec3& a, const Vec3& b, const Vec3& n) {
-    double lo, hi;
-    extent(n, a, lo, hi);
-    return std::vector<Vec3>{a + lo * n, b + lo * n, b + hi * n, a + hi * n};
-  };
   for (std::size_t i = 0; i < fillets.size(); ++i) {
     if (strip[i] || corners_of[i] != 2) continue;
     const Fillet& f = fillets[i];
@@ -259,13 +249,13 @@ FilletStrips fillet_strips(const occ::Solid& solid) {
     const double shift = 2 * normal.dot(wall.point - floor.point);  // to the far plane
     out.fillets.push_back(f.face);
     out.planes.push_back(
-        {normal, normal.dot(a), f.face, {floor.edge}, StripPlane::across, column(a, b, n)});
+        {normal, normal.dot(a), f.face, {floor.edge}, StripPlane::across, column(solid, a, b, n)});
     out.planes.push_back({normal,
                           normal.dot(a) + shift,
                           f.face,
                           {wall.edge},
                           StripPlane::beyond,
-                          column(a + shift * normal, b + shift * normal, n)});
+                          column(solid, a + shift * normal, b + shift * normal, n)});
     for (FaceId g : {floor.plane, wall.plane})
       if (std::find(out.tangent_faces.begin(), out.tangent_faces.end(), g) ==
           out.tangent_faces.end())
@@ -295,7 +285,7 @@ FilletStrips fillet_strips(const occ::Solid& solid) {
                             c.face,
                             {c.profile[e]},
                             StripPlane::corner,
-                            column(inner, outer, c.axis)});
+                            column(solid, inner, outer, c.axis)});
     }
     out.fillets.push_back(c.face);
     out.fillets.push_back(c.wall_face);
