@@ -642,15 +642,18 @@ PlaneCutResult cut_at_fillet_strips(const occ::Solid& solid, const PlaneCutOptio
       !detail::concave_surfaces(solid, planes, cylinders, none.why_not))
     return none;
   const double tol = 1e-7 * solid.diagonal();
+  // The floors and walls the fillets touch: a point of each and its unit normal.
+  std::vector<std::pair<Vec3, Vec3>> touched;
+  for (FaceId f : strips.tangent_faces) {
+    const Vec3 p = solid.vertex_point(solid.edge_first_vertex(solid.face_wires(f)[0][0].edge));
+    touched.push_back({p, solid.face_normal(f, p).normalized()});
+  }
   std::vector<Plane> with;
   for (const Plane& pl : planes) {
-    bool tangent = false;  // the plane of a floor or a wall a fillet touches
-    for (FaceId f : strips.tangent_faces) {
-      const Vec3 p = solid.vertex_point(solid.edge_first_vertex(solid.face_wires(f)[0][0].edge));
-      tangent =
-          tangent || (std::abs(pl.normal.dot(solid.face_normal(f, p).normalized())) > 1 - 1e-9 &&
-                      std::abs(pl.normal.dot(p) - pl.offset) <= 1e3 * tol);
-    }
+    const bool tangent = std::any_of(touched.begin(), touched.end(), [&](const auto& t) {
+      return std::abs(pl.normal.dot(t.second)) > 1 - 1e-9 &&
+             std::abs(pl.normal.dot(t.first) - pl.offset) <= 1e3 * tol;
+    });
     if (!tangent) with.push_back(pl);
   }
   for (const detail::StripPlane& sp : strips.planes) {
@@ -673,13 +676,13 @@ PlaneCutResult cut_at_fillet_strips(const occ::Solid& solid, const PlaneCutOptio
   }
   PlaneCutOptions o = options;
   o.time_limit = seconds;
+  // Each fillet's strip: between its plane across the foot and its plane beyond the wall.
   std::vector<Band> bands;
-  for (std::size_t k = 0; k + 1 < strips.planes.size(); ++k)
-    if (strips.planes[k].kind == detail::StripPlane::across &&
-        strips.planes[k + 1].kind == detail::StripPlane::beyond) {
-      const double a = strips.planes[k].offset, b = strips.planes[k + 1].offset;
-      bands.push_back({strips.planes[k].normal, std::min(a, b), std::max(a, b)});
-    }
+  for (const detail::StripPlane& a : strips.planes)
+    for (const detail::StripPlane& b : strips.planes)
+      if (a.kind == detail::StripPlane::across && b.kind == detail::StripPlane::beyond &&
+          a.face == b.face)
+        bands.push_back({a.normal, std::min(a.offset, b.offset), std::max(a.offset, b.offset)});
   return cut_along(solid, std::move(with), std::move(cylinders), o, seconds, progress, {}, {},
                    bands);
 }

@@ -140,7 +140,6 @@ struct Plan {
   // Per source loop edge: the intervals of each target edge across (one, or a chain's).
   std::vector<std::vector<std::vector<int>>> target_counts;
   std::vector<std::vector<Vec3>> source_loops;  // source boundary nodes per loop
-  std::vector<int> edge_intervals;              // per edge id where the plan assigned them (stacks)
   QuadFaceMesh source_mesh;
   std::vector<core::Diagnostic> diagnostics;
 };
@@ -309,64 +308,6 @@ bool has_stacks(const Topology& t) {
   return false;
 }
 
-// Intervals per edge id for a sweep whose linking sides are stacks of faces: every linking
-// side the same count (the layers), each source edge the count of its target chain and of
-// each separator above it, each separator on one layer (the linking edges below it on both
-// sides sum to the same), each source loop even (at least 4, or 6 with holes), each edge of a
-// chain at least one. False with why where no counts satisfy them.
-bool stack_intervals(const Solid& solid, const Topology& t, const SweepOptions& options,
-                     std::vector<int>& intervals, std::string& why) {
-  IntervalProblem ip;
-  std::map<int, int> curve;  // edge id -> curve
-  auto cv = [&](EdgeId e) {
-    auto [it, added] = curve.emplace(e.value(), int(ip.lengths.size()));
-    if (added)
-      ip.add_curve(solid.edge_length(e), name(e),
-                   detail::edge_segments(solid, e, options.size, options.size_field));
-    return it->second;
-  };
-  auto curves = [&](const std::vector<Directed>& chain, std::size_t n) {
-    std::vector<int> out;
-    for (std::size_t c = 0; c < n; ++c) out.push_back(cv(chain[c].edge));
-    if (chain.size() > 1)
-      for (int k : out) ip.at_least.push_back({{k}, 1, "an edge of a chain"});
-    return out;
-  };
-  std::vector<int> layers;
-  for (const auto& loop : t.loops) {
-    std::vector<int> sources;
-    for (const Link& l : loop) {
-      const int src = cv(l.source.edge);
-      sources.push_back(src);
-      const std::vector<int> c0 = curves(l.col0, l.col0.size()), c1 = curves(l.col1, l.col1.size());
-      if (layers.empty()) layers = c0;
-      ip.equal.push_back({layers, c0, "the layers"});
-      ip.equal.push_back({layers, c1, "the layers"});
-      ip.equal.push_back({{src}, curves(l.target, l.target.size()), "across a linking face"});
-      for (std::size_t j = 0; j < l.separators.size(); ++j) {
-        ip.equal.push_back(
-            {{src}, curves(l.separators[j], l.separators[j].size()), "across a face of a stack"});
-        ip.equal.push_back({curves(l.col0, std::size_t(l.below0[j])),
-                            curves(l.col1, std::size_t(l.below1[j])), "a separator on a layer"});
-      }
-    }
-    ip.even.push_back({sources, "a source loop"});
-    ip.at_least.push_back({sources, t.loops.size() == 1 ? 4 : 6, "a source loop"});
-  }
-  IntervalOptions io;
-  io.size = options.size;
-  io.max_intervals = options.max_intervals;
-  const IntervalResult r = assign_intervals(ip, io);
-  if (!r.ok()) {
-    why = r.diagnostics.empty() ? "no intervals fit the stacks of linking faces"
-                                : r.diagnostics.front().message;
-    return false;
-  }
-  intervals.assign(std::size_t(solid.num_edges()) + 1, 0);
-  for (const auto& [edge, c] : curve) intervals[std::size_t(edge)] = r.intervals[std::size_t(c)];
-  return true;
-}
-
 Plan plan(const Solid& solid, const SweepOptions& options) {
   options.validate();
   Plan p;
@@ -387,15 +328,15 @@ Plan plan(const Solid& solid, const SweepOptions& options) {
       return p;
     };
     if (!options.edge_intervals.empty()) return plan_given(solid, options, std::move(p));
-    if (has_stacks(t)) {  // the layers of its separators: one interval assignment
-      SweepOptions given = options;
-      std::string why;
-      if (!stack_intervals(solid, t, options, given.edge_intervals, why)) {
-        p.diagnostics.push_back(core::make_error("intervals_infeasible", why, {name(t.source)}));
-        return p;
-      }
-      p.edge_intervals = given.edge_intervals;
-      return plan_given(solid, given, std::move(p));
+    if (has_stacks(t)) {  // its separators' layers come from its neighbours' intervals
+      p.diagnostics.push_back(core::make_error(
+          "intervals_needed",
+          "The sweep from " + name(t.source) + " to " + name(t.target) +
+              " has linking sides that are stacks of faces (a neighbour's imprints): it is "
+              "meshed with the intervals assigned with its neighbours (mesh_sub_volumes), "
+              "not on its own.",
+          {name(t.source)}));
+      return p;
     }
     // Layers: with local sizes, the finest count a linking edge asks for (a sweep has one
     // layer count for all).
@@ -577,9 +518,6 @@ SweepResult sweep(const core::MeshDomain& solid, const SweepOptions& options,
   Plan p = plan(solid, options);  // throws std::invalid_argument on bad options
   result.diagnostics = std::move(p.diagnostics);
   if (!p.ok) return result;
-  // The counts along chains: the plan's own where it assigned them.
-  SweepOptions planned = options;
-  if (!p.edge_intervals.empty()) planned.edge_intervals = p.edge_intervals;
   const Topology& t = p.topo;
   const QuadFaceMesh& sm = p.source_mesh;
   result.source = t.source;
@@ -620,10 +558,10 @@ SweepResult sweep(const core::MeshDomain& solid, const SweepOptions& options,
         std::vector<NodeClass> ct, c0_class, c1_class;
         const auto rs = read_edge(solid, link.source, n, f, g),
                    rt = read_chain(solid, link.target, p.target_counts[l][e], f, g, ct);
-        const auto c0 = read_chain(solid, link.col0, chain_counts(solid, link.col0, K, planned), f,
-                                   g, c0_class),
-                   c1 = read_chain(solid, link.col1, chain_counts(solid, link.col1, K, planned), f,
-                                   g, c1_class);
+        const std::vector<int> counts0 = chain_counts(solid, link.col0, K, options),
+                               counts1 = chain_counts(solid, link.col1, K, options);
+        const auto c0 = read_chain(solid, link.col0, counts0, f, g, c0_class),
+                   c1 = read_chain(solid, link.col1, counts1, f, g, c1_class);
         if (c0.size() != std::size_t(K) + 1 || c1.size() != std::size_t(K) + 1)
           throw std::logic_error("linking chain shorter than its edges");
         // The rows between which each face of the stack is interpolated: the source edge's,
@@ -631,22 +569,23 @@ SweepResult sweep(const core::MeshDomain& solid, const SweepOptions& options,
         std::vector<int> row_k{0};
         std::vector<std::vector<Vec3>> rows{rs};
         std::vector<std::vector<NodeClass>> row_class{{}};
-        auto layer_of = [&](const std::vector<Directed>& chain, int below) {
-          const std::vector<int> counts = chain_counts(solid, chain, K, planned);
+        std::vector<char> curved{!solid.face_is_planar(link.face)};  // per face of the stack
+        auto layer_of = [](const std::vector<int>& counts, int below) {
           int k = 0;
           for (int c = 0; c < below; ++c) k += counts[std::size_t(c)];
           return k;
         };
         for (std::size_t sj = 0; sj < link.separators.size(); ++sj) {
-          const int k = layer_of(link.col0, link.below0[sj]);
-          if (k != layer_of(link.col1, link.below1[sj]) || k <= row_k.back() || k >= K)
+          const int k = layer_of(counts0, link.below0[sj]);
+          if (k != layer_of(counts1, link.below1[sj]) || k <= row_k.back() || k >= K)
             throw std::logic_error("a separator of a stack of linking faces lies on no layer");
           std::vector<NodeClass> cls;
           rows.push_back(read_chain(solid, link.separators[sj],
-                                    chain_counts(solid, link.separators[sj], n, planned), f, g,
+                                    chain_counts(solid, link.separators[sj], n, options), f, g,
                                     cls));
           row_k.push_back(k);
           row_class.push_back(std::move(cls));
+          curved.push_back(!solid.face_is_planar(link.stack[sj]));
         }
         row_k.push_back(K);
         rows.push_back(rt);
@@ -676,7 +615,7 @@ SweepResult sweep(const core::MeshDomain& solid, const SweepOptions& options,
               q = (1 - s) * c0[k] + s * c1[k] + (1 - w) * ra[m] + w * rb[m] -
                   ((1 - s) * (1 - w) * ra[0] + s * (1 - w) * ra[n] + (1 - s) * w * rb[0] +
                    s * w * rb[n]);
-              if (!solid.face_is_planar(face)) q = solid.project_to_face(face, q);
+              if (curved[seg]) q = solid.project_to_face(face, q);
               c = NodeClass::on(face);
             }
             P[id(k, j)] = q;

@@ -64,15 +64,6 @@ bool fillet_of(const occ::Solid& s, FaceId f, Fillet& out) {
   return found == 2;
 }
 
-// Whether two faces share an edge.
-bool touch(const occ::Solid& s, FaceId a, FaceId b) {
-  for (const auto& w : s.face_wires(a))
-    for (const core::OrientedEdge& oe : w)
-      for (FaceId g : s.edge_faces(oe.edge))
-        if (g == b) return true;
-  return false;
-}
-
 // The edge two faces share (invalid if none).
 EdgeId common_edge(const occ::Solid& s, FaceId a, FaceId b) {
   for (const auto& w : s.face_wires(a))
@@ -181,8 +172,8 @@ FilletStrips fillet_strips(const occ::Solid& solid) {
   for (std::size_t i = 0; i < fillets.size(); ++i)
     for (std::size_t j = i + 1; j < fillets.size(); ++j) {
       const Fillet &a = fillets[i], &b = fillets[j];
-      if (!touch(solid, a.face, b.face) || parallel(a.axis, b.axis) ||
-          std::abs(a.radius - b.radius) > 1e3 * tol)
+      const EdgeId mitre = common_edge(solid, a.face, b.face);
+      if (!mitre.valid() || parallel(a.axis, b.axis) || std::abs(a.radius - b.radius) > 1e3 * tol)
         continue;
       // The floor: the planar face both are tangent to; the walls at right angles to it.
       int fa = -1, fb = -1;
@@ -209,8 +200,7 @@ FilletStrips fillet_strips(const occ::Solid& solid) {
       m.normal = (outer - inner).cross(n).normalized();
       m.offset = m.normal.dot(inner);
       m.face = a.face;
-      const EdgeId e = common_edge(solid, a.face, b.face);
-      if (e.valid()) m.edges = {e};
+      m.edges = {mitre};
       m.kind = StripPlane::mitre;
       m.quad = column(solid, inner, outer, n);
       mitres.push_back(m);

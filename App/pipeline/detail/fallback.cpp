@@ -451,9 +451,9 @@ bool fallback(const occ::Solid& solid, const MeshOptions& options, double size,
     result.mesh = std::move(g.mesh);
     result.absorbed = std::move(g.absorbed);
     // The features it could not capture are a warning of their own (features_not_captured).
-    const bool all_captured = std::none_of(
-        g.diagnostics.begin(), g.diagnostics.end(),
-        [](const core::Diagnostic& d) { return d.code == "features_not_captured"; });
+    const bool all_captured =
+        std::none_of(g.diagnostics.begin(), g.diagnostics.end(),
+                     [](const core::Diagnostic& d) { return d.code == "features_not_captured"; });
     result.diagnostics.push_back(core::make_warning(
         "fallback", why + kMeshedByTheGrid + " (core grid, one pillow layer to the CAD, " +
                         (all_captured ? "features captured"
