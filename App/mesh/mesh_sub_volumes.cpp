@@ -16,6 +16,8 @@
 #include "mesh/assemble.h"
 #include "mesh/detail/revolved_part.h"
 #include "mesh/detail/sizing.h"
+#include "mesh/detail/sub_volume_part.h"
+#include "mesh/detail/sweep_orientation.h"
 #include "mesh/interval_assignment.h"
 #include "mesh/map_block.h"
 #include "mesh/multisweep.h"
@@ -46,56 +48,8 @@ std::string sub_volume_name(int k) {
   return "Sub-volume " + std::to_string(k + 1);
 }
 
-// One sub-volume: its solid, its scheme's structure, and its edge ids in `pieces`.
-struct Part {
-  explicit Part(occ::Solid s) : solid(std::move(s)) {}
-  occ::Solid solid;
-  std::array<std::vector<EdgeId>, 3> block;  // non-empty: mapped block
-  SweepStructure sweep;                      // else: sweep
-  bool multisweep = false;                   // else: a multisweep (prismatic part)
-  bool revolve = false;                      // else: a solid of revolution
-  core::Vec3 origin = core::Vec3::Zero(), axis = core::Vec3::UnitZ();  // its axis
-  std::vector<double> turns;  // by part edge id: detail::turns_about_axis (a revolve's)
-  std::shared_ptr<const occ::PrismaticStructure> prismatic;  // its structure
-  std::vector<bool> shared_edge;   // by part edge id: a neighbour has it too
-  std::vector<int> shared_faces;   // part face ids shared with a neighbour
-  std::vector<int> avoid_sources;  // part face ids its sweep avoids as source
-  bool imprinted = false;          // its sweep's linking sides may carry imprints (sweep.h)
-  std::vector<int> whole_face;     // by part face id
-  std::vector<int> whole_edge;     // by part edge id
-  bool is_block() const { return !block[0].empty(); }
-  bool is_sweep() const { return !is_block() && sweep.source.valid(); }
-  bool has_scheme() const { return is_block() || sweep.source.valid() || multisweep || revolve; }
-  const char* scheme() const {
-    return is_block() ? "map" : is_sweep() ? "sweep" : revolve ? "revolve" : "multisweep";
-  }
-};
-
-// The sweep of `p` the other way: its target taken as source, every other face avoided as one
-// (sweep_structure); `ok` where its structure allows that.
-struct ReversedSweep {
-  bool ok = false;
-  SweepStructure sweep;
-  std::vector<int> avoid_sources;
-};
-ReversedSweep reversed(const Part& p) {
-  ReversedSweep r;
-  for (core::FaceId f : p.solid.faces())
-    if (f != p.sweep.target) r.avoid_sources.push_back(f.value());
-  r.sweep = sweep_structure(p.solid, r.avoid_sources, p.imprinted);
-  r.ok = r.sweep.source == p.sweep.target;
-  return r;
-}
-void take(Part& p, ReversedSweep r) {
-  p.sweep = std::move(r.sweep);
-  p.avoid_sources = std::move(r.avoid_sources);
-}
-
-// A face the quad mesher meshes freely (not one loop of four edges: a hole in it).
-bool free_face(const occ::Solid& s, core::FaceId f) {
-  const auto wires = s.face_wires(f);
-  return wires.size() != 1 || wires[0].size() != 4;
-}
+using detail::free_face;
+using detail::Part;
 
 // A sub-volume revolved (detail/revolved_part.h) and the options it is revolved with.
 detail::RevolvedPart revolved(const Part& p) {
@@ -520,94 +474,8 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
     result.stats.types.push_back(own_ends ? "Vs" : "Ve");
     parts.push_back(std::move(p));
   }
-  // Two sweeps meeting at a face mesh it alike only when both take it as source (each
-  // meshes its source; a target gets the projection of the far end). Where one has that
-  // face as its source although it avoids shared faces (its other end cannot be a source),
-  // the neighbour takes it as its source too, when it can.
-  for (int k = 0; k < n; ++k) {
-    const Part& a = parts[k];
-    if (!a.is_sweep()) continue;
-    const int face = a.whole_face[a.sweep.source.value()];
-    if (std::find(a.shared_faces.begin(), a.shared_faces.end(), a.sweep.source.value()) ==
-        a.shared_faces.end())
-      continue;
-    for (int j = 0; j < n; ++j) {
-      Part& b = parts[j];
-      if (j == k || !b.is_sweep() || b.whole_face[b.sweep.target.value()] != face) continue;
-      if (ReversedSweep r = reversed(b); r.ok) take(b, std::move(r));
-    }
-  }
-
-  // Two sweeps whose targets are one shared face meshed freely (not four-sided: a hole in
-  // it) each put the far end's nodes there, which do not match: both take it as their
-  // source instead, when both can (a countersunk hole's block and slab, cut where the cone
-  // meets the cylinder: both swept towards the cut).
-  for (int k = 0; k < n; ++k)
-    for (int j = k + 1; j < n; ++j) {
-      Part &a = parts[k], &b = parts[j];
-      if (!a.is_sweep() || !b.is_sweep() ||
-          a.whole_face[a.sweep.target.value()] != b.whole_face[b.sweep.target.value()] ||
-          !free_face(a.solid, a.sweep.target))
-        continue;
-      ReversedSweep ra = reversed(a), rb = reversed(b);
-      if (!ra.ok || !rb.ok) continue;
-      take(a, std::move(ra));
-      take(b, std::move(rb));
-    }
-
-  // Sweeps meeting two by two at faces meshed freely, in a row or a ring, where two still
-  // have one such face as their target (the strips around a pocket's floor fillets, ended by
-  // mitre planes at its corners: a ring of four): from one of them on, each after it takes
-  // the face it shares with the one before as its source, so that every face is meshed once
-  // and carried on (a ring's last target is its first source: given to it, below).
-  {
-    auto face = [&](const Part& p, core::FaceId f) { return p.whole_face[f.value()]; };
-    std::vector<char> done(n, 0);
-    for (int k = 0; k < n; ++k) {
-      if (!parts[k].is_sweep() || done[k] || !free_face(parts[k].solid, parts[k].sweep.target))
-        continue;
-      bool twice = false;
-      for (int j = 0; j < n && !twice; ++j)
-        twice = j != k && parts[j].is_sweep() &&
-                face(parts[j], parts[j].sweep.target) == face(parts[k], parts[k].sweep.target);
-      if (!twice) continue;
-      done[k] = 1;
-      for (int cur = k;;) {
-        const int shared = face(parts[cur], parts[cur].sweep.target);
-        if (!free_face(parts[cur].solid, parts[cur].sweep.target)) break;
-        int next = -1;
-        for (int j = 0; j < n && next < 0; ++j)
-          if (!done[j] && parts[j].is_sweep() &&
-              (face(parts[j], parts[j].sweep.target) == shared ||
-               face(parts[j], parts[j].sweep.source) == shared))
-            next = j;
-        if (next < 0) break;
-        if (face(parts[next], parts[next].sweep.source) != shared) {
-          ReversedSweep r = reversed(parts[next]);
-          if (!r.ok) break;
-          take(parts[next], std::move(r));
-        }
-        done[next] = 1;
-        cur = next;
-      }
-    }
-  }
-
-  // A sweep whose target is a face a multisweep shares, meshed freely: the multisweep meshes
-  // that face as a cap, the sweep would put the far end's nodes there; it takes the face as
-  // its source instead, when it can (a pocket with drafted walls cut at its floor: the slab
-  // with the tapered hole above the block).
-  for (Part& b : parts) {
-    if (!b.is_sweep() || !free_face(b.solid, b.sweep.target)) continue;
-    const int face = b.whole_face[b.sweep.target.value()];
-    bool with_multisweep = false;
-    for (const Part& a : parts)
-      if (a.multisweep)
-        for (std::size_t f = 1; f < a.whole_face.size(); ++f)
-          with_multisweep = with_multisweep || a.whole_face[f] == face;
-    if (!with_multisweep) continue;
-    if (ReversedSweep r = reversed(b); r.ok) take(b, std::move(r));
-  }
+  // Which way each sweep goes, so that the faces they share are meshed once.
+  detail::orient_sweeps(parts);
 
   // Edges a neighbour has too (their counts are given to a multisweep).
   {
