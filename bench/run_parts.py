@@ -285,6 +285,12 @@ def build_parts(work):
                                                 if e.BoundBox.ZLength > 7.9 and e.BoundBox.ZMin > 9.9]))
     parts["plate with a rounded rectangular boss, its root filleted"] = rounded_boss.makeFillet(
         2, floor_edges(rounded_boss, 10, 18, 42, 14, 26))
+    # An L-shaped pocket (two boxes fused, refined), its floor edges filleted: six strips, the
+    # two at the L's inner corner meeting at a convex mitre.
+    ell = refined(box(60, 50, 15).cut(refined(box(30, 10, 9, (10, 10, 7)).fuse(
+        box(10, 30, 9, (10, 10, 7))))))
+    parts["plate with an L-shaped pocket, its floor edges filleted"] = ell.makeFillet(
+        2, floor_edges(ell, 7, 10, 40, 10, 40))
     out = []
     for k, (name, shape) in enumerate(parts.items()):
         solid = refined(shape)

@@ -353,10 +353,11 @@ bool on_a_hole(const occ::Solid& piece, const std::vector<occ::CutCylinder>& hol
 // Whether every vertex of the piece lies within cylinder c (a piece of the boss a cylinder
 // through a fillet's foot cut out of its plate).
 // The strip between two parallel planes normal . x = lo and = hi (a fillet's strip, between the
-// plane across its foot and the plane beyond its wall).
+// plane across its foot and the plane beyond its wall); `along`: the fillet's box.
 struct Band {
   Vec3 normal;
   double lo = 0, hi = 0;
+  core::BoundingBox along;
 };
 
 // Whether every vertex of the piece lies in the band.
@@ -366,6 +367,15 @@ bool within(const occ::Solid& piece, const Band& b) {
     const double h = b.normal.dot(piece.vertex_point(v));
     if (h < b.lo - tol || h > b.hi + tol) return false;
   }
+  return true;
+}
+
+// Whether the piece's box meets the band's fillet's.
+bool beside_fillet(const occ::Solid& piece, const Band& b) {
+  const double tol = 1e-6 * piece.diagonal();
+  const core::BoundingBox box = piece.bounding_box();
+  for (int i = 0; i < 3; ++i)
+    if (box.max[i] < b.along.min[i] - tol || box.min[i] > b.along.max[i] + tol) return false;
   return true;
 }
 
@@ -543,9 +553,20 @@ PlaneCutResult cut_along(const occ::Solid& solid, std::vector<Plane> planes,
   if (!bands.empty()) {
     std::vector<std::vector<char>> in(pieces.size(), std::vector<char>(bands.size(), 0));
     std::vector<char> any(pieces.size(), 0);
-    for (std::size_t k = 0; k < pieces.size(); ++k)
+    for (std::size_t k = 0; k < pieces.size(); ++k) {
+      int bands_in = 0, beside = 0;
       for (std::size_t b = 0; b < bands.size(); ++b)
-        any[k] |= in[k][b] = within(pieces[k], bands[b]);
+        if ((in[k][b] = within(pieces[k], bands[b]))) {
+          ++bands_in;
+          beside += beside_fillet(pieces[k], bands[b]);
+        }
+      // In two strips' planes, beside one's fillet only (an L-shaped pocket's long side where
+      // the planes of the strip at its inner corner cross it): in that strip only.
+      if (bands_in >= 2 && beside > 0)
+        for (std::size_t b = 0; b < bands.size(); ++b)
+          in[k][b] = in[k][b] && beside_fillet(pieces[k], bands[b]);
+      for (std::size_t b = 0; b < bands.size(); ++b) any[k] |= in[k][b];
+    }
     for (std::size_t k = 0; k < pieces.size(); ++k)
       for (std::size_t m = 0; m < pieces.size(); ++m) {
         bool common = false;
@@ -682,7 +703,8 @@ PlaneCutResult cut_at_fillet_strips(const occ::Solid& solid, const PlaneCutOptio
     for (const detail::StripPlane& b : strips.planes)
       if (a.kind == detail::StripPlane::across && b.kind == detail::StripPlane::beyond &&
           a.face == b.face)
-        bands.push_back({a.normal, std::min(a.offset, b.offset), std::max(a.offset, b.offset)});
+        bands.push_back({a.normal, std::min(a.offset, b.offset), std::max(a.offset, b.offset),
+                         solid.face_bounding_box(a.face)});
   return cut_along(solid, std::move(with), std::move(cylinders), o, seconds, progress, {}, {},
                    bands);
 }

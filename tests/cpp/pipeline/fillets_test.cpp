@@ -282,5 +282,23 @@ TEST(GenerateMesh, RoundedCornersTurnTheFilletsStripsOnSweptQuarterRings) {
   expect_decomposed(b, "sweep", 0, 0.45, "turning round 4 rounded corners");
 }
 
+// An L-shaped pocket (two boxes fused and refined, cut from a plate 60 x 50 x 15), its six floor
+// edges filleted with radius 2 (tests/data/l_pocket_floor_fillet.step, made by
+// bench/run_parts.py): six strips, the two at the L's inner corner meeting at a convex mitre.
+// The inner corner's strips' planes run through the whole plate and cross the long sides'
+// strips; the piece of a long side's strip between them counted as in both strips and was
+// merged with the blocks beside it into a multisweep, and the long side's two halves, swept
+// from the caps of two such multisweeps, did not match at their mitre: the grid's, 5,280
+// hexahedra. A piece in two strips' planes but beside one's fillet only is in that strip only.
+TEST(GenerateMesh, AnLShapedPocketsStripsMeetAtItsInnerCornerToo) {
+  const MeshResult r = mesh_file("l_pocket_floor_fillet.step");
+  ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
+  expect_decomposed(r, "sweep", 0, 0.45,
+                    "the strips of Face3, Face6, Face9, Face16, Face17 and Face18 (across their "
+                    "feet and as far beyond their walls), ended at 6 mitre planes");
+  EXPECT_EQ(r.stats.scheme.find("multisweep"), std::string::npos) << r.stats.scheme;
+  EXPECT_LT(r.mesh.num_hexes(), 1500u);
+}
+
 }  // namespace
 }  // namespace vorohex::pipeline
