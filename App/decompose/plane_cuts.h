@@ -70,6 +70,12 @@ struct PlaneCutResult {
   // Each a block, a sweep or prismatic once glued to the others; when not ok but the solid
   // was cut: the pieces as cut, for inspection (vorohex decompose --plane-cuts).
   std::vector<occ::Solid> pieces;
+  // When ok: the solid split afresh at the faces the pieces share only, the same pieces
+  // without the traces of the cuts merged back (their edges and vertices, seams where a
+  // cylinder was unified round) and without unifying the solid's own faces; empty where
+  // that split does not give the same pieces, each with its scheme. The mesher meshes both
+  // where the first meshes poorly and keeps the better.
+  std::vector<occ::Solid> afresh;
   int planes = 0;     // distinct cut planes used
   int cylinders = 0;  // distinct cut cylinders used
   int pieces_before_merge = 0;

@@ -333,6 +333,51 @@ SplitResult split_solid(const Solid& solid, const std::vector<std::vector<Vec3>>
   return out;
 }
 
+SplitResult split_at_interfaces(const Solid& solid, const Solid& glued, double tolerance,
+                                double time_limit) {
+  SplitResult out;
+  try {
+    TopTools_ListOfShape args, tools;
+    args.Append(solid.impl().solid);
+    const Solid::Impl& g = glued.impl();
+    for (int f = 1; f <= g.faces.Extent(); ++f)
+      if (g.interface_face[std::size_t(f)]) tools.Append(g.faces(f));
+    if (tools.IsEmpty()) {
+      out.diagnostics.push_back(core::make_error("split_failed", "the pieces share no face"));
+      return out;
+    }
+    BRepAlgoAPI_Splitter splitter;
+    splitter.SetArguments(args);
+    splitter.SetTools(tools);
+    splitter.SetFuzzyValue(0.01 * tolerance);
+    splitter.SetNonDestructive(true);
+    Handle(Deadline) deadline = time_limit > 0 ? new Deadline(time_limit) : nullptr;
+    splitter.Build(deadline.IsNull() ? Message_ProgressRange() : deadline->Start());
+    if (!deadline.IsNull() && deadline->UserBreak()) {
+      out.timed_out = true;
+      out.diagnostics.push_back(core::make_error("split_timeout",
+                                                 "OCCT did not split the solid at the pieces' "
+                                                 "common faces in time"));
+      return out;
+    }
+    if (!splitter.IsDone()) {
+      out.diagnostics.push_back(core::make_error(
+          "split_failed", "OCCT could not split the solid at the pieces' common faces"));
+      return out;
+    }
+    for (TopExp_Explorer ex(splitter.Shape(), TopAbs_SOLID); ex.More(); ex.Next())
+      out.pieces.push_back(make_solid(
+          without_internal_faces(TopoDS::Solid(ex.Current()), &out.dropped_internal_faces)));
+    out.ok = !out.pieces.empty();
+  } catch (const Standard_Failure& e) {
+    out.pieces.clear();
+    out.diagnostics.push_back(core::make_error(
+        "split_failed", std::string("OCCT failed splitting the solid: ") +
+                            (e.GetMessageString() ? e.GetMessageString() : "unknown")));
+  }
+  return out;
+}
+
 bool is_closed(const Solid& solid) {
   try {
     int shells = 0;

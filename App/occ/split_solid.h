@@ -51,6 +51,14 @@ SplitResult split_solid(const Solid& solid, const std::vector<std::vector<Vec3>>
                         const std::vector<CutCylinder>& cylinders, double tolerance,
                         double time_limit = 0);
 
+// `solid` split only at the faces the glued pieces of a split of it share (`glued`, their
+// union: occ::glue_solids), without unifying: its own faces stay as they are except where
+// those faces end on them. The pieces of a cut merged back leave the traces of the cuts
+// they merged across (edges, vertices; a cylinder unified round into a closed face has its
+// seam where two pieces met); split afresh at the common faces only, none is left.
+SplitResult split_at_interfaces(const Solid& solid, const Solid& glued, double tolerance,
+                                double time_limit = 0);
+
 // The cylinder a face lies on (radius, axis through `origin`), if it is cylindrical.
 bool face_cylinder(const Solid& solid, FaceId f, CutCylinder* cylinder);
 

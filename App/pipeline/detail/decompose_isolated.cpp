@@ -35,13 +35,22 @@ double voronoi_seconds(double time_limit, double elapsed, DecompositionMethods m
                                                   : std::min(left, voronoi_share(time_limit));
 }
 
+// Between the sub-volumes' BREP compound and the compound of the same split afresh.
+const char* const kAfresh = "\n@afresh@\n";
+
 // "<before merge>\n<method>[\t<surfaces left out>\t<surfaces used>\t<knife edges: 0 or 1>]\n"
-// then the sub-volumes as one BREP compound.
+// then the sub-volumes as one BREP compound, and after kAfresh the same split afresh
+// (decompose::PlaneCutResult::afresh) where there is one.
 std::string to_text(int before_merge, const char* method,
-                    const std::vector<const occ::Solid*>& solids) {
+                    const std::vector<const occ::Solid*>& solids,
+                    const std::vector<const occ::Solid*>& afresh = {}) {
   const std::string brep = occ::compound_brep_string(solids);
   if (brep.empty()) throw std::runtime_error("its sub-volumes could not be written");
-  return std::to_string(before_merge) + "\n" + method + "\n" + brep;
+  std::string text = std::to_string(before_merge) + "\n" + method + "\n" + brep;
+  if (!afresh.empty())
+    if (const std::string again = occ::compound_brep_string(afresh); !again.empty())
+      text += kAfresh + again;
+  return text;
 }
 
 // Runs in the child: the Voronoi decomposition, or throws with the reason. `seconds`, what
@@ -117,13 +126,14 @@ std::string decompose_to_text(const occ::Solid& solid, const MeshOptions& mesh_o
     options.time_limit = std::max(1.0, options.tangent_planes ? time_limit : 0.5 * time_limit);
     const decompose::PlaneCutResult cut = decompose::cut_as_the_mesher(solid, options, reports);
     if (cut.ok) {
-      std::vector<const occ::Solid*> solids;
+      std::vector<const occ::Solid*> solids, afresh;
       for (const occ::Solid& s : cut.pieces) solids.push_back(&s);
+      for (const occ::Solid& s : cut.afresh) afresh.push_back(&s);
       const std::string method = "plane cuts\t" + decompose::left_out_text(cut) + "\t" +
                                  decompose::used_surfaces_text(cut) + "\t" +
                                  (cut.knife_edges ? "1" : "0") + "\t" +
                                  decompose::cut_kind_text(cut);
-      return to_text(cut.pieces_before_merge, method.c_str(), solids);
+      return to_text(cut.pieces_before_merge, method.c_str(), solids, afresh);
     }
     why =
         "cutting along the faces at its concave edges did not give sub-volumes that all have "
@@ -241,13 +251,21 @@ IsolatedDecomposition decompose_isolated(const occ::Solid& solid, const MeshOpti
   }
   occ::ReadOptions ro;
   ro.several_solids = true;
-  occ::ReadResult r = occ::read_solid_from_brep_string(run.data.substr(eol2 + 1), ro);
+  const std::size_t afresh = run.data.find(kAfresh, eol2 + 1);
+  occ::ReadResult r = occ::read_solid_from_brep_string(
+      run.data.substr(eol2 + 1, afresh == std::string::npos ? afresh : afresh - eol2 - 1), ro);
   if (!r.ok()) {
     std::string m = r.diagnostics.empty() ? std::string() : r.diagnostics.front().message;
     out.why_not = "its sub-volumes could not be glued (" + m + ")";
     return out;
   }
   out.pieces = std::move(r.solid);
+  if (afresh != std::string::npos) {
+    occ::ReadResult again = occ::read_solid_from_brep_string(
+        run.data.substr(afresh + std::char_traits<char>::length(kAfresh)), ro);
+    if (again.ok() && again.solid->num_solids() == out.pieces->num_solids())
+      out.afresh = std::move(again.solid);
+  }
   return out;
 }
 

@@ -18,6 +18,8 @@ namespace vorohex::pipeline::detail {
 
 struct IsolatedDecomposition {
   std::unique_ptr<occ::Solid> pieces;  // glued sub-volumes (null: none usable)
+  std::unique_ptr<occ::Solid> afresh;  // plane cuts: the same split afresh, glued (or null;
+                                       // decompose::PlaneCutResult::afresh)
   int before_merge = 0;                // sub-volumes of the first split
   std::string method;                  // "voronoi", or "plane cuts" (decompose/plane_cuts.h)
   std::string left_out;                // plane cuts: the surfaces left out ("the cylinder

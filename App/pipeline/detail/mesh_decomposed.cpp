@@ -42,6 +42,9 @@ std::size_t boundary_nodes_inside(const core::HexMesh& mesh) {
   return n;
 }
 
+// Below this minimum scaled Jacobian before smoothing, the pieces split afresh are meshed too.
+constexpr double kPoorDecomposition = 0.2;
+
 // The decomposition's sub-volumes meshed into one conforming mesh, put back onto the
 // solid's own topology: true when result.mesh holds it; else false with `why_not`, or a
 // `cancelled` error.
@@ -55,39 +58,68 @@ bool mesh_pieces(const occ::Solid& solid, const IsolatedDecomposition& d,
   o.max_hexes = options.max_hexes;
   o.multisweep = std::find(options.schemes.begin(), options.schemes.end(), "multisweep") !=
                  options.schemes.end();
-  mesh::SubVolumeMeshResult m = mesh::mesh_sub_volumes(*d.pieces, o, progress);
   const int n = d.pieces->num_solids();
-  if (!m.ok) {
+  // One set of glued pieces meshed: the mesh, its minimum before smoothing, or why not.
+  struct Attempt {
+    mesh::SubVolumeMeshResult m;
+    double min = -1;
+    std::string why_not;
+  };
+  auto attempt = [&](const occ::Solid& pieces) {
+    Attempt a;
+    a.m = mesh::mesh_sub_volumes(pieces, o, progress);
+    if (!a.m.ok) {
+      std::string errors;
+      for (const core::Diagnostic& diag : a.m.diagnostics)
+        if (diag.severity == core::Severity::error) {
+          std::string msg = diag.message;
+          if (!msg.empty() && msg.back() == '.') msg.pop_back();
+          errors += (errors.empty() ? "" : "; ") + msg;
+        }
+      a.why_not =
+          "its " + std::to_string(n) + " sub-volumes could not be meshed together (" + errors + ")";
+      return a;
+    }
+    // Faces two sub-volumes share are meshed by both (mesh/mesh_sub_volumes.h): identical
+    // for grids and lattices, not always for unstructured sweep ends. A mesh that does not
+    // conform across them is no result; the fallback takes over.
+    quality::CheckOptions conformity;
+    conformity.volume_rel_tol = 1;  // the final check measures the volume; this one, the joins
+    const quality::CheckReport joined = quality::check_mesh(a.m.mesh, &pieces, conformity);
+    if (!joined.valid) {
+      a.why_not = "the meshes of its " + std::to_string(n) +
+                  " sub-volumes do not match where they meet (" +
+                  core::error_codes(joined.diagnostics) + ")";
+      a.m.ok = false;
+      return a;
+    }
+    a.min = joined.scaled_jacobian.min;
+    return a;
+  };
+  Attempt a = attempt(*d.pieces);
+  // The same pieces split afresh at their common faces (plane cuts: without the traces of the
+  // cuts merged back), meshed too where these did not mesh or meshed poorly; the better kept.
+  const occ::Solid* pieces = d.pieces.get();
+  bool afresh = false;
+  if (d.afresh && !progress.cancelled() && (!a.m.ok || a.min < kPoorDecomposition)) {
+    Attempt b = attempt(*d.afresh);
+    if (b.m.ok && (!a.m.ok || b.min > a.min + 0.01)) {
+      a = std::move(b);
+      pieces = d.afresh.get();
+      afresh = true;
+    }
+  }
+  if (!a.m.ok) {
     if (progress.cancelled()) {
       result.diagnostics.push_back(core::make_error("cancelled", "Meshing was cancelled."));
       return false;
     }
-    std::string errors;
-    for (const core::Diagnostic& diag : m.diagnostics)
-      if (diag.severity == core::Severity::error) {
-        std::string msg = diag.message;
-        if (!msg.empty() && msg.back() == '.') msg.pop_back();
-        errors += (errors.empty() ? "" : "; ") + msg;
-      }
-    why_not =
-        "its " + std::to_string(n) + " sub-volumes could not be meshed together (" + errors + ")";
+    why_not = a.why_not;
     return false;
   }
-  // Faces two sub-volumes share are meshed by both (mesh/mesh_sub_volumes.h): identical
-  // for grids and lattices, not always for unstructured sweep ends. A mesh that does not
-  // conform across them is no result; the fallback takes over.
-  quality::CheckOptions conformity;
-  conformity.volume_rel_tol = 1;  // the final check measures the volume; this one, the joins
-  const quality::CheckReport joined = quality::check_mesh(m.mesh, d.pieces.get(), conformity);
-  if (!joined.valid) {
-    why_not = "the meshes of its " + std::to_string(n) +
-              " sub-volumes do not match where they meet (" +
-              core::error_codes(joined.diagnostics) + ")";
-    return false;
-  }
+  mesh::SubVolumeMeshResult& m = a.m;
   const double tolerance = std::max(1e-9 * solid.diagonal(), solid.tolerance());
-  const smooth::RestoreStats restored =
-      smooth::restore_topology(m.mesh, *d.pieces, solid, tolerance);
+  const smooth::RestoreStats restored = smooth::restore_topology(m.mesh, *pieces, solid, tolerance);
   if (const std::size_t gap = boundary_nodes_inside(m.mesh); gap > 0) {
     why_not = "the meshes of its " + std::to_string(n) + " sub-volumes leave a gap inside it (" +
               std::to_string(gap) + " nodes of the mesh's boundary lie on the cuts)";
@@ -112,7 +144,8 @@ bool mesh_pieces(const occ::Solid& solid, const IsolatedDecomposition& d,
                                             ", with which OCCT's cut "
                                             "failed)") +
                   ", into ")
-    << n << " sub-volumes (" << d.before_merge << " before merging; ";
+    << n << " sub-volumes (" << d.before_merge << " before merging"
+    << (afresh ? ", then the solid split afresh at the faces they share only" : "") << "; ";
   bool first = true;
   for (const auto& [name, k] : count)
     s << (first ? "" : ", ") << k << " "

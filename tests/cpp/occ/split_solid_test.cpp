@@ -2,9 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <memory>
 
 #include "occ/primitives.h"
+#include "occ/shape_io.h"
 
 namespace vorohex::occ {
 namespace {
@@ -51,6 +53,38 @@ TEST(SplitSolid, PieceVolumesOfCurvedSolidsSumToTheExactVolume) {
   double sum = 0;
   for (const Solid& piece : split.pieces) sum += piece.volume();
   EXPECT_NEAR(sum, exact, 1e-9 * exact);
+}
+
+// A box cut at x = 1 and x = 2, its first two pieces merged back: the solid split afresh at
+// the faces the merged piece and the third share is that face alone, two pieces of six faces
+// with the merged ones' volumes; nothing where the pieces share no face.
+TEST(SplitSolid, SplitAfreshAtTheFacesMergedPiecesShare) {
+  const Solid box = make_box(3, 1, 1);
+  const SplitResult cut =
+      split_solid(box,
+                  {{Vec3(1, -1, -1), Vec3(1, 2, -1), Vec3(1, 2, 2), Vec3(1, -1, 2)},
+                   {Vec3(2, -1, -1), Vec3(2, 2, -1), Vec3(2, 2, 2), Vec3(2, -1, 2)}},
+                  1e-7);
+  ASSERT_TRUE(cut.ok);
+  ASSERT_EQ(cut.pieces.size(), 3u);
+  std::vector<const Solid*> low, high;
+  for (const Solid& p : cut.pieces) (p.bounding_box().max.x() < 2.5 ? low : high).push_back(&p);
+  ASSERT_EQ(low.size(), 2u);
+  const std::unique_ptr<Solid> merged = fuse_solids(*low[0], *low[1]);
+  ASSERT_TRUE(merged);
+  const ReadResult glued = glue_solids({merged.get(), high[0]}, "The test");
+  ASSERT_TRUE(glued.ok());
+  const SplitResult afresh = split_at_interfaces(box, *glued.solid, 1e-7);
+  ASSERT_TRUE(afresh.ok);
+  ASSERT_EQ(afresh.pieces.size(), 2u);
+  for (const Solid& p : afresh.pieces) {
+    EXPECT_TRUE(is_closed(p));
+    EXPECT_EQ(p.num_faces(), 6);
+    EXPECT_EQ(p.num_vertices(), 8);
+    const double v = p.volume();
+    EXPECT_TRUE(std::abs(v - 2) < 1e-9 || std::abs(v - 1) < 1e-9) << v;
+  }
+  EXPECT_FALSE(split_at_interfaces(box, box, 1e-7).ok);
 }
 
 // A Fuser's unions, one child process for them all, are fuse_solids' own: a row of boxes

@@ -142,7 +142,12 @@ TEST(GenerateMesh, HexMeI18IsThreeMultisweeps) {
 // lengthened for the point, crossed the other's, which a vertex 8 units along it caps), so
 // the grid meshed it, invalid (10 inverted hexes, 52 s). Now the edge that closes the corner
 // gets short segments growing by 1.5 there, and a ladder of quads of boundary nodes fills
-// the point (mesh/detail/cusp_ladder.h).
+// the point (mesh/detail/cusp_ladder.h). Merged back, the tube's pieces were unified round into
+// one cylinder whose seam lay where two pieces had met, its vertex on the crescent's smaller
+// circle 8 units from the point: the quads at the point could not reach farther than that
+// node (0.054 before smoothing, 0.169 after; the structured mesh waited 5 s for the grid's
+// beside it). The solid split afresh at the faces the two pieces share has no such vertex:
+// 0.117 before smoothing, 0.275 after.
 TEST(GenerateMesh, HexMeI11IsASweepAndAMultisweepWithALadderAtItsCrescent) {
   const occ::ReadResult in = occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/i11o_s1.step");
   ASSERT_TRUE(in.ok());
@@ -152,14 +157,14 @@ TEST(GenerateMesh, HexMeI11IsASweepAndAMultisweepWithALadderAtItsCrescent) {
   ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
   EXPECT_EQ(r.stats.scheme, "sweep+multisweep");
   EXPECT_EQ(r.stats.sub_volumes, 2);
-  // Its worst hexes are at the crescent's point (0.16 measured when this was written).
-  expect_valid_on_cad(r, *in.solid, 0.1);
-  // Two hexahedra there have two boundary quads nearly flat across an edge: the pillow layer
-  // is tried (0.166), not better, and the mesh stays as it was.
-  const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "boundary_pillow_failed");
+  // Its worst hexes are at the crescent's point.
+  expect_valid_on_cad(r, *in.solid, 0.25);
+  const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "decomposed");
   ASSERT_NE(d, nullptr);
-  EXPECT_NE(d->message.find("the mesh stays"), std::string::npos) << d->message;
-  EXPECT_EQ(testing::find_diagnostic(r.diagnostics, "boundary_pillowed"), nullptr);
+  EXPECT_NE(d->message.find("then the solid split afresh at the faces they share only"),
+            std::string::npos)
+      << d->message;
+  EXPECT_EQ(testing::find_diagnostic(r.diagnostics, "structured_kept"), nullptr);
 }
 
 }  // namespace
