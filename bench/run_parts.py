@@ -285,6 +285,11 @@ def build_parts(work):
                                                 if e.BoundBox.ZLength > 7.9 and e.BoundBox.ZMin > 9.9]))
     parts["plate with a rounded rectangular boss, its root filleted"] = rounded_boss.makeFillet(
         2, floor_edges(rounded_boss, 10, 18, 42, 14, 26))
+    # The rectangular boss with its top edges filleted too (radius 1): the root's strips end
+    # at the top fillets' feet.
+    root = parts["plate with a rectangular boss, its root filleted"]
+    parts["plate with a rectangular boss, its root and top edges filleted"] = root.makeFillet(
+        1, floor_edges(root, 18, 18, 42, 14, 26))
     # An L-shaped pocket (two boxes fused, refined), its floor edges filleted: six strips, the
     # two at the L's inner corner meeting at a convex mitre.
     ell = refined(box(60, 50, 15).cut(refined(box(30, 10, 9, (10, 10, 7)).fuse(

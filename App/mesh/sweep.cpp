@@ -290,9 +290,16 @@ Plan plan_given(const Solid& solid, const SweepOptions& options, Plan p) {
     p.source_mesh = detail::grid_face(solid, t.source, p.source_loops[0], p.grid[0], p.grid[1]);
   } else if (!p.submap.empty()) {
     p.source_mesh = submap_face(solid, t.source, p.source_loops[0], p.counts[0], p.submap);
+    // A lattice that folds (a strip's end whose side turns round through two tangent fillets
+    // between its corners: a boss's root and top edges filleted) gives way to the quad
+    // mesher's mesh of the same nodes.
     if (!p.source_mesh.ok) {
-      p.diagnostics = p.source_mesh.diagnostics;
-      return p;
+      const std::vector<core::Diagnostic> folded = p.source_mesh.diagnostics;
+      p.submap.clear();
+      if (!mesh_source_unstructured(solid, options, p)) {
+        p.diagnostics.insert(p.diagnostics.begin(), folded.begin(), folded.end());
+        return p;
+      }
     }
   } else if (!mesh_source_unstructured(solid, options, p)) {
     return p;

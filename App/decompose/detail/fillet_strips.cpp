@@ -142,6 +142,41 @@ bool corner_of(const occ::Solid& s, FaceId f, const std::vector<Fillet>& fillets
          std::abs(out.wall - out.foot) > tol && 2 * out.wall - out.foot > tol;
 }
 
+// How far beyond its wall a fillet's strip ends, as a multiple of how far its foot is in
+// front of it (1: as far): where an edge of the solid along the fillet's axis lies behind the
+// wall between a quarter and one and a half times that far, along the fillet's length (a
+// boss whose top edges are filleted too: the top fillet's foot on its top face), the strip
+// ends there instead - a plane as far would leave a sliver of the top face between it and
+// the top fillet, on which the strip's sweep folded.
+double beyond_factor(const occ::Solid& s, const Fillet& f, const Tangent& floor,
+                     const Tangent& wall) {
+  const Vec3 normal = floor.normal.cross(f.axis).normalized();
+  const double at_wall = normal.dot(wall.point), ahead = at_wall - normal.dot(floor.point);
+  if (std::abs(ahead) <= 0) return 1;
+  const std::vector<Vec3> own = s.edge_points_by_length(floor.edge, 2);
+  const double from = std::min(f.axis.dot(own[0]), f.axis.dot(own[2]));
+  const double to = std::max(f.axis.dot(own[0]), f.axis.dot(own[2]));
+  double best = 0;  // none found
+  for (EdgeId e : s.edges()) {
+    const core::CurveInfo c = s.curve_info(e);
+    if (c.kind != core::CurveKind::line || !parallel(c.direction, f.axis)) continue;
+    const std::vector<Vec3> p = s.edge_points_by_length(e, 2);
+    // Not on a face the plane would run along (a plate's side as far beyond a pocket's wall:
+    // its pieces would end in slivers there).
+    bool along_a_face = false;
+    for (FaceId g : s.edge_faces(e))
+      along_a_face =
+          along_a_face || (s.face_is_planar(g) && parallel(s.face_normal(g, p[1]), normal));
+    if (along_a_face) continue;
+    const double lo = std::min(f.axis.dot(p[0]), f.axis.dot(p[2]));
+    const double hi = std::max(f.axis.dot(p[0]), f.axis.dot(p[2]));
+    if (hi <= from || lo >= to) continue;
+    const double k = (normal.dot(p[1]) - at_wall) / ahead;
+    if (k >= 0.25 && k <= 1.5 && (best == 0 || std::abs(k - 1) < std::abs(best - 1))) best = k;
+  }
+  return best > 0 ? best : 1;
+}
+
 // The quad over segment a-b across the whole solid along unit n (a tenth of its diagonal
 // beyond its extent): a bounded cut's tool.
 std::vector<Vec3> column(const occ::Solid& solid, const Vec3& a, const Vec3& b, const Vec3& n) {
@@ -190,8 +225,10 @@ FilletStrips fillet_strips(const occ::Solid& solid) {
         continue;  // a fillet with two floors: not a pocket's or a boss's
       // In the floor's plane: the feet, and the lines as far beyond the walls.
       auto on_floor = [&](const Vec3& p) { return p - n * n.dot(p - floor_a.point); };
-      const Vec3 far_a = 2 * on_floor(wall_a.point) - floor_a.point;
-      const Vec3 far_b = 2 * on_floor(wall_b.point) - floor_b.point;
+      const Vec3 far_a = on_floor(wall_a.point) + beyond_factor(solid, a, floor_a, wall_a) *
+                                                      (on_floor(wall_a.point) - floor_a.point);
+      const Vec3 far_b = on_floor(wall_b.point) + beyond_factor(solid, b, floor_b, wall_b) *
+                                                      (on_floor(wall_b.point) - floor_b.point);
       Vec3 inner, outer;
       if (!cross(floor_a.point, a.axis, floor_b.point, b.axis, inner) ||
           !cross(far_a, a.axis, far_b, b.axis, outer) || (outer - inner).norm() <= 1e3 * tol)
@@ -289,7 +326,8 @@ FilletStrips fillet_strips(const occ::Solid& solid) {
     const Vec3 normal = floor.normal.cross(f.axis).normalized();
     const double foot = normal.dot(floor.point), at_wall = normal.dot(wall.point);
     out.planes.push_back({normal, foot, f.face, {floor.edge}, StripPlane::across, {}});
-    out.planes.push_back({normal, 2 * at_wall - foot, f.face, {wall.edge}, StripPlane::beyond, {}});
+    const double beyond = at_wall + beyond_factor(solid, f, floor, wall) * (at_wall - foot);
+    out.planes.push_back({normal, beyond, f.face, {wall.edge}, StripPlane::beyond, {}});
     for (FaceId g : {floor.plane, wall.plane})
       if (std::find(out.tangent_faces.begin(), out.tangent_faces.end(), g) ==
           out.tangent_faces.end())

@@ -300,5 +300,20 @@ TEST(GenerateMesh, AnLShapedPocketsStripsMeetAtItsInnerCornerToo) {
   EXPECT_LT(r.mesh.num_hexes(), 1500u);
 }
 
+// The rectangular boss whose root is filleted (radius 2), its top edges filleted too (radius 1;
+// tests/data/plate_rect_boss_root_top_fillets.step, made by bench/run_parts.py): the root's
+// strips ended as far beyond the boss's walls as their feet are in front, 1 inside the top
+// fillets' feet, leaving a sliver of the top face on each strip. Now a strip ends at an edge
+// along it behind the wall between a quarter and one and a half times as far (the top
+// fillet's foot), and a strip's end whose side turns round through the two fillets, where
+// its lattice folds, is meshed by the quad mesher. Meshed structured at size 1.5; at the
+// default size (3.7) and at 3 the quad mesher's mesh of a strip's end inverts a quad and the
+// grid meshes it.
+TEST(GenerateMesh, ABossWithItsRootAndTopEdgesFilletedIsSweptAlongItsRootsStrips) {
+  const MeshResult r = mesh_file("plate_rect_boss_root_top_fillets.step", 1.5);
+  ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
+  expect_decomposed(r, "sweep", 0, 0.45, "ended at 4 mitre planes");
+}
+
 }  // namespace
 }  // namespace vorohex::pipeline
