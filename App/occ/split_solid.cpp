@@ -119,6 +119,28 @@ class Deadline : public Message_ProgressIndicator {
   std::chrono::steady_clock::time_point end_;
 };
 
+// OCCT's splitter on `args` by `tools` (non-destructive, fuzzy to a hundredth of `tolerance`),
+// stopped through its progress break at `time_limit` seconds (<= 0: none).
+struct Split {
+  TopoDS_Shape shape;
+  bool done = false, timed_out = false;
+};
+Split split_by(const TopTools_ListOfShape& args, const TopTools_ListOfShape& tools,
+               double tolerance, double time_limit) {
+  Split out;
+  BRepAlgoAPI_Splitter splitter;
+  splitter.SetArguments(args);
+  splitter.SetTools(tools);
+  splitter.SetFuzzyValue(0.01 * tolerance);
+  splitter.SetNonDestructive(true);
+  Handle(Deadline) deadline = time_limit > 0 ? new Deadline(time_limit) : nullptr;
+  splitter.Build(deadline.IsNull() ? Message_ProgressRange() : deadline->Start());
+  out.timed_out = !deadline.IsNull() && deadline->UserBreak();
+  out.done = !out.timed_out && splitter.IsDone();
+  if (out.done) out.shape = splitter.Shape();
+  return out;
+}
+
 // Faces (and edges) on one surface merged. With `or_as_is`, where OCCT's unification throws
 // (HexMe i14: a tube's end ring fused to its middle, where a plane tangent to the tube left a
 // line on its cylinder) it is tried again without concatenating B-splines, then without
@@ -283,14 +305,8 @@ SplitResult split_solid(const Solid& solid, const std::vector<std::vector<Vec3>>
     }
     TopoDS_Shape result = solid.impl().solid;
     if (!tool_list.IsEmpty()) {
-      BRepAlgoAPI_Splitter splitter;
-      splitter.SetArguments(args);
-      splitter.SetTools(tool_list);
-      splitter.SetFuzzyValue(0.01 * tolerance);
-      splitter.SetNonDestructive(true);
-      Handle(Deadline) deadline = time_limit > 0 ? new Deadline(time_limit) : nullptr;
-      splitter.Build(deadline.IsNull() ? Message_ProgressRange() : deadline->Start());
-      if (!deadline.IsNull() && deadline->UserBreak()) {
+      const Split split = split_by(args, tool_list, tolerance, time_limit);
+      if (split.timed_out) {
         out.timed_out = true;
         out.diagnostics.push_back(core::make_error(
             "split_timeout", "OCCT did not split the solid by " + std::to_string(tools.size()) +
@@ -298,13 +314,13 @@ SplitResult split_solid(const Solid& solid, const std::vector<std::vector<Vec3>>
                                  std::to_string(int(std::lround(time_limit))) + " s"));
         return out;
       }
-      if (!splitter.IsDone()) {
+      if (!split.done) {
         out.diagnostics.push_back(core::make_error("split_failed",
                                                    "OCCT could not split the solid by the "
                                                    "decomposition faces"));
         return out;
       }
-      result = splitter.Shape();
+      result = split.shape;
     }
     std::vector<TopoDS_Solid> cut;
     for (TopExp_Explorer ex(result, TopAbs_SOLID); ex.More(); ex.Next())
@@ -346,26 +362,20 @@ SplitResult split_at_interfaces(const Solid& solid, const Solid& glued, double t
       out.diagnostics.push_back(core::make_error("split_failed", "the pieces share no face"));
       return out;
     }
-    BRepAlgoAPI_Splitter splitter;
-    splitter.SetArguments(args);
-    splitter.SetTools(tools);
-    splitter.SetFuzzyValue(0.01 * tolerance);
-    splitter.SetNonDestructive(true);
-    Handle(Deadline) deadline = time_limit > 0 ? new Deadline(time_limit) : nullptr;
-    splitter.Build(deadline.IsNull() ? Message_ProgressRange() : deadline->Start());
-    if (!deadline.IsNull() && deadline->UserBreak()) {
+    const Split split = split_by(args, tools, tolerance, time_limit);
+    if (split.timed_out) {
       out.timed_out = true;
       out.diagnostics.push_back(core::make_error("split_timeout",
                                                  "OCCT did not split the solid at the pieces' "
                                                  "common faces in time"));
       return out;
     }
-    if (!splitter.IsDone()) {
+    if (!split.done) {
       out.diagnostics.push_back(core::make_error(
           "split_failed", "OCCT could not split the solid at the pieces' common faces"));
       return out;
     }
-    for (TopExp_Explorer ex(splitter.Shape(), TopAbs_SOLID); ex.More(); ex.Next())
+    for (TopExp_Explorer ex(split.shape, TopAbs_SOLID); ex.More(); ex.Next())
       out.pieces.push_back(make_solid(
           without_internal_faces(TopoDS::Solid(ex.Current()), &out.dropped_internal_faces)));
     out.ok = !out.pieces.empty();
