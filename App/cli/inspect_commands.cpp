@@ -239,6 +239,10 @@ int print_plane_cuts(const std::string& input, const std::string& brep_path,
   if (cut.merges_checked_each)
     std::cout << "  merged again with each merge's neighbours checked (merged without, a piece "
                  "had no scheme once glued)\n";
+  if (!cut.afresh.empty())
+    std::cout << "  split afresh at the faces they share: the same " << cut.afresh.size()
+              << " pieces without the traces of the cuts merged back (not unified); the mesher "
+                 "meshes those too where these mesh below 0.2, and keeps the better\n";
   if (cut.knife_edges)
     std::cout << "  knife edges: pieces meet a planar face that touches a cylinder cut along at "
                  "an angle near zero; where they do not mesh, the mesher cuts with "
