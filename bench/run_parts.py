@@ -296,6 +296,16 @@ def build_parts(work):
         box(10, 30, 9, (10, 10, 7))))))
     parts["plate with an L-shaped pocket, its floor edges filleted"] = ell.makeFillet(
         2, floor_edges(ell, 7, 10, 40, 10, 40))
+    # T- and U-shaped pockets (two and three boxes fused), their floor edges filleted: two
+    # inner corners each.
+    tee = refined(box(60, 50, 15).cut(refined(box(30, 10, 9, (15, 30, 7)).fuse(
+        box(10, 30, 9, (25, 10, 7))))))
+    parts["plate with a T-shaped pocket, its floor edges filleted"] = tee.makeFillet(
+        2, floor_edges(tee, 7, 15, 45, 10, 40))
+    you = refined(box(60, 50, 15).cut(refined(box(10, 30, 9, (10, 10, 7)).fuse(
+        box(30, 10, 9, (10, 10, 7))).fuse(box(10, 30, 9, (30, 10, 7))))))
+    parts["plate with a U-shaped pocket, its floor edges filleted"] = you.makeFillet(
+        2, floor_edges(you, 7, 10, 40, 10, 40))
     out = []
     for k, (name, shape) in enumerate(parts.items()):
         solid = refined(shape)

@@ -534,9 +534,11 @@ PlaneCutResult cut_along(const occ::Solid& solid, std::vector<Plane> planes,
   }
   // Gluing many pieces is slow (HexMe i23's 89: 43 s); past kGlueFirst pieces, each must
   // have a scheme on its own before they are glued (gluing imprints edges on a piece, which
-  // seldom gives it a scheme it had not).
+  // seldom gives it a scheme it had not). Not the fillets' strips, whose pieces are merged
+  // before their schemes are asked (a T-shaped pocket's floor: 71 pieces, the corners'
+  // halves without one).
   constexpr std::size_t kGlueFirst = 60;
-  if (pieces.size() > kGlueFirst)
+  if (pieces.size() > kGlueFirst && !merge_to_schemes)
     for (std::size_t k = 0; k < pieces.size(); ++k)
       if (!meshable(pieces[k], options)) {
         r.why_not = "the surfaces of its concave edges cut it into " +

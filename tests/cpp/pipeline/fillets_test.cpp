@@ -298,6 +298,14 @@ TEST(GenerateMesh, AnLShapedPocketsStripsMeetAtItsInnerCornerToo) {
                     "feet and as far beyond their walls), ended at 6 mitre planes");
   EXPECT_EQ(r.stats.scheme.find("multisweep"), std::string::npos) << r.stats.scheme;
   EXPECT_LT(r.mesh.num_hexes(), 1500u);
+  // A T-shaped pocket the same way (tests/data/t_pocket_floor_fillet.step, bench/run_parts.py):
+  // its cut leaves 71 pieces, the corners' halves without a scheme until merged; past 60
+  // pieces a cut's pieces each needed a scheme before they were glued, so its strips were never
+  // merged (the grid's, 5,476 hexahedra at 0.151). 43 blocks and sweeps.
+  const MeshResult t = mesh_file("t_pocket_floor_fillet.step");
+  ASSERT_TRUE(t.ok) << (t.diagnostics.empty() ? "" : core::format(t.diagnostics.back()));
+  expect_decomposed(t, "sweep", 0, 0.45, "ended at 8 mitre planes");
+  EXPECT_LT(t.mesh.num_hexes(), 1500u);
 }
 
 // The rectangular boss whose root is filleted (radius 2), its top edges filleted too (radius 1;
