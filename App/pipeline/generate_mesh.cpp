@@ -469,8 +469,7 @@ MeshResult generate_parts(const occ::Solid& whole, const MeshOptions& options,
     }
     if (progress.cancelled()) break;
   }
-  for (const std::string& s : schemes)
-    result.stats.scheme += (result.stats.scheme.empty() ? "" : "+") + s;
+  result.stats.scheme = detail::joined_schemes(schemes);
   result.stats.sub_volumes = whole.num_solids();
   result.stats.seconds_meshing = seconds_since(t0);
   std::ostringstream s;

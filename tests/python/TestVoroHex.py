@@ -387,7 +387,7 @@ class TestVoroHexApi(unittest.TestCase):
             self.assertIn("Cone", [type(f.Surface).__name__ for f in shape.Faces])
             m = VoroHex.mesh(shape)
             self.assertTrue(m.ok, m.message)
-            self.assertEqual((m.stats.scheme, m.stats.sub_volumes), ("multisweep+sweep", 2))
+            self.assertEqual((m.stats.scheme, m.stats.sub_volumes), ("sweep+multisweep", 2))
             self.assertGreaterEqual(m.stats.min_scaled_jacobian, 0.4)
             self.assertLess(m.stats.volume_rel_error, 0.005)
         finally:

@@ -17,13 +17,21 @@
 namespace vorohex::pipeline::detail {
 
 std::string joined_schemes(const std::vector<std::string>& schemes) {
+  // In one order whatever the sub-volumes' (which OCCT's split may give in another order from
+  // run to run): the structured schemes, simplest first, then the fallbacks.
+  static const char* const kOrder[] = {"map",      "sweep", "multisweep", "revolve",
+                                       "midpoint", "grid",  "tet-split"};
   std::vector<std::string> seen;
-  std::string out;
   for (const std::string& s : schemes)
-    if (std::find(seen.begin(), seen.end(), s) == seen.end()) {
-      seen.push_back(s);
-      out += (out.empty() ? "" : "+") + s;
-    }
+    if (std::find(seen.begin(), seen.end(), s) == seen.end()) seen.push_back(s);
+  auto rank = [&](const std::string& s) {
+    const auto it = std::find(std::begin(kOrder), std::end(kOrder), s);
+    return it - std::begin(kOrder);
+  };
+  std::stable_sort(seen.begin(), seen.end(),
+                   [&](const std::string& a, const std::string& b) { return rank(a) < rank(b); });
+  std::string out;
+  for (const std::string& s : seen) out += (out.empty() ? "" : "+") + s;
   return out;
 }
 

@@ -24,7 +24,8 @@ bool mesh_decomposed(const occ::Solid& solid, const MeshOptions& options,
                      const core::SizeField& sizes, const core::Progress& progress,
                      MeshResult& result, std::string& why_not);
 
-// Schemes of several sub-volumes or solids, each once, in order of first use ("sweep+map").
+// Schemes of several sub-volumes or solids, each once, in one order (map, sweep, multisweep,
+// revolve, midpoint, grid, tet-split): "map+sweep" whichever sub-volume comes first.
 std::string joined_schemes(const std::vector<std::string>& schemes);
 
 }  // namespace vorohex::pipeline::detail

@@ -23,7 +23,7 @@ TEST(GenerateMesh, ABlockWithADrilledBlindHoleIsCutAlongTheHoleAndSwept) {
   const MeshResult r = generate_mesh(block, opt);
   ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
   EXPECT_EQ(r.stats.sub_volumes, 2);
-  EXPECT_EQ(r.stats.scheme, "multisweep+sweep");
+  EXPECT_EQ(r.stats.scheme, "sweep+multisweep");
   const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "decomposed");
   ASSERT_NE(d, nullptr);
   EXPECT_EQ(d->message.rfind("Cut along the faces at its concave edges (the cylinder of Face", 0),

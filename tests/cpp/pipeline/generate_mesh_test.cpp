@@ -704,7 +704,7 @@ TEST(GenerateMesh, BoxStandingOnALargerBoxIsSweptMappedAndJoined) {
   opt.size = 0.25;
   const MeshResult r = generate_mesh(*read.solid, opt);
   ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics[0]));
-  EXPECT_EQ(r.stats.scheme, "sweep+map");
+  EXPECT_EQ(r.stats.scheme, "map+sweep");
   EXPECT_EQ(r.stats.sub_volumes, 2);
   EXPECT_EQ(r.mesh.num_hexes(), 128u + 64u);
   EXPECT_NEAR(r.check.mesh_volume, 3.0, 1e-9);

@@ -46,7 +46,7 @@ TEST(GenerateMesh, ABlockWithADraftedPocketIsCutAtItsFloorAndSwept) {
   const MeshResult r = generate_mesh(block, opt);
   ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
   EXPECT_EQ(r.stats.sub_volumes, 2);
-  EXPECT_EQ(r.stats.scheme, "multisweep+sweep");
+  EXPECT_EQ(r.stats.scheme, "sweep+multisweep");
   EXPECT_TRUE(r.check.valid);
   EXPECT_GE(r.check.scaled_jacobian.min, 0.45);
   EXPECT_EQ(r.check.open_boundary_edges, 0u);
