@@ -141,6 +141,14 @@ Split split_by(const TopTools_ListOfShape& args, const TopTools_ListOfShape& too
   return out;
 }
 
+// A split OCCT threw on: no pieces, the error named.
+void failed_in_occt(SplitResult& out, const Standard_Failure& e) {
+  out.pieces.clear();
+  out.diagnostics.push_back(core::make_error(
+      "split_failed", std::string("OCCT failed splitting the solid: ") +
+                          (e.GetMessageString() ? e.GetMessageString() : "unknown")));
+}
+
 // Faces (and edges) on one surface merged. With `or_as_is`, where OCCT's unification throws
 // (HexMe i14: a tube's end ring fused to its middle, where a plane tangent to the tube left a
 // line on its cylinder) it is tried again without concatenating B-splines, then without
@@ -341,10 +349,7 @@ SplitResult split_solid(const Solid& solid, const std::vector<std::vector<Vec3>>
     if (!out.ok)
       out.diagnostics.push_back(core::make_error("split_empty", "The split gave no solid"));
   } catch (const Standard_Failure& e) {
-    out.pieces.clear();
-    out.diagnostics.push_back(core::make_error(
-        "split_failed", std::string("OCCT failed splitting the solid: ") +
-                            (e.GetMessageString() ? e.GetMessageString() : "unknown")));
+    failed_in_occt(out, e);
   }
   return out;
 }
@@ -380,10 +385,7 @@ SplitResult split_at_interfaces(const Solid& solid, const Solid& glued, double t
           without_internal_faces(TopoDS::Solid(ex.Current()), &out.dropped_internal_faces)));
     out.ok = !out.pieces.empty();
   } catch (const Standard_Failure& e) {
-    out.pieces.clear();
-    out.diagnostics.push_back(core::make_error(
-        "split_failed", std::string("OCCT failed splitting the solid: ") +
-                            (e.GetMessageString() ? e.GetMessageString() : "unknown")));
+    failed_in_occt(out, e);
   }
   return out;
 }
