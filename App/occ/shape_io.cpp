@@ -289,6 +289,13 @@ ReadResult analyse(const TopoDS_Shape& shape, const std::string& where,
     TopExp_Explorer ex(shape, TopAbs_SHELL);
     const TopoDS_Shell shell = TopoDS::Shell(ex.Current());
     const std::vector<std::string> open = free_edges(shell, shape);
+    if (!open.empty() && faces == 1) {  // a lone face (a surface): no volume at all
+      r.diagnostics.push_back(
+          make_error("no_solid", where + " contains 1 face and no solid (a surface bounded by " +
+                                     plural(int(open.size()), "edge") + ", " + join_names(open, 8) +
+                                     ": it encloses no volume)."));
+      return r;
+    }
     if (!open.empty()) {
       r.diagnostics.push_back(make_error(
           "open_shell",

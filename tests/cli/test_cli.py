@@ -261,6 +261,12 @@ class MeshCommand(unittest.TestCase):
         path = os.path.join(self.dir, "open.brep")
         shell.exportBrep(path)
         self.expect_bad_input([path], "open", True)
+        # A lone face (STEP writes it as a shell of one face): no solid, its edges named once.
+        path = os.path.join(self.dir, "face.step")
+        Part.makePlane(10, 10).exportStep(path)
+        self.expect_bad_input([path], "contains 1 face and no solid", True)
+        code, stdout, stderr = run("mesh", path, "-o", os.path.join(self.dir, "face.vtu"))
+        self.assertEqual(stderr.count("Edge1"), 1, stderr)
         # Several solids: meshed, joined where they touch; overlapping ones refused.
         two = Part.makeCompound([Part.makeBox(1, 1, 1),
                                  Part.makeBox(1, 1, 1, FreeCAD.Vector(1, 0, 0))])

@@ -61,6 +61,11 @@ TEST(HexMesh, BoundaryNodesAreTheCornersOfFacesOfOneHexahedron) {
 TEST(Diagnostic, FormatNamesEntities) {
   const Diagnostic d = make_error("open_shell", "The shell is not closed", {"Edge3", "Edge4"});
   EXPECT_EQ(format(d), "error [open_shell] The shell is not closed (Edge3, Edge4)");
+  // A message that names them all already does not get them again (Edge1 is not within Edge12).
+  EXPECT_EQ(format(make_error("open_shell", "Edge3 and Edge4 bound one face", {"Edge3", "Edge4"})),
+            "error [open_shell] Edge3 and Edge4 bound one face");
+  EXPECT_EQ(format(make_error("open_shell", "Edge12 bounds one face", {"Edge1"})),
+            "error [open_shell] Edge12 bounds one face (Edge1)");
   EXPECT_TRUE(has_error({make_info("x", "y"), d}));
   EXPECT_FALSE(has_error({make_warning("x", "y")}));
 }
