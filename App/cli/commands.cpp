@@ -452,7 +452,12 @@ int mesh_command(const std::vector<std::string>& argv) {
     j["intervals"] = result.stats.intervals;
     j["sub_volumes"] = result.stats.sub_volumes;
     j["order"] = options.order;
-    j["element"] = element_name;
+    // The Abaqus element type written to an INP file; null for the other formats (VTU and
+    // Gmsh's write VTK's and Gmsh's own hexahedra of the order asked).
+    if (element_name.empty())
+      j["element"] = nullptr;
+    else
+      j["element"] = element_name;
     j["groups"] = groups_json(result.groups);
     j["sub_volume_schemes"] = result.stats.sub_volume_schemes;
     j["sub_volume_types"] = result.stats.sub_volume_types;

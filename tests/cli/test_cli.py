@@ -279,6 +279,7 @@ class MeshCommand(unittest.TestCase):
         with open(rep) as f:
             r = json.load(f)
         self.assertEqual(r["sub_volumes"], 2)
+        self.assertIsNone(r["element"])  # an Abaqus element type only for INP output
         self.assertEqual(r["check"]["hexes"], 128)
         self.assertEqual(r["check"]["nodes"], 225)
         code, stdout, stderr = run("check", out, "--cad", path)
