@@ -585,18 +585,19 @@ PlaneCutResult cut_along(const occ::Solid& solid, std::vector<Plane> planes,
     std::vector<std::vector<char>> in(pieces.size(), std::vector<char>(bands.size(), 0));
     std::vector<char> any(pieces.size(), 0);
     for (std::size_t k = 0; k < pieces.size(); ++k) {
-      int bands_in = 0, beside = 0;
+      std::vector<char> beside(bands.size(), 0);
+      int bands_in = 0, besides = 0;
       for (std::size_t b = 0; b < bands.size(); ++b)
         if ((in[k][b] = within(pieces[k], bands[b]))) {
           ++bands_in;
-          beside += beside_fillet(pieces[k], bands[b]);
+          besides += beside[b] = beside_fillet(pieces[k], bands[b]);
         }
       // In two strips' planes, beside one's fillet only (an L-shaped pocket's long side where
       // the planes of the strip at its inner corner cross it): in that strip only.
-      if (bands_in >= 2 && beside > 0)
-        for (std::size_t b = 0; b < bands.size(); ++b)
-          in[k][b] = in[k][b] && beside_fillet(pieces[k], bands[b]);
-      for (std::size_t b = 0; b < bands.size(); ++b) any[k] |= in[k][b];
+      for (std::size_t b = 0; b < bands.size(); ++b) {
+        if (bands_in >= 2 && besides > 0) in[k][b] = in[k][b] && beside[b];
+        any[k] |= in[k][b];
+      }
     }
     for (std::size_t k = 0; k < pieces.size(); ++k)
       for (std::size_t m = 0; m < pieces.size(); ++m) {

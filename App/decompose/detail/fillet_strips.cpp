@@ -152,7 +152,7 @@ double beyond_factor(const occ::Solid& s, const Fillet& f, const Tangent& floor,
                      const Tangent& wall) {
   const Vec3 normal = floor.normal.cross(f.axis).normalized();
   const double at_wall = normal.dot(wall.point), ahead = at_wall - normal.dot(floor.point);
-  if (std::abs(ahead) <= 0) return 1;
+  if (ahead == 0) return 1;
   const std::vector<Vec3> own = s.edge_points_by_length(floor.edge, 2);
   const double from = std::min(f.axis.dot(own[0]), f.axis.dot(own[2]));
   const double to = std::max(f.axis.dot(own[0]), f.axis.dot(own[2]));
@@ -203,6 +203,13 @@ FilletStrips fillet_strips(const occ::Solid& solid) {
   const double tol = 1e-7 * solid.diagonal();
   std::vector<char> strip(fillets.size(), 0);
   std::vector<int> floor_side(fillets.size(), -1);
+  // Each strip's beyond_factor, found once (a fillet has one floor: its mitres and its planes
+  // ask for the same).
+  std::vector<double> factor(fillets.size(), 0);
+  auto beyond_of = [&](std::size_t i, const Tangent& floor, const Tangent& wall) {
+    if (factor[i] == 0) factor[i] = beyond_factor(solid, fillets[i], floor, wall);
+    return factor[i];
+  };
   std::vector<StripPlane> mitres;
   for (std::size_t i = 0; i < fillets.size(); ++i)
     for (std::size_t j = i + 1; j < fillets.size(); ++j) {
@@ -225,10 +232,10 @@ FilletStrips fillet_strips(const occ::Solid& solid) {
         continue;  // a fillet with two floors: not a pocket's or a boss's
       // In the floor's plane: the feet, and the lines as far beyond the walls.
       auto on_floor = [&](const Vec3& p) { return p - n * n.dot(p - floor_a.point); };
-      const Vec3 far_a = on_floor(wall_a.point) + beyond_factor(solid, a, floor_a, wall_a) *
-                                                      (on_floor(wall_a.point) - floor_a.point);
-      const Vec3 far_b = on_floor(wall_b.point) + beyond_factor(solid, b, floor_b, wall_b) *
-                                                      (on_floor(wall_b.point) - floor_b.point);
+      const Vec3 far_a = on_floor(wall_a.point) +
+                         beyond_of(i, floor_a, wall_a) * (on_floor(wall_a.point) - floor_a.point);
+      const Vec3 far_b = on_floor(wall_b.point) +
+                         beyond_of(j, floor_b, wall_b) * (on_floor(wall_b.point) - floor_b.point);
       Vec3 inner, outer;
       if (!cross(floor_a.point, a.axis, floor_b.point, b.axis, inner) ||
           !cross(far_a, a.axis, far_b, b.axis, outer) || (outer - inner).norm() <= 1e3 * tol)
@@ -326,7 +333,7 @@ FilletStrips fillet_strips(const occ::Solid& solid) {
     const Vec3 normal = floor.normal.cross(f.axis).normalized();
     const double foot = normal.dot(floor.point), at_wall = normal.dot(wall.point);
     out.planes.push_back({normal, foot, f.face, {floor.edge}, StripPlane::across, {}});
-    const double beyond = at_wall + beyond_factor(solid, f, floor, wall) * (at_wall - foot);
+    const double beyond = at_wall + beyond_of(i, floor, wall) * (at_wall - foot);
     out.planes.push_back({normal, beyond, f.face, {wall.edge}, StripPlane::beyond, {}});
     for (FaceId g : {floor.plane, wall.plane})
       if (std::find(out.tangent_faces.begin(), out.tangent_faces.end(), g) ==

@@ -108,15 +108,14 @@ bool mesh_pieces(const occ::Solid& solid, const IsolatedDecomposition& d,
   // The same pieces split afresh at their common faces (plane cuts: without the traces of the
   // cuts merged back), meshed too where these did not mesh or meshed poorly; the better kept.
   const occ::Solid* pieces = d.pieces.get();
-  bool afresh = false;
   if (d.afresh && !progress.cancelled() && (!a.m.ok || a.min < kPoorDecomposition)) {
     Attempt b = attempt(*d.afresh);
     if (b.m.ok && (!a.m.ok || b.min > a.min + 0.01)) {
       a = std::move(b);
       pieces = d.afresh.get();
-      afresh = true;
     }
   }
+  const bool afresh = pieces == d.afresh.get();
   if (!a.m.ok) {
     if (progress.cancelled()) {
       result.diagnostics.push_back(core::make_error("cancelled", "Meshing was cancelled."));
