@@ -220,6 +220,28 @@ TEST(PlaneCuts, TheCutEndsAtItsTimeLimitEvenWhereOcctDoesNot) {
   }
 }
 
+// HexMe i05's STEP edges are far more tolerant than its faces (B-splines up to 1.3e-3, faces
+// 1e-7): glued, its ten plane-cut pieces are 3.6e-4 larger than apart, which a skin of the
+// faces' tolerance alone (2.5e-4) took for an overlap. Within the tubes of the edges'
+// tolerance they glue, and what is said is about their schemes.
+TEST(PlaneCuts, PiecesWithTolerantEdgesAreNotTakenForAnOverlap) {
+  const occ::ReadResult in = occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/i05o_m5.step");
+  ASSERT_TRUE(in.ok()) << "HexMe model i05 not found in " << VOROHEX_HEXME_DIR;
+  PlaneCutOptions o;
+  o.time_limit = 60;
+  const PlaneCutResult r = cut_at_concave_edges(*in.solid, o);
+  ASSERT_FALSE(r.ok);
+  EXPECT_EQ(r.pieces.size(), 10u) << r.why_not;
+  EXPECT_EQ(r.why_not.find("overlap"), std::string::npos) << r.why_not;
+  std::vector<const occ::Solid*> pieces;
+  for (const occ::Solid& p : r.pieces) pieces.push_back(&p);
+  occ::GlueOptions touching;  // as the plane cuts glue their pieces
+  touching.only_touching = true;
+  const occ::ReadResult glued = occ::glue_solids(pieces, "The plane cut", touching);
+  ASSERT_TRUE(glued.ok()) << glued.diagnostics[0].message;
+  EXPECT_EQ(glued.solid->num_solids(), 10);
+}
+
 // On that piece of i02's the unification loops; where it ends at all it takes milliseconds.
 // So it is stopped at its own bound (not at the cut's limit, which it used to wait out), and
 // the cut goes on: adding the surfaces one at a time, it leaves out the one whose pieces do
