@@ -13,11 +13,14 @@
 # the thin FreeCAD side (Part.Shape checks, Fem.FemMesh, numpy when present).
 """VoroHex all-hexahedral mesher (Sheffer et al., embedded Voronoi graph)."""
 
+import contextlib
+import ctypes
 import json
 import math
 import numbers
 import os
 import re
+import sys
 from array import array
 
 import _VoroHexCore as _core
@@ -385,12 +388,43 @@ def smesh_nodes(cell):
     return [cell[k] + 1 for k in order]
 
 
+@contextlib.contextmanager
+def _quiet_stdout():
+    """Standard output (the process's, file descriptor 1) sent to the null device for the
+    block: FreeCAD's FemMesh.addGroup and addGroupElements print two lines per group to the C++
+    standard output, about 200 lines for a part of 90 faces, edges and vertices. Where the
+    descriptor cannot be duplicated, nothing is changed."""
+    fd = 1  # where C++'s std::cout writes, whatever Python's sys.stdout is
+    try:
+        if sys.stdout is not None:
+            sys.stdout.flush()
+        saved = os.dup(fd)
+    except (AttributeError, OSError, ValueError):
+        yield
+        return
+    try:
+        libc = ctypes.CDLL(None)
+    except OSError:
+        libc = None
+    null = os.open(os.devnull, os.O_WRONLY)
+    try:
+        os.dup2(null, fd)
+        yield
+    finally:
+        if libc is not None:
+            libc.fflush(None)  # what C stdio buffered goes to the null device, not after it
+        os.dup2(saved, fd)
+        os.close(saved)
+        os.close(null)
+
+
 def add_groups(fm, groups):
     """Adds one node group per CAD entity (name "Face7", ...) to a Fem.FemMesh; groups:
     [(name, 0-based node indices)]."""
-    for name, nodes in groups:
-        gid = fm.addGroup(name, "Node")
-        fm.addGroupElements(gid, [int(n) + 1 for n in nodes])
+    with _quiet_stdout():
+        for name, nodes in groups:
+            gid = fm.addGroup(name, "Node")
+            fm.addGroupElements(gid, [int(n) + 1 for n in nodes])
 
 
 def _femmesh_of(core_mesh, groups=()):

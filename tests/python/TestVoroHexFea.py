@@ -75,6 +75,27 @@ class TestVoroHexFeaApi(unittest.TestCase):
                          sorted(n + 1 for n in groups["Face5"]["nodes"]))
         self.assertEqual(len(r.to_femmesh(groups=False).Groups), 0)
 
+    def test_femmesh_groups_print_nothing(self):
+        # FreeCAD's FemMesh prints two lines per group on the process's standard output
+        # ("Added Group: ...", "AddGroupElements: ..."): 26 groups here, none printed; what is
+        # written after still reaches the output.
+        r = VoroHex.mesh(self.box, size=10)
+        self.assertTrue(r.ok, r.message)
+        with tempfile.TemporaryFile() as out:
+            saved = os.dup(1)
+            os.dup2(out.fileno(), 1)
+            try:
+                fm = r.to_femmesh()
+                os.write(1, b"after the groups\n")
+            finally:
+                os.dup2(saved, 1)
+                os.close(saved)
+            out.seek(0)
+            printed = out.read().decode(errors="replace")
+        self.assertEqual(len(fm.Groups), 26)
+        self.assertNotIn("Group", printed)
+        self.assertIn("after the groups", printed)
+
     def test_order_and_element_errors(self):
         with self.assertRaises(ValueError):
             VoroHex.mesh(self.box, size=10, order=3)
