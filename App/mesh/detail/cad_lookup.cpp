@@ -1,6 +1,8 @@
 #include "mesh/detail/cad_lookup.h"
 
+#include <algorithm>
 #include <cmath>
+#include <set>
 
 namespace vorohex::mesh::detail {
 
@@ -37,10 +39,23 @@ core::Vec3 onto_face_along(const core::MeshDomain& solid, core::FaceId f, core::
 }
 
 std::vector<core::VertexId> apex_vertices(const core::MeshDomain& solid, core::FaceId f) {
+  // A face's corners: the ends of its edges other than degenerated ones and seams (an edge
+  // that bounds only this face, met twice along its wire).
+  std::set<int> corners;
+  for (const auto& w : solid.face_wires(f))
+    for (const core::OrientedEdge& oe : w) {
+      if (solid.edge_is_degenerated(oe.edge)) continue;
+      const std::vector<core::FaceId> faces = solid.edge_faces(oe.edge);
+      if (std::all_of(faces.begin(), faces.end(), [&](core::FaceId g) { return g == f; })) continue;
+      corners.insert(solid.edge_first_vertex(oe.edge).value());
+      corners.insert(solid.edge_last_vertex(oe.edge).value());
+    }
   std::vector<core::VertexId> out;
   for (const auto& w : solid.face_wires(f))
     for (const core::OrientedEdge& oe : w)
-      if (solid.edge_is_degenerated(oe.edge)) out.push_back(solid.edge_first_vertex(oe.edge));
+      if (solid.edge_is_degenerated(oe.edge) &&
+          !corners.count(solid.edge_first_vertex(oe.edge).value()))
+        out.push_back(solid.edge_first_vertex(oe.edge));
   return out;
 }
 

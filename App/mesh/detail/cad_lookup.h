@@ -22,7 +22,9 @@ core::NodeClass cad_entity_at(const core::MeshDomain& solid, const core::Vec3& p
 core::Vec3 onto_face_along(const core::MeshDomain& solid, core::FaceId f, core::Vec3 p,
                            const core::Vec3& d);
 
-// The vertices of face f's degenerated edges: a cone's apex, a sphere's pole.
+// The vertices of face f's degenerated edges inside it: a cone's apex, a sphere's pole where
+// no other edge of f but a seam reaches them (a drill point's tip). A pole at a corner of the
+// face (an octant of a sphere: three arcs and the pole's degenerated edge) is no apex.
 std::vector<core::VertexId> apex_vertices(const core::MeshDomain& solid, core::FaceId f);
 
 }  // namespace vorohex::mesh::detail

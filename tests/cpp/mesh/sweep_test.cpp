@@ -1,6 +1,12 @@
 #include "mesh/sweep.h"
 
 #include <gtest/gtest.h>
+#include <BRepAlgoAPI_Common.hxx>
+#include <BRepPrimAPI_MakeBox.hxx>
+#include <BRepPrimAPI_MakeSphere.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopoDS.hxx>
+#include <gp_Ax2.hxx>
 
 #include <atomic>
 #include <chrono>
@@ -11,6 +17,7 @@
 #include <string>
 
 #include "occ/primitives.h"
+#include "occ/solid_impl.h"
 #include "occ/split_solid.h"
 #include "quality/check_mesh.h"
 
@@ -111,6 +118,54 @@ TEST(Sweep, CylinderIsADiscSwept) {
   EXPECT_GE(f.mean, 0.85);
   const auto a = sweep_applicable(cyl);
   EXPECT_TRUE(cyl.face_is_planar(a.source));
+}
+
+// A block of a ball's octant, between a face of an inner cube at the centre and the sphere
+// (the corner of a box whose top and vertical edges are filleted, parted like a cube's
+// corner): the sphere's pole is a corner of the block's round face, where OCCT puts a
+// degenerated edge beside two arcs. That is no apex inside the target (as a drill point's
+// is), and no inner node of the target goes to it: it was taken for one, and the node of the
+// target nearest the pole put on it folded the layers.
+TEST(Sweep, ASpherePoleAtACornerOfTheTargetIsNoApex) {
+  const double r = 2, a = 0.64, far = 3;
+  const TopoDS_Shape octant =
+      BRepAlgoAPI_Common(
+          BRepPrimAPI_MakeSphere(gp_Ax2(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), r).Shape(),
+          BRepPrimAPI_MakeBox(r, r, r).Shape())
+          .Shape();
+  TopExp_Explorer ex(octant, TopAbs_SOLID);
+  ASSERT_TRUE(ex.More());
+  const occ::Solid ball_octant = occ::make_solid(TopoDS::Solid(ex.Current()));
+  // The block along z: under the inner cube's top face, between the planes x = z and y = z.
+  const std::vector<std::vector<core::Vec3>> parting = {
+      {{0, 0, a}, {a, 0, a}, {a, a, a}, {0, a, a}},
+      {{a, 0, a}, {far, 0, far}, {far, far, far}, {a, a, a}},
+      {{0, a, a}, {0, far, far}, {far, far, far}, {a, a, a}}};
+  const occ::SplitResult split = occ::split_solid(ball_octant, parting, 1e-7);
+  ASSERT_TRUE(split.ok);
+  const occ::Solid* block = nullptr;
+  for (const occ::Solid& p : split.pieces)
+    if (p.num_faces() == 6) block = &p;
+  ASSERT_NE(block, nullptr);
+  int degenerated = 0;
+  for (core::EdgeId e : block->edges()) degenerated += block->edge_is_degenerated(e);
+  EXPECT_EQ(degenerated, 1);  // the pole's, at a corner of the round face
+  for (double size : {0.3, 0.7}) {
+    const Figures f = sweep_and_check("pole at a corner", *block, size, false);
+    EXPECT_GT(f.min, 0.3) << size;
+  }
+  // Two intervals on every edge (as the interval assignment gives it beside the fillets'
+  // strips) at a size larger than the block: the target's one inner node, about 1 from the
+  // pole, is where the mapping puts it.
+  SweepOptions o;
+  o.size = 2;
+  o.edge_intervals.assign(std::size_t(block->num_edges()) + 1, 2);
+  const SweepResult two = sweep(*block, o);
+  ASSERT_TRUE(two.ok) << (two.diagnostics.empty() ? "" : core::format(two.diagnostics[0]));
+  EXPECT_EQ(two.mesh.num_hexes(), 8u);
+  const quality::CheckReport c = quality::check_mesh(two.mesh, block);
+  EXPECT_TRUE(c.valid) << (c.diagnostics.empty() ? "" : core::format(c.diagnostics[0]));
+  EXPECT_GT(c.scaled_jacobian.min, 0.3);
 }
 
 // The column under a drilled blind hole (the plane cuts cut it off along the hole's
