@@ -137,7 +137,30 @@ OPTIONS = (
 _OPTION_BY_NAME = {o.name: o for o in OPTIONS}
 
 
-def _number(name, value, integer=False):
+def _length_text(name, text):
+    """A length written as FreeCAD writes one ("4 mm", "0.5 cm", "2"), in mm: what the
+    Quantity FreeCAD parses it to gives, else ValueError naming the option."""
+    try:
+        import FreeCAD
+        q = FreeCAD.Units.Quantity(text)
+    except ImportError:
+        raise TypeError("VoroHex: option '{}' must be a number (mm), got {!r} (a length with its "
+                        "unit needs FreeCAD)".format(name, text))
+    except Exception:
+        raise ValueError("VoroHex: option '{}': {!r} is not a length (a number of mm, or one with "
+                         "its unit such as '4 mm')".format(name, text))
+    if q.Unit != FreeCAD.Units.Length and q.Unit != FreeCAD.Units.Unit():
+        raise ValueError("VoroHex: option '{}' must be a length, got {!r} ({})".format(
+            name, text, q.Unit.Type or q.Unit))
+    return q.Value
+
+
+def _number(name, value, integer=False, length=False):
+    """value as a float (int where `integer`), else TypeError / ValueError naming the option.
+    A FreeCAD Quantity gives its value (mm for a length); a string is taken only for a
+    `length`, as FreeCAD parses it ("4 mm", "0.5 cm")."""
+    if length and isinstance(value, str):
+        value = _length_text(name, value)
     if hasattr(value, "Value") and hasattr(value, "Unit"):  # FreeCAD.Units.Quantity (mm)
         value = value.Value
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
@@ -212,7 +235,7 @@ def _make_options(kwargs):
                     name, value))
             setattr(opts, name, value)
             continue
-        value = _number(name, value, integer=option.integer)
+        value = _number(name, value, integer=option.integer, length=option.kind == "length")
         _check_range(option, value)
         setattr(opts, name, value)
     opts.validate()
@@ -247,7 +270,7 @@ def _local_sizes(sizes):
         if not isinstance(name, str) or not _ENTITY_NAME.match(name):
             raise ValueError("VoroHex: sizes: {!r} is not an entity name (FaceN, EdgeN or "
                              "VertexN, as FreeCAD names sub-elements)".format(name))
-        value = _number("sizes[{!r}]".format(name), value)
+        value = _number("sizes[{!r}]".format(name), value, length=True)
         if value <= 0:
             raise ValueError("VoroHex: sizes[{!r}] must be > 0, got {}".format(name, value))
         out.append((name, value))
@@ -569,7 +592,8 @@ def _order(order):
 def mesh(shape, size=None, progress=None, cancel=None, order=1, sizes=None, **options):
     """Hex-meshes the one solid in `shape` (a Part.Shape or a Part feature).
 
-    size: target edge length (a number or a Quantity, mm); None = automatic.
+    size: target edge length (a number of mm, a Quantity, or a string with its unit such as
+    "4 mm"); None = automatic.
     order: 1 (8-node hexahedra) or 2 (20-node: mid-edge nodes on the CAD edge or face they
     belong to, straight inside); "1st"/"2nd" also work.
     sizes: smaller sizes at CAD entities, {"Face7": 0.5, "Edge3": 1}, graded into size at

@@ -63,6 +63,22 @@ class TestVoroHexSizesApi(unittest.TestCase):
         with self.assertRaisesRegex(ValueError, "size_grading' must be in \\(0, 10\\]"):
             VoroHex.mesh(self.plate, size=10, sizes={"Face7": 1}, size_grading=-1)
 
+    def test_sizes_with_their_unit(self):
+        # As FreeCAD writes lengths ("4 mm", "0.5 cm"): the same mesh as the number of mm.
+        by_number = VoroHex.mesh(self.plate, size=10, sizes={self.hole: 2})
+        by_text = VoroHex.mesh(self.plate, size="1 cm", sizes={self.hole: "2 mm"})
+        self.assertTrue(by_number.ok and by_text.ok, by_text.message)
+        self.assertEqual(by_text.stats.size_used, 10)
+        self.assertEqual(by_text.stats.local_sizes, {self.hole: 2.0})
+        self.assertEqual(by_text.stats.hexes, by_number.stats.hexes)
+        with self.assertRaisesRegex(ValueError, "option 'size' must be a length, got '4 kg'"):
+            VoroHex.mesh(self.plate, size="4 kg")
+        with self.assertRaisesRegex(ValueError, "option 'size': 'large' is not a length"):
+            VoroHex.mesh(self.plate, size="large")
+        # Other options are numbers only.
+        with self.assertRaisesRegex(TypeError, "option 'size_grading' must be a number"):
+            VoroHex.mesh(self.plate, size=10, size_grading="0.3")
+
 
 class TestVoroHexSizesObject(unittest.TestCase):
     def setUp(self):
