@@ -539,29 +539,56 @@ bool only_whitespace(std::ifstream& in) {
 
 // OCCT's readers print their own notes on stdout through the default messenger (a STEP
 // file with a header and no data: "Interruption ReadFile par Exception ... Abandon", in
-// French, in colour, before our error). While one of these is alive only failures are
-// printed; what is wrong with the file is said by our diagnostics.
+// French, in colour; a syntax error: "**** ERR StepFile : Undefined Parsing: Line 3: ...",
+// in red, before our error). While one of these is alive the messenger's printers are set
+// aside and a collector takes their place: what is wrong with the file is said by our
+// diagnostics, with the reader's failures (`failures()`) where no shape could be read.
+class FailureCollector : public Message_Printer {
+ public:
+  mutable std::vector<std::string> failures;  // send() is const in OCCT
+
+ protected:
+  void send(const TCollection_AsciiString& text, const Message_Gravity gravity) const override {
+    if (gravity < Message_Fail || failures.size() >= 3) return;
+    std::string t = text.ToCString();
+    // "**** ERR StepFile : Undefined Parsing: Line 3: ...    ****" -> its words.
+    const auto trim = [](std::string& x) {
+      const std::size_t a = x.find_first_not_of(" *\t\n\r");
+      const std::size_t b = x.find_last_not_of(" *\t\n\r");
+      x = a == std::string::npos ? std::string() : x.substr(a, b - a + 1);
+    };
+    trim(t);
+    if (t.rfind("ERR ", 0) == 0) t = t.substr(4);
+    if (!t.empty()) failures.push_back(t);
+  }
+};
+
 class QuietReaders {
  public:
-  QuietReaders() {
+  QuietReaders() : collector_(new FailureCollector) {
     const Handle(Message_Messenger)& m = Message::DefaultMessenger();
-    for (Message_SequenceOfPrinters::Iterator it(m->Printers()); it.More(); it.Next()) {
-      levels_.push_back(it.Value()->GetTraceLevel());
-      it.Value()->SetTraceLevel(Message_Fail);
-    }
+    for (Message_SequenceOfPrinters::Iterator it(m->Printers()); it.More(); it.Next())
+      set_aside_.push_back(it.Value());
+    for (const Handle(Message_Printer) & p : set_aside_) m->RemovePrinter(p);
+    m->AddPrinter(collector_);
   }
   ~QuietReaders() {
     const Handle(Message_Messenger)& m = Message::DefaultMessenger();
-    std::size_t i = 0;
-    for (Message_SequenceOfPrinters::Iterator it(m->Printers()); it.More() && i < levels_.size();
-         it.Next(), ++i)
-      it.Value()->SetTraceLevel(levels_[i]);
+    m->RemovePrinter(collector_);
+    for (const Handle(Message_Printer) & p : set_aside_) m->AddPrinter(p);
   }
   QuietReaders(const QuietReaders&) = delete;
   QuietReaders& operator=(const QuietReaders&) = delete;
+  // What the reader reported as failures, "; "-joined (at most three), or empty.
+  std::string failures() const {
+    std::string out;
+    for (const std::string& f : collector_->failures) out += (out.empty() ? "" : "; ") + f;
+    return out;
+  }
 
  private:
-  std::vector<Message_Gravity> levels_;
+  Handle(FailureCollector) collector_;
+  std::vector<Handle(Message_Printer)> set_aside_;
 };
 
 }  // namespace
@@ -602,6 +629,7 @@ ReadResult read_solid(const std::string& path, const ReadOptions& options) {
   std::vector<core::Diagnostic> warnings;  // entities of the file the shape does not need
   try {
     bool read = false;
+    std::string reader_failures;  // what OCCT's STEP or IGES reader reported as failures
     if (format == Format::step) {
       std::ifstream file(path, std::ios::binary);
       const std::string names = step_name_problem(file);
@@ -619,6 +647,7 @@ ReadResult read_solid(const std::string& path, const ReadOptions& options) {
           read = !shape.IsNull();
         }
       }
+      reader_failures = quiet.failures();
     } else if (format == Format::iges) {
       std::ifstream file(path, std::ios::binary);
       if (!iges_records_in_order(file)) {
@@ -637,6 +666,7 @@ ReadResult read_solid(const std::string& path, const ReadOptions& options) {
           read = !shape.IsNull();
         }
       }
+      reader_failures = quiet.failures();
     } else {
       // Read once: the child probes the same text the caller then parses (a file that
       // changed in between could crash the caller).
@@ -654,8 +684,11 @@ ReadResult read_solid(const std::string& path, const ReadOptions& options) {
       read = !shape.IsNull();
     }
     if (!read) {
-      r.diagnostics.push_back(make_error("unreadable_file", where + " is not a readable " + kind +
-                                                                " file (no shape could be read)."));
+      r.diagnostics.push_back(make_error(
+          "unreadable_file",
+          where + " is not a readable " + kind + " file (no shape could be read" +
+              (reader_failures.empty() ? std::string() : "; the reader: " + reader_failures) +
+              ")."));
       return r;
     }
     ReadResult analysed = analyse(shape, where, options);

@@ -147,8 +147,11 @@ class MeshCommand(unittest.TestCase):
         code, stdout, stderr = run("mesh", *args, "-o", out, "--report", rep)
         self.assertEqual(code, 2, stdout + stderr)
         self.assertIn(phrase.lower(), stderr.lower())
-        # Only our message: OCCT's own notes (French, on stdout) are not printed.
+        # Only our message: OCCT's own notes (French, on stdout; a syntax error's
+        # "**** ERR StepFile", in red) are not printed.
         self.assertNotIn("Interruption", stdout + stderr)
+        self.assertNotIn("****", stdout + stderr)
+        self.assertNotIn("\x1b[", stdout + stderr)
         self.assertFalse(os.path.exists(out), "no output may be left behind")
         self.assertEqual([f for f in os.listdir(self.dir) if f.startswith(".vorohex-tmp")], [])
         if not report:
@@ -176,6 +179,11 @@ class MeshCommand(unittest.TestCase):
         with open(header, "w") as f:
             f.write("ISO-10303-21;\nHEADER;\nENDSEC;\nDATA;\nENDSEC;\nEND-ISO-10303-21;\n")
         self.expect_bad_input([header], "not a readable STEP file", True)
+        # A syntax error: where it is, as the STEP reader says it, in our message.
+        syntax = os.path.join(self.dir, "syntax.step")
+        with open(syntax, "w") as f:
+            f.write("ISO-10303-21;\nthis is junk\n")
+        self.expect_bad_input([syntax], "the reader: StepFile : Undefined Parsing: Line 3", True)
         # check and decompose write their report too.
         def refused_report(*args):
             rep = os.path.join(self.dir, args[0] + ".json")

@@ -61,6 +61,10 @@ TEST(ReadSolid, TextFileNamedStepIsUnreadable) {
   const auto d = only_error(read_solid(path));
   EXPECT_EQ(d.code, "unreadable_file");
   EXPECT_NE(d.message.find("not a readable STEP file"), std::string::npos);
+  // Where the STEP parser stopped, as it says it (it printed it in red on stdout before).
+  EXPECT_NE(d.message.find("the reader: StepFile : Undefined Parsing: Line 2: Incorrect syntax"),
+            std::string::npos)
+      << d.message;
 }
 
 TEST(ReadSolid, GarbageBrepIsUnreadable) {
