@@ -80,7 +80,11 @@ MappedSides mapped_sides(const core::MeshDomain& s, FaceId f) {
     const Vec3 t1 = (pb[1] - pb[0]).normalized();
     const Vec3 nrm = s.face_normal(f, pb[0]);
     const double turn = std::atan2(t0.cross(t1).dot(nrm), t0.dot(t1));
-    if (turn >= kPi / 4 && turn <= 3 * kPi / 4) {
+    // 45 and 135 degrees themselves are corners: a face parted along a diagonal (the corner
+    // of a ball's octant parted like a cube's) turns by exactly 45 degrees, which rounding
+    // puts either side.
+    constexpr double kRounding = 1e-9;
+    if (turn >= kPi / 4 - kRounding && turn <= 3 * kPi / 4 + kRounding) {
       corner[k] = true;
       ++corners;
     } else if (std::abs(turn) > kPi / 12) {

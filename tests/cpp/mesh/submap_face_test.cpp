@@ -152,6 +152,32 @@ TEST(FaceSet, ARectangleWithAVertexOnASideIsMappedWithChainedSides) {
   EXPECT_NEAR(m.min_quality, 1.0, 1e-9);
 }
 
+// Corners of exactly 45 and 135 degrees (a quarter disc parted along its diagonal, where a
+// ball's octant is parted like a cube's corner) are corners of a mapped face, whichever side
+// of 45 degrees rounding puts the turn: mapped alike, the neighbour's mapped face matches it.
+TEST(FaceSet, CornersOfExactly45And135DegreesAreMapped) {
+  int k = 0;
+  for (const double w : {1.0, 0.635085296108588, 1.3})
+    for (const double degrees : {0.0, 17.0, 30.0, 45.0, 60.0, 135.0}) {
+      // The quadrilateral (0, 0) (3w, 0) (3w, w) (w, w) turned about the origin and moved.
+      const double c = std::cos(degrees * testing::kPi / 180),
+                   sn = std::sin(degrees * testing::kPi / 180);
+      std::vector<std::array<double, 2>> outline;
+      for (const auto& [x, y] :
+           std::vector<std::array<double, 2>>{{0, 0}, {3 * w, 0}, {3 * w, w}, {w, w}})
+        outline.push_back({1.365 + c * x - sn * y, 18.635 + sn * x + c * y});
+      const occ::Solid prism = occ::make_prism(outline, 1);
+      const core::FaceId top = top_face(prism);
+      FaceSetOptions o;
+      o.size = 0.25 * w;
+      const FaceSetMesh m = mesh_face_set(prism, o);
+      ASSERT_TRUE(m.ok) << (m.diagnostics.empty() ? "" : core::format(m.diagnostics[0]));
+      EXPECT_EQ(m.face_schemes[top.value()], "map") << w << " turned by " << degrees;
+      ++k;
+    }
+  EXPECT_EQ(k, 18);
+}
+
 // A Reversal vertex: the tip of a thin wedge-shaped slit into a square (interior angle
 // about 354 degrees); the lattice splits along the slit and the mesh stays positive.
 TEST(SubmapFace, ReversalVertexAtTheTipOfASlit) {
