@@ -101,10 +101,14 @@ std::string cut_kind_text(const PlaneCutResult& cut) {
   if (feet && !strips) kinds.push_back("planes across the feet of its tapered or rounded faces");
   if (strips) kinds.push_back("planes along the strips of its fillets on floors");
   if (fillets) kinds.push_back("cylinders through the feet of its concave round fillets");
-  if (kinds.empty()) return "the faces at its concave edges";
+  if (kinds.empty()) kinds.push_back("the faces at its concave edges");
   std::string t = kinds[0];
   for (std::size_t k = 1; k < kinds.size(); ++k)
     t += (k + 1 == kinds.size() ? " and " : ", ") + kinds[k];
+  if (cut.octants > 0)
+    t += " (its " + std::to_string(cut.octants) + (cut.octants == 1 ? " corner" : " corners") +
+         " where three fillets meet, octants of a ball, parted like a cube's corner into four "
+         "blocks, and the fillets beside them into three)";
   return t;
 }
 

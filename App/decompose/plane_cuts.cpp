@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "core/option_checks.h"
+#include "decompose/detail/ball_octants.h"
 #include "decompose/detail/cut_surfaces.h"
 #include "decompose/detail/fillet_strips.h"
 #include "decompose/detail/foot_planes.h"
@@ -532,6 +533,12 @@ PlaneCutResult cut_along(const occ::Solid& solid, std::vector<Plane> planes,
                 std::to_string(options.max_pieces);
     return r;
   }
+  // Octants of a ball where three fillets meet, left by planes across their feet: each
+  // parted into four blocks (detail/ball_octants.h; a cube with all its edges rounded: 27
+  // pieces, 51 with its eight corners parted, counted as 27 against the cap).
+  r.octants = detail::split_ball_octants(pieces, volume,
+                                         std::max(1.0, 0.1 * (options.time_limit - seconds())));
+  r.pieces_before_merge = int(pieces.size());
   // Gluing many pieces is slow (HexMe i23's 89: 43 s); past kGlueFirst pieces, each must
   // have a scheme on its own before they are glued (gluing imprints edges on a piece, which
   // seldom gives it a scheme it had not). Not the fillets' strips, whose pieces are merged
@@ -559,7 +566,11 @@ PlaneCutResult cut_along(const occ::Solid& solid, std::vector<Plane> planes,
     r.pieces = std::move(pieces);
     return r;
   }
-  if (!options.merge) {  // the pieces as cut, each with a scheme (checked above)
+  // The pieces as cut, each with a scheme (checked above); also where octants of a ball were
+  // parted: merged, the fillets' strips beside them became multisweeps along other axes than
+  // their neighbours', whose meshes do not match on the faces they share (a box with its top
+  // and vertical edges filleted: 30 pieces merged to 17, 560 quads apart); as cut they do.
+  if (!options.merge || r.octants > 0) {
     progress.report("plane_cuts", 1.0);
     r.pieces = std::move(pieces);
     r.ok = r.pieces.size() >= 2;
@@ -805,7 +816,17 @@ PlaneCutResult cut_as_the_mesher(const occ::Solid& solid, const PlaneCutOptions&
   // for nothing (i25 25 -> 38 s, i03 30 -> 42 s).
   const bool simple = cut.pieces_before_merge <= kAroundPieces / 2 &&
                       int(planes.size() + cylinders.size()) <= options.max_planes;
-  for (const detail::FootPlaneSet& set : detail::foot_plane_sets(solid)) {
+  // Then the planes of every axis at once, where the cut at concave edges was simple (a box
+  // whose top and vertical edges are filleted: each axis alone leaves fillets across the
+  // axis; all at once, blocks, the fillets' strips and the octants of a ball at its corners).
+  std::vector<detail::FootPlaneSet> foot_sets = detail::foot_plane_sets(solid);
+  if (simple && foot_sets.size() >= 2) {
+    detail::FootPlaneSet all = foot_sets[0];
+    for (std::size_t k = 1; k < foot_sets.size(); ++k)
+      all.planes.insert(all.planes.end(), foot_sets[k].planes.begin(), foot_sets[k].planes.end());
+    foot_sets.push_back(std::move(all));
+  }
+  for (const detail::FootPlaneSet& set : foot_sets) {
     std::vector<Plane> untapered;
     for (const Plane& pl : planes) {
       const double c = std::abs(pl.normal.dot(set.axis));

@@ -79,6 +79,8 @@ struct PlaneCutResult {
   int planes = 0;     // distinct cut planes used
   int cylinders = 0;  // distinct cut cylinders used
   int pieces_before_merge = 0;
+  // Octants of a ball (three fillets meeting at a corner) each parted into four blocks.
+  int octants = 0;
   // Every surface its concave edges give, planes first (none when it was not attempted);
   // one not `used` was left out because OCCT's cut along it with the others failed: its
   // concave edges are not cut at.

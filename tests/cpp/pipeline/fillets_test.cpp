@@ -77,6 +77,26 @@ TEST(GenerateMesh, ABlockWithItsTopEdgesFilletedIsCutAtTheFilletsFootAndMapped) 
   }
 }
 
+// 30 x 20 x 10, its four top and four vertical edges filleted with radius 2
+// (tests/data/block_top_vertical_fillets.step): each top corner is an octant of a ball (a
+// sphere's three-sided patch and its pole). Cut across the fillets' feet along every axis at
+// once, each corner is parted like a cube's corner into four blocks, and the fillets' strips
+// beside it into three, so that their faces meet: 46 blocks, sweeps and multisweeps, not
+// merged. Before, the grid mesher's (768 hexahedra at 0.501, after 6 s waiting for the
+// Voronoi graph's split); at a finer size as well.
+TEST(GenerateMesh, ABoxWithItsTopAndVerticalEdgesFilletedIsPartedAtItsCorners) {
+  for (double size : {0.0, 1.0}) {
+    SCOPED_TRACE(size);
+    const MeshResult r = mesh_file("block_top_vertical_fillets.step", size);
+    ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
+    EXPECT_EQ(r.stats.scheme.find("grid"), std::string::npos) << r.stats.scheme;
+    expect_decomposed(r, "map", 46, 0.6, "its 4 corners where three fillets meet");
+    // About the count the size asks for: one interval per part of a fillet's radius at the
+    // default size (the grid: 768 at 0.501).
+    if (size == 0.0) EXPECT_LE(r.mesh.num_hexes(), 1300u);
+  }
+}
+
 // Second order: the pillow goes under the corners' mesh, and the mid-edge nodes are made
 // again on the pillowed one.
 TEST(GenerateMesh, ASecondOrderMeshIsPillowedUnderItsCorners) {
