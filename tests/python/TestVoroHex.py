@@ -459,8 +459,8 @@ class TestVoroHexApi(unittest.TestCase):
         for bad in (0, -1.0, float("nan"), float("inf")):
             with self.assertRaisesRegex(ValueError, "size"):
                 VoroHex.mesh(self.box, size=bad)
-        with self.assertRaisesRegex(TypeError, "size"):
-            VoroHex.mesh(self.box, size="big")
+        with self.assertRaisesRegex(ValueError, "'size': 'big' is not a length"):
+            VoroHex.mesh(self.box, size="big")  # a string is a length with its unit ("4 mm")
         with self.assertRaisesRegex(ValueError, "max_hexes"):
             VoroHex.mesh(self.box, max_hexes=0)
         with self.assertRaisesRegex(ValueError, "no solid"):
