@@ -67,6 +67,15 @@ def build_parts(work):
     edge = [e for e in bracket.Edges if abs(e.BoundBox.XMin - 5) < 1e-6
             and abs(e.BoundBox.ZMin - 5) < 1e-6 and e.BoundBox.YLength > 1]
     parts["L bracket, inner edge filleted"] = refined(bracket).makeFillet(4, edge)
+    # A new user's PartDesign bracket (tests/data/l_bracket_fillet_holes.step): 60 x 50, legs 6
+    # thick, 40 deep, its inner edge filleted 4, two holes off the middle of its foot and one in
+    # its upright. Cut across each leg where the concave fillet meets it: a corner and two legs.
+    angle = box(60, 40, 6, (0, -20, 0)).fuse(box(6, 40, 50, (0, -20, 0)))
+    inner = [e for e in refined(angle).Edges if abs(e.BoundBox.XMin - 6) < 1e-6
+             and abs(e.BoundBox.ZMin - 6) < 1e-6 and e.BoundBox.YLength > 1]
+    parts["L bracket, inner edge filleted, holes in both legs"] = refined(angle).makeFillet(
+        4, inner).cut(cyl(3.5, 6, (35, -10, 0))).cut(cyl(3.5, 6, (50, 10, 0))).cut(
+            cyl(4, 6, (0, 0, 32), (1, 0, 0)))
     plate = box(40, 20, 4).fuse(box(20, 20, 4, (0, 0, 4)))
     for x in (8, 30):
         plate = plate.cut(cyl(2.5, 8, (x, 10, 0)))

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <map>
 #include <memory>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -15,6 +16,7 @@
 #include "decompose/detail/fillet_strips.h"
 #include "decompose/detail/foot_planes.h"
 #include "decompose/detail/hole_planes.h"
+#include "decompose/detail/piece_regions.h"
 #include "mesh/map_block.h"
 #include "mesh/mesh_sub_volumes.h"
 #include "mesh/multisweep.h"
@@ -42,9 +44,13 @@ namespace {
 const double kVolumeTolerance = 1e-6;
 
 using detail::add_plane;
+using detail::Band;
+using detail::beside_fillet;
 using detail::Cylinder;
+using detail::on_a_hole;
 using detail::Plane;
 using detail::same_cylinder;
+using detail::within;
 
 // Gluing the pieces of one exact split, or unions of them: they touch at faces and never
 // cross, so OCCT's general fuse need not intersect their faces (HexMe i22: 65% of the
@@ -337,56 +343,6 @@ std::vector<occ::Solid> clones(const std::vector<occ::Solid>& v) {
   out.reserve(v.size());
   for (const occ::Solid& s : v) out.push_back(s.clone());
   return out;
-}
-
-// Whether a face of the piece lies on one of the holes' cylinders.
-bool on_a_hole(const occ::Solid& piece, const std::vector<occ::CutCylinder>& holes) {
-  const double tol = 1e-7 * piece.diagonal();
-  for (FaceId f : piece.faces()) {
-    occ::CutCylinder c;
-    if (!occ::face_cylinder(piece, f, &c)) continue;
-    for (const occ::CutCylinder& h : holes)
-      if (same_cylinder(c, h, std::max(tol, 1e-9 * h.radius))) return true;
-  }
-  return false;
-}
-
-// Whether every vertex of the piece lies within cylinder c (a piece of the boss a cylinder
-// through a fillet's foot cut out of its plate).
-// The strip between two parallel planes normal . x = lo and = hi (a fillet's strip, between the
-// plane across its foot and the plane beyond its wall); `along`: the fillet's box.
-struct Band {
-  Vec3 normal;
-  double lo = 0, hi = 0;
-  core::BoundingBox along;
-};
-
-// Whether every vertex of the piece lies in the band.
-bool within(const occ::Solid& piece, const Band& b) {
-  const double tol = 1e-6 * piece.diagonal();
-  for (core::VertexId v : piece.vertices()) {
-    const double h = b.normal.dot(piece.vertex_point(v));
-    if (h < b.lo - tol || h > b.hi + tol) return false;
-  }
-  return true;
-}
-
-// Whether the piece's box meets the band's fillet's.
-bool beside_fillet(const occ::Solid& piece, const Band& b) {
-  const double tol = 1e-6 * piece.diagonal();
-  const core::BoundingBox box = piece.bounding_box();
-  for (int i = 0; i < 3; ++i)
-    if (box.max[i] < b.along.min[i] - tol || box.min[i] > b.along.max[i] + tol) return false;
-  return true;
-}
-
-bool within(const occ::Solid& piece, const occ::CutCylinder& c) {
-  const double tol = 1e-6 * piece.diagonal() + 1e-9 * c.radius;
-  for (core::VertexId v : piece.vertices()) {
-    const Vec3 d = piece.vertex_point(v) - c.origin;
-    if ((d - d.dot(c.axis) * c.axis).norm() > c.radius + tol) return false;
-  }
-  return true;
 }
 
 // Merges neighbouring pieces while the union is a block, a sweep or prismatic (and, when
@@ -819,14 +775,30 @@ PlaneCutResult cut_as_the_mesher(const occ::Solid& solid, const PlaneCutOptions&
   // Then the planes of every axis at once, where the cut at concave edges was simple (a box
   // whose top and vertical edges are filleted: each axis alone leaves fillets across the
   // axis; all at once, blocks, the fillets' strips and the octants of a ball at its corners).
+  // The planes at the feet of concave fillets on walls (an L bracket's inner edge rounded:
+  // across each leg where the fillet meets it) only there, all axes at once: each axis alone
+  // leaves the fillet across the other, and a pocket's filleted floor, whose strips the fifth
+  // try takes, would pay a cut per axis for nothing.
   std::vector<detail::FootPlaneSet> foot_sets = detail::foot_plane_sets(solid);
-  if (simple && foot_sets.size() >= 2) {
+  const std::size_t per_axis = foot_sets.size();
+  std::optional<detail::FootPlaneSet> concave_feet;
+  if (simple && !foot_sets.empty()) {
     detail::FootPlaneSet all = foot_sets[0];
+    bool concave = false;
     for (std::size_t k = 1; k < foot_sets.size(); ++k)
       all.planes.insert(all.planes.end(), foot_sets[k].planes.begin(), foot_sets[k].planes.end());
-    foot_sets.push_back(std::move(all));
+    for (const detail::FootPlane& f : all.planes) concave = concave || f.concave;
+    if (concave)  // tried after the strips (a pocket's filleted floor: their way)
+      concave_feet = std::move(all);
+    else if (foot_sets.size() >= 2)
+      foot_sets.push_back(std::move(all));
   }
-  for (const detail::FootPlaneSet& set : foot_sets) {
+  for (std::size_t s = 0; s < foot_sets.size(); ++s) {
+    const detail::FootPlaneSet& set = foot_sets[s];
+    const bool every_axis = s >= per_axis;
+    if (!every_axis && std::all_of(set.planes.begin(), set.planes.end(),
+                                   [](const detail::FootPlane& f) { return f.concave; }))
+      continue;  // nothing to cut along on this axis alone
     std::vector<Plane> untapered;
     for (const Plane& pl : planes) {
       const double c = std::abs(pl.normal.dot(set.axis));
@@ -838,6 +810,7 @@ PlaneCutResult cut_as_the_mesher(const occ::Solid& solid, const PlaneCutOptions&
       if (left() <= feet_until) return cut;
       std::vector<Plane> with = all ? planes : untapered;
       for (const detail::FootPlane& f : set.planes) {
+        if (f.concave && !every_axis) continue;
         Plane pl{f.normal, f.offset, f.face, f.edges};
         pl.at_foot = true;
         add_plane(with, pl, tol);
@@ -854,6 +827,17 @@ PlaneCutResult cut_as_the_mesher(const occ::Solid& solid, const PlaneCutOptions&
   // of revolution and the plate a sweep with a round hole), with what time is left.
   if (PlaneCutResult strips = cut_at_fillet_strips(solid, options, progress, left()); strips.ok)
     return strips;
+  if (concave_feet && left() > 0) {  // the fourth's planes of every axis with the concave ones
+    std::vector<Plane> with = planes;
+    for (const detail::FootPlane& f : concave_feet->planes) {
+      Plane pl{f.normal, f.offset, f.face, f.edges};
+      pl.at_foot = true;
+      add_plane(with, pl, tol);
+    }
+    PlaneCutResult feet =
+        cut_along(solid, std::move(with), cylinders, around_options, left(), progress);
+    if (feet.ok) return feet;
+  }
   const std::vector<detail::FootCylinder> fillets = detail::foot_cylinders(solid);
   if (fillets.empty() || left() <= 0) return cut;
   std::vector<Cylinder> with = cylinders;
@@ -879,6 +863,7 @@ PlaneCutResult cut_as_the_mesher(const occ::Solid& solid, const PlaneCutOptions&
   for (const detail::FootPlaneSet& set : detail::foot_plane_sets(solid))
     if (std::abs(set.axis.dot(fillets[0].surface.axis)) > 1 - 1e-9)
       for (const detail::FootPlane& f : set.planes) {
+        if (f.concave) continue;
         Plane pl{f.normal, f.offset, f.face, f.edges};
         pl.at_foot = true;
         add_plane(with_feet, pl, tol);

@@ -88,6 +88,14 @@ bool rounded(const FaceAxis& f, const Vec3& a) {
                       (f.kind == FaceAxis::torus && std::abs(c - 1) < 1e-9));
 }
 
+// A concave fillet across axis a between two walls: a cylinder across it whose axis lies
+// outside the solid (an L bracket's inner edge rounded). Where it meets a wall along the axis,
+// tangent to it, the plane across a there passes through the fillet's axis and meets the
+// fillet at a right angle, as the plane of a face at a concave edge would: no knife edge.
+bool concave_round(const FaceAxis& f, const Vec3& a) {
+  return !f.convex && f.kind == FaceAxis::cylinder && std::abs(f.d.dot(a)) < 1e-9;
+}
+
 }  // namespace
 
 std::vector<FootPlaneSet> foot_plane_sets(const occ::Solid& solid) {
@@ -111,7 +119,8 @@ std::vector<FootPlaneSet> foot_plane_sets(const occ::Solid& solid) {
     }
     std::vector<FootPlane> set;
     for (FaceId f : solid.faces()) {
-      const bool fillet = rounded(faces[f.value()], a);
+      const bool concave = concave_round(faces[f.value()], a);
+      const bool fillet = concave || rounded(faces[f.value()], a);
       if (!fillet && !tapered(faces[f.value()], a)) continue;
       for (const auto& wire : solid.face_wires(f))
         for (const core::OrientedEdge& oe : wire) {
@@ -133,8 +142,9 @@ std::vector<FootPlaneSet> foot_plane_sets(const occ::Solid& solid) {
           });
           if (same != set.end()) {
             same->edges.push_back(e);
+            same->concave = same->concave && concave;
           } else {
-            set.push_back({a, h0, f, {e}});
+            set.push_back({a, h0, f, {e}, concave});
           }
         }
     }

@@ -23,13 +23,16 @@ struct FootPlane {
   double offset = 0;
   core::FaceId face;
   std::vector<core::EdgeId> edges;
+  // At the foot of a concave fillet on a wall (an L bracket's inner edge rounded): the plane
+  // through the fillet's axis and its foot, across the wall.
+  bool concave = false;
 };
 
 // Per axis (the directions of the solid's planar faces and cylinders): the planes at the
 // feet of the faces tapered to it (planar faces neither along nor across it, cones about
-// it) where they meet a wall or a cap, and of its convex fillets where they meet a wall,
-// along an edge at one height strictly inside the solid's extent along the axis; axes with
-// none are left out.
+// it) where they meet a wall or a cap, and of its fillets (convex, or concave: `concave`)
+// where they meet a wall, along an edge at one height strictly inside the solid's extent
+// along the axis; axes with none are left out.
 struct FootPlaneSet {
   core::Vec3 axis;  // unit
   std::vector<FootPlane> planes;

@@ -131,8 +131,10 @@ double tolerance_skin(const TopoDS_Shape& s) {
   TopExp::MapShapes(s, TopAbs_EDGE, edges);
   for (int i = 1; i <= edges.Extent(); ++i) {
     const TopoDS_Edge& edge = TopoDS::Edge(edges(i));
+    // Edges no more tolerant than 1e-5 are left out (their tubes are below the faces' skin by
+    // orders of magnitude), and their lengths not integrated: most edges of split pieces.
     const double t = BRep_Tool::Tolerance(edge);
-    if (t <= Precision::Confusion() || BRep_Tool::Degenerated(edge)) continue;
+    if (t <= 100 * Precision::Confusion() || BRep_Tool::Degenerated(edge)) continue;
     GProp_GProps length;
     BRepGProp::LinearProperties(edge, length);
     skin += M_PI * t * t * length.Mass();

@@ -97,6 +97,21 @@ TEST(GenerateMesh, ABoxWithItsTopAndVerticalEdgesFilletedIsPartedAtItsCorners) {
   }
 }
 
+// An L bracket as a new user built it in PartDesign (60 x 50, legs 6 thick, 40 deep, its inner
+// edge filleted 4, two holes off the middle of its foot, one in its upright;
+// tests/data/l_bracket_fillet_holes.step): it has no concave edge, the fillet is the concave
+// feature. Cut across each leg where the fillet meets it (the planes through the fillet's
+// axis and its feet, at right angles to it: no knife edge), a corner with the fillet and two
+// legs with their holes, each swept. Before, the grid mesher's: 60,037 hexahedra (its first
+// grid invalid, one three times finer).
+TEST(GenerateMesh, AnLBracketsInnerFilletIsCutAcrossEachLegAtItsFeet) {
+  const MeshResult r = mesh_file("l_bracket_fillet_holes.step");
+  ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
+  EXPECT_EQ(r.stats.scheme, "sweep");
+  expect_decomposed(r, "sweep", 3, 0.6, "the plane across the foot of Face");
+  EXPECT_LE(r.mesh.num_hexes(), 600u);
+}
+
 // Second order: the pillow goes under the corners' mesh, and the mid-edge nodes are made
 // again on the pillowed one.
 TEST(GenerateMesh, ASecondOrderMeshIsPillowedUnderItsCorners) {
