@@ -237,9 +237,10 @@ int print_plane_cuts(const std::string& input, const std::string& brep_path,
   if (const std::string left_out = decompose::left_out_text(cut); !left_out.empty())
     std::cout << "  left out (OCCT's cut along them with the others failed): " << left_out << "\n";
   if (cut.octants > 0)
-    std::cout << "  " << count(cut.octants, "corner")
-              << " where three fillets meet (octants of a ball) parted like a cube's corner into "
-                 "four blocks each, the fillets' strips beside them into three; not merged\n";
+    std::cout << "  " << count(cut.octants, "octant")
+              << " of a ball (as at a corner where three fillets meet) parted like a cube's "
+                 "corner into four blocks each, the fillets' strips beside them into three; not "
+                 "merged\n";
   if (cut.merges_checked_each)
     std::cout << "  merged again with each merge's neighbours checked (merged without, a piece "
                  "had no scheme once glued)\n";

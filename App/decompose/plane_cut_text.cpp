@@ -106,9 +106,9 @@ std::string cut_kind_text(const PlaneCutResult& cut) {
   for (std::size_t k = 1; k < kinds.size(); ++k)
     t += (k + 1 == kinds.size() ? " and " : ", ") + kinds[k];
   if (cut.octants > 0)
-    t += " (its " + std::to_string(cut.octants) + (cut.octants == 1 ? " corner" : " corners") +
-         " where three fillets meet, octants of a ball, parted like a cube's corner into four "
-         "blocks, and the fillets beside them into three)";
+    t += " (" + std::to_string(cut.octants) + (cut.octants == 1 ? " octant" : " octants") +
+         " of a ball, as at a corner where three fillets meet, each parted like a cube's corner "
+         "into four blocks, and the fillets' strips beside them into three)";
   return t;
 }
 

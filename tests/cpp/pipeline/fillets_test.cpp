@@ -90,7 +90,7 @@ TEST(GenerateMesh, ABoxWithItsTopAndVerticalEdgesFilletedIsPartedAtItsCorners) {
     const MeshResult r = mesh_file("block_top_vertical_fillets.step", size);
     ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
     EXPECT_EQ(r.stats.scheme.find("grid"), std::string::npos) << r.stats.scheme;
-    expect_decomposed(r, "map", 46, 0.6, "its 4 corners where three fillets meet");
+    expect_decomposed(r, "map", 46, 0.6, "4 octants of a ball, as at a corner where three");
     // About the count the size asks for: one interval per part of a fillet's radius at the
     // default size (the grid: 768 at 0.501).
     if (size == 0.0) EXPECT_LE(r.mesh.num_hexes(), 1300u);
