@@ -345,6 +345,18 @@ std::vector<occ::Solid> clones(const std::vector<occ::Solid>& v) {
   return out;
 }
 
+// The planes at the feet in `feet` added to `with` (kind `foot_plane`); those at concave
+// fillets' feet only where `concave` (they are tried with every axis's at once).
+void add_foot_planes(std::vector<Plane>& with, const std::vector<detail::FootPlane>& feet,
+                     bool concave, double tol) {
+  for (const detail::FootPlane& f : feet) {
+    if (f.concave && !concave) continue;
+    Plane pl{f.normal, f.offset, f.face, f.edges};
+    pl.at_foot = true;
+    add_plane(with, pl, tol);
+  }
+}
+
 // Merges neighbouring pieces while the union is a block, a sweep or prismatic (and, when
 // `careful`, every piece around it stays so once glued: merge_keeps_meshable), each merge
 // taking one piece away, until none is left or the time is up. `volume`, `touch`: per piece.
@@ -780,7 +792,6 @@ PlaneCutResult cut_as_the_mesher(const occ::Solid& solid, const PlaneCutOptions&
   // leaves the fillet across the other, and a pocket's filleted floor, whose strips the fifth
   // try takes, would pay a cut per axis for nothing.
   std::vector<detail::FootPlaneSet> foot_sets = detail::foot_plane_sets(solid);
-  const std::size_t per_axis = foot_sets.size();
   std::optional<detail::FootPlaneSet> concave_feet;
   if (simple && !foot_sets.empty()) {
     detail::FootPlaneSet all = foot_sets[0];
@@ -793,11 +804,9 @@ PlaneCutResult cut_as_the_mesher(const occ::Solid& solid, const PlaneCutOptions&
     else if (foot_sets.size() >= 2)
       foot_sets.push_back(std::move(all));
   }
-  for (std::size_t s = 0; s < foot_sets.size(); ++s) {
-    const detail::FootPlaneSet& set = foot_sets[s];
-    const bool every_axis = s >= per_axis;
-    if (!every_axis && std::all_of(set.planes.begin(), set.planes.end(),
-                                   [](const detail::FootPlane& f) { return f.concave; }))
+  for (const detail::FootPlaneSet& set : foot_sets) {
+    if (std::all_of(set.planes.begin(), set.planes.end(),
+                    [](const detail::FootPlane& f) { return f.concave; }))
       continue;  // nothing to cut along on this axis alone
     std::vector<Plane> untapered;
     for (const Plane& pl : planes) {
@@ -809,12 +818,7 @@ PlaneCutResult cut_as_the_mesher(const occ::Solid& solid, const PlaneCutOptions&
       if (all && simple && untapered.size() == planes.size()) break;  // tried: the same
       if (left() <= feet_until) return cut;
       std::vector<Plane> with = all ? planes : untapered;
-      for (const detail::FootPlane& f : set.planes) {
-        if (f.concave && !every_axis) continue;
-        Plane pl{f.normal, f.offset, f.face, f.edges};
-        pl.at_foot = true;
-        add_plane(with, pl, tol);
-      }
+      add_foot_planes(with, set.planes, false, tol);
       PlaneCutResult feet = cut_along(solid, std::move(with), cylinders, around_options,
                                       left() - feet_until, progress);
       if (feet.ok) return feet;
@@ -829,11 +833,7 @@ PlaneCutResult cut_as_the_mesher(const occ::Solid& solid, const PlaneCutOptions&
     return strips;
   if (concave_feet && left() > 0) {  // the fourth's planes of every axis with the concave ones
     std::vector<Plane> with = planes;
-    for (const detail::FootPlane& f : concave_feet->planes) {
-      Plane pl{f.normal, f.offset, f.face, f.edges};
-      pl.at_foot = true;
-      add_plane(with, pl, tol);
-    }
+    add_foot_planes(with, concave_feet->planes, true, tol);
     PlaneCutResult feet =
         cut_along(solid, std::move(with), cylinders, around_options, left(), progress);
     if (feet.ok) return feet;
@@ -862,12 +862,7 @@ PlaneCutResult cut_as_the_mesher(const occ::Solid& solid, const PlaneCutOptions&
   std::vector<Plane> with_feet = planes;
   for (const detail::FootPlaneSet& set : detail::foot_plane_sets(solid))
     if (std::abs(set.axis.dot(fillets[0].surface.axis)) > 1 - 1e-9)
-      for (const detail::FootPlane& f : set.planes) {
-        if (f.concave) continue;
-        Plane pl{f.normal, f.offset, f.face, f.edges};
-        pl.at_foot = true;
-        add_plane(with_feet, pl, tol);
-      }
+      add_foot_planes(with_feet, set.planes, false, tol);
   for (const std::vector<Plane>* p : {&with_feet, &planes}) {
     if (left() <= 0 || (p == &planes && with_feet.size() == planes.size())) break;
     PlaneCutResult feet = cut_along(solid, *p, with, revolved, left(), progress, {}, walls);

@@ -58,6 +58,11 @@ bool octant_of(const occ::Solid& piece, Octant& o) {
   return true;
 }
 
+// The point at s, t, u along the octant's axes i, i + 1, i + 2 from its centre.
+Vec3 at(const Octant& o, int i, double s, double t, double u) {
+  return o.centre + s * o.axes[i] + t * o.axes[(i + 1) % 3] + u * o.axes[(i + 2) % 3];
+}
+
 // The six faces that part the octant: the inner cube's three faces inside it, and from each
 // of the cube's three edges away from the centre the diagonal plane between two blocks, out
 // past the sphere.
@@ -65,14 +70,10 @@ std::vector<std::vector<Vec3>> parting_faces(const Octant& o) {
   const double a = kInnerCube * o.radius, far = 1.5 * o.radius;
   std::vector<std::vector<Vec3>> tools;
   for (int i = 0; i < 3; ++i) {
-    const Vec3 &x = o.axes[i], &y = o.axes[(i + 1) % 3], &z = o.axes[(i + 2) % 3];
-    const auto at = [&](double s, double t, double u) {
-      return Vec3(o.centre + s * x + t * y + u * z);
-    };
+    // The cube's face across axis i; the plane where i and i + 1 are equal, i + 2 below both.
+    tools.push_back({at(o, i, a, 0, 0), at(o, i, a, a, 0), at(o, i, a, a, a), at(o, i, a, 0, a)});
     tools.push_back(
-        {at(a, 0, 0), at(a, a, 0), at(a, a, a), at(a, 0, a)});  // the cube's face across x
-    tools.push_back(
-        {at(a, a, 0), at(far, far, 0), at(far, far, far), at(a, a, a)});  // x = y, z below both
+        {at(o, i, a, a, 0), at(o, i, far, far, 0), at(o, i, far, far, far), at(o, i, a, a, a)});
   }
   return tools;
 }
@@ -83,14 +84,11 @@ std::vector<std::vector<Vec3>> parting_faces(const Octant& o) {
 // octant's.
 std::vector<std::vector<Vec3>> strip_parting_faces(const Octant& o, int i, double length) {
   const double a = kInnerCube * o.radius, far = 1.5 * o.radius;
-  const Vec3 &x = o.axes[i], &y = o.axes[(i + 1) % 3], &z = o.axes[(i + 2) % 3];
-  const auto at = [&](double s, double t, double u) {
-    return Vec3(o.centre + s * x + t * y + u * z);
-  };
   const double from = -length, to = 0.5 * a;
-  return {{at(from, a, 0), at(to, a, 0), at(to, a, a), at(from, a, a)},           // across y
-          {at(from, 0, a), at(to, 0, a), at(to, a, a), at(from, a, a)},           // across z
-          {at(from, a, a), at(to, a, a), at(to, far, far), at(from, far, far)}};  // y = z
+  const auto p = [&](double s, double t, double u) { return at(o, i, s, t, u); };
+  return {{p(from, a, 0), p(to, a, 0), p(to, a, a), p(from, a, a)},           // across i + 1
+          {p(from, 0, a), p(to, 0, a), p(to, a, a), p(from, a, a)},           // across i + 2
+          {p(from, a, a), p(to, a, a), p(to, far, far), p(from, far, far)}};  // i + 1 = i + 2
 }
 
 // Whether `piece` is a fillet's strip beside octant `o` across its axis i: it has the
@@ -116,24 +114,22 @@ bool is_strip_beside(const occ::Solid& piece, const Octant& o, int i) {
 
 }  // namespace
 
-bool is_ball_octant(const occ::Solid& piece) {
-  Octant o;
-  return octant_of(piece, o);
-}
-
 int split_ball_octants(std::vector<occ::Solid>& pieces, std::vector<double>& volume,
                        double time_limit) {
   // Parts `pieces[k]` by `tools` into `parts` blocks; false (nothing changed) otherwise.
   std::vector<char> parted(pieces.size(), 0);
   std::vector<std::vector<occ::Solid>> blocks(pieces.size());
+  std::vector<std::vector<double>> block_volumes(pieces.size());
   auto part = [&](std::size_t k, const std::vector<std::vector<Vec3>>& tools, std::size_t parts,
                   double tol) {
     occ::SplitResult s = occ::split_solid(pieces[k], tools, tol, time_limit);
+    if (!s.ok || s.pieces.size() != parts) return false;
+    std::vector<double> v;
     double sum = 0;
-    for (const occ::Solid& b : s.pieces) sum += b.volume();
-    if (!s.ok || s.pieces.size() != parts || std::abs(sum - volume[k]) > 1e-6 * volume[k])
-      return false;
+    for (const occ::Solid& b : s.pieces) sum += v.emplace_back(b.volume());
+    if (std::abs(sum - volume[k]) > 1e-6 * volume[k]) return false;
     blocks[k] = std::move(s.pieces);
+    block_volumes[k] = std::move(v);
     parted[k] = 1;
     return true;
   };
@@ -160,9 +156,9 @@ int split_ball_octants(std::vector<occ::Solid>& pieces, std::vector<double>& vol
       out_volume.push_back(volume[k]);
       continue;
     }
-    for (occ::Solid& b : blocks[k]) {
-      out_volume.push_back(b.volume());
-      out.push_back(std::move(b));
+    for (std::size_t b = 0; b < blocks[k].size(); ++b) {
+      out_volume.push_back(block_volumes[k][b]);
+      out.push_back(std::move(blocks[k][b]));
     }
   }
   pieces = std::move(out);

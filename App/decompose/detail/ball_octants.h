@@ -16,12 +16,10 @@
 
 namespace vorohex::decompose::detail {
 
-// Whether `piece` is such an octant: four faces, one a sphere about a vertex of the piece at
-// which the three planar faces meet at right angles, the three other vertices on the sphere.
-bool is_ball_octant(const occ::Solid& piece);
-
-// Each ball octant among `pieces` replaced by its four blocks (their volumes in `volume`, per
-// piece); an octant OCCT does not split into four is kept. Returns how many were split.
+// Each ball octant among `pieces` (four faces, one a sphere about a vertex of the piece at
+// which the three planar faces meet at right angles, the three other vertices on the sphere)
+// replaced by its four blocks, and the fillets' strips beside them by three (their volumes in
+// `volume`, per piece); a piece OCCT does not split so is kept. Returns how many were split.
 // `time_limit`: seconds for each split (> 0).
 int split_ball_octants(std::vector<occ::Solid>& pieces, std::vector<double>& volume,
                        double time_limit);
