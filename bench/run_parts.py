@@ -93,6 +93,23 @@ def build_parts(work):
         cyl(14, 20, (0, 0, 20))).cut(box(4, 5, 15, (-2, 7, 40)))
     parts["flange with hub, bored"] = cyl(30, 8, (0, 0, 0)).fuse(cyl(15, 20, (0, 0, 8))).cut(
         cyl(8, 40, (0, 0, -5)))
+    # A new user's PartDesign parts (tests/data/keyed_shaft.step, vbelt_pulley_keyway.step): a
+    # shaft with an end-milled keyway (round ends) and chamfered ends, whose blocks and sweeps
+    # spaced the nodes on the keyway's end curves each by its own faces (at size 2.2: the
+    # grid's 88,431 hexahedra); a V-belt pulley (a revolved profile) with a keyway in its bore,
+    # where a sweep bridges the keyway between two multisweeps' walls.
+    shaft = cyl(12, 80, (0, 0, 0))
+    shaft = shaft.makeChamfer(1, [e for e in shaft.Edges if hasattr(e.Curve, "Radius")])
+    parts["shaft with an end-milled keyway, chamfered"] = shaft.cut(
+        box(5, 8, 32, (8, -4, 24)).fuse(cyl(4, 5, (8, 0, 24), (1, 0, 0))).fuse(
+            cyl(4, 5, (8, 0, 56), (1, 0, 0))))
+    t = math.tan(math.radians(20))
+    profile = [(8, -4), (15, -4), (15, 5), (32, 5), (32, 0), (40, 0), (40, 3), (30, 3 + 10 * t),
+               (30, 13 - 10 * t), (40, 13), (40, 16), (32, 16), (32, 11), (15, 11), (15, 20),
+               (8, 20)]
+    wire = Part.makePolygon([V(r, 0, z) for r, z in profile + profile[:1]])
+    pulley = Part.Face(wire).revolve(V(0, 0, 0), V(0, 0, 1), 360)
+    parts["V-belt pulley with a keyway in its bore"] = pulley.cut(box(3.5, 5, 30, (7, -2.5, -5)))
     parts["T-slot block"] = box(50, 30, 30).cut(box(10, 30, 10, (20, 0, 20))).cut(
         box(24, 30, 6, (13, 0, 14)))
     parts["tube with a cross hole"] = cyl(10, 50, (0, 0, 0)).cut(cyl(7, 50, (0, 0, 0))).cut(

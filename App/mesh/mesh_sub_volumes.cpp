@@ -15,6 +15,7 @@
 #include "core/progress.h"
 #include "mesh/assemble.h"
 #include "mesh/detail/revolved_part.h"
+#include "mesh/detail/shared_face_mesh.h"
 #include "mesh/detail/sizing.h"
 #include "mesh/detail/sub_volume_part.h"
 #include "mesh/detail/sweep_orientation.h"
@@ -324,39 +325,6 @@ struct PartMesh {
   std::vector<core::Diagnostic> diagnostics;
 };
 
-// The boundary quads of `mesh` on face f of `solid`: every corner classified on f, on one of
-// its edges or at one of its vertices, and the quad's centre on f.
-std::vector<std::array<core::Vec3, 4>> quads_on_face(const core::HexMesh& mesh,
-                                                     const occ::Solid& solid, core::FaceId f) {
-  std::set<int> edges, vertices;
-  for (const auto& wire : solid.face_wires(f))
-    for (const core::OrientedEdge& oe : wire) {
-      edges.insert(oe.edge.value());
-      vertices.insert(solid.edge_first_vertex(oe.edge).value());
-      vertices.insert(solid.edge_last_vertex(oe.edge).value());
-    }
-  auto on = [&](std::int32_t n) {
-    const core::NodeClass c = mesh.node_classes()[n];
-    return (c.dim == 2 && c.id == f.value()) || (c.dim == 1 && edges.count(c.id)) ||
-           (c.dim == 0 && vertices.count(c.id));
-  };
-  std::vector<std::array<core::Vec3, 4>> out;
-  const double tol = 1e-6 * solid.diagonal();
-  for (const core::BoundaryFace& b : core::boundary_faces(mesh)) {
-    const core::HexNodes& h = mesh.hexes()[b.hex];
-    const auto& c = core::kHexFaces[b.face];
-    std::array<core::Vec3, 4> q;
-    bool all = true;
-    for (int i = 0; i < 4 && all; ++i) all = on(h[c[i]]), q[i] = mesh.points()[h[c[i]]];
-    if (!all) continue;
-    const core::Vec3 centre = 0.25 * (q[0] + q[1] + q[2] + q[3]);
-    if ((solid.project_to_face(f, centre) - centre).norm() > tol + 1e-3 * (q[2] - q[0]).norm())
-      continue;
-    out.push_back(q);
-  }
-  return out;
-}
-
 // `edge_nodes`: per part edge id, the nodes a neighbour meshed before it placed there
 // (empty: none yet).
 PartMesh mesh_part(const Part& part, const std::vector<int>& counts,
@@ -614,22 +582,45 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
         }
     }
   }
+  // The other shared edges' nodes placed once, on the glued sub-volumes (each part alone
+  // would space them by its own faces: an edge's end at a cusp of one part's face is widened
+  // there, and not in its neighbour's, so a keyed shaft's block and sweep placed different
+  // nodes on the curve where the keyway's round end meets the shaft).
+  for (int k = 0; k < n; ++k) {
+    const Part& p = parts[k];
+    if (p.multisweep || p.revolve) continue;
+    for (std::size_t e = 1; e < p.whole_edge.size(); ++e) {
+      const int whole = p.whole_edge[e];
+      if (!p.shared_edge[e] || placed.count(whole) || counts[k][e] < 1) continue;
+      if (pieces.edge_is_degenerated(EdgeId(whole)) ||
+          pieces.edge_first_vertex(EdgeId(whole)) == pieces.edge_last_vertex(EdgeId(whole)))
+        continue;  // closed: each part starts it at its own vertex
+      std::vector<core::Vec3> nodes =
+          detail::edge_points(pieces, EdgeId(whole), counts[k][e], options.size_field);
+      if (nodes.size() >= 2) placed.emplace(whole, std::move(nodes));
+    }
+  }
   std::vector<std::vector<std::vector<core::Vec3>>> given(n);
   for (int k = 0; k < n; ++k)
     if (!parts[k].multisweep && !parts[k].revolve && !placed.empty()) given[k] = given_to(parts[k]);
-  // A sweep's source that a multisweep meshed as a cap: its quads there (the boundary quads
-  // of the multisweep's mesh whose corners lie on that face or its edges and vertices).
-  std::vector<std::vector<std::array<core::Vec3, 4>>> given_source(n);
-  for (int k = 0; k < n; ++k) {
-    if (!parts[k].is_sweep()) continue;
-    const int face = parts[k].whole_face[parts[k].sweep.source.value()];
-    for (int j = 0; j < n && given_source[k].empty(); ++j) {
+  // A sweep's source or target that a multisweep meshed (a cap, or a wall: a sweep bridging
+  // two multisweeps, as across a pulley's keyway): its quads there (the boundary quads of the
+  // multisweep's mesh whose corners lie on that face or its edges and vertices).
+  std::vector<std::vector<std::array<core::Vec3, 4>>> given_source(n), given_target(n);
+  auto multisweep_quads = [&](int whole) {
+    for (int j = 0; j < n; ++j) {
       const Part& a = parts[j];
       if (!a.multisweep || !meshed[j].ok) continue;
       for (std::size_t f = 1; f < a.whole_face.size(); ++f)
-        if (a.whole_face[f] == face)
-          given_source[k] = quads_on_face(meshed[j].mesh, a.solid, core::FaceId(int(f)));
+        if (a.whole_face[f] == whole)
+          return detail::quads_on_face(meshed[j].mesh, a.solid, core::FaceId(int(f)));
     }
+    return std::vector<std::array<core::Vec3, 4>>();
+  };
+  for (int k = 0; k < n; ++k) {
+    if (!parts[k].is_sweep()) continue;
+    given_source[k] = multisweep_quads(parts[k].whole_face[parts[k].sweep.source.value()]);
+    given_target[k] = multisweep_quads(parts[k].whole_face[parts[k].sweep.target.value()]);
   }
   // A sweep whose source, meshed freely, is another sweep's target (a stack of slabs: a block,
   // and slabs cut at a chamfer's and a fillet's feet at two heights) takes that sweep's quads
@@ -665,8 +656,8 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
       if (parts[k].multisweep || parts[k].revolve || after[k] >= 0)
         continue;  // meshed above, or below
       try {
-        meshed[k] =
-            mesh_part(parts[k], counts[k], options, worker_progress, given[k], given_source[k]);
+        meshed[k] = mesh_part(parts[k], counts[k], options, worker_progress, given[k],
+                              given_source[k], given_target[k]);
       } catch (const std::exception& e) {
         meshed[k].diagnostics.push_back(core::make_error("geometry_error", e.what()));
       }
@@ -685,13 +676,14 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
     for (int k = 0; k < n; ++k) {
       const int j = after[k], t = target_from[k];
       if (j < 0 || meshed[k].ok || !meshed[j].ok || (t >= 0 && !meshed[t].ok)) continue;
-      given_source[k] = quads_on_face(meshed[j].mesh, parts[j].solid, parts[j].sweep.target);
-      const auto given_target =
-          t >= 0 ? quads_on_face(meshed[t].mesh, parts[t].solid, parts[t].sweep.source)
-                 : std::vector<std::array<core::Vec3, 4>>();
+      given_source[k] =
+          detail::quads_on_face(meshed[j].mesh, parts[j].solid, parts[j].sweep.target);
+      if (t >= 0)
+        given_target[k] =
+            detail::quads_on_face(meshed[t].mesh, parts[t].solid, parts[t].sweep.source);
       try {
         meshed[k] = mesh_part(parts[k], counts[k], options, worker_progress, given[k],
-                              given_source[k], given_target);
+                              given_source[k], given_target[k]);
       } catch (const std::exception& e) {
         meshed[k].diagnostics.push_back(core::make_error("geometry_error", e.what()));
       }

@@ -14,6 +14,7 @@
 #include "mesh/detail/cad_lookup.h"
 #include "mesh/detail/grid_face.h"
 #include "mesh/detail/quad_quality.h"
+#include "mesh/detail/shared_face_mesh.h"
 #include "mesh/detail/sizing.h"
 #include "mesh/detail/sweep_layers.h"
 #include "mesh/detail/sweep_source.h"
@@ -666,7 +667,16 @@ SweepResult sweep(const core::MeshDomain& solid, const SweepOptions& options,
                                          : solid.project_to_face(t.target, image);
       C[id(K, j)] = NodeClass::on(t.target);
     }
+    // A mapped or submapped source that a neighbour meshed first (a multisweep's wall): its
+    // inner nodes put on the neighbour's, paired by the quads' connectivity, so that both
+    // meshes of the face are one (the same cells; the positions differ: the neighbour's
+    // extruded rows against this lattice's). Where they do not pair up, the face stays this
+    // sweep's own and the join's check names it.
+    if (!options.source_quads.empty() && (p.grid[0] > 0 || !p.submap.empty()))
+      detail::onto_quads_by_connectivity(P, 0, M, nb, sm.quads, options.source_quads, options.size);
     target_mismatch = !options.target_quads.empty() &&
+                      !detail::onto_quads_by_connectivity(P, std::size_t(K) * M, M, nb, sm.quads,
+                                                          options.target_quads, options.size) &&
                       !detail::onto_target_quads(P, std::size_t(K) * M, M, nb, options.target_quads,
                                                  options.size);
     for (core::VertexId v : apexes) {
