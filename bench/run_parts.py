@@ -93,11 +93,12 @@ def build_parts(work):
         cyl(14, 20, (0, 0, 20))).cut(box(4, 5, 15, (-2, 7, 40)))
     parts["flange with hub, bored"] = cyl(30, 8, (0, 0, 0)).fuse(cyl(15, 20, (0, 0, 8))).cut(
         cyl(8, 40, (0, 0, -5)))
-    # A new user's PartDesign parts (tests/data/keyed_shaft.step, vbelt_pulley_keyway.step): a
-    # shaft with an end-milled keyway (round ends) and chamfered ends, whose blocks and sweeps
-    # spaced the nodes on the keyway's end curves each by its own faces (at size 2.2: the
-    # grid's 88,431 hexahedra); a V-belt pulley (a revolved profile) with a keyway in its bore,
-    # where a sweep bridges the keyway between two multisweeps' walls.
+    # A new user's PartDesign parts: a shaft with an end-milled keyway (round ends) and
+    # chamfered ends (tests/data/keyed_shaft.step), whose blocks and sweeps spaced the nodes on
+    # the keyway's end curves each by its own faces (at size 2.2: the grid's 88,431
+    # hexahedra); a V-belt pulley (a revolved profile) with a keyway in its bore, where a sweep
+    # bridges the keyway between two multisweeps' walls (its plane-cut pieces:
+    # tests/data/vbelt_pulley_keyway_pieces.brep).
     shaft = cyl(12, 80, (0, 0, 0))
     shaft = shaft.makeChamfer(1, [e for e in shaft.Edges if hasattr(e.Curve, "Radius")])
     parts["shaft with an end-milled keyway, chamfered"] = shaft.cut(

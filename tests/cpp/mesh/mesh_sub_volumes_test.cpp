@@ -234,5 +234,34 @@ TEST(MeshSubVolumes, ASweepsLinkingSidesMayBeStacksOfFacesItsNeighboursSplit) {
   EXPECT_EQ(r.diagnostics[0].code, "intervals_needed");
 }
 
+// A V-belt pulley with a keyway in its bore (bench/run_parts.py), as its plane cuts left it
+// (42 pieces, as `vorohex decompose --auto -o` writes them:
+// tests/data/vbelt_pulley_keyway_pieces.brep). The
+// material over the keyway is a sweep between two multisweeps' walls: its source and target
+// are faces the multisweeps meshed first (rows extruded), while its own submapped lattice
+// there is smoothed (the same cells, inner nodes up to 1.2 apart). It takes their quads on
+// both ends, paired by connectivity; before, the target's nearest-node pairing failed
+// (target_mismatch) and, without it, the two meshes of each face did not match.
+TEST(MeshSubVolumes, ASweepBetweenTwoMultisweepsTakesTheirQuadsOnBothEnds) {
+  occ::ReadOptions ro;
+  ro.several_solids = true;
+  const occ::ReadResult in = occ::read_solid(
+      std::string(VOROHEX_SOURCE_DIR) + "/tests/data/vbelt_pulley_keyway_pieces.brep", ro);
+  ASSERT_TRUE(in.ok()) << messages(in.diagnostics);
+  ASSERT_EQ(in.solid->num_solids(), 42);
+  SubVolumeMeshOptions o;
+  o.size = 5.78;  // the pulley's default (diagonal / 20)
+  const SubVolumeMeshResult m = mesh_sub_volumes(*in.solid, o);
+  ASSERT_TRUE(m.ok) << messages(m.diagnostics);
+  int multisweeps = 0;
+  for (const std::string& s : m.stats.schemes) multisweeps += s == "multisweep";
+  EXPECT_GE(multisweeps, 2);
+  const quality::CheckReport check = quality::check_mesh(m.mesh, in.solid.get());
+  EXPECT_TRUE(check.valid) << messages(check.diagnostics);
+  EXPECT_EQ(check.non_manifold_quads, 0u);
+  EXPECT_EQ(check.open_boundary_edges, 0u);
+  EXPECT_GT(check.scaled_jacobian.min, 0.2);
+}
+
 }  // namespace
 }  // namespace vorohex::mesh
