@@ -111,6 +111,18 @@ def build_parts(work):
     wire = Part.makePolygon([V(r, 0, z) for r, z in profile + profile[:1]])
     pulley = Part.Face(wire).revolve(V(0, 0, 0), V(0, 0, 1), 360)
     parts["V-belt pulley with a keyway in its bore"] = pulley.cut(box(3.5, 5, 30, (7, -2.5, -5)))
+    # A rib-stiffened angle (tests/data/ribbed_angle.step): legs 60 long and 6 thick, 80 deep,
+    # three triangular gussets 5 thick (legs 34) and two holes of diameter 8 in each leg. The
+    # gussets' sloped faces are one plane, which cut wedges out of both legs: the grid's
+    # 517,734 hexahedra at this size as PartDesign built it.
+    angle = box(60, 80, 6, (0, -40, 0)).fuse(box(6, 80, 60, (0, -40, 0)))
+    for y in (-30, 0, 30):
+        gusset = Part.Face(Part.makePolygon([V(6, y - 2.5, 6), V(40, y - 2.5, 6), V(6, y - 2.5, 40),
+                                             V(6, y - 2.5, 6)])).extrude(V(0, 5, 0))
+        angle = angle.fuse(gusset)
+    for y in (-15, 15):
+        angle = angle.cut(cyl(4, 6, (40, y, 0))).cut(cyl(4, 6, (0, y, 40), (1, 0, 0)))
+    parts["angle with three gussets, two holes in each leg"] = angle
     parts["T-slot block"] = box(50, 30, 30).cut(box(10, 30, 10, (20, 0, 20))).cut(
         box(24, 30, 6, (13, 0, 14)))
     parts["tube with a cross hole"] = cyl(10, 50, (0, 0, 0)).cut(cyl(7, 50, (0, 0, 0))).cut(

@@ -739,6 +739,19 @@ PlaneCutResult cut_as_the_mesher(const occ::Solid& solid, const PlaneCutOptions&
     PlaneCutResult second = cut_at_concave_edges(solid, tangent, progress);
     if (second.ok) return second;
   }
+  // Then without the oblique planes whose concave edges other surfaces cut along already (a
+  // gusset's sloped face between the legs of an angle: its plane cut wedges out of both legs).
+  {
+    std::vector<Plane> planes;
+    std::vector<Cylinder> cylinders;
+    std::string why;
+    if (left() > 0 && detail::concave_surfaces(solid, planes, cylinders, why) &&
+        detail::drop_oblique_planes(solid, planes, cylinders)) {
+      PlaneCutResult without =
+          cut_along(solid, std::move(planes), std::move(cylinders), options, left(), progress);
+      if (without.ok) return without;
+    }
+  }
   // Third: with planes around the holes that cross the part's other direction. A part a few
   // planes around its holes make structured is a simple one (a tube with a cross hole: 0.6
   // s): these cuts get at most a quarter of the time, kAroundSeconds and kAroundPieces pieces

@@ -173,6 +173,54 @@ bool tangent_planes_instead(const occ::Solid& s, std::vector<Plane>& planes,
 // that is no such edge of the solid: a cut surface tangent to a face of the solid (HexMe
 // i14's lug cut off its tube along the tube's cylinder, to which the lug's sides are
 // tangent). No hexahedron along such an edge is good; the sweeps' layers fold there.
+bool drop_oblique_planes(const occ::Solid& s, std::vector<Plane>& planes,
+                         const std::vector<Cylinder>& cylinders) {
+  // The part's axes from its planar faces, largest first.
+  std::vector<std::pair<double, Vec3>> faces;
+  for (FaceId f : s.faces()) {
+    if (!s.face_is_planar(f)) continue;
+    const core::SurfaceInfo info = s.surface_info(f);
+    if (info.kind == core::SurfaceKind::plane)
+      faces.emplace_back(s.area(f), info.direction.normalized());
+  }
+  std::sort(faces.begin(), faces.end(),
+            [](const auto& a, const auto& b) { return a.first > b.first; });
+  if (faces.empty()) return false;
+  constexpr double kParallel = 1 - 1e-9, kPerpendicular = 1e-9;
+  std::vector<Vec3> axes{faces[0].second};
+  for (const auto& [area, n] : faces)
+    if (std::abs(n.dot(axes[0])) < kPerpendicular) {
+      axes.push_back(n);
+      axes.push_back(axes[0].cross(n).normalized());
+      break;
+    }
+  if (axes.size() < 3) return false;  // no frame of three axes (a plate whose sides are sloped)
+  auto along_an_axis = [&](const Vec3& n) {
+    return std::any_of(axes.begin(), axes.end(),
+                       [&](const Vec3& a) { return std::abs(n.dot(a)) > kParallel; });
+  };
+  auto cut_by_another = [&](core::EdgeId e, std::size_t self) {
+    for (std::size_t k = 0; k < planes.size(); ++k)
+      if (k != self && std::count(planes[k].edges.begin(), planes[k].edges.end(), e)) return true;
+    for (const Cylinder& c : cylinders)
+      if (std::count(c.edges.begin(), c.edges.end(), e)) return true;
+    return false;
+  };
+  bool dropped = false;
+  for (std::size_t k = 0; k < planes.size();) {
+    const Plane& pl = planes[k];
+    const bool oblique = !along_an_axis(pl.normal) && !pl.edges.empty() && pl.quad.empty();
+    if (oblique && std::all_of(pl.edges.begin(), pl.edges.end(),
+                               [&](core::EdgeId e) { return cut_by_another(e, k); })) {
+      planes.erase(planes.begin() + std::ptrdiff_t(k));
+      dropped = true;
+    } else {
+      ++k;
+    }
+  }
+  return dropped;
+}
+
 bool adds_knife_edges(const occ::Solid& solid, const std::vector<occ::Solid>& pieces) {
   const double cos_knife = std::cos(3 * M_PI / 180);
   const double tol = 1e-6 * solid.diagonal();

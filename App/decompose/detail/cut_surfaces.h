@@ -55,6 +55,14 @@ bool concave_surfaces(const occ::Solid& s, std::vector<Plane>& planes,
 bool tangent_planes_instead(const occ::Solid& s, std::vector<Plane>& planes,
                             std::vector<Cylinder>& cylinders);
 
+// Removes the planes whose normal lies along none of the part's axes (the normal of its
+// largest planar face, of the largest planar face at right angles to that, and their cross
+// product) and whose every concave edge another surface in `planes` or `cylinders` cuts along
+// already: a gusset's sloped face between the two legs of an angle, whose plane extended cuts
+// wedges out of both legs. True when any was removed.
+bool drop_oblique_planes(const occ::Solid& s, std::vector<Plane>& planes,
+                         const std::vector<Cylinder>& cylinders);
+
 // Whether a piece has an edge where its two faces meet at an angle near zero (a knife)
 // that is no such edge of the solid (a cut surface tangent to a face of the solid).
 bool adds_knife_edges(const occ::Solid& solid, const std::vector<occ::Solid>& pieces);

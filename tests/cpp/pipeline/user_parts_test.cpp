@@ -1,7 +1,7 @@
-// Keyways, as a new user cuts them in PartDesign: parts whose plane cuts give sub-volumes that
-// all have a scheme, and whose meshes must match where the sub-volumes meet. The shaft was the
-// grid mesher's at a fine size because two neighbours placed the nodes of a shared edge each
-// its own way.
+// Parts as a new user builds them in PartDesign (made again with the Part module by
+// bench/run_parts.py): keyways and gussets. Their plane cuts give sub-volumes that all have a
+// scheme once the cut is along the right surfaces, and their meshes must match where the
+// sub-volumes meet.
 #include <gtest/gtest.h>
 
 #include <stdexcept>
@@ -42,12 +42,28 @@ void expect_structured(const MeshResult& r, double min) {
 // own faces (one part's face has a cusp there, whose end nodes are widened), 0.42 apart: the
 // meshes did not match, and the grid mesher's 88,431 hexahedra were the result. The shared
 // edges' nodes are now placed once, on the glued sub-volumes.
-TEST(Keyways, AShaftsEndMilledKeywayMeshesStructuredAtAFineSize) {
+TEST(UserParts, AShaftsEndMilledKeywayMeshesStructuredAtAFineSize) {
   for (double size : {0.0, 2.2}) {
     SCOPED_TRACE(size);
     const MeshResult r = mesh_file("keyed_shaft.step", size);
     expect_structured(r, 0.4);
     if (size > 0) EXPECT_LE(r.mesh.num_hexes(), 6000u);
+  }
+}
+
+// An angle (legs 60 long, 6 thick, 80 deep) stiffened by three triangular gussets 5 thick, two
+// holes of diameter 8 in each leg (tests/data/ribbed_angle.step). The gussets' sloped faces
+// lie in one plane, taken at their concave edges with the legs as the legs' own planes are:
+// extended, it cut wedges out of both legs, and the grid mesher made 517,734 hexahedra (the
+// tet split 29,868 at 0.168 at diagonal / 25). Cut without it (every concave edge of it is
+// cut along by a leg's plane already), the legs and gussets are sweeps and multisweeps.
+TEST(UserParts, AnAnglesGussetsAreNotCutAlongTheirSlopedFaces) {
+  for (double size : {0.0, 4.66}) {
+    SCOPED_TRACE(size);
+    const MeshResult r = mesh_file("ribbed_angle.step", size);
+    expect_structured(r, 0.6);
+    EXPECT_LE(r.mesh.num_hexes(), 2000u);
+    EXPECT_LE(r.stats.sub_volumes, 12);
   }
 }
 
