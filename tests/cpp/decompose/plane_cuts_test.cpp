@@ -220,6 +220,17 @@ TEST(PlaneCuts, TheCutEndsAtItsTimeLimitEvenWhereOcctDoesNot) {
   }
 }
 
+// The pieces glued as the plane cuts glue them (touching only): one solid each.
+void expect_pieces_glue(const std::vector<occ::Solid>& cut) {
+  std::vector<const occ::Solid*> pieces;
+  for (const occ::Solid& p : cut) pieces.push_back(&p);
+  occ::GlueOptions touching;
+  touching.only_touching = true;
+  const occ::ReadResult glued = occ::glue_solids(pieces, "The plane cut", touching);
+  ASSERT_TRUE(glued.ok()) << glued.diagnostics[0].message;
+  EXPECT_EQ(glued.solid->num_solids(), int(cut.size()));
+}
+
 // HexMe i05's STEP edges are far more tolerant than its faces (B-splines up to 1.3e-3, faces
 // 1e-7): glued, its ten plane-cut pieces are 3.6e-4 larger than apart, which a skin of the
 // faces' tolerance alone (2.5e-4) took for an overlap. Within the tubes of the edges'
@@ -233,13 +244,7 @@ TEST(PlaneCuts, PiecesWithTolerantEdgesAreNotTakenForAnOverlap) {
   ASSERT_FALSE(r.ok);
   EXPECT_EQ(r.pieces.size(), 10u) << r.why_not;
   EXPECT_EQ(r.why_not.find("overlap"), std::string::npos) << r.why_not;
-  std::vector<const occ::Solid*> pieces;
-  for (const occ::Solid& p : r.pieces) pieces.push_back(&p);
-  occ::GlueOptions touching;  // as the plane cuts glue their pieces
-  touching.only_touching = true;
-  const occ::ReadResult glued = occ::glue_solids(pieces, "The plane cut", touching);
-  ASSERT_TRUE(glued.ok()) << glued.diagnostics[0].message;
-  EXPECT_EQ(glued.solid->num_solids(), 10);
+  expect_pieces_glue(r.pieces);
 }
 
 // HexMe i19's 44 plane-cut pieces share their common faces (split pieces), and OCCT's general
@@ -256,13 +261,7 @@ TEST(PlaneCuts, PiecesTheFuseTurnsInsideOutAreGluedAsCopies) {
   EXPECT_EQ(r.why_not.find("inside out"), std::string::npos) << r.why_not;
   EXPECT_EQ(r.why_not.find("could not glue"), std::string::npos) << r.why_not;
   ASSERT_GE(r.pieces.size(), 2u) << r.why_not;
-  std::vector<const occ::Solid*> pieces;
-  for (const occ::Solid& p : r.pieces) pieces.push_back(&p);
-  occ::GlueOptions touching;  // as the plane cuts glue their pieces
-  touching.only_touching = true;
-  const occ::ReadResult glued = occ::glue_solids(pieces, "The plane cut", touching);
-  ASSERT_TRUE(glued.ok()) << glued.diagnostics[0].message;
-  EXPECT_EQ(glued.solid->num_solids(), int(r.pieces.size()));
+  expect_pieces_glue(r.pieces);
   double sum = 0;
   for (const occ::Solid& p : r.pieces) sum += p.volume();
   EXPECT_NEAR(sum, in.solid->volume(), 1e-6 * in.solid->volume());

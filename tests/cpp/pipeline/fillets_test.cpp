@@ -13,22 +13,14 @@
 #include <thread>
 
 #include "fixtures/diagnostics.h"
+#include "fixtures/mesh_checks.h"
 #include "occ/shape_io.h"
 #include "pipeline/generate_mesh.h"
 
 namespace vorohex::pipeline {
 namespace {
 
-MeshResult mesh_file(const std::string& name, double size = 0, int order = 1) {
-  const occ::ReadResult in =
-      occ::read_solid(std::string(VOROHEX_SOURCE_DIR) + "/tests/data/" + name);
-  if (!in.ok()) throw std::runtime_error(name + " does not load");
-  MeshOptions opt;
-  opt.fallback = false;
-  opt.size = size;
-  opt.order = order;
-  return generate_mesh(*in.solid, opt);
-}
+using testing::mesh_test_file;
 
 // A valid mesh of a decomposition into `pieces` sub-volumes (0: any number) whose schemes
 // include `scheme`, conforming and closed, its volume within 1 %, at least `min`; its
@@ -65,7 +57,7 @@ void expect_cut_at_the_foot_of_a_fillet(const MeshResult& r) {
 TEST(GenerateMesh, ABlockWithItsTopEdgesFilletedIsCutAtTheFilletsFootAndMapped) {
   for (double size : {0.0, 1.5}) {
     SCOPED_TRACE(size);
-    const MeshResult r = mesh_file("block_top_fillets.step", size);
+    const MeshResult r = mesh_test_file("block_top_fillets.step", size);
     ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
     EXPECT_EQ(r.stats.scheme, "map");
     expect_cut_at_the_foot_of_a_fillet(r);
@@ -87,7 +79,7 @@ TEST(GenerateMesh, ABlockWithItsTopEdgesFilletedIsCutAtTheFilletsFootAndMapped) 
 TEST(GenerateMesh, ABoxWithItsTopAndVerticalEdgesFilletedIsPartedAtItsCorners) {
   for (double size : {0.0, 1.0}) {
     SCOPED_TRACE(size);
-    const MeshResult r = mesh_file("block_top_vertical_fillets.step", size);
+    const MeshResult r = mesh_test_file("block_top_vertical_fillets.step", size);
     ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
     EXPECT_EQ(r.stats.scheme.find("grid"), std::string::npos) << r.stats.scheme;
     expect_decomposed(r, "map", 46, 0.6, "4 octants of a ball, as at a corner where three");
@@ -105,7 +97,7 @@ TEST(GenerateMesh, ABoxWithItsTopAndVerticalEdgesFilletedIsPartedAtItsCorners) {
 // legs with their holes, each swept. Before, the grid mesher's: 60,037 hexahedra (its first
 // grid invalid, one three times finer).
 TEST(GenerateMesh, AnLBracketsInnerFilletIsCutAcrossEachLegAtItsFeet) {
-  const MeshResult r = mesh_file("l_bracket_fillet_holes.step");
+  const MeshResult r = mesh_test_file("l_bracket_fillet_holes.step");
   ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
   EXPECT_EQ(r.stats.scheme, "sweep");
   expect_decomposed(r, "sweep", 3, 0.6, "the plane across the foot of Face");
@@ -115,7 +107,7 @@ TEST(GenerateMesh, AnLBracketsInnerFilletIsCutAcrossEachLegAtItsFeet) {
 // Second order: the pillow goes under the corners' mesh, and the mid-edge nodes are made
 // again on the pillowed one.
 TEST(GenerateMesh, ASecondOrderMeshIsPillowedUnderItsCorners) {
-  const MeshResult r = mesh_file("block_top_fillets.step", 0, 2);
+  const MeshResult r = mesh_test_file("block_top_fillets.step", 0, 2);
   ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
   EXPECT_EQ(r.mesh.order(), 2);
   EXPECT_EQ(r.mesh.num_hexes(), 1592u);
@@ -182,7 +174,7 @@ TEST(GenerateMesh, APoorDecompositionMeshGivesWayToTheFallbacksMadeBeside) {
 // there as its source, so they conform. Before, each meshed its own and the join failed
 // (non_conforming_interface): the grid's 16,040 hexahedra.
 TEST(GenerateMesh, StackedSweepsTakeTheQuadsOfTheOneBelowAsTheirSource) {
-  const MeshResult r = mesh_file("block_chamfered_and_filleted.step");
+  const MeshResult r = mesh_test_file("block_chamfered_and_filleted.step");
   ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
   EXPECT_EQ(r.stats.scheme, "sweep");
   expect_decomposed(r, "sweep", 3, 0.5);
@@ -190,7 +182,7 @@ TEST(GenerateMesh, StackedSweepsTakeTheQuadsOfTheOneBelowAsTheirSource) {
 
 // The pillowed mesh is used only where it is better: on the plate its sweep is good as it is.
 TEST(GenerateMesh, AGoodStructuredMeshIsNotPillowed) {
-  const MeshResult r = mesh_file("plate_hole_edge_fillet.step", 1.5);
+  const MeshResult r = mesh_test_file("plate_hole_edge_fillet.step", 1.5);
   ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
   EXPECT_EQ(testing::find_diagnostic(r.diagnostics, "boundary_pillowed"), nullptr);
   EXPECT_EQ(testing::find_diagnostic(r.diagnostics, "boundary_pillow_failed"), nullptr);
@@ -200,7 +192,7 @@ TEST(GenerateMesh, AGoodStructuredMeshIsNotPillowed) {
 // about the hole's axis; tests/data/plate_hole_edge_fillet.step): a plate and a slab whose
 // hole flares out, both swept.
 TEST(GenerateMesh, APlateWithItsHolesEdgeFilletedIsCutAtTheFilletsFootAndSwept) {
-  const MeshResult r = mesh_file("plate_hole_edge_fillet.step");
+  const MeshResult r = mesh_test_file("plate_hole_edge_fillet.step");
   ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
   EXPECT_EQ(r.stats.scheme, "sweep");
   expect_cut_at_the_foot_of_a_fillet(r);
@@ -213,7 +205,7 @@ TEST(GenerateMesh, APlateWithItsHolesEdgeFilletedIsCutAtTheFilletsFootAndSwept) 
 // plate fillets' feet and along the cylinder through the root fillet's foot: a block and a
 // slab with a round hole, swept, and the boss with its fillet, revolved.
 TEST(GenerateMesh, ABossWithItsRootFilletedIsCutAtTheFilletsFootAndRevolved) {
-  const MeshResult r = mesh_file("plate_boss_root_fillet.step");
+  const MeshResult r = mesh_test_file("plate_boss_root_fillet.step");
   ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
   EXPECT_EQ(r.stats.scheme, "sweep+revolve");
   expect_decomposed(r, "revolve", 3, 0.45, "the cylinder through the foot of Face");
@@ -228,7 +220,7 @@ TEST(GenerateMesh, ABossWithItsRootFilletedIsCutAtTheFilletsFootAndRevolved) {
 // splits; cut through the chamfer's foot too, a sweep and the revolved boss. Before, the
 // grid's: 29,752 hexahedra in 4.5 s.
 TEST(GenerateMesh, ABossWithItsRootChamferedIsCutAtTheChamfersFootAndRevolved) {
-  const MeshResult r = mesh_file("plate_boss_root_chamfer.step");
+  const MeshResult r = mesh_test_file("plate_boss_root_chamfer.step");
   ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
   EXPECT_EQ(r.stats.scheme, "sweep+revolve");
   expect_decomposed(r, "revolve", 2, 0.5);
@@ -240,7 +232,7 @@ TEST(GenerateMesh, ABossWithItsRootChamferedIsCutAtTheChamfersFootAndRevolved) {
 // are swept and the ring between them, with the fillet and the pocket's wall, revolved. Before,
 // the grid's: 890 hexahedra at min 0.284 in 6.4 s.
 TEST(GenerateMesh, ARoundPocketWithItsFloorFilletedHasItsFilletOnARevolvedRing) {
-  const MeshResult r = mesh_file("round_pocket_floor_fillet.step");
+  const MeshResult r = mesh_test_file("round_pocket_floor_fillet.step");
   ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
   expect_decomposed(r, "revolve", 3, 0.45, "a cylinder around the pocket rounded by Face");
 }
@@ -250,7 +242,7 @@ TEST(GenerateMesh, ARoundPocketWithItsFloorFilletedHasItsFilletOnARevolvedRing) 
 // fold it; they are put back straight, off the CAD, and the mesh was invalid (nodes_off_cad).
 // Made again at half the size, it is valid, and says so.
 TEST(GenerateMesh, ASecondOrderMeshOffTheCadIsMadeAgainAtHalfTheSize) {
-  const MeshResult r = mesh_file("round_pocket_floor_fillet.step", 0, 2);
+  const MeshResult r = mesh_test_file("round_pocket_floor_fillet.step", 0, 2);
   ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
   expect_decomposed(r, "revolve", 3, 0.45);
   const core::Diagnostic* d =
@@ -267,7 +259,7 @@ TEST(GenerateMesh, ASecondOrderMeshOffTheCadIsMadeAgainAtHalfTheSize) {
 // the circles they share are split into arcs where the pocket wall's plane touched the cut
 // cylinder (a quarter of a turn apart: each arc its share of the sectors). Before, the grid's.
 TEST(GenerateMesh, ARevolvedBossTakesTheNodesOfTheMultisweepBesideIt) {
-  const MeshResult r = mesh_file("plate_boss_root_fillet_and_pocket.step");
+  const MeshResult r = mesh_test_file("plate_boss_root_fillet_and_pocket.step");
   ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
   expect_decomposed(r, "revolve", 2, 0.5);
   expect_decomposed(r, "multisweep", 2, 0.5);
@@ -279,7 +271,7 @@ TEST(GenerateMesh, ARevolvedBossTakesTheNodesOfTheMultisweepBesideIt) {
 // of the pocket's corners: four sweeps from mitre to mitre (in a ring: the last one's target
 // the first one's source) and blocks. Before, the grid's (4,510 hexahedra).
 TEST(GenerateMesh, APocketWithItsFloorFilletedIsSweptAlongItsFilletsStrips) {
-  const MeshResult r = mesh_file("pocket_floor_fillet.step");
+  const MeshResult r = mesh_test_file("pocket_floor_fillet.step");
   ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
   expect_decomposed(r, "sweep", 21, 0.4,
                     "the strips of Face3, Face7, Face9 and Face14 (across their feet and as far "
@@ -294,7 +286,7 @@ TEST(GenerateMesh, APocketWithItsFloorFilletedIsSweptAlongItsFilletsStrips) {
 TEST(GenerateMesh, ABossWithItsRootFilletedAndTwoPocketsAreSweptAlongTheirStrips) {
   for (const char* name : {"plate_rect_boss_root_fillet.step", "two_pockets_floor_fillet.step"}) {
     SCOPED_TRACE(name);
-    const MeshResult r = mesh_file(name);
+    const MeshResult r = mesh_test_file(name);
     ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
     expect_decomposed(r, "sweep", 0, 0.45, "mitre planes");
     EXPECT_LT(r.mesh.num_hexes(), 1500u);
@@ -307,12 +299,12 @@ TEST(GenerateMesh, ABossWithItsRootFilletedAndTwoPocketsAreSweptAlongTheirStrips
 // each swept round the corner's axis; all ten sub-volumes are sweeps. Before, the grid's
 // (the pocket: 4,530 hexahedra at 0.500).
 TEST(GenerateMesh, RoundedCornersTurnTheFilletsStripsOnSweptQuarterRings) {
-  const MeshResult r = mesh_file("pocket_rounded_corners_floor_fillet.step");
+  const MeshResult r = mesh_test_file("pocket_rounded_corners_floor_fillet.step");
   ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
   expect_decomposed(r, "sweep", 10, 0.6, "turning round 4 rounded corners");
   EXPECT_EQ(r.stats.scheme, "sweep");
   EXPECT_LT(r.mesh.num_hexes(), 1500u);
-  const MeshResult b = mesh_file("plate_rounded_boss_root_fillet.step");
+  const MeshResult b = mesh_test_file("plate_rounded_boss_root_fillet.step");
   ASSERT_TRUE(b.ok) << (b.diagnostics.empty() ? "" : core::format(b.diagnostics.back()));
   expect_decomposed(b, "sweep", 0, 0.45, "turning round 4 rounded corners");
 }
@@ -326,7 +318,7 @@ TEST(GenerateMesh, RoundedCornersTurnTheFilletsStripsOnSweptQuarterRings) {
 // from the caps of two such multisweeps, did not match at their mitre: the grid's, 5,280
 // hexahedra. A piece in two strips' planes but beside one's fillet only is in that strip only.
 TEST(GenerateMesh, AnLShapedPocketsStripsMeetAtItsInnerCornerToo) {
-  const MeshResult r = mesh_file("l_pocket_floor_fillet.step");
+  const MeshResult r = mesh_test_file("l_pocket_floor_fillet.step");
   ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
   expect_decomposed(r, "sweep", 0, 0.45,
                     "the strips of Face3, Face6, Face9, Face16, Face17 and Face18 (across their "
@@ -337,7 +329,7 @@ TEST(GenerateMesh, AnLShapedPocketsStripsMeetAtItsInnerCornerToo) {
   // its cut leaves 71 pieces, the corners' halves without a scheme until merged; past 60
   // pieces a cut's pieces each needed a scheme before they were glued, so its strips were never
   // merged (the grid's, 5,476 hexahedra at 0.151). 43 blocks and sweeps.
-  const MeshResult t = mesh_file("t_pocket_floor_fillet.step");
+  const MeshResult t = mesh_test_file("t_pocket_floor_fillet.step");
   ASSERT_TRUE(t.ok) << (t.diagnostics.empty() ? "" : core::format(t.diagnostics.back()));
   expect_decomposed(t, "sweep", 0, 0.45, "ended at 8 mitre planes");
   EXPECT_LT(t.mesh.num_hexes(), 1500u);
@@ -353,7 +345,7 @@ TEST(GenerateMesh, AnLShapedPocketsStripsMeetAtItsInnerCornerToo) {
 // default size (3.7) and at 3 the quad mesher's mesh of a strip's end inverts a quad and the
 // grid meshes it.
 TEST(GenerateMesh, ABossWithItsRootAndTopEdgesFilletedIsSweptAlongItsRootsStrips) {
-  const MeshResult r = mesh_file("plate_rect_boss_root_top_fillets.step", 1.5);
+  const MeshResult r = mesh_test_file("plate_rect_boss_root_top_fillets.step", 1.5);
   ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
   expect_decomposed(r, "sweep", 0, 0.45, "ended at 4 mitre planes");
 }

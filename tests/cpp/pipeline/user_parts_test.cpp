@@ -8,21 +8,14 @@
 #include <string>
 
 #include "fixtures/diagnostics.h"
+#include "fixtures/mesh_checks.h"
 #include "occ/shape_io.h"
 #include "pipeline/generate_mesh.h"
 
 namespace vorohex::pipeline {
 namespace {
 
-MeshResult mesh_file(const std::string& name, double size = 0) {
-  const occ::ReadResult in =
-      occ::read_solid(std::string(VOROHEX_SOURCE_DIR) + "/tests/data/" + name);
-  if (!in.ok()) throw std::runtime_error(name + " does not load");
-  MeshOptions opt;
-  opt.fallback = false;
-  opt.size = size;
-  return generate_mesh(*in.solid, opt);
-}
+using testing::mesh_test_file;
 
 void expect_structured(const MeshResult& r, double min) {
   ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
@@ -45,7 +38,7 @@ void expect_structured(const MeshResult& r, double min) {
 TEST(UserParts, AShaftsEndMilledKeywayMeshesStructuredAtAFineSize) {
   for (double size : {0.0, 2.2}) {
     SCOPED_TRACE(size);
-    const MeshResult r = mesh_file("keyed_shaft.step", size);
+    const MeshResult r = mesh_test_file("keyed_shaft.step", size);
     expect_structured(r, 0.4);
     if (size > 0) EXPECT_LE(r.mesh.num_hexes(), 6000u);
   }
@@ -60,7 +53,7 @@ TEST(UserParts, AShaftsEndMilledKeywayMeshesStructuredAtAFineSize) {
 TEST(UserParts, AnAnglesGussetsAreNotCutAlongTheirSlopedFaces) {
   for (double size : {0.0, 4.66}) {
     SCOPED_TRACE(size);
-    const MeshResult r = mesh_file("ribbed_angle.step", size);
+    const MeshResult r = mesh_test_file("ribbed_angle.step", size);
     expect_structured(r, 0.6);
     EXPECT_LE(r.mesh.num_hexes(), 2000u);
     EXPECT_LE(r.stats.sub_volumes, 12);
