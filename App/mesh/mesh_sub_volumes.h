@@ -7,9 +7,12 @@
 // transfinite nodes from the same edge nodes); a sweep's source of four sides is a mapped
 // grid for that reason. Multisweeps are meshed first, one after the other, each meeting the
 // counts of the ones before it on the edges they share, and their counts are fixed in the
-// assignment of the others; where a multisweep's face mesh differs from its neighbour's (a
-// shared cap it meshes with unstructured quads, an edge its cross-section splits), nothing
-// is merged there and the validity check names the face. A sub-volume none of these takes
+// assignment of the others; the other shared edges' nodes are then placed once, on the glued
+// sub-volumes, for all parts alike. A sweep whose source or target a multisweep meshed takes
+// its quads there (paired by connectivity with its own lattice where that is mapped or
+// submapped). Where a multisweep's face mesh still differs from its neighbour's (a shared
+// cap a block maps), nothing is merged there and the validity check names the face. A
+// sub-volume none of these takes
 // may be a solid of revolution (a boss with its filleted root, cut out of its plate along
 // the fillet's foot): revolved first, its circles all in one count (a multiple of 4), its
 // sectors starting at the vertex of a circle it shares, its shared seams in their assigned
