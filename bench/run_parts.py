@@ -111,6 +111,20 @@ def build_parts(work):
     wire = Part.makePolygon([V(r, 0, z) for r, z in profile + profile[:1]])
     pulley = Part.Face(wire).revolve(V(0, 0, 0), V(0, 0, 1), 360)
     parts["V-belt pulley with a keyway in its bore"] = pulley.cut(box(3.5, 5, 30, (7, -2.5, -5)))
+    # A flange (a revolved profile: disc of radius 50, 10 thick, hub of radius 20 to height 30,
+    # bore of radius 10), its hub's top edge chamfered 1.5, six bolt holes of radius 4 on a
+    # circle of radius 35 (tests/data/chamfered_flange.step). At size 5 the chamfer's slab,
+    # swept in one layer from the hub's cap as the multisweep meshed it, was refused as poor
+    # (0.183 against a bar of 0.3 its source's quads, 0.259, cannot reach): the grid's.
+    wire = Part.makePolygon([V(r, 0, z) for r, z in
+                             [(10, 0), (50, 0), (50, 10), (20, 10), (20, 30), (10, 30), (10, 0)]])
+    flange = Part.Face(wire).revolve(V(0, 0, 0), V(0, 0, 1), 360)
+    flange = flange.makeChamfer(1.5, [e for e in flange.Edges if abs(e.BoundBox.ZMin - 30) < 1e-6
+                                      and abs(e.BoundBox.XMax - 20) < 1e-6])
+    for k in range(6):
+        a = k * math.pi / 3
+        flange = flange.cut(cyl(4, 10, (35 * math.cos(a), 35 * math.sin(a), 0)))
+    parts["flange with a chamfered hub and six bolt holes"] = flange
     # A rib-stiffened angle (tests/data/ribbed_angle.step): legs 60 long and 6 thick, 80 deep,
     # three triangular gussets 5 thick (legs 34) and two holes of diameter 8 in each leg. The
     # gussets' sloped faces are one plane, which cut wedges out of both legs: the grid's

@@ -60,6 +60,19 @@ TEST(UserParts, AnAnglesGussetsAreNotCutAlongTheirSlopedFaces) {
   }
 }
 
+// A flange (disc of radius 50 and 10 thick, hub of radius 20 to height 30, bore of radius
+// 10), its hub's top edge chamfered 1.5, six bolt holes (tests/data/chamfered_flange.step).
+// At size 5 the chamfer's slab is swept in one layer from the hub's cap, whose quads the
+// multisweep below meshed (worst 0.259), to the chamfer's smaller annulus: the affine layers
+// fold, the layers deformed to their boundaries do not (0.183) but were refused below a bar
+// of 0.3 that no sweep of those quads reaches - and the grid mesher made 46,304 hexahedra.
+// The bar is relative to given quads now.
+TEST(UserParts, AFlangesChamferIsSweptFromTheQuadsOfTheHubsCap) {
+  const MeshResult r = mesh_test_file("chamfered_flange.step", 5);
+  expect_structured(r, 0.4);
+  EXPECT_LE(r.mesh.num_hexes(), 4000u);
+}
+
 // The pulley with a keyway in its bore (bench/run_parts.py) is meshed
 // structured too, but its plane cuts' careful merge pass stops at the time limit (30 s), and
 // how far it got decides its pieces (42 or 43 mesh; run to the end, 39 do not): its sweep
