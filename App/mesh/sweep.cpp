@@ -172,8 +172,10 @@ bool set_target_counts(const Solid& solid, const SweepOptions& options, Plan& p)
 bool mesh_source_unstructured(const Solid& solid, const SweepOptions& options, Plan& p) {
   if (!options.source_quads.empty() &&
       detail::source_from_quads(solid, p.topo.source, p.source_loops, options.source_quads,
-                                1e-6 * options.size, p.source_mesh))
-    return p.source_given = true;
+                                1e-6 * options.size, p.source_mesh)) {
+    p.source_given = true;
+    return true;
+  }
   QuadFaceOptions qo;
   qo.size = options.size;
   qo.smoothing_passes = options.smoothing_passes;

@@ -169,10 +169,6 @@ bool tangent_planes_instead(const occ::Solid& s, std::vector<Plane>& planes,
   return replaced;
 }
 
-// Whether a piece has an edge where its two faces meet at an angle near zero (a knife)
-// that is no such edge of the solid: a cut surface tangent to a face of the solid (HexMe
-// i14's lug cut off its tube along the tube's cylinder, to which the lug's sides are
-// tangent). No hexahedron along such an edge is good; the sweeps' layers fold there.
 bool drop_oblique_planes(const occ::Solid& s, std::vector<Plane>& planes,
                          const std::vector<Cylinder>& cylinders) {
   // The part's axes from its planar faces, largest first.
@@ -221,6 +217,10 @@ bool drop_oblique_planes(const occ::Solid& s, std::vector<Plane>& planes,
   return dropped;
 }
 
+// Whether a piece has an edge where its two faces meet at an angle near zero (a knife)
+// that is no such edge of the solid: a cut surface tangent to a face of the solid (HexMe
+// i14's lug cut off its tube along the tube's cylinder, to which the lug's sides are
+// tangent). No hexahedron along such an edge is good; the sweeps' layers fold there.
 bool adds_knife_edges(const occ::Solid& solid, const std::vector<occ::Solid>& pieces) {
   const double cos_knife = std::cos(3 * M_PI / 180);
   const double tol = 1e-6 * solid.diagonal();

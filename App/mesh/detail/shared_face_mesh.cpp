@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <map>
 #include <set>
 #include <unordered_map>
@@ -56,8 +57,8 @@ class PointIndex {
 
 }  // namespace
 
-std::vector<std::array<std::int32_t, 4>> face_quad_nodes(const core::HexMesh& mesh,
-                                                         const occ::Solid& solid, core::FaceId f) {
+std::vector<std::array<Vec3, 4>> quads_on_face(const core::HexMesh& mesh, const occ::Solid& solid,
+                                               core::FaceId f) {
   std::set<int> edges, vertices;
   for (const auto& wire : solid.face_wires(f))
     for (const core::OrientedEdge& oe : wire) {
@@ -70,32 +71,22 @@ std::vector<std::array<std::int32_t, 4>> face_quad_nodes(const core::HexMesh& me
     return (c.dim == 2 && c.id == f.value()) || (c.dim == 1 && edges.count(c.id)) ||
            (c.dim == 0 && vertices.count(c.id));
   };
-  std::vector<std::array<std::int32_t, 4>> out;
+  std::vector<std::array<Vec3, 4>> out;
   const double tol = 1e-6 * solid.diagonal();
   for (const core::BoundaryFace& b : core::boundary_faces(mesh)) {
     const core::HexNodes& h = mesh.hexes()[b.hex];
     const auto& c = core::kHexFaces[b.face];
-    std::array<std::int32_t, 4> q;
+    std::array<Vec3, 4> q;
     bool all = true;
-    for (int i = 0; i < 4 && all; ++i) all = on(h[c[i]]), q[i] = h[c[i]];
+    for (int i = 0; i < 4 && all; ++i) all = on(h[c[i]]), q[i] = mesh.points()[h[c[i]]];
     if (!all) continue;
-    const Vec3 centre = 0.25 * (mesh.points()[q[0]] + mesh.points()[q[1]] + mesh.points()[q[2]] +
-                                mesh.points()[q[3]]);
-    const double side = (mesh.points()[q[2]] - mesh.points()[q[0]]).norm();
+    const Vec3 centre = 0.25 * (q[0] + q[1] + q[2] + q[3]);
     // Off a curved face by its sagitta (a side of 2.2 on a cylinder of radius 4: 0.15), off
     // a face it does not lie on (its corners all on the face's edges) by about its side.
-    if ((solid.project_to_face(f, centre) - centre).norm() > tol + 0.2 * side) continue;
+    if ((solid.project_to_face(f, centre) - centre).norm() > tol + 0.2 * (q[2] - q[0]).norm())
+      continue;
     out.push_back(q);
   }
-  return out;
-}
-
-std::vector<std::array<Vec3, 4>> quads_on_face(const core::HexMesh& mesh, const occ::Solid& solid,
-                                               core::FaceId f) {
-  std::vector<std::array<Vec3, 4>> out;
-  for (const auto& q : face_quad_nodes(mesh, solid, f))
-    out.push_back(
-        {mesh.points()[q[0]], mesh.points()[q[1]], mesh.points()[q[2]], mesh.points()[q[3]]});
   return out;
 }
 
@@ -149,7 +140,7 @@ bool onto_quads_by_connectivity(std::vector<core::Vec3>& P, std::size_t base, st
     return true;
   };
   std::vector<int> queue;
-  // Quads along the boundary first: a boundary edge has one quad on either side.
+  // A quad along the boundary to start from: a boundary edge has one quad on either side.
   for (std::size_t q = 0; q < own.size() && queue.empty(); ++q)
     for (int c = 0; c < 4 && queue.empty(); ++c) {
       const int a = own[q][c], b = own[q][(c + 1) % 4];

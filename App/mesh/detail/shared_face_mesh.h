@@ -7,7 +7,6 @@
 #pragma once
 
 #include <array>
-#include <cstdint>
 #include <vector>
 
 #include "core/geometry.h"
@@ -17,13 +16,9 @@
 
 namespace vorohex::mesh::detail {
 
-// The boundary quads of `mesh` on face f of `solid` as node indices: every corner classified
+// The boundary quads of `mesh` on face f of `solid` as corner points: every corner classified
 // on f, on one of its edges or at one of its vertices, and the quad's centre on f (within a
 // fifth of its diagonal: the sagitta of a quad on a curved face).
-std::vector<std::array<std::int32_t, 4>> face_quad_nodes(const core::HexMesh& mesh,
-                                                         const occ::Solid& solid, core::FaceId f);
-
-// The same as corner points.
 std::vector<std::array<core::Vec3, 4>> quads_on_face(const core::HexMesh& mesh,
                                                      const occ::Solid& solid, core::FaceId f);
 

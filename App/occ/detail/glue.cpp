@@ -168,6 +168,10 @@ ReadResult glue(const std::vector<TopoDS_Solid>& solids, const std::string& wher
   std::vector<TopoDS_Solid> parts;
   double glued_volume = 0, glued_error = 0;
   int inside_out = 0;  // parts the fuse turned inside out (negative volume)
+  auto lost_volume = [&] {
+    return options.check_overlap &&
+           std::abs(glued_volume - volume) > 1e-9 * std::abs(volume) + error + glued_error;
+  };
   auto fuse_with = [&](bool copies) {
     glued.Nullify();
     parts.clear();
@@ -197,9 +201,7 @@ ReadResult glue(const std::vector<TopoDS_Solid>& solids, const std::string& wher
       glued_error += e;
       if (v < 0) ++inside_out;
     }
-    return parts.size() == solids.size() &&
-           (!options.check_overlap ||
-            std::abs(glued_volume - volume) <= 1e-9 * std::abs(volume) + error + glued_error);
+    return parts.size() == solids.size() && !lost_volume();
   };
   if (!fuse_with(false)) fuse_with(true);
   if (glued.IsNull()) {
@@ -209,10 +211,7 @@ ReadResult glue(const std::vector<TopoDS_Solid>& solids, const std::string& wher
                                                             "glue at their common faces."));
     return r;
   }
-  const bool lost_volume =
-      options.check_overlap &&
-      std::abs(glued_volume - volume) > 1e-9 * std::abs(volume) + error + glued_error;
-  if (parts.size() != solids.size() || lost_volume) {
+  if (parts.size() != solids.size() || lost_volume()) {
     std::ostringstream why;
     why.precision(10);
     why << where << " holds " << plural(int(solids.size()), "solid");
