@@ -13,6 +13,14 @@
 #include "occ/solid_impl.h"
 
 namespace vorohex::occ {
+namespace {
+
+// x shifted by whole periods to within half a period of `middle`.
+double nearest_period(double x, double middle, double period) {
+  return period > 0 ? x - period * std::round((x - middle) / period) : x;
+}
+
+}  // namespace
 
 struct FaceChart::Surface {
   Handle(Geom_Surface) surface;
@@ -56,7 +64,14 @@ Eigen::Vector2d FaceChart::to_chart(const Vec3& p) const {
   if (planar_) return {(p - origin_).dot(e1_), (p - origin_).dot(e2_)};
   try {
     gp_Pnt2d uv = surface_->analysis->ValueOfUV(gp_Pnt(p.x(), p.y(), p.z()), 1e-9);
-    return {uv.X() * su_, uv.Y() * sv_};
+    // On a periodic surface (u, v) is found within one period that need not be the face's
+    // (a half cylinder over u in [pi, 2 pi]: its edge at 2 pi comes back at 0, across the
+    // chart from the rest of its boundary): the period nearest the face's middle.
+    double u = uv.X(), v = uv.Y();
+    const Handle(Geom_Surface)& s = surface_->surface;
+    if (s->IsUPeriodic()) u = nearest_period(u, 0.5 * (umin_ + umax_), s->UPeriod());
+    if (s->IsVPeriodic()) v = nearest_period(v, 0.5 * (vmin_ + vmax_), s->VPeriod());
+    return {u * su_, v * sv_};
   } catch (const Standard_Failure& e) {
     throw std::runtime_error(std::string("cannot find (u, v) of a point: ") + e.GetMessageString());
   }
