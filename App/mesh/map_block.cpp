@@ -401,6 +401,18 @@ MapBlockResult map_block(const core::MeshDomain& solid, const MapBlockOptions& o
     if (cancelled()) return result;
   }
 
+  // The labelling made the corner hex right-handed, but where the block's eight corners
+  // lie in one plane (a half annulus, its corners on the line across it) that hex is flat
+  // and its sign says nothing: the lattice's own volume decides.
+  double volume = 0;
+  for (int k = 0; k < n2; ++k)
+    for (int j = 0; j < n1; ++j)
+      for (int i = 0; i < n0; ++i) {
+        std::array<Vec3, 8> c;
+        for (int n = 0; n < 8; ++n) c[n] = P[at(i + (n & 1), j + ((n >> 1) & 1), k + (n >> 2))];
+        volume += trilinear_volume(c);
+      }
+  const bool mirrored = volume < 0;
   core::HexMesh& mesh = result.mesh;
   mesh.reserve(num_nodes, std::size_t(n0) * n1 * n2);
   for (std::size_t id = 0; id < num_nodes; ++id) mesh.add_node(P[id], C[id]);
@@ -410,7 +422,10 @@ MapBlockResult map_block(const core::MeshDomain& solid, const MapBlockOptions& o
       for (int i = 0; i < n0; ++i) {
         const auto a = static_cast<std::int32_t>(at(i, j, k));
         const auto y = static_cast<std::int32_t>(sy), z = static_cast<std::int32_t>(sz);
-        mesh.add_hex({a, a + 1, a + 1 + y, a + y, a + z, a + 1 + z, a + 1 + y + z, a + y + z}, 0);
+        if (mirrored)
+          mesh.add_hex({a, a + y, a + 1 + y, a + 1, a + z, a + y + z, a + 1 + y + z, a + 1 + z}, 0);
+        else
+          mesh.add_hex({a, a + 1, a + 1 + y, a + y, a + z, a + 1 + z, a + 1 + y + z, a + y + z}, 0);
       }
     }
     progress.report(stage, 0.5 + 0.5 * (k + 1) / n2);

@@ -198,8 +198,9 @@ Solid make_revolved(const std::vector<std::array<double, 2>>& rz) {
 }
 
 Solid make_ring_sector(double inner_radius, double outer_radius, double angle, double depth) {
-  if (!(inner_radius > 0 && outer_radius > inner_radius && angle > 0 && angle < M_PI && depth > 0))
-    throw std::invalid_argument("make_ring_sector needs 0 < inner < outer, 0 < angle < pi");
+  if (!(inner_radius > 0 && outer_radius > inner_radius && angle > 0 && angle < 2 * M_PI &&
+        depth > 0))
+    throw std::invalid_argument("make_ring_sector needs 0 < inner < outer, 0 < angle < 2 pi");
   return guarded("make_ring_sector", [&] {
     const double c = std::cos(angle), s = std::sin(angle), h = std::cos(angle / 2),
                  k = std::sin(angle / 2);

@@ -41,7 +41,7 @@ Solid make_torus(double major, double minor, const Vec3& centre, const Vec3& axi
 Solid make_revolved(const std::vector<std::array<double, 2>>& rz);
 
 // Extrusion along +z by `depth` of an annulus sector around the z axis from angle 0 to
-// `angle` (radians, < pi): a topological block with two cylindrical faces.
+// `angle` (radians, < 2 pi): a topological block with two cylindrical faces.
 Solid make_ring_sector(double inner_radius, double outer_radius, double angle, double depth);
 
 }  // namespace vorohex::occ

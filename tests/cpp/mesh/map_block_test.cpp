@@ -158,6 +158,22 @@ TEST(MapBlock, CurvedFacesCarryTheirNodes) {
   EXPECT_EQ(curved_faces, 2);
 }
 
+// A half ring (its eight corners in one plane: the hexahedron through them is flat, and its
+// sign said nothing) and three quarters of one (that hexahedron inside out): the mesh was
+// mapped inside out, every hexahedron inverted (a pillow block's bore chamfer slab, half a
+// ring 1 thick, was). The lattice's own volume decides the orientation.
+TEST(MapBlock, RingSectorsOfHalfATurnAndMoreAreNotMappedInsideOut) {
+  for (double angle : {M_PI, 1.5 * M_PI}) {
+    SCOPED_TRACE(angle);
+    const occ::Solid ring = occ::make_ring_sector(16, 25, angle, 1);
+    ASSERT_TRUE(map_block_applicable(ring).ok) << map_block_applicable(ring).reason;
+    MapBlockOptions opt;
+    opt.size = 7.5;
+    const MapBlockResult r = map_block(ring, opt);
+    EXPECT_GT(check_mesh(ring, r), 0.9 * ring.volume());
+  }
+}
+
 TEST(MapBlock, NonBlocksAreRefusedWithAReason) {
   const Applicability cyl = map_block_applicable(occ::make_cylinder(1, 2));
   EXPECT_FALSE(cyl.ok);
