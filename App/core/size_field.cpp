@@ -154,6 +154,15 @@ SizeField SizeField::extruded(const Vec3& origin, const Vec3& axis,
   return f;
 }
 
+SizeField SizeField::scaled(double factor) const {
+  SizeField f = *this;
+  f.global_ *= factor;
+  f.grading_ *= factor;
+  for (Source& s : f.sources_) s.size *= factor;
+  for (LocalSize& l : f.applied_) l.size *= factor;
+  return f;
+}
+
 SizeField SizeField::revolved(const Vec3& origin, const Vec3& axis, int turns) const {
   SizeField f = *this;
   const Vec3 a = axis.normalized();

@@ -52,6 +52,10 @@ class SizeField {
   // size at p turned about the axis by `turns` equal angles.
   SizeField revolved(const Vec3& origin, const Vec3& axis, int turns) const;
 
+  // The field times `factor` everywhere (its global and local sizes and its grading): a
+  // mesh made again finer where it failed at the sizes asked for.
+  SizeField scaled(double factor) const;
+
   // The number of segments of size h that fit along a polyline: the integral of ds / h(s)
   // (length / global when uniform).
   double segments_along(const std::vector<Vec3>& polyline) const;

@@ -53,6 +53,20 @@ std::size_t boundary_nodes_inside(const core::HexMesh& mesh) {
 // Below this minimum scaled Jacobian before smoothing, the pieces split afresh are meshed too.
 constexpr double kPoorDecomposition = 0.2;
 
+// Halvings of the size where the sub-volumes did not mesh (mesh_pieces).
+constexpr int kFinerAttempts = 2;
+
+// Whether sub-volumes that did not mesh may mesh at a smaller size: not where one has no
+// scheme, their counts cannot agree, the mesh would be too large or the user stopped it.
+bool retry_finer(const mesh::SubVolumeMeshResult& m) {
+  for (const core::Diagnostic& d : m.diagnostics)
+    if (d.severity == core::Severity::error &&
+        (d.code == "no_scheme" || d.code == "intervals_infeasible" || d.code == "too_many_hexes" ||
+         d.code == "cancelled"))
+      return false;
+  return true;
+}
+
 // The decomposition's sub-volumes meshed into one conforming mesh, put back onto the
 // solid's own topology: true when result.mesh holds it; else false with `why_not`, or a
 // `cancelled` error.
@@ -71,11 +85,13 @@ bool mesh_pieces(const occ::Solid& solid, const IsolatedDecomposition& d,
   struct Attempt {
     mesh::SubVolumeMeshResult m;
     double min = -1;
+    double size = 0;
     std::string why_not;
   };
   auto attempt = [&](const occ::Solid& pieces) {
     Attempt a;
     a.m = mesh::mesh_sub_volumes(pieces, o, progress);
+    a.size = o.size;
     if (!a.m.ok) {
       std::string errors;
       for (const core::Diagnostic& diag : a.m.diagnostics)
@@ -114,6 +130,29 @@ bool mesh_pieces(const occ::Solid& solid, const IsolatedDecomposition& d,
       a = std::move(b);
       pieces = d.afresh.get();
     }
+  }
+  // Pieces that all have a scheme but did not mesh at the size asked for (a source face's
+  // quads fold in a ligament narrower than the size: a gear blank's web between its
+  // lightening holes and its hub) are meshed again at half the size, twice at most: a
+  // structured mesh finer than asked beats the grid mesher's, which refines as much there.
+  core::SizeField finer = sizes;
+  std::string coarse_why;
+  for (int k = 0; k < kFinerAttempts && !a.m.ok && retry_finer(a.m) && !progress.cancelled(); ++k) {
+    if (coarse_why.empty()) coarse_why = a.why_not;
+    finer = finer.scaled(0.5);
+    o.size = finer.global();
+    o.size_field = &finer;
+    Attempt b = attempt(*pieces);
+    if (!b.m.ok) continue;
+    a = std::move(b);
+  }
+  std::string reduced;
+  if (!coarse_why.empty() && a.m.ok) {
+    std::ostringstream s;
+    s << "The decomposition did not mesh at size " << sizes.global() << " (" << coarse_why
+      << "); made again at size " << a.size
+      << ", it meshes: that mesh is used, finer than the size asked for.";
+    reduced = s.str();
   }
   const bool afresh = pieces == d.afresh.get();
   if (!a.m.ok) {
@@ -166,6 +205,10 @@ bool mesh_pieces(const occ::Solid& solid, const IsolatedDecomposition& d,
     << restored.interior << " nodes on the cuts are inside the solid again. Decomposition "
     << std::fixed << std::setprecision(1) << d.seconds << " s.";
   result.diagnostics.push_back(core::make_info("decomposed", s.str()));
+  if (!reduced.empty()) {
+    result.diagnostics.push_back(core::make_warning("size_reduced", reduced));
+    result.stats.size_used = a.size;
+  }
   return true;
 }
 
