@@ -125,6 +125,46 @@ def build_parts(work):
         a = k * math.pi / 3
         flange = flange.cut(cyl(4, 10, (35 * math.cos(a), 35 * math.sin(a), 0)))
     parts["flange with a chamfered hub and six bolt holes"] = flange
+    # A pillow-block housing as a new user built it in PartDesign (tests/data/pillow_block.step):
+    # base 130 x 40 x 15 with two bolt slots, a pedestal 50 wide up to a boss of radius 25 along
+    # Y (40 long), its root filleted 4, a bore of radius 15 chamfered 1 at both ends, a grease
+    # hole of radius 2.5 from the top into the bore. The half ring over the bore, swept from
+    # its outer cylinder, could not chart its source across the cylinder's period (the whole
+    # part the grid's, 69,654 hexahedra), and the bore's chamfer slabs were mapped inside out.
+    pillow = box(130, 40, 15, (-65, -20, 0)).fuse(box(50, 40, 25, (-25, -20, 15))).fuse(
+        cyl(25, 40, (0, -20, 40), (0, 1, 0)))
+    pillow = refined(pillow)
+    pillow = pillow.makeFillet(4, [e for e in pillow.Edges if e.BoundBox.YLength > 39
+                                   and abs(e.BoundBox.ZMin - 15) < 1e-6
+                                   and abs(e.BoundBox.ZMax - 15) < 1e-6
+                                   and abs(abs(e.BoundBox.XMin) - 25) < 1e-6])
+    pillow = pillow.cut(cyl(15, 40, (0, -20, 40), (0, 1, 0)))
+    pillow = pillow.makeChamfer(1, [e for e in pillow.Edges if hasattr(e.Curve, "Radius")
+                                    and abs(e.Curve.Radius - 15) < 1e-6])
+    for x in (-46, 46):
+        pillow = pillow.cut(box(12, 11, 15, (x - 6, -5.5, 0)).fuse(
+            cyl(5.5, 15, (x - 6, 0, 0))).fuse(cyl(5.5, 15, (x + 6, 0, 0))))
+    parts["pillow-block housing with a grease hole"] = pillow.cut(cyl(2.5, 12, (0, 0, 53)))
+    # A gear blank as a new user built it (tests/data/gear_blank.step): a revolved rim of radius
+    # 60 (20 wide, inner radius 48), a web 8 thick, a hub of radius 25 (30 long) and a bore of
+    # radius 12, the web's roots filleted 2, the rim's outer edges chamfered 1, six lightening
+    # holes of radius 8 on a circle of radius 36.5. The web between the holes and the hub's
+    # fillet is 1.5 wide: at the automatic size its sweep's source folds, so its sub-volumes
+    # are meshed at half the size (the grid's 16,580 hexahedra at 0.127 before).
+    wire = Part.makePolygon([V(r, 0, z) for r, z in
+                             [(12, -15), (25, -15), (25, -4), (48, -4), (48, -10), (60, -10),
+                              (60, 10), (48, 10), (48, 4), (25, 4), (25, 15), (12, 15),
+                              (12, -15)]])
+    gear = Part.Face(wire).revolve(V(0, 0, 0), V(0, 0, 1), 360)
+    gear = gear.makeFillet(2, [e for e in gear.Edges if hasattr(e.Curve, "Radius")
+                               and abs(abs(e.BoundBox.ZMin) - 4) < 1e-6
+                               and min(abs(e.Curve.Radius - 25), abs(e.Curve.Radius - 48)) < 1e-6])
+    gear = gear.makeChamfer(1, [e for e in gear.Edges if hasattr(e.Curve, "Radius")
+                                and abs(e.Curve.Radius - 60) < 1e-6])
+    for k in range(6):
+        a = k * math.pi / 3
+        gear = gear.cut(cyl(8, 20, (36.5 * math.cos(a), 36.5 * math.sin(a), -10)))
+    parts["gear blank with six lightening holes"] = gear
     # A rib-stiffened angle (tests/data/ribbed_angle.step): legs 60 long and 6 thick, 80 deep,
     # three triangular gussets 5 thick (legs 34) and two holes of diameter 8 in each leg. The
     # gussets' sloped faces are one plane, which cut wedges out of both legs: the grid's

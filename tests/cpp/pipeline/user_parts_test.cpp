@@ -1,7 +1,7 @@
 // Parts as a new user builds them in PartDesign (made again with the Part module by
-// bench/run_parts.py): keyways and gussets. Their plane cuts give sub-volumes that all have a
-// scheme once the cut is along the right surfaces, and their meshes must match where the
-// sub-volumes meet.
+// bench/run_parts.py): keyways, gussets, a pillow block and a gear blank. Their plane cuts give
+// sub-volumes that all have a scheme once the cut is along the right surfaces, and their meshes
+// must match where the sub-volumes meet.
 #include <gtest/gtest.h>
 
 #include <stdexcept>
@@ -71,6 +71,33 @@ TEST(UserParts, AFlangesChamferIsSweptFromTheQuadsOfTheHubsCap) {
   const MeshResult r = mesh_test_file("chamfered_flange.step", 5);
   expect_structured(r, 0.4);
   EXPECT_LE(r.mesh.num_hexes(), 4000u);
+}
+
+// A pillow-block housing (tests/data/pillow_block.step, bench/run_parts.py): a boss of
+// radius 25 on a pedestal, its bore of radius 15 chamfered 1 at both ends, a grease hole of
+// radius 2.5 from the top into the bore. Its plane cuts' pieces all have a scheme, but the
+// half ring over the bore, swept from its outer cylinder (the grease hole a hole in it), had
+// its source charted across the cylinder's period (its edge at u = 2 pi found at 0: the
+// quad mesher's loops crossed), and the chamfers' half-ring slabs (their corners in one
+// plane) were mapped inside out: the grid mesher's 69,592 hexahedra.
+TEST(UserParts, APillowBlocksGreaseHoleAndBoreChamfersMeshStructured) {
+  const MeshResult r = mesh_test_file("pillow_block.step", 0);
+  expect_structured(r, 0.4);
+  EXPECT_LE(r.mesh.num_hexes(), 2000u);
+}
+
+// A gear blank (tests/data/gear_blank.step): a rim, a web 8 thick, a hub, the web's roots
+// filleted, six lightening holes whose web is 1.5 wide between them and the hub's fillet.
+// At the automatic size (8.6) the web's sweep source folds there; its sub-volumes are meshed
+// at half the size instead (the grid mesher's 16,580 hexahedra at 0.127 before).
+TEST(UserParts, AGearBlanksNarrowWebIsMeshedStructuredAtHalfTheSize) {
+  const MeshResult r = mesh_test_file("gear_blank.step", 0);
+  expect_structured(r, 0.4);
+  EXPECT_LE(r.mesh.num_hexes(), 8000u);
+  const core::Diagnostic* reduced = testing::find_diagnostic(r.diagnostics, "size_reduced");
+  ASSERT_NE(reduced, nullptr);
+  EXPECT_NE(reduced->message.find("Quad meshing"), std::string::npos) << reduced->message;
+  EXPECT_LT(r.stats.size_used, 4.5);
 }
 
 // The pulley with a keyway in its bore (bench/run_parts.py) is meshed
