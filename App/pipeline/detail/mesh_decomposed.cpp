@@ -56,15 +56,20 @@ constexpr double kPoorDecomposition = 0.2;
 // Halvings of the size where the sub-volumes did not mesh (mesh_pieces).
 constexpr int kFinerAttempts = 2;
 
-// Whether sub-volumes that did not mesh may mesh at a smaller size: not where one has no
-// scheme, their counts cannot agree, the mesh would be too large or the user stopped it.
+// Whether sub-volumes that did not mesh may mesh at a smaller size: where what failed is the
+// quad meshing of a face (folded where the face is narrower than the size), and nothing else.
+// Not a sweep's folded layers or meshes that do not match where they meet: a knife edge does
+// not go away at a smaller size (HexMe i14, its lug cut off its tube along the tube's
+// cylinder: its plane cuts with tangent planes are the way, and two attempts at smaller sizes
+// cost it 9 s for nothing).
 bool retry_finer(const mesh::SubVolumeMeshResult& m) {
-  for (const core::Diagnostic& d : m.diagnostics)
-    if (d.severity == core::Severity::error &&
-        (d.code == "no_scheme" || d.code == "intervals_infeasible" || d.code == "too_many_hexes" ||
-         d.code == "cancelled"))
-      return false;
-  return true;
+  bool quads = false;
+  for (const core::Diagnostic& d : m.diagnostics) {
+    if (d.severity != core::Severity::error) continue;
+    if (d.code != "quad_face_failed") return false;
+    quads = true;
+  }
+  return quads;
 }
 
 // The decomposition's sub-volumes meshed into one conforming mesh, put back onto the
