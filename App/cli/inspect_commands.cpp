@@ -209,12 +209,18 @@ int run_plane_cuts(const std::string& input, const std::string& brep_path, doubl
   return print_plane_cuts(input, brep_path, cut, merge);
 }
 
+// --plane-cuts is the mesher's first cut only: where it fails, the mesher goes on.
+constexpr const char* kMesherGoesOn =
+    "; these are the cuts at concave edges alone: where they fail the mesher goes on (planes "
+    "around holes, across the feet of chamfers and fillets, along fillets' strips), and "
+    "`vorohex decompose --auto` shows the sub-volumes it meshes";
+
 // The plane cuts' pieces written to `brep_path` and described, each with its scheme.
 int print_plane_cuts(const std::string& input, const std::string& brep_path,
                      const decompose::PlaneCutResult& cut, bool merge) {
   if (cut.pieces.empty()) {
     std::cerr << "vorohex: the plane cuts of " << input << " failed: " << cut.why_not
-              << " (nothing written)\n";
+              << " (nothing written)" << kMesherGoesOn << "\n";
     return kExitInvalid;
   }
   std::vector<const occ::Solid*> pieces;
@@ -261,7 +267,8 @@ int print_plane_cuts(const std::string& input, const std::string& brep_path,
     std::cout << "\n";
   }
   std::cout << "wrote " << brep_path << "\n";
-  if (!cut.ok) std::cerr << "vorohex: the plane cuts failed: " << cut.why_not << "\n";
+  if (!cut.ok)
+    std::cerr << "vorohex: the plane cuts failed: " << cut.why_not << kMesherGoesOn << "\n";
   return cut.ok ? kExitOk : kExitInvalid;
 }
 
