@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <initializer_list>
 #include <iomanip>
 #include <sstream>
 #include <thread>
@@ -181,6 +182,19 @@ void pillowed_grid(const occ::Solid& solid, const MeshOptions& options,
   result.diagnostics.push_back(core::make_info("grid_pillow_failed", s.str()));
 }
 
+// The diagnostics of `from` with one of `codes` put before those of `to`, in their order: a
+// mesh made again in its place still says how the size it started from came about
+// (size_reduced: a reducing tee's grid went from 6.1 to 1.5, then 0.77, and said only the
+// last) and what was made before it.
+void carry_diagnostics(const MeshResult& from, std::initializer_list<const char*> codes,
+                       MeshResult& to) {
+  std::vector<core::Diagnostic> carried;
+  for (const core::Diagnostic& d : from.diagnostics)
+    if (std::any_of(codes.begin(), codes.end(), [&](const char* c) { return d.code == c; }))
+      carried.push_back(d);
+  to.diagnostics.insert(to.diagnostics.begin(), carried.begin(), carried.end());
+}
+
 // `first`: the stats of the grid that made `result`; the finer grid's once it replaces it.
 void finer_grid(const occ::Solid& solid, const MeshOptions& options, const core::SizeField& sizes,
                 const std::string& why, const core::Progress& progress,
@@ -231,6 +245,7 @@ void finer_grid(const occ::Solid& solid, const MeshOptions& options, const core:
       << " hexahedra, finer than the size asked for.";
     finer.diagnostics.insert(finer.diagnostics.begin(),
                              core::make_warning("grid_refined", s.str()));
+    carry_diagnostics(result, {"size_reduced"}, finer);
     result = std::move(finer);
     first = second;
     return;
@@ -314,8 +329,7 @@ void cusp_grid(const occ::Solid& solid, const MeshOptions& options, const core::
   const double again_min = again.check.scaled_jacobian.min;
   if (made && again.ok && again.check.valid && again_min > min) {
     s << ", it is valid with min scaled Jacobian " << again_min << ": that mesh is used.";
-    for (const core::Diagnostic& d : result.diagnostics)
-      if (d.code == "grid_refined") again.diagnostics.insert(again.diagnostics.begin(), d);
+    carry_diagnostics(result, {"size_reduced", "grid_refined"}, again);
     again.diagnostics.push_back(core::make_warning("grid_cusps_shared", s.str()));
     result = std::move(again);
     return;
@@ -390,9 +404,7 @@ void jittered_grid(const occ::Solid& solid, const MeshOptions& options,
   if (captures_more && again.ok && again.check.valid && again_min > min) {
     s << ", it is valid with min scaled Jacobian " << std::setprecision(3) << again_min
       << ": that mesh is used, with " << again.mesh.num_hexes() << " hexahedra.";
-    for (const core::Diagnostic& d : result.diagnostics)
-      if (d.code == "grid_refined" || d.code == "grid_cusps_shared")
-        again.diagnostics.insert(again.diagnostics.begin(), d);
+    carry_diagnostics(result, {"size_reduced", "grid_refined", "grid_cusps_shared"}, again);
     again.diagnostics.push_back(core::make_warning("grid_jittered", s.str()));
     result = std::move(again);
     return;

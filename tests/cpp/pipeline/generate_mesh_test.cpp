@@ -557,6 +557,27 @@ TEST(GenerateMesh, AnInvalidGridMeshIsMadeAgainOnAFinerGrid) {
   EXPECT_NE(testing::find_diagnostic(grid.diagnostics, "volume_mismatch"), nullptr);
 }
 
+// A grid mesh made again in its place keeps the warnings that say how its size came about:
+// HexMe i17's grid is refined from the size asked for where its core is thin (size_reduced),
+// then made again 3 times finer where that mesh is invalid (grid_refined). The finer mesh's
+// result replaced the first's and said only the last step, so the size the user read (a
+// reducing tee: 0.77 for 6.1 asked) had no reason given for its first factor of 4.
+TEST(GenerateMesh, AGridMadeAgainFinerStillSaysWhyItsSizeWasReducedFirst) {
+  const occ::ReadResult i17 = occ::read_solid(std::string(VOROHEX_HEXME_DIR) + "/i17o_s20.step");
+  ASSERT_TRUE(i17.ok()) << "HexMe model i17 not found in " << VOROHEX_HEXME_DIR;
+  MeshOptions opt;
+  opt.decompose = false;
+  const MeshResult r = generate_mesh(*i17.solid, opt);
+  ASSERT_TRUE(r.ok) << (r.diagnostics.empty() ? "" : core::format(r.diagnostics.back()));
+  EXPECT_EQ(r.stats.scheme, "grid");
+  const core::Diagnostic* refined = testing::find_diagnostic(r.diagnostics, "grid_refined");
+  const core::Diagnostic* reduced = testing::find_diagnostic(r.diagnostics, "size_reduced");
+  ASSERT_NE(refined, nullptr);
+  ASSERT_NE(reduced, nullptr);
+  EXPECT_LT(reduced - r.diagnostics.data(), refined - r.diagnostics.data());  // in their order
+  EXPECT_NE(reduced->message.find("refined to size"), std::string::npos) << reduced->message;
+}
+
 // A valid grid mesh below min SJ 0.2 is made again on a grid half its size, and the finer
 // mesh used where it is valid and better: HexMe s05 (a cube with a spherical pit) is valid
 // at 0.169 at the default size, 0.5 at half of it. The warning says why and what it gave.
