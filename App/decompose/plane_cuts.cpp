@@ -758,13 +758,16 @@ PlaneCutResult cut_as_the_mesher(const occ::Solid& solid, const PlaneCutOptions&
   // (HexMe's parts with many holes, which they never make structured, waited up to 15 s more
   // for them: i24), and are not tried where the cut at concave edges alone gave more than
   // half that many pieces (more planes only add to them: HexMe i02, i24 and n05, 31 to 38
-  // pieces, 95 to 232 with the planes, 3 to 4 s each).
+  // pieces, 95 to 232 with the planes, 3 to 4 s each). Not less than twice what a simple
+  // part's cut takes here: a ring with three radial holes takes 3 s, and with 4 it was
+  // stopped wherever the grid mesher beside it and another job shared the two cores (the tet
+  // split's 78,452 hexahedra at 0.105 in 85 s instead of 666 at 0.500 in 6 s, run to run).
   constexpr int kAroundPieces = 40;
   std::vector<Plane> planes;
   std::vector<Cylinder> cylinders;
   std::string why;
   if (left() <= 0 || !detail::concave_surfaces(solid, planes, cylinders, why)) return cut;
-  constexpr double kAroundSeconds = 4;
+  constexpr double kAroundSeconds = 8;
   PlaneCutOptions around_options = options;
   around_options.max_pieces = std::min(options.max_pieces, kAroundPieces);
   const double until = left() - std::min(0.25 * options.time_limit, kAroundSeconds);
