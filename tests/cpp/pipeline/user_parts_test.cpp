@@ -28,6 +28,13 @@ void expect_structured(const MeshResult& r, double min) {
   EXPECT_NE(testing::find_diagnostic(r.diagnostics, "decomposed"), nullptr);
 }
 
+// r has the diagnostic `code`, whose message says `text`.
+void expect_says(const MeshResult& r, const std::string& code, const std::string& text) {
+  const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, code);
+  ASSERT_NE(d, nullptr) << code;
+  EXPECT_NE(d->message.find(text), std::string::npos) << d->message;
+}
+
 // A shaft (radius 12, 80 long, its ends chamfered 1) with an end-milled keyway: 8 wide, 4 deep,
 // round ends of radius 4 (tests/data/keyed_shaft.step, made by bench/run_parts.py). Its
 // plane cuts give blocks, sweeps and multisweeps; at size 2.2 a block and a sweep beside the
@@ -94,9 +101,7 @@ TEST(UserParts, AGearBlanksNarrowWebIsMeshedStructuredAtHalfTheSize) {
   const MeshResult r = mesh_test_file("gear_blank.step", 0);
   expect_structured(r, 0.4);
   EXPECT_LE(r.mesh.num_hexes(), 8000u);
-  const core::Diagnostic* reduced = testing::find_diagnostic(r.diagnostics, "size_reduced");
-  ASSERT_NE(reduced, nullptr);
-  EXPECT_NE(reduced->message.find("Quad meshing"), std::string::npos) << reduced->message;
+  expect_says(r, "size_reduced", "Quad meshing");
   EXPECT_LT(r.stats.size_used, 4.5);
 }
 
@@ -110,9 +115,7 @@ TEST(UserParts, ASpacerRingsRadialHolesAreCutAroundIntoBlocksAndSweeps) {
   const MeshResult r = mesh_test_file("spacer_ring.step", 0);
   expect_structured(r, 0.4);
   EXPECT_LE(r.mesh.num_hexes(), 2000u);
-  const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "decomposed");
-  ASSERT_NE(d, nullptr);
-  EXPECT_NE(d->message.find("around"), std::string::npos) << d->message;
+  expect_says(r, "decomposed", "around");
 }
 
 // The pulley with a keyway in its bore (bench/run_parts.py) is meshed
