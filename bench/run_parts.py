@@ -179,6 +179,15 @@ def build_parts(work):
         ring = ring.cut(cyl(2.5, 14, (16 * math.cos(a), 16 * math.sin(a), 7.5),
                             (math.cos(a), math.sin(a), 0)))
     parts["spacer ring with three radial holes"] = ring
+    # An eccentric cam as a new user built it (tests/data/eccentric_cam.step): a disc of
+    # diameter 60 and 12 thick, 8 off the axis of its bore (diameter 20) with a keyway 6 wide
+    # and 2.8 deep, its rim's edges chamfered 1. Its chamfer slabs are swept to and from the
+    # multisweep's caps: the grid's 82,394 hexahedra before (a slab's target not the image of
+    # its source, the rim's circle spaced from each side's own vertex).
+    cam = cyl(30, 12, (8, 0, 0))
+    cam = cam.makeChamfer(1, [e for e in cam.Edges if hasattr(e.Curve, "Radius")])
+    parts["eccentric cam with a keyed bore, its rim chamfered"] = cam.cut(
+        cyl(10, 12, (0, 0, 0)).fuse(box(6, 7.8, 12, (-3, 5, 0))))
     # A rib-stiffened angle (tests/data/ribbed_angle.step): legs 60 long and 6 thick, 80 deep,
     # three triangular gussets 5 thick (legs 34) and two holes of diameter 8 in each leg. The
     # gussets' sloped faces are one plane, which cut wedges out of both legs: the grid's

@@ -288,12 +288,12 @@ std::string no_scheme_message(const Part& p, int k, int n) {
 }
 
 // The nodes of a part's mesh on its edge e, first to last vertex (by their distance along
-// the edge); empty for a closed or degenerated edge.
+// the edge; a closed edge's vertex first and last); empty for a degenerated edge.
 std::vector<core::Vec3> nodes_on_edge(const core::HexMesh& mesh, const occ::Solid& solid,
                                       EdgeId e) {
   std::vector<core::Vec3> out;
   const core::VertexId v0 = solid.edge_first_vertex(e), v1 = solid.edge_last_vertex(e);
-  if (solid.edge_is_degenerated(e) || v0 == v1) return out;
+  if (solid.edge_is_degenerated(e)) return out;
   const std::vector<core::Vec3> line = solid.edge_points_by_length(e, 256);
   std::vector<std::pair<double, core::Vec3>> along;
   for (std::size_t i = 0; i < mesh.num_nodes(); ++i) {
@@ -315,6 +315,10 @@ std::vector<core::Vec3> nodes_on_edge(const core::HexMesh& mesh, const occ::Soli
   std::sort(along.begin(), along.end(),
             [](const auto& a, const auto& b) { return a.first < b.first; });
   for (const auto& [t, x] : along) out.push_back(x);
+  // A closed edge (a circle): its vertex, found at its start, ends it too (its nodes were
+  // never given: a cam's chamfer slab took the multisweep's quads on its cap but spaced the
+  // rim's circle from its own vertex, and the two did not match).
+  if (v0 == v1 && out.size() >= 2) out.push_back(solid.vertex_point(v0));
   return out;
 }
 

@@ -523,6 +523,51 @@ SweepEstimate sweep_evaluate(const core::MeshDomain& solid, const SweepOptions& 
   return e;
 }
 
+namespace {
+
+// The target's quads (corner points) carried onto the source: a corner on the target's
+// boundary (xt, within tol) goes to the source's boundary node of the same index (xs), the
+// inner ones where the mean value weights put them as the boundary moves from xt to xs in
+// steps (detail::smooth_layer_interiors), onto the source face. The sweep takes them only
+// where their boundary corners are all its source's nodes. Empty where the steps were cut
+// short.
+std::vector<std::array<Vec3, 4>> quads_on_source(const core::MeshDomain& solid, FaceId source,
+                                                 const std::vector<Vec3>& xs,
+                                                 const std::vector<Vec3>& xt,
+                                                 const std::vector<std::array<Vec3, 4>>& quads,
+                                                 double tol, double size) {
+  const std::size_t nb = xt.size();
+  std::vector<Vec3> inner;
+  std::vector<std::array<int, 4>> index(quads.size());
+  for (std::size_t i = 0; i < quads.size(); ++i)
+    for (int c = 0; c < 4; ++c) {
+      const Vec3& q = quads[i][c];
+      std::size_t j = 0;
+      while (j < nb && (xt[j] - q).norm() > tol) ++j;
+      if (j == nb) {
+        j = 0;
+        while (j < inner.size() && (inner[j] - q).norm() > tol) ++j;
+        if (j == inner.size()) inner.push_back(q);
+        j += nb;
+      }
+      index[i][c] = int(j);
+    }
+  const std::size_t M = nb + inner.size();
+  std::vector<Vec3> P(2 * M);
+  for (std::size_t j = 0; j < nb; ++j) P[j] = xt[j], P[M + j] = xs[j];
+  for (std::size_t j = 0; j < inner.size(); ++j) P[nb + j] = P[M + nb + j] = inner[j];
+  if (detail::smooth_layer_interiors(
+          P, M, nb, 1, 1, index, 1e-3 * size, 200,
+          [&](int, const Vec3& q) { return solid.project_to_face(source, q); }) < 0)
+    return {};
+  std::vector<std::array<Vec3, 4>> out(quads.size());
+  for (std::size_t i = 0; i < quads.size(); ++i)
+    for (int c = 0; c < 4; ++c) out[i][c] = P[M + std::size_t(index[i][c])];
+  return out;
+}
+
+}  // namespace
+
 SweepResult sweep(const core::MeshDomain& solid, const SweepOptions& options,
                   const core::Progress& progress) {
   SweepResult result;
@@ -697,6 +742,21 @@ SweepResult sweep(const core::MeshDomain& solid, const SweepOptions& options,
     return result;
   }
   if (target_mismatch) {
+    // A source meshed freely whose target a neighbour meshed first (a cam's chamfer slab,
+    // swept from the part's face to the multisweep's cap over it, which the merged cuts'
+    // traces imprinted so that no sweep goes the other way): swept again from the image of
+    // the target's quads on the source.
+    if (options.source_quads.empty() && p.grid[0] == 0 && p.submap.empty()) {
+      std::vector<Vec3> xs(nb), xt(nb);
+      for (std::size_t j = 0; j < nb; ++j) xs[j] = P[id(0, j)], xt[j] = P[id(K, j)];
+      SweepOptions again = options;
+      again.source_quads = quads_on_source(solid, t.source, xs, xt, options.target_quads,
+                                           1e-6 * options.size, options.size);
+      if (!again.source_quads.empty()) {
+        SweepResult r = sweep(solid, again, progress);
+        if (r.ok) return r;
+      }
+    }
     result.diagnostics.push_back(
         core::make_error("target_mismatch",
                          "The quads a neighbour meshed on the target " + name(t.target) +

@@ -1,6 +1,6 @@
 // Parts as a new user builds them in PartDesign (made again with the Part module by
-// bench/run_parts.py): keyways, gussets, a pillow block, a gear blank, a spacer ring. Their
-// plane cuts give sub-volumes that all have a scheme once the cut is along the right
+// bench/run_parts.py): keyways, gussets, a pillow block, a gear blank, a spacer ring, a cam.
+// Their plane cuts give sub-volumes that all have a scheme once the cut is along the right
 // surfaces, and their meshes must match where the sub-volumes meet.
 #include <gtest/gtest.h>
 
@@ -116,6 +116,20 @@ TEST(UserParts, ASpacerRingsRadialHolesAreCutAroundIntoBlocksAndSweeps) {
   expect_structured(r, 0.4);
   EXPECT_LE(r.mesh.num_hexes(), 2000u);
   expect_says(r, "decomposed", "around");
+}
+
+// An eccentric cam (tests/data/eccentric_cam.step): a disc 60 across and 12 thick, 8 off its
+// keyed bore's axis, its rim's edges chamfered 1. The chamfers' slabs lie on the multisweep's
+// two caps, which carry the merged cuts' traces: the bottom slab is swept from the part's
+// face to the cap, whose quads (the multisweep's) were not its image (target_mismatch); the
+// top slab takes the cap's quads as its source, but the rim's circle, a closed edge, had its
+// nodes spaced from each side's own vertex, so they did not match. Now the bottom slab is
+// swept again from the image of the cap's quads, and a closed shared edge's nodes are given
+// (each side's own way round): the grid's 82,394 hexahedra before.
+TEST(UserParts, AnEccentricCamsChamferSlabsMatchTheMultisweepsCaps) {
+  const MeshResult r = mesh_test_file("eccentric_cam.step", 0);
+  expect_structured(r, 0.4);
+  EXPECT_LE(r.mesh.num_hexes(), 2000u);
 }
 
 // The pulley with a keyway in its bore (bench/run_parts.py) is meshed
