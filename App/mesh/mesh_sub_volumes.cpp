@@ -581,7 +581,12 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
       if (!meshed[k].ok) break;  // reported at the join
       for (std::size_t e = 1; e < p.whole_edge.size(); ++e)
         if (p.shared_edge[e] && !placed.count(p.whole_edge[e])) {
-          std::vector<core::Vec3> nodes = nodes_on_edge(meshed[k].mesh, p.solid, EdgeId(int(e)));
+          // A revolved part's circles stay its own (a gear blank's web, given the rings'
+          // circles, no longer quad-meshed at any size).
+          const EdgeId edge{int(e)};
+          if (p.revolve && p.solid.edge_first_vertex(edge) == p.solid.edge_last_vertex(edge))
+            continue;
+          std::vector<core::Vec3> nodes = nodes_on_edge(meshed[k].mesh, p.solid, edge);
           if (nodes.size() >= 2) placed.emplace(p.whole_edge[e], std::move(nodes));
         }
     }
