@@ -547,9 +547,17 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
       const auto it = placed.find(p.whole_edge[e]);
       if (it == placed.end()) continue;
       given[e] = it->second;
-      const core::Vec3 first = p.solid.vertex_point(p.solid.edge_first_vertex(EdgeId(int(e))));
-      if ((given[e].front() - first).norm() > (given[e].back() - first).norm())
-        std::reverse(given[e].begin(), given[e].end());
+      const EdgeId edge{int(e)};
+      const core::Vec3 first = p.solid.vertex_point(p.solid.edge_first_vertex(edge));
+      bool reverse = (given[e].front() - first).norm() > (given[e].back() - first).norm();
+      // A closed edge runs this part's way round where its second node is nearer this
+      // part's own second point than its last but one.
+      const std::size_t n = given[e].size() - 1;
+      if (n >= 2 && p.solid.edge_first_vertex(edge) == p.solid.edge_last_vertex(edge)) {
+        const std::vector<core::Vec3> own = p.solid.edge_points_by_length(edge, int(n));
+        reverse = (given[e][1] - own[1]).norm() > (given[e][1] - own[n - 1]).norm();
+      }
+      if (reverse) std::reverse(given[e].begin(), given[e].end());
     }
     return given;
   };

@@ -283,16 +283,8 @@ std::vector<Vec3> edge_points(const core::MeshDomain& s, core::EdgeId e, int n,
                               const core::SizeField* field,
                               const std::vector<std::vector<Vec3>>& given) {
   const std::size_t k = std::size_t(e.value());
-  if (!(k < given.size() && n >= 0 && given[k].size() == std::size_t(n) + 1))
-    return edge_points(s, e, n, field);
-  // A closed edge's nodes, given by a neighbour whose edge runs the other way round, are
-  // taken in this one's direction (its second node nearer its own second point).
-  if (n >= 2 && s.edge_first_vertex(e) == s.edge_last_vertex(e)) {
-    const std::vector<Vec3> own = s.edge_points_by_length(e, 4 * n);
-    if ((given[k][1] - own[4]).norm() > (given[k][1] - own[4 * n - 4]).norm())
-      return std::vector<Vec3>(given[k].rbegin(), given[k].rend());
-  }
-  return given[k];
+  if (k < given.size() && n >= 0 && given[k].size() == std::size_t(n) + 1) return given[k];
+  return edge_points(s, e, n, field);
 }
 
 }  // namespace vorohex::mesh::detail

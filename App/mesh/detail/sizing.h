@@ -21,8 +21,7 @@ double edge_segments(const core::MeshDomain& s, core::EdgeId e, double size,
 std::vector<core::Vec3> edge_points(const core::MeshDomain& s, core::EdgeId e, int n,
                                     const core::SizeField* field);
 // The same, unless `given` holds n + 1 nodes for e (per edge id, first to last vertex: the
-// nodes a neighbouring sub-volume placed on the edge they share; a closed edge's taken in
-// its own direction round); then those.
+// nodes a neighbouring sub-volume placed on the edge they share); then those.
 std::vector<core::Vec3> edge_points(const core::MeshDomain& s, core::EdgeId e, int n,
                                     const core::SizeField* field,
                                     const std::vector<std::vector<core::Vec3>>& given);
