@@ -663,6 +663,52 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
     target_from[after[k]] = k;
     after[k] = -1;
   }
+  // Where a sweep's source or target is another sweep's or a block's face (not one whose
+  // quads it gives it above), it takes that part's quads there, so it is meshed after it: a
+  // linking side of the other's, a block's face, or the other's target (source) as its target
+  // (source), the later sweep taking the earlier's. Each of the two sweeping its own quads
+  // onto the face did not match: a keyed shaft's 1-thick chamfer slab swept from its end face
+  // to the face of the strip above it, which that strip's sweep meshed as a linking side.
+  auto local_face = [&](int j, int whole) {
+    for (std::size_t f = 1; f < parts[j].whole_face.size(); ++f)
+      if (parts[j].whole_face[f] == whole) return core::FaceId(int(f));
+    return core::FaceId();
+  };
+  auto waits_on = [&](int from, int on) {  // `from` is meshed after `on` (the chains above)
+    std::vector<int> stack{from};
+    std::vector<char> seen(n, 0);
+    while (!stack.empty()) {
+      const int x = stack.back();
+      stack.pop_back();
+      if (x == on) return true;
+      if (x < 0 || seen[x]) continue;
+      seen[x] = 1;
+      stack.push_back(after[x]);
+      stack.push_back(target_from[x]);
+    }
+    return false;
+  };
+  for (int k = 0; k < n; ++k) {
+    if (!parts[k].is_sweep()) continue;
+    for (const bool source : {true, false}) {
+      int& from = source ? after[k] : target_from[k];
+      if (from >= 0 || !(source ? given_source[k] : given_target[k]).empty()) continue;
+      const int whole =
+          parts[k].whole_face[(source ? parts[k].sweep.source : parts[k].sweep.target).value()];
+      for (int j = 0; j < n && from < 0; ++j) {
+        if (j == k || parts[j].multisweep || parts[j].revolve) continue;
+        const core::FaceId f = local_face(j, whole);
+        if (!f.valid()) continue;
+        if (parts[j].is_sweep() && (f == parts[j].sweep.source || f == parts[j].sweep.target)) {
+          // The other's source where this is the target, or its target where this is the
+          // source: the chains above, or that one takes this one's quads.
+          const bool same_end = (f == parts[j].sweep.source) == source;
+          if (!same_end || j > k) continue;
+        }
+        if (!waits_on(j, k)) from = j;
+      }
+    }
+  }
   std::atomic<int> next{0};
   const int threads = std::max(
       1, std::min(n, options.threads > 0 ? options.threads
@@ -670,7 +716,7 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
   auto work = [&] {
     for (int k; (k = next.fetch_add(1)) < n;) {
       if (stop.load()) break;
-      if (parts[k].multisweep || parts[k].revolve || after[k] >= 0)
+      if (parts[k].multisweep || parts[k].revolve || after[k] >= 0 || target_from[k] >= 0)
         continue;  // meshed above, or below
       try {
         meshed[k] = mesh_part(parts[k], counts[k], options, worker_progress, given[k],
@@ -687,32 +733,41 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
       if (progress.cancelled()) stop = true;
       progress.report("sub_volumes", 0.1 + 0.8 * std::min(1.0, double(next.load()) / n));
     }
-  // The stacked sweeps, each once the one below it is meshed (a chain: as many passes).
+  // The stacked sweeps, each once the one below it is meshed (a chain: as many passes), and
+  // the sweeps taking another part's quads on their source or target.
+  auto quads_from = [&](int j, core::FaceId own, const Part& p) {
+    return detail::quads_on_face(meshed[j].mesh, parts[j].solid,
+                                 local_face(j, p.whole_face[own.value()]));
+  };
+  std::vector<char> waiting(n, 0);
+  for (int k = 0; k < n; ++k)
+    waiting[k] =
+        !parts[k].multisweep && !parts[k].revolve && (after[k] >= 0 || target_from[k] >= 0);
   for (bool progressed = true; progressed && !stop.load() && !progress.cancelled();) {
     progressed = false;
     for (int k = 0; k < n; ++k) {
       const int j = after[k], t = target_from[k];
-      if (j < 0 || meshed[k].ok || !meshed[j].ok || (t >= 0 && !meshed[t].ok)) continue;
-      given_source[k] =
-          detail::quads_on_face(meshed[j].mesh, parts[j].solid, parts[j].sweep.target);
-      if (t >= 0)
-        given_target[k] =
-            detail::quads_on_face(meshed[t].mesh, parts[t].solid, parts[t].sweep.source);
+      if (!waiting[k] || (j >= 0 && !meshed[j].ok) || (t >= 0 && !meshed[t].ok)) continue;
+      if (j >= 0) given_source[k] = quads_from(j, parts[k].sweep.source, parts[k]);
+      if (t >= 0) given_target[k] = quads_from(t, parts[k].sweep.target, parts[k]);
       try {
         meshed[k] = mesh_part(parts[k], counts[k], options, worker_progress, given[k],
                               given_source[k], given_target[k]);
       } catch (const std::exception& e) {
         meshed[k].diagnostics.push_back(core::make_error("geometry_error", e.what()));
       }
-      after[k] = -1;
+      waiting[k] = 0;
       progressed = true;
     }
   }
-  for (int k = 0; k < n; ++k)  // the one below failed (or the two are each other's)
-    if (after[k] >= 0 && !meshed[k].ok)
+  for (int k = 0; k < n; ++k)  // the one it waits on failed (or the two wait on each other)
+    if (waiting[k] && !meshed[k].ok) {
+      const int j = after[k] >= 0 && !meshed[after[k]].ok ? after[k] : target_from[k];
       meshed[k].diagnostics.push_back(core::make_error(
-          "sub_volume_not_meshed", "its source is the target of " + sub_volume_name(after[k]) +
+          "sub_volume_not_meshed", "it takes the quads of " + sub_volume_name(j) + " on its " +
+                                       (j == after[k] ? "source" : "target") +
                                        ", which was not meshed, so it was not meshed either"));
+    }
   result.stats.seconds_meshing = seconds_since(t1);
   if (stop.load() || progress.cancelled()) {
     result.diagnostics.push_back(

@@ -263,5 +263,28 @@ TEST(MeshSubVolumes, ASweepBetweenTwoMultisweepsTakesTheirQuadsOnBothEnds) {
   EXPECT_GT(check.scaled_jacobian.min, 0.2);
 }
 
+// A keyed shaft's plane-cut pieces where its careful merge pass stopped at 13
+// (tests/data/keyed_shaft_pieces.brep): the 1-thick chamfer slab at its end is swept from the
+// end face to the face it shares with the strip above, which that strip's sweep meshes as a
+// linking side. Each meshed that face its own way (24 quads that did not match, and no error
+// before the check); the slab now takes the strip's quads there as its target.
+TEST(MeshSubVolumes, ASweepTakesTheQuadsOfAFaceItsNeighbourMeshesAsALinkingSide) {
+  occ::ReadOptions ro;
+  ro.several_solids = true;
+  const occ::ReadResult in =
+      occ::read_solid(std::string(VOROHEX_SOURCE_DIR) + "/tests/data/keyed_shaft_pieces.brep", ro);
+  ASSERT_TRUE(in.ok()) << messages(in.diagnostics);
+  ASSERT_EQ(in.solid->num_solids(), 13);
+  SubVolumeMeshOptions o;
+  o.size = 4.345;  // the shaft's default (diagonal / 20)
+  const SubVolumeMeshResult m = mesh_sub_volumes(*in.solid, o);
+  ASSERT_TRUE(m.ok) << messages(m.diagnostics);
+  const quality::CheckReport check = quality::check_mesh(m.mesh, in.solid.get());
+  EXPECT_TRUE(check.valid) << messages(check.diagnostics);
+  EXPECT_EQ(check.open_boundary_edges, 0u);
+  EXPECT_EQ(testing::find_diagnostic(check.diagnostics, "non_conforming_interface"), nullptr);
+  EXPECT_GT(check.scaled_jacobian.min, 0.1);  // before smoothing (the pipeline's: 0.50)
+}
+
 }  // namespace
 }  // namespace vorohex::mesh
