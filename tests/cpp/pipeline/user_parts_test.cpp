@@ -48,7 +48,7 @@ TEST(UserParts, AShaftsEndMilledKeywayMeshesStructuredAtAFineSize) {
   for (double size : {0.0, 2.2}) {
     SCOPED_TRACE(size);
     const MeshResult r = mesh_test_file("keyed_shaft.step", size);
-    expect_structured(r, size > 0 ? 0.4 : 0.35);
+    expect_structured(r, 0.4);
     if (size > 0) EXPECT_LE(r.mesh.num_hexes(), 6000u);
   }
 }
