@@ -1,5 +1,6 @@
 #include "cli/commands.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -393,7 +394,15 @@ int mesh_command(const std::vector<std::string>& argv) {
     }
     std::cout << "before smoothing     min " << result.stats.min_sj_before_smoothing << "  mean "
               << result.stats.mean_sj_before_smoothing << "\n";
-    print_check_report(std::cout, result.check);
+    // The check's warnings and errors are among the result's, printed below with the others
+    // (some with more said: every edge a boundary quad spans): not twice.
+    quality::CheckReport check = result.check;
+    check.diagnostics.erase(std::remove_if(check.diagnostics.begin(), check.diagnostics.end(),
+                                           [](const core::Diagnostic& d) {
+                                             return d.severity != core::Severity::info;
+                                           }),
+                            check.diagnostics.end());
+    print_check_report(std::cout, check);
     std::vector<core::Diagnostic> notable;  // warnings and errors (the fallback, ...)
     for (const core::Diagnostic& d : all)
       if (d.severity != core::Severity::info) notable.push_back(d);

@@ -537,6 +537,18 @@ class MeshCommand(unittest.TestCase):
                 texts.append(f.read())
         self.assertTrue(texts[0] == texts[1], "two runs gave different meshes")
 
+    def test_a_warning_is_printed_once(self):
+        # The check's warnings are among the mesh's and were printed twice: in the check's
+        # block on stdout and as "vorohex: warning" lines on stderr (HexMe i20's grid mesh
+        # cuts corners off at 9 boundary quads).
+        step = os.path.join(HEXME, "i20o_s25.step")
+        out = os.path.join(self.dir, "i20.vtu")
+        code, stdout, stderr = run("mesh", step, "-o", out, "--no-decompose", "--quiet")
+        self.assertEqual(code, 0, stdout + stderr)
+        self.assertEqual((stdout + stderr).count("[boundary_across_edges]"), 1, stdout + stderr)
+        self.assertIn("vorohex: warning [boundary_across_edges]", stderr)
+        self.assertIn("valid                yes", stdout)
+
     def test_help_and_version(self):
         code, stdout, _ = run("--help")
         self.assertEqual(code, 0)
