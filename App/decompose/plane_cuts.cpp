@@ -357,7 +357,7 @@ PlaneCutResult cut_along(const occ::Solid& solid, std::vector<Plane> planes,
     pieces = clones(cut);
     volume = cut_volume;
     merge_neighbours(pieces, volume, cut_touch, options, /*careful=*/true, cut_into, seconds,
-                     progress);
+                     progress, &r.merges);
     fills = volumes_fill(pieces, whole, volume, r.why_not);
     // The merges were checked on their neighbourhoods; the whole is checked once more.
     meshes = fills && all_meshable(pointers(pieces), options, &why);
@@ -371,6 +371,7 @@ PlaneCutResult cut_along(const occ::Solid& solid, std::vector<Plane> planes,
     if (!first.empty() && volumes_fill(first, whole, volume, r.why_not) &&
         all_meshable(pointers(first), options, &imprinted_why, true)) {
       pieces = std::move(first);
+      r.merges = MergeHistory();  // not that pass's pieces
       meshes = imprinted = true;
     } else if (volumes_fill(pieces, whole, volume, r.why_not) &&
                all_meshable(pointers(pieces), options, &imprinted_why, true)) {

@@ -9,6 +9,7 @@
 // fails or leaves slivers on simple parts.
 #pragma once
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -66,6 +67,17 @@ struct CutSurface {
   bool corner = false;
 };
 
+// The careful merge pass's unions, for the mesher to undo where one does not mesh (a
+// sweep's layers fold in it): every piece that pass started from or made (`solids`: the
+// pieces as cut, then each union as made), the two each union was made of (indices into
+// solids; -1 for a piece as cut), and each final piece's index in solids.
+struct MergeHistory {
+  std::vector<occ::Solid> solids;
+  std::vector<std::array<int, 2>> from;
+  std::vector<int> piece;
+  bool empty() const { return solids.empty(); }
+};
+
 struct PlaneCutResult {
   // Each a block, a sweep or prismatic once glued to the others; when not ok but the solid
   // was cut: the pieces as cut, for inspection (vorohex decompose --plane-cuts).
@@ -93,6 +105,8 @@ struct PlaneCutResult {
   // end), did not end meshable and was run again from the cut with each merge's
   // neighbourhood checked.
   bool merges_checked_each = false;
+  // When ok and the pieces are that pass's: its unions (else empty).
+  MergeHistory merges;
   bool ok = false;
   std::string why_not;  // when not ok: a sentence fragment
 };

@@ -785,6 +785,10 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
     }
     if (!meshed[k].ok) {
       all = false;
+      bool own = false;
+      for (const core::Diagnostic& d : meshed[k].diagnostics)
+        own = own || (d.severity == core::Severity::error && d.code != "sub_volume_not_meshed");
+      if (own) result.failed.push_back(k);
       continue;
     }
     result.stats.nodes_merged +=

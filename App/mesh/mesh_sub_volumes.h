@@ -64,6 +64,9 @@ struct SubVolumeMeshResult {
   bool ok = false;
   std::vector<core::Diagnostic> diagnostics;
   SubVolumeMeshStats stats;
+  // When not ok: the sub-volumes (0-based) whose own meshing failed (not those left unmeshed
+  // because one they wait on failed).
+  std::vector<int> failed;
 };
 
 // `pieces`: glued sub-volumes (Solid::num_solids() parts). Errors: no_scheme (a sub-volume

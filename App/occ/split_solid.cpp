@@ -570,4 +570,20 @@ std::string compound_brep_string(const std::vector<const Solid*>& solids) {
   }
 }
 
+std::vector<Solid> solids_from_brep_string(const std::string& brep) {
+  std::vector<Solid> out;
+  try {
+    TopoDS_Shape shape;
+    BRep_Builder b;
+    std::istringstream in(brep);
+    BRepTools::Read(shape, in, b);
+    if (shape.IsNull()) return out;
+    for (TopExp_Explorer e(shape, TopAbs_SOLID); e.More(); e.Next())
+      out.push_back(make_solid(TopoDS::Solid(e.Current())));
+  } catch (const Standard_Failure&) {
+    out.clear();
+  }
+  return out;
+}
+
 }  // namespace vorohex::occ

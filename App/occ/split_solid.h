@@ -117,4 +117,8 @@ bool write_compound_brep(const std::vector<const Solid*>& solids, const std::str
 // The solids as one compound in BREP text (empty on an OCCT failure).
 std::string compound_brep_string(const std::vector<const Solid*>& solids);
 
+// The solids of a compound in BREP text, in its order, each on its own (not glued); none
+// on an OCCT failure.
+std::vector<Solid> solids_from_brep_string(const std::string& brep);
+
 }  // namespace vorohex::occ

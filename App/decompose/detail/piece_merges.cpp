@@ -246,12 +246,19 @@ Touching merged_touching(const Touching& touch, std::size_t a, std::size_t b) {
 // taking one piece away, until none is left or the time is up. `volume`, `touch`: per piece.
 void merge_neighbours(std::vector<occ::Solid>& pieces, std::vector<double>& volume, Touching touch,
                       const PlaneCutOptions& options, bool careful, double cut_into,
-                      const std::function<double()>& seconds, const core::Progress& progress) {
+                      const std::function<double()>& seconds, const core::Progress& progress,
+                      MergeHistory* history) {
   // Pairs whose union is no block, sweep or prismatic part (or no union) stay so: they are
-  // not fused again after each merge (ids: a merged piece gets a new one).
+  // not fused again after each merge (ids: a merged piece gets a new one, its index in the
+  // history).
   std::vector<int> id(pieces.size());
   for (std::size_t k = 0; k < id.size(); ++k) id[k] = int(k);
   int next_id = int(id.size());
+  if (history) {
+    *history = MergeHistory();
+    for (const occ::Solid& p : pieces) history->solids.push_back(p.clone());
+    history->from.assign(pieces.size(), {-1, -1});
+  }
   std::set<std::pair<int, int>> no_union;
   // Pairs whose union left a neighbour without a scheme, with the ids glued around it then.
   std::map<std::pair<int, int>, std::vector<int>> not_kept, union_not_kept;
@@ -315,6 +322,10 @@ void merge_neighbours(std::vector<occ::Solid>& pieces, std::vector<double>& volu
           if (k != a && k != b)
             next.push_back(std::move(pieces[k])), next_volume.push_back(volume[k]),
                 next_ids.push_back(id[k]);
+        if (history) {
+          history->solids.push_back(u->clone());
+          history->from.push_back({id[a], id[b]});
+        }
         next.push_back(std::move(*u));
         next_volume.push_back(uv);
         next_ids.push_back(next_id++);
@@ -325,6 +336,7 @@ void merge_neighbours(std::vector<occ::Solid>& pieces, std::vector<double>& volu
         merged = true;
       }
   }
+  if (history) history->piece = id;
 }
 
 }  // namespace vorohex::decompose::detail

@@ -53,9 +53,11 @@ Touching touching(const std::vector<const occ::Solid*>& pieces, const occ::ReadR
 // Merges neighbouring pieces while the union is a block, a sweep or prismatic (and, when
 // `careful`, every piece around it stays so once glued), each merge taking one piece away,
 // until none is left or `seconds()` reaches options.time_limit. `volume`, `touch`: per
-// piece; `cut_into`: the pieces' count before merging (for the progress).
+// piece; `cut_into`: the pieces' count before merging (for the progress). `history`, where
+// given, gets the unions made.
 void merge_neighbours(std::vector<occ::Solid>& pieces, std::vector<double>& volume, Touching touch,
                       const PlaneCutOptions& options, bool careful, double cut_into,
-                      const std::function<double()>& seconds, const core::Progress& progress);
+                      const std::function<double()>& seconds, const core::Progress& progress,
+                      MergeHistory* history = nullptr);
 
 }  // namespace vorohex::decompose::detail

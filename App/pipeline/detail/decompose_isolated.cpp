@@ -35,22 +35,58 @@ double voronoi_seconds(double time_limit, double elapsed, DecompositionMethods m
                                                   : std::min(left, voronoi_share(time_limit));
 }
 
-// Between the sub-volumes' BREP compound and the compound of the same split afresh.
+// Between the sub-volumes' BREP compound and the compound of the same split afresh; before
+// the careful merge pass's unions (decompose::MergeHistory: a line of the unions' two
+// indices, "a b" each, a line of the pieces' indices, then the solids' compound).
 const char* const kAfresh = "\n@afresh@\n";
+const char* const kMerges = "\n@merges@\n";
+
+std::string merges_text(const decompose::MergeHistory& h) {
+  if (h.empty()) return std::string();
+  std::vector<const occ::Solid*> solids;
+  for (const occ::Solid& s : h.solids) solids.push_back(&s);
+  const std::string brep = occ::compound_brep_string(solids);
+  if (brep.empty()) return std::string();
+  std::ostringstream s;
+  for (const auto& [a, b] : h.from) s << a << " " << b << " ";
+  s << "\n";
+  for (int p : h.piece) s << p << " ";
+  s << "\n" << brep;
+  return kMerges + s.str();
+}
+
+// The history merges_text wrote (empty where it does not read back whole).
+decompose::MergeHistory merges_from_text(const std::string& text) {
+  decompose::MergeHistory h;
+  const std::size_t eol = text.find('\n');
+  const std::size_t eol2 = eol == std::string::npos ? eol : text.find('\n', eol + 1);
+  if (eol2 == std::string::npos) return h;
+  std::istringstream from(text.substr(0, eol)), piece(text.substr(eol + 1, eol2 - eol - 1));
+  for (int a, b; from >> a >> b;) h.from.push_back({a, b});
+  for (int p; piece >> p;) h.piece.push_back(p);
+  h.solids = occ::solids_from_brep_string(text.substr(eol2 + 1));
+  const int n = int(h.solids.size());
+  bool whole = n == int(h.from.size());
+  for (const auto& [a, b] : h.from) whole = whole && a < n && b < n;
+  for (int p : h.piece) whole = whole && p >= 0 && p < n;
+  if (!whole) h = decompose::MergeHistory();
+  return h;
+}
 
 // "<before merge>\n<method>[\t<surfaces left out>\t<surfaces used>\t<knife edges: 0 or 1>]\n"
 // then the sub-volumes as one BREP compound, and after kAfresh the same split afresh
 // (decompose::PlaneCutResult::afresh) where there is one.
 std::string to_text(int before_merge, const char* method,
                     const std::vector<const occ::Solid*>& solids,
-                    const std::vector<const occ::Solid*>& afresh = {}) {
+                    const std::vector<const occ::Solid*>& afresh = {},
+                    const decompose::MergeHistory& merges = {}) {
   const std::string brep = occ::compound_brep_string(solids);
   if (brep.empty()) throw std::runtime_error("its sub-volumes could not be written");
   std::string text = std::to_string(before_merge) + "\n" + method + "\n" + brep;
   if (!afresh.empty())
     if (const std::string again = occ::compound_brep_string(afresh); !again.empty())
       text += kAfresh + again;
-  return text;
+  return text + merges_text(merges);
 }
 
 // Runs in the child: the Voronoi decomposition, or throws with the reason. `seconds`, what
@@ -133,7 +169,7 @@ std::string decompose_to_text(const occ::Solid& solid, const MeshOptions& mesh_o
                                  decompose::used_surfaces_text(cut) + "\t" +
                                  (cut.knife_edges ? "1" : "0") + "\t" +
                                  decompose::cut_kind_text(cut);
-      return to_text(cut.pieces_before_merge, method.c_str(), solids, afresh);
+      return to_text(cut.pieces_before_merge, method.c_str(), solids, afresh, cut.merges);
     }
     why =
         "cutting along the faces at its concave edges did not give sub-volumes that all have "
@@ -191,7 +227,7 @@ IsolatedDecomposition decompose_isolated(const occ::Solid& solid, const MeshOpti
           },
           &stop)
           .with_time_limit(time_limit);
-  const core::IsolatedResult run =
+  core::IsolatedResult run =
       core::IsolatedJob([&](const core::Progress& in_child) {
         const core::Progress reports = core::Progress(
             [in_child](std::string_view stage, double f) { in_child.report(stage, f); });
@@ -248,6 +284,11 @@ IsolatedDecomposition decompose_isolated(const occ::Solid& solid, const MeshOpti
     out.along = fields[2];
     out.knife_edges = fields[3] == "1";
     out.cut_kind = fields[4];
+  }
+  std::size_t end = run.data.find(kMerges, eol2 + 1);
+  if (end != std::string::npos) {
+    out.merges = merges_from_text(run.data.substr(end + std::char_traits<char>::length(kMerges)));
+    run.data.resize(end);
   }
   occ::ReadOptions ro;
   ro.several_solids = true;

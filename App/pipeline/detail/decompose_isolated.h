@@ -11,6 +11,7 @@
 #include <string>
 
 #include "core/progress.h"
+#include "decompose/plane_cuts.h"
 #include "occ/solid.h"
 #include "pipeline/generate_mesh.h"
 
@@ -27,6 +28,7 @@ struct IsolatedDecomposition {
   std::string along;                   // plane cuts: the surfaces cut along ("the plane of
                                        // Face3, the cylinder of Face9 and 4 more")
   bool knife_edges = false;            // plane cuts: PlaneCutResult::knife_edges
+  decompose::MergeHistory merges;      // plane cuts: PlaneCutResult::merges
   std::string cut_kind;                // plane cuts: decompose::cut_kind_text
   std::string why_not;                 // when pieces is null: a sentence fragment
   bool cancelled = false;              // stopped by `progress` (not by the time limit)

@@ -2,14 +2,18 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <cstdlib>
 #include <iomanip>
 #include <map>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "core/progress.h"
 #include "mesh/mesh_sub_volumes.h"
+#include "occ/shape_io.h"
 #include "pipeline/detail/decompose_isolated.h"
 #include "quality/check_mesh.h"
 #include "smooth/restore_topology.h"
@@ -56,6 +60,43 @@ constexpr double kPoorDecomposition = 0.2;
 // Halvings of the size where the sub-volumes did not mesh (mesh_pieces).
 constexpr int kFinerAttempts = 2;
 
+// Rounds of undoing the plane cuts' unions in which a sub-volume did not mesh (mesh_pieces).
+constexpr int kUndoRounds = 3;
+
+// The parts of the glued `pieces` that have one of the faces `names` ("Face116").
+std::vector<int> parts_with_faces(const occ::Solid& pieces, const std::vector<std::string>& names) {
+  std::vector<int> faces, out;
+  for (const std::string& name : names)
+    if (name.rfind("Face", 0) == 0) faces.push_back(std::atoi(name.c_str() + 4));
+  for (int k = 0; k < pieces.num_solids(); ++k) {
+    const std::vector<int> ids = pieces.part_ids(pieces.part(k), 2);
+    if (std::any_of(ids.begin(), ids.end(), [&](int f) {
+          return f > 0 && std::find(faces.begin(), faces.end(), f) != faces.end();
+        }))
+      out.push_back(k);
+  }
+  return out;
+}
+
+// The index among `nodes` (indices into `boxes`) whose box `part` has; -1: none or several.
+int node_of(const occ::Solid& part, const std::vector<int>& nodes,
+            const std::vector<core::BoundingBox>& boxes) {
+  const core::BoundingBox box = part.bounding_box();
+  int found = -1;
+  for (int node : nodes) {
+    const core::BoundingBox& b = boxes[node];
+    const double tol = 1e-6 * std::max(box.diagonal(), b.diagonal());
+    bool same = true;
+    for (int i = 0; i < 3; ++i)
+      same =
+          same && std::abs(box.min[i] - b.min[i]) <= tol && std::abs(box.max[i] - b.max[i]) <= tol;
+    if (!same) continue;
+    if (found >= 0) return -1;
+    found = node;
+  }
+  return found;
+}
+
 // Whether sub-volumes that did not mesh may mesh at a smaller size: where what failed is the
 // quad meshing of a face (folded where the face is narrower than the size), and nothing else.
 // Not a sweep's folded layers or meshes that do not match where they meet: a knife edge does
@@ -85,7 +126,7 @@ bool mesh_pieces(const occ::Solid& solid, const IsolatedDecomposition& d,
   o.max_hexes = options.max_hexes;
   o.multisweep = std::find(options.schemes.begin(), options.schemes.end(), "multisweep") !=
                  options.schemes.end();
-  const int n = d.pieces->num_solids();
+  int n = d.pieces->num_solids();
   // One set of glued pieces meshed: the mesh, its minimum before smoothing, or why not.
   struct Attempt {
     mesh::SubVolumeMeshResult m;
@@ -120,6 +161,9 @@ bool mesh_pieces(const occ::Solid& solid, const IsolatedDecomposition& d,
                   " sub-volumes do not match where they meet (" +
                   core::error_codes(joined.diagnostics) + ")";
       a.m.ok = false;
+      for (const core::Diagnostic& diag : joined.diagnostics)  // whose meshes do not match
+        if (diag.code == "non_conforming_interface")
+          a.m.failed = parts_with_faces(pieces, diag.entities);
       return a;
     }
     a.min = joined.scaled_jacobian.min;
@@ -158,6 +202,60 @@ bool mesh_pieces(const occ::Solid& solid, const IsolatedDecomposition& d,
       << "); made again at size " << a.size
       << ", it meshes: that mesh is used, finer than the size asked for.";
     reduced = s.str();
+  }
+  // Unions made by the plane cuts' careful merge pass in which a sub-volume did not mesh (a
+  // sweep's layers fold in it; the pass judges schemes, not meshes) are undone, and the two
+  // pieces each was made of meshed in its place, kUndoRounds times at most. Where that pass
+  // stops depends on the time it has: a V-belt pulley's 41 to 43 pieces meshed, its 33 to
+  // 35 (sooner done) did not, two sweeps' layers folding in the unions across its groove.
+  std::unique_ptr<occ::Solid> undone;
+  int unions_undone = 0;
+  std::string undone_why;
+  if (!a.m.ok && !d.merges.empty() && !a.m.failed.empty() && pieces == d.pieces.get() &&
+      !progress.cancelled()) {
+    o.size = sizes.global();
+    o.size_field = &sizes;
+    std::vector<core::BoundingBox> boxes;
+    for (const occ::Solid& s : d.merges.solids) boxes.push_back(s.bounding_box());
+    std::vector<int> nodes = d.merges.piece;
+    const occ::Solid* glued = d.pieces.get();
+    Attempt last = std::move(a);
+    for (int round = 0;
+         round < kUndoRounds && !last.m.ok && !last.m.failed.empty() && !progress.cancelled();
+         ++round) {
+      std::vector<int> next = nodes;
+      int undoing = 0;
+      for (int k : last.m.failed) {
+        const int node = node_of(glued->part(k), nodes, boxes);
+        if (node < 0 || d.merges.from[node][0] < 0) continue;
+        next.erase(std::find(next.begin(), next.end(), node));
+        next.push_back(d.merges.from[node][0]);
+        next.push_back(d.merges.from[node][1]);
+        ++undoing;
+      }
+      if (undoing == 0) break;
+      std::vector<const occ::Solid*> solids;
+      for (int node : next) solids.push_back(&d.merges.solids[node]);
+      occ::GlueOptions go;
+      go.only_touching = true;  // pieces of one exact split
+      occ::ReadResult g = occ::glue_solids(solids, "The plane cut", go);
+      if (!g.ok()) break;
+      if (undone_why.empty()) undone_why = last.why_not;
+      unions_undone += undoing;
+      nodes = std::move(next);
+      undone = std::move(g.solid);
+      glued = undone.get();
+      n = glued->num_solids();
+      last = attempt(*glued);
+    }
+    if (last.m.ok) {
+      pieces = glued;
+    } else {
+      unions_undone = 0;
+      n = d.pieces->num_solids();
+      last.why_not = undone_why.empty() ? last.why_not : undone_why;
+    }
+    a = std::move(last);
   }
   const bool afresh = pieces == d.afresh.get();
   if (!a.m.ok) {
@@ -210,6 +308,11 @@ bool mesh_pieces(const occ::Solid& solid, const IsolatedDecomposition& d,
     << restored.interior << " nodes on the cuts are inside the solid again. Decomposition "
     << std::fixed << std::setprecision(1) << d.seconds << " s.";
   result.diagnostics.push_back(core::make_info("decomposed", s.str()));
+  if (unions_undone > 0)
+    result.diagnostics.push_back(core::make_info(
+        "merges_undone",
+        std::to_string(unions_undone) + " unions made in merging the cut's pieces did not mesh (" +
+            undone_why + "): undone, the pieces each was made of are meshed instead."));
   if (!reduced.empty()) {
     result.diagnostics.push_back(core::make_warning("size_reduced", reduced));
     result.stats.size_used = a.size;
