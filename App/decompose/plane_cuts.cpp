@@ -347,11 +347,14 @@ PlaneCutResult cut_along(const occ::Solid& solid, std::vector<Plane> planes,
         if (inside[k] != inside[m]) cut_touch[k][m] = 0;
   }
   const double cut_into = double(pieces.size());
+  // Each pass's unions, for the mesher to undo those that do not mesh (MergeHistory).
+  MergeHistory first_merges;
   merge_neighbours(pieces, volume, cut_touch, options, /*careful=*/false, cut_into, seconds,
-                   progress);
+                   progress, &first_merges);
   bool fills = volumes_fill(pieces, whole, volume, r.why_not);
   bool meshes = fills && all_meshable(pointers(pieces), options, &why);
   std::vector<occ::Solid> first = meshes ? std::vector<occ::Solid>() : clones(pieces);
+  if (meshes) r.merges = std::move(first_merges);
   if (!meshes && seconds() < options.time_limit) {
     r.merges_checked_each = true;
     pieces = clones(cut);
@@ -371,7 +374,7 @@ PlaneCutResult cut_along(const occ::Solid& solid, std::vector<Plane> planes,
     if (!first.empty() && volumes_fill(first, whole, volume, r.why_not) &&
         all_meshable(pointers(first), options, &imprinted_why, true)) {
       pieces = std::move(first);
-      r.merges = MergeHistory();  // not that pass's pieces
+      r.merges = std::move(first_merges);
       meshes = imprinted = true;
     } else if (volumes_fill(pieces, whole, volume, r.why_not) &&
                all_meshable(pointers(pieces), options, &imprinted_why, true)) {

@@ -67,8 +67,8 @@ struct CutSurface {
   bool corner = false;
 };
 
-// The careful merge pass's unions, for the mesher to undo where one does not mesh (a
-// sweep's layers fold in it): every piece that pass started from or made (`solids`: the
+// The merge pass's unions, for the mesher to undo where one does not mesh (a sweep's layers
+// fold in it): every piece the pass that gave the pieces started from or made (`solids`: the
 // pieces as cut, then each union as made), the two each union was made of (indices into
 // solids; -1 for a piece as cut), and each final piece's index in solids.
 struct MergeHistory {
@@ -105,7 +105,7 @@ struct PlaneCutResult {
   // end), did not end meshable and was run again from the cut with each merge's
   // neighbourhood checked.
   bool merges_checked_each = false;
-  // When ok and the pieces are that pass's: its unions (else empty).
+  // When ok: the unions of the merge pass whose pieces these are (the first or the careful).
   MergeHistory merges;
   bool ok = false;
   std::string why_not;  // when not ok: a sentence fragment

@@ -36,7 +36,7 @@ double voronoi_seconds(double time_limit, double elapsed, DecompositionMethods m
 }
 
 // Between the sub-volumes' BREP compound and the compound of the same split afresh; before
-// the careful merge pass's unions (decompose::MergeHistory: a line of the unions' two
+// the merge pass's unions (decompose::MergeHistory: a line of the unions' two
 // indices, "a b" each, a line of the pieces' indices, then the solids' compound).
 const char* const kAfresh = "\n@afresh@\n";
 const char* const kMerges = "\n@merges@\n";

@@ -203,10 +203,10 @@ bool mesh_pieces(const occ::Solid& solid, const IsolatedDecomposition& d,
       << ", it meshes: that mesh is used, finer than the size asked for.";
     reduced = s.str();
   }
-  // Unions made by the plane cuts' careful merge pass in which a sub-volume did not mesh (a
-  // sweep's layers fold in it; the pass judges schemes, not meshes) are undone, and the two
-  // pieces each was made of meshed in its place, kUndoRounds times at most. Where that pass
-  // stops depends on the time it has: a V-belt pulley's 41 to 43 pieces meshed, its 33 to
+  // Unions made by the plane cuts' merge pass in which a sub-volume did not mesh (a sweep's
+  // layers fold in it; the pass judges schemes, not meshes) are undone, and the two pieces
+  // each was made of meshed in its place, kUndoRounds times at most. Where the careful pass
+  // stops depends on the time it has: a V-belt pulley's 41 to 43 pieces meshed, its 30 to
   // 35 (sooner done) did not, two sweeps' layers folding in the unions across its groove.
   std::unique_ptr<occ::Solid> undone;
   int unions_undone = 0;
