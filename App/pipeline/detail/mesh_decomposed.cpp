@@ -227,8 +227,9 @@ bool mesh_pieces(const occ::Solid& solid, const IsolatedDecomposition& d,
       int undoing = 0;
       for (int k : last.m.failed) {
         const int node = node_of(glued->part(k), nodes, boxes);
-        if (node < 0 || d.merges.from[node][0] < 0) continue;
-        next.erase(std::find(next.begin(), next.end(), node));
+        const auto at = std::find(next.begin(), next.end(), node);
+        if (node < 0 || at == next.end() || d.merges.from[node][0] < 0) continue;
+        next.erase(at);
         next.push_back(d.merges.from[node][0]);
         next.push_back(d.merges.from[node][1]);
         ++undoing;
