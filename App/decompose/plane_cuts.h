@@ -78,6 +78,12 @@ struct MergeHistory {
   bool empty() const { return solids.empty(); }
 };
 
+// Undoes the unions that parts `failed` of `glued` are: `pieces` (indices into h.solids,
+// glued as `glued`) gets, for each, the two it was made of in its place. A part told by no
+// piece's box, or by several, or that is a piece as cut, stays. Returns how many were undone.
+int undo_unions(const MergeHistory& h, const occ::Solid& glued, const std::vector<int>& failed,
+                std::vector<int>& pieces);
+
 struct PlaneCutResult {
   // Each a block, a sweep or prismatic once glued to the others; when not ok but the solid
   // was cut: the pieces as cut, for inspection (vorohex decompose --plane-cuts).

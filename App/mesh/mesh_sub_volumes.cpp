@@ -624,13 +624,16 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
   // two multisweeps, as across a pulley's keyway): its quads there (the boundary quads of the
   // multisweep's mesh whose corners lie on that face or its edges and vertices).
   std::vector<std::vector<std::array<core::Vec3, 4>>> given_source(n), given_target(n);
+  auto local_face = [&](int j, int whole) {  // part j's face that is `whole` (invalid: none)
+    for (std::size_t f = 1; f < parts[j].whole_face.size(); ++f)
+      if (parts[j].whole_face[f] == whole) return core::FaceId(int(f));
+    return core::FaceId();
+  };
   auto multisweep_quads = [&](int whole) {
     for (int j = 0; j < n; ++j) {
-      const Part& a = parts[j];
-      if (!a.multisweep || !meshed[j].ok) continue;
-      for (std::size_t f = 1; f < a.whole_face.size(); ++f)
-        if (a.whole_face[f] == whole)
-          return detail::quads_on_face(meshed[j].mesh, a.solid, core::FaceId(int(f)));
+      if (!parts[j].multisweep || !meshed[j].ok) continue;
+      if (const core::FaceId f = local_face(j, whole); f.valid())
+        return detail::quads_on_face(meshed[j].mesh, parts[j].solid, f);
     }
     return std::vector<std::array<core::Vec3, 4>>();
   };
@@ -669,11 +672,6 @@ SubVolumeMeshResult mesh_sub_volumes(const occ::Solid& pieces, const SubVolumeMe
   // (source), the later sweep taking the earlier's. Each of the two sweeping its own quads
   // onto the face did not match: a keyed shaft's 1-thick chamfer slab swept from its end face
   // to the face of the strip above it, which that strip's sweep meshed as a linking side.
-  auto local_face = [&](int j, int whole) {
-    for (std::size_t f = 1; f < parts[j].whole_face.size(); ++f)
-      if (parts[j].whole_face[f] == whole) return core::FaceId(int(f));
-    return core::FaceId();
-  };
   auto waits_on = [&](int from, int on) {  // `from` is meshed after `on` (the chains above)
     std::vector<int> stack{from};
     std::vector<char> seen(n, 0);

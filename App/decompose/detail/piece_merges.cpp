@@ -340,3 +340,29 @@ void merge_neighbours(std::vector<occ::Solid>& pieces, std::vector<double>& volu
 }
 
 }  // namespace vorohex::decompose::detail
+
+namespace vorohex::decompose {
+
+int undo_unions(const MergeHistory& h, const occ::Solid& glued, const std::vector<int>& failed,
+                std::vector<int>& pieces) {
+  std::vector<const occ::Solid*> solids;
+  for (int p : pieces) solids.push_back(&h.solids[p]);
+  const std::vector<core::BoundingBox> boxes = detail::boxes_of(solids);
+  std::vector<int> next = pieces;
+  int undone = 0;
+  for (int k : failed) {
+    const int i = detail::piece_of(glued.part(k), boxes);
+    if (i < 0) continue;
+    const auto at = std::find(next.begin(), next.end(), pieces[i]);
+    const std::array<int, 2> from = h.from[pieces[i]];
+    if (at == next.end() || from[0] < 0) continue;
+    next.erase(at);
+    next.push_back(from[0]);
+    next.push_back(from[1]);
+    ++undone;
+  }
+  pieces = std::move(next);
+  return undone;
+}
+
+}  // namespace vorohex::decompose

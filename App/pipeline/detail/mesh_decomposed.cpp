@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cmath>
-#include <cstdlib>
 #include <iomanip>
 #include <map>
 #include <memory>
@@ -12,6 +10,7 @@
 #include <vector>
 
 #include "core/progress.h"
+#include "core/size_field.h"
 #include "mesh/mesh_sub_volumes.h"
 #include "occ/shape_io.h"
 #include "pipeline/detail/decompose_isolated.h"
@@ -66,8 +65,11 @@ constexpr int kUndoRounds = 3;
 // The parts of the glued `pieces` that have one of the faces `names` ("Face116").
 std::vector<int> parts_with_faces(const occ::Solid& pieces, const std::vector<std::string>& names) {
   std::vector<int> faces, out;
-  for (const std::string& name : names)
-    if (name.rfind("Face", 0) == 0) faces.push_back(std::atoi(name.c_str() + 4));
+  for (const std::string& name : names) {
+    char kind = 0;
+    int id = 0;
+    if (core::parse_entity_name(name, kind, id) && kind == 'f') faces.push_back(id);
+  }
   for (int k = 0; k < pieces.num_solids(); ++k) {
     const std::vector<int> ids = pieces.part_ids(pieces.part(k), 2);
     if (std::any_of(ids.begin(), ids.end(), [&](int f) {
@@ -76,25 +78,6 @@ std::vector<int> parts_with_faces(const occ::Solid& pieces, const std::vector<st
       out.push_back(k);
   }
   return out;
-}
-
-// The index among `nodes` (indices into `boxes`) whose box `part` has; -1: none or several.
-int node_of(const occ::Solid& part, const std::vector<int>& nodes,
-            const std::vector<core::BoundingBox>& boxes) {
-  const core::BoundingBox box = part.bounding_box();
-  int found = -1;
-  for (int node : nodes) {
-    const core::BoundingBox& b = boxes[node];
-    const double tol = 1e-6 * std::max(box.diagonal(), b.diagonal());
-    bool same = true;
-    for (int i = 0; i < 3; ++i)
-      same =
-          same && std::abs(box.min[i] - b.min[i]) <= tol && std::abs(box.max[i] - b.max[i]) <= tol;
-    if (!same) continue;
-    if (found >= 0) return -1;
-    found = node;
-  }
-  return found;
 }
 
 // Whether sub-volumes that did not mesh may mesh at a smaller size: where what failed is the
@@ -215,8 +198,6 @@ bool mesh_pieces(const occ::Solid& solid, const IsolatedDecomposition& d,
       !progress.cancelled()) {
     o.size = sizes.global();
     o.size_field = &sizes;
-    std::vector<core::BoundingBox> boxes;
-    for (const occ::Solid& s : d.merges.solids) boxes.push_back(s.bounding_box());
     std::vector<int> nodes = d.merges.piece;
     const occ::Solid* glued = d.pieces.get();
     Attempt last = std::move(a);
@@ -224,16 +205,7 @@ bool mesh_pieces(const occ::Solid& solid, const IsolatedDecomposition& d,
          round < kUndoRounds && !last.m.ok && !last.m.failed.empty() && !progress.cancelled();
          ++round) {
       std::vector<int> next = nodes;
-      int undoing = 0;
-      for (int k : last.m.failed) {
-        const int node = node_of(glued->part(k), nodes, boxes);
-        const auto at = std::find(next.begin(), next.end(), node);
-        if (node < 0 || at == next.end() || d.merges.from[node][0] < 0) continue;
-        next.erase(at);
-        next.push_back(d.merges.from[node][0]);
-        next.push_back(d.merges.from[node][1]);
-        ++undoing;
-      }
+      const int undoing = decompose::undo_unions(d.merges, *glued, last.m.failed, next);
       if (undoing == 0) break;
       std::vector<const occ::Solid*> solids;
       for (int node : next) solids.push_back(&d.merges.solids[node]);

@@ -234,6 +234,13 @@ TEST(MeshSubVolumes, ASweepsLinkingSidesMayBeStacksOfFacesItsNeighboursSplit) {
   EXPECT_EQ(r.diagnostics[0].code, "intervals_needed");
 }
 
+// A decomposition's pieces written by `vorohex decompose -o` (tests/data), glued.
+occ::ReadResult read_pieces(const std::string& name) {
+  occ::ReadOptions ro;
+  ro.several_solids = true;
+  return occ::read_solid(std::string(VOROHEX_SOURCE_DIR) + "/tests/data/" + name, ro);
+}
+
 // A V-belt pulley with a keyway in its bore (bench/run_parts.py), as its plane cuts left it
 // (42 pieces, as `vorohex decompose --auto -o` writes them:
 // tests/data/vbelt_pulley_keyway_pieces.brep). The
@@ -243,10 +250,7 @@ TEST(MeshSubVolumes, ASweepsLinkingSidesMayBeStacksOfFacesItsNeighboursSplit) {
 // both ends, paired by connectivity; before, the target's nearest-node pairing failed
 // (target_mismatch) and, without it, the two meshes of each face did not match.
 TEST(MeshSubVolumes, ASweepBetweenTwoMultisweepsTakesTheirQuadsOnBothEnds) {
-  occ::ReadOptions ro;
-  ro.several_solids = true;
-  const occ::ReadResult in = occ::read_solid(
-      std::string(VOROHEX_SOURCE_DIR) + "/tests/data/vbelt_pulley_keyway_pieces.brep", ro);
+  const occ::ReadResult in = read_pieces("vbelt_pulley_keyway_pieces.brep");
   ASSERT_TRUE(in.ok()) << messages(in.diagnostics);
   ASSERT_EQ(in.solid->num_solids(), 42);
   SubVolumeMeshOptions o;
@@ -269,10 +273,7 @@ TEST(MeshSubVolumes, ASweepBetweenTwoMultisweepsTakesTheirQuadsOnBothEnds) {
 // linking side. Each meshed that face its own way (24 quads that did not match, and no error
 // before the check); the slab now takes the strip's quads there as its target.
 TEST(MeshSubVolumes, ASweepTakesTheQuadsOfAFaceItsNeighbourMeshesAsALinkingSide) {
-  occ::ReadOptions ro;
-  ro.several_solids = true;
-  const occ::ReadResult in =
-      occ::read_solid(std::string(VOROHEX_SOURCE_DIR) + "/tests/data/keyed_shaft_pieces.brep", ro);
+  const occ::ReadResult in = read_pieces("keyed_shaft_pieces.brep");
   ASSERT_TRUE(in.ok()) << messages(in.diagnostics);
   ASSERT_EQ(in.solid->num_solids(), 13);
   SubVolumeMeshOptions o;

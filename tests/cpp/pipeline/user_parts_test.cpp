@@ -145,8 +145,7 @@ TEST(UserParts, AnEccentricCamsChamferSlabsMatchTheMultisweepsCaps) {
 TEST(UserParts, AVBeltPulleysUnionsThatDoNotMeshAreUndone) {
   const MeshResult r = mesh_test_file("vbelt_pulley.step", 0);
   expect_structured(r, 0.4);
-  if (const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "merges_undone"))
-    EXPECT_NE(d->message.find("undone"), std::string::npos) << d->message;
+  EXPECT_LE(r.mesh.num_hexes(), 2000u);
 }
 
 }  // namespace
