@@ -5,6 +5,7 @@
 #include <BRepBuilderAPI_MakePolygon.hxx>
 #include <BRepBuilderAPI_MakeSolid.hxx>
 #include <BRepBuilderAPI_MakeWire.hxx>
+#include <BRepBuilderAPI_NurbsConvert.hxx>
 #include <BRepBuilderAPI_Sewing.hxx>
 #include <BRepGProp.hxx>
 #include <BRepLib.hxx>
@@ -233,6 +234,9 @@ bool write_fixture(Fixture kind, const std::string& path) {
     TopoDS_Shape shape;
     if (kind == Fixture::revolved_cylinder) {
       shape = ShapeCustom::ConvertToRevolution(BRepPrimAPI_MakeCylinder(2, 5).Solid());
+    } else if (kind == Fixture::bspline_half_cylinder) {
+      BRepBuilderAPI_NurbsConvert nurbs(BRepPrimAPI_MakeCylinder(2, 5, M_PI).Solid(), true);
+      shape = nurbs.Shape();
     } else if (kind == Fixture::revolved_cone) {
       shape = ShapeCustom::ConvertToRevolution(BRepPrimAPI_MakeCone(3, 1, 4).Solid());
     } else if (kind == Fixture::bad_tolerance_box) {

@@ -1,5 +1,6 @@
 #include "occ/shape_io.h"
 
+#include <BRepBndLib.hxx>
 #include <BRepBuilderAPI_MakeSolid.hxx>
 #include <BRepCheck_Analyzer.hxx>
 #include <BRepGProp.hxx>
@@ -7,6 +8,7 @@
 #include <BRepTools.hxx>
 #include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
+#include <Bnd_Box.hxx>
 #include <GProp_GProps.hxx>
 #include <IFSelect_ReturnStatus.hxx>
 #include <IGESControl_Reader.hxx>
@@ -44,6 +46,7 @@
 #include <unordered_set>
 
 #include "core/isolated_call.h"
+#include "occ/detail/canonical_surfaces.h"
 #include "occ/detail/elementary_surfaces.h"
 #include "occ/detail/glue.h"
 #include "occ/detail/names.h"
@@ -179,32 +182,71 @@ TopoDS_Solid repaired(const TopoDS_Solid& solid, double time_limit, std::string&
   return TopoDS_Solid();
 }
 
-// Turned faces stored as surfaces of revolution of a line get the cylinder or cone they
-// are (occ/detail/elementary_surfaces.h). The result is kept only when it is valid with the
-// same faces, edges, vertices and volume; else the solid stays as read.
-TopoDS_Solid with_elementary_surfaces(const TopoDS_Solid& solid, const std::string& where,
-                                      ReadResult& r) {
-  const detail::ElementaryResult e = detail::elementary_surfaces(solid);
-  if (e.converted == 0) return solid;
+// Whether `converted` is `solid` with other surfaces only: valid, with the same numbers of
+// faces, edges and vertices, and a volume within `volume_bound` of its own (integrated to
+// 1e-9 where `precise`: a B-spline and its cylinder, the bound then allowing 1e-7 more;
+// else OCCT's fixed-order integration, the same on both where the
+// surfaces give the same points).
+bool same_solid(const TopoDS_Solid& solid, const TopoDS_Solid& converted, double volume_bound,
+                bool precise) {
   try {
     for (TopAbs_ShapeEnum kind : {TopAbs_FACE, TopAbs_EDGE, TopAbs_VERTEX}) {
       TopTools_IndexedMapOfShape a, b;
       TopExp::MapShapes(solid, kind, a);
-      TopExp::MapShapes(e.solid, kind, b);
-      if (a.Extent() != b.Extent()) return solid;
+      TopExp::MapShapes(converted, kind, b);
+      if (a.Extent() != b.Extent()) return false;
     }
-    const double v0 = signed_volume(solid), v1 = signed_volume(e.solid);
-    if (!(std::abs(v1 - v0) <= 1e-7 * std::abs(v0)) || !BRepCheck_Analyzer(e.solid).IsValid())
-      return solid;
+    GProp_GProps p0, p1;
+    if (precise) {
+      BRepGProp::VolumeProperties(solid, p0, 1e-9);
+      BRepGProp::VolumeProperties(converted, p1, 1e-9);
+    } else {
+      BRepGProp::VolumeProperties(solid, p0);
+      BRepGProp::VolumeProperties(converted, p1);
+    }
+    return std::abs(p1.Mass() - p0.Mass()) <= volume_bound &&
+           BRepCheck_Analyzer(converted).IsValid();
   } catch (const Standard_Failure&) {
-    return solid;
+    return false;
   }
-  r.diagnostics.push_back(make_info(
-      "elementary_surfaces",
-      where + " stores " + plural(e.converted, "face") +
-          " as surfaces of revolution of a line; they were given the cylinders and cones they "
-          "are (same points, same parametrisation) and are meshed as such."));
-  return e.solid;
+}
+
+// Turned faces stored as surfaces of revolution of a line get the cylinder or cone they
+// are (occ/detail/elementary_surfaces.h), and B-spline faces within 2e-6 of the solid's
+// size of a cylinder that cylinder (occ/detail/canonical_surfaces.h). Each result is kept
+// only when it is the same solid (same_solid: for the B-splines, the volume within their
+// deviation times their area); else the solid stays as it was.
+TopoDS_Solid with_elementary_surfaces(const TopoDS_Solid& solid, const std::string& where,
+                                      ReadResult& r) {
+  TopoDS_Solid out = solid;
+  const detail::ElementaryResult e = detail::elementary_surfaces(out);
+  if (e.converted > 0 && same_solid(out, e.solid, 1e-7 * std::abs(signed_volume(out)), false)) {
+    r.diagnostics.push_back(make_info(
+        "elementary_surfaces",
+        where + " stores " + plural(e.converted, "face") +
+            " as surfaces of revolution of a line; they were given the cylinders and cones they "
+            "are (same points, same parametrisation) and are meshed as such."));
+    out = e.solid;
+  }
+  Bnd_Box box;
+  BRepBndLib::Add(out, box);
+  if (box.IsVoid()) return out;
+  const double size = std::sqrt(box.SquareExtent());
+  const detail::CanonicalResult c = detail::canonical_surfaces(out, 2e-6 * size);
+  if (c.converted > 0 &&
+      same_solid(out, c.solid, c.volume_bound + 1e-7 * std::abs(signed_volume(out)), true)) {
+    std::ostringstream m;
+    m.precision(2);
+    m << where << " stores " << plural(c.converted, "face") << " as B-spline surfaces within "
+      << c.deviation << " of a cylinder";
+    if (c.snapped > 0)
+      m << " (" << (c.snapped == c.converted ? "all" : std::to_string(c.snapped).c_str())
+        << " of them the cylinder of another of its faces)";
+    m << "; they were given that cylinder and are meshed as such.";
+    r.diagnostics.push_back(make_info("canonical_surfaces", m.str()));
+    out = c.solid;
+  }
+  return out;
 }
 
 // Validity of one solid: OCCT's check (with ShapeFix healing when it fails), outward

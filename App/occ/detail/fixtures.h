@@ -22,6 +22,9 @@ enum class Fixture {
   // ShapeCustom::ConvertToRevolution), as some CAD systems export them:
   revolved_cylinder,  // a cylinder of radius 2 and height 5 on the z axis
   revolved_cone,      // a cone frustum, radii 3 (z = 0) and 1 (z = 4), on the z axis
+  // Every face stored as a B-spline surface (OCCT's BRepBuilderAPI_NurbsConvert), as some
+  // translators export them:
+  bspline_half_cylinder,  // half a cylinder of radius 2 and height 5 on the z axis (y >= 0)
 };
 
 // Writes the fixture; the format comes from the extension (.brep/.brp or .step/.stp).

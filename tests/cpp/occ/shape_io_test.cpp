@@ -399,4 +399,54 @@ TEST(ReadSolid, SurfacesOfRevolutionOfALineAreReadAsCylindersAndCones) {
   }
 }
 
+// A face stored as a B-spline surface that is a cylinder gets that cylinder when read
+// (canonical_surfaces): every face of the half cylinder is a B-spline (NurbsConvert), the
+// round one becomes a cylinder of radius 2 about z, the flat ones stay as they are (a plane
+// is no cylinder), and the volume stays.
+TEST(ReadSolid, BSplineCylindersAreReadAsCylinders) {
+  const std::string path = ::testing::TempDir() + "/bspline_half_cylinder.brep";
+  ASSERT_TRUE(detail::write_fixture(detail::Fixture::bspline_half_cylinder, path));
+  const ReadResult r = read_solid(path);
+  std::remove(path.c_str());
+  ASSERT_TRUE(r.ok());
+  const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "canonical_surfaces");
+  ASSERT_NE(d, nullptr);
+  EXPECT_NE(d->message.find("1 face "), std::string::npos) << d->message;
+  EXPECT_NEAR(r.solid->volume(), M_PI * 4 * 5 / 2, 1e-9 * M_PI * 10);
+  int cylinders = 0;
+  for (int f = 1; f <= r.solid->num_faces(); ++f) {
+    CutCylinder cyl;
+    if (!face_cylinder(*r.solid, core::FaceId(f), &cyl)) continue;
+    ++cylinders;
+    EXPECT_NEAR(cyl.radius, 2, 1e-9);
+    EXPECT_NEAR(std::abs(cyl.axis.z()), 1, 1e-9);
+    EXPECT_NEAR(r.solid->area(core::FaceId(f)), M_PI * 2 * 5, 1e-6 * M_PI * 10);
+  }
+  EXPECT_EQ(cylinders, 1);
+}
+
+// HexMe i12's boss is a cylinder on one side and a B-spline 5e-5 off that cylinder on the
+// other; read, the B-spline gets that very cylinder (so the cut along it and the unification
+// of the boss's faces see one surface), and the solid stays valid with its 45 faces.
+TEST(ReadSolid, AHalfBossStoredAsABSplineGetsTheOtherHalfsCylinder) {
+  const ReadResult r = read_solid(std::string(VOROHEX_HEXME_DIR) + "/i12o_s5.step");
+  ASSERT_TRUE(r.ok());
+  const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "canonical_surfaces");
+  ASSERT_NE(d, nullptr);
+  EXPECT_NE(d->message.find("1 face "), std::string::npos) << d->message;
+  EXPECT_NE(d->message.find("the cylinder of another of its faces"), std::string::npos)
+      << d->message;
+  EXPECT_EQ(r.solid->num_faces(), 45);
+  // Face5, the B-spline, on the boss's cylinder: radius 14 about the z axis through
+  // (-53, 45), as Face9 (the analytic half) is.
+  for (int f : {5, 9}) {
+    CutCylinder cyl;
+    ASSERT_TRUE(face_cylinder(*r.solid, core::FaceId(f), &cyl)) << "Face" << f;
+    EXPECT_NEAR(cyl.radius, 14, 1e-9);
+    EXPECT_NEAR(std::abs(cyl.axis.z()), 1, 1e-12);
+    EXPECT_NEAR(cyl.origin.x(), -53, 1e-6);
+    EXPECT_NEAR(cyl.origin.y(), 45, 1e-6);
+  }
+}
+
 }  // namespace vorohex::occ
