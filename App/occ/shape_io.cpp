@@ -237,12 +237,16 @@ TopoDS_Solid with_elementary_surfaces(const TopoDS_Solid& solid, const std::stri
       same_solid(out, c.solid, c.volume_bound + 1e-7 * std::abs(signed_volume(out)), true)) {
     std::ostringstream m;
     m.precision(2);
-    m << where << " stores " << plural(c.converted, "face") << " as B-spline surfaces within "
-      << c.deviation << " of a cylinder";
-    if (c.snapped > 0)
-      m << " (" << (c.snapped == c.converted ? "all" : std::to_string(c.snapped).c_str())
+    const bool one = c.converted == 1;
+    m << where << " stores " << plural(c.converted, "face")
+      << (one ? " as a B-spline surface" : " as B-spline surfaces") << " within " << c.deviation
+      << " of a cylinder";
+    if (one && c.snapped > 0)
+      m << " (the cylinder of another of its faces)";
+    else if (c.snapped > 0)
+      m << " (" << (c.snapped == c.converted ? std::string("all") : std::to_string(c.snapped))
         << " of them the cylinder of another of its faces)";
-    m << "; they were given that cylinder and are meshed as such.";
+    m << "; " << (one ? "it was" : "they were") << " given that cylinder and meshed as such.";
     r.diagnostics.push_back(make_info("canonical_surfaces", m.str()));
     out = c.solid;
   }
