@@ -17,6 +17,7 @@
 #include <Geom_BezierSurface.hxx>
 #include <Geom_Curve.hxx>
 #include <Geom_CylindricalSurface.hxx>
+#include <Geom_Plane.hxx>
 #include <Geom_RectangularTrimmedSurface.hxx>
 #include <Geom_Surface.hxx>
 #include <Standard_Failure.hxx>
@@ -24,12 +25,14 @@
 #include <TopoDS.hxx>
 #include <gp_Ax3.hxx>
 #include <gp_Cylinder.hxx>
+#include <gp_Pln.hxx>
 #include <gp_Vec2d.hxx>
 
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <vector>
 
 namespace vorohex::occ::detail {
@@ -175,8 +178,8 @@ std::vector<Fit> cylinders_of(const TopoDS_Solid& solid, std::vector<gp_Ax3>& fr
 // its seam in the middle of the widest gap of the samples' angles; direct or not so that its
 // normal is the B-spline's (the face keeps its orientation and wires). Null where the
 // samples go round with no gap of 10 degrees (a closed face, which would need a seam edge).
-Handle(Geom_CylindricalSurface)
-    cylinder_for(const std::vector<Sample>& samples, const Fit& fit, double& seam) {
+Handle(Geom_CylindricalSurface) cylinder_for(const std::vector<Sample>& samples, const Fit& fit,
+                                             const gp_Pnt* seam_point, double& seam) {
   const Eigen::Vector3d a = fit.axis;
   gp_Ax3 frame;
   if (fit.frame) {
@@ -203,7 +206,12 @@ Handle(Geom_CylindricalSurface)
   for (std::size_t k = 1; k < angles.size(); ++k)
     if (angles[k] - angles[k - 1] > gap)
       gap = angles[k] - angles[k - 1], middle = (angles[k] + angles[k - 1]) / 2;
-  if (gap < 10 * M_PI / 180) return nullptr;
+  if (seam_point) {  // a closed face: its seam where its seam edge is
+    double v;
+    ElSLib::Parameters(c, *seam_point, middle, v);
+  } else if (gap < 10 * M_PI / 180) {
+    return nullptr;
+  }
   seam = middle - 2 * M_PI * std::floor(middle / (2 * M_PI));
   if (!fit.frame) {  // turn the frame so that the seam is at u = 0
     frame.Rotate(frame.Axis(), frame.Direct() ? seam : -seam);
@@ -254,9 +262,27 @@ class ToCylinders : public BRepTools_Modification {
     const Handle(Geom_Surface)& surface = it->second.surface;
     c = GeomProjLib::Curve2d(curve, first, last, surface, reached);
     if (c.IsNull()) return false;
-    const double u = c->Value(0.5 * (first + last)).X() - it->second.seam;
-    const double turns = std::floor(u / (2 * M_PI));
-    if (turns != 0) c->Translate(gp_Vec2d(-turns * 2 * M_PI, 0));
+    const double mid = 0.5 * (first + last);
+    const auto cylinder = Handle(Geom_CylindricalSurface)::DownCast(surface);
+    const double u = c->Value(mid).X() - it->second.seam;
+    double shift = cylinder.IsNull() ? 0 : -2 * M_PI * std::floor(u / (2 * M_PI));
+    if (!cylinder.IsNull() && BRep_Tool::IsClosed(e, f)) {
+      // The seam edge: at the start of the turn where the face lies on its left going along
+      // it (+u from there), else at its end.
+      gp_Pnt p;
+      gp_Vec t, du, dv;
+      curve->D1(mid, p, t);
+      if (e.Orientation() == TopAbs_REVERSED) t.Reverse();
+      double pu, pv;
+      ElSLib::Parameters(cylinder->Cylinder(), p, pu, pv);
+      surface->D1(pu, pv, p, du, dv);
+      gp_Vec n = du.Crossed(dv);
+      if (f.Orientation() == TopAbs_REVERSED) n.Reverse();
+      const bool start = n.Crossed(t).Dot(du) > 0;
+      const double at = it->second.seam + (start ? 0 : 2 * M_PI);
+      shift = 2 * M_PI * std::round((at - c->Value(mid).X()) / (2 * M_PI));
+    }
+    if (shift != 0) c->Translate(gp_Vec2d(shift, 0));
     // The tolerance: the largest distance between the edge and its image on the cylinder.
     double worst = 0;
     for (int k = 0; k <= 16; ++k) {
@@ -293,7 +319,7 @@ CanonicalResult canonical_surfaces(const TopoDS_Solid& solid, double tolerance) 
     const std::vector<Fit> analytic = cylinders_of(solid, frames);
     std::map<const void*, Converted> by_face;
     double deviation = 0, bound = 0;
-    int snapped = 0;
+    int snapped = 0, planes = 0;
     for (TopExp_Explorer ex(solid, TopAbs_FACE); ex.More(); ex.Next()) {
       const TopoDS_Face& f = TopoDS::Face(ex.Current());
       const Handle(Geom_Surface) b = basis_of(f);
@@ -301,9 +327,26 @@ CanonicalResult canonical_surfaces(const TopoDS_Solid& solid, double tolerance) 
       if (Handle(Geom_BSplineSurface)::DownCast(b).IsNull() &&
           Handle(Geom_BezierSurface)::DownCast(b).IsNull())
         continue;
-      // A plane is a cylinder of any radius large enough: not one.
-      if (GeomLib_IsPlanarSurface(b, tolerance).IsPlanar()) continue;
       const std::vector<Sample> samples = samples_of(f);
+      GProp_GProps area;
+      BRepGProp::SurfaceProperties(f, area);
+      // A plane (not a cylinder of a radius large enough), its normal the B-spline's.
+      if (const GeomLib_IsPlanarSurface planar(b, tolerance); planar.IsPlanar()) {
+        if (samples.empty()) continue;
+        gp_Pln pln = planar.Plan();
+        const gp_Dir n = pln.Axis().Direction();
+        const Eigen::Vector3d nn(n.X(), n.Y(), n.Z());
+        if (samples.front().normal.dot(nn) < 0) pln.SetAxis(pln.Axis().Reversed());
+        double dev = 0;
+        for (const Sample& q : samples)
+          dev = std::max(dev, pln.Distance(gp_Pnt(q.point.x(), q.point.y(), q.point.z())));
+        if (!(dev <= tolerance)) continue;
+        by_face[f.TShape().get()] = Converted{new Geom_Plane(pln), 0};
+        deviation = std::max(deviation, dev);
+        bound += dev * area.Mass();
+        ++planes;
+        continue;
+      }
       Fit fit;
       if (!fit_cylinder(samples, fit) || !(fit.deviation <= tolerance) || fit.radius > size)
         continue;
@@ -322,12 +365,19 @@ CanonicalResult canonical_surfaces(const TopoDS_Solid& solid, double tolerance) 
           break;
         }
       }
+      // A closed face's seam edge (bounding it twice), where its new seam goes.
+      std::optional<gp_Pnt> seam_point;
+      for (TopExp_Explorer ed(f, TopAbs_EDGE); ed.More() && !seam_point; ed.Next()) {
+        const TopoDS_Edge& e = TopoDS::Edge(ed.Current());
+        double a, z;
+        const Handle(Geom_Curve) curve = BRep_Tool::Curve(e, a, z);
+        if (BRep_Tool::IsClosed(e, f) && !curve.IsNull()) seam_point = curve->Value(0.5 * (a + z));
+      }
       double seam = 0;
-      const Handle(Geom_CylindricalSurface) cyl = cylinder_for(samples, fit, seam);
+      const Handle(Geom_CylindricalSurface) cyl =
+          cylinder_for(samples, fit, seam_point ? &*seam_point : nullptr, seam);
       if (cyl.IsNull()) continue;
       by_face[f.TShape().get()] = Converted{Handle(Geom_Surface)(cyl), seam};
-      GProp_GProps area;
-      BRepGProp::SurfaceProperties(f, area);
       deviation = std::max(deviation, fit.deviation);
       bound += fit.deviation * area.Mass();
       snapped += own ? 1 : 0;
@@ -342,7 +392,8 @@ CanonicalResult canonical_surfaces(const TopoDS_Solid& solid, double tolerance) 
     BRepLib::SameParameter(fixed, 1e-7, Standard_True);
     BRepLib::UpdateTolerances(fixed, Standard_False);
     out.solid = TopoDS::Solid(fixed);
-    out.converted = int(by_face.size());
+    out.converted = int(by_face.size()) - planes;
+    out.planes = planes;
     out.snapped = snapped;
     out.deviation = deviation;
     out.volume_bound = bound;

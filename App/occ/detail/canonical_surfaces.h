@@ -13,8 +13,9 @@ namespace vorohex::occ::detail {
 
 struct CanonicalResult {
   TopoDS_Solid solid;       // the converted solid (a new one; the input is not modified)
-  int converted = 0;        // faces given a cylinder; 0: `solid` is null
+  int converted = 0;        // faces given a cylinder; with `planes` 0: `solid` is null
   int snapped = 0;          // of those, given the very cylinder of another face of the solid
+  int planes = 0;           // faces given the plane they are (B-spline planes)
   double deviation = 0;     // the largest distance of a converted face's samples from its cylinder
   double volume_bound = 0;  // what the volume may change by: sum of deviation x area
 };

@@ -399,11 +399,11 @@ TEST(ReadSolid, SurfacesOfRevolutionOfALineAreReadAsCylindersAndCones) {
   }
 }
 
-// A face stored as a B-spline surface that is a cylinder gets that cylinder when read
-// (canonical_surfaces): every face of the half cylinder is a B-spline (NurbsConvert), the
-// round one becomes a cylinder of radius 2 about z, the flat ones stay as they are (a plane
-// is no cylinder), and the volume stays.
-TEST(ReadSolid, BSplineCylindersAreReadAsCylinders) {
+// Faces stored as B-spline surfaces that are cylinders and planes get those when read
+// (canonical_surfaces): every face of the half cylinder is a B-spline (NurbsConvert); the
+// round one becomes a cylinder of radius 2 about z, the four flat ones planes, and the
+// volume stays.
+TEST(ReadSolid, BSplineCylindersAndPlanesAreReadAsCylindersAndPlanes) {
   const std::string path = ::testing::TempDir() + "/bspline_half_cylinder.brep";
   ASSERT_TRUE(detail::write_fixture(detail::Fixture::bspline_half_cylinder, path));
   const ReadResult r = read_solid(path);
@@ -411,10 +411,12 @@ TEST(ReadSolid, BSplineCylindersAreReadAsCylinders) {
   ASSERT_TRUE(r.ok());
   const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "canonical_surfaces");
   ASSERT_NE(d, nullptr);
-  EXPECT_NE(d->message.find("1 face "), std::string::npos) << d->message;
+  EXPECT_NE(d->message.find("5 faces as B-spline surfaces"), std::string::npos) << d->message;
+  EXPECT_NE(d->message.find("1 cylinder and 4 planes"), std::string::npos) << d->message;
   EXPECT_NEAR(r.solid->volume(), M_PI * 4 * 5 / 2, 1e-9 * M_PI * 10);
-  int cylinders = 0;
+  int cylinders = 0, planes = 0;
   for (int f = 1; f <= r.solid->num_faces(); ++f) {
+    planes += r.solid->surface_info(core::FaceId(f)).kind == core::SurfaceKind::plane ? 1 : 0;
     CutCylinder cyl;
     if (!face_cylinder(*r.solid, core::FaceId(f), &cyl)) continue;
     ++cylinders;
@@ -423,6 +425,7 @@ TEST(ReadSolid, BSplineCylindersAreReadAsCylinders) {
     EXPECT_NEAR(r.solid->area(core::FaceId(f)), M_PI * 2 * 5, 1e-6 * M_PI * 10);
   }
   EXPECT_EQ(cylinders, 1);
+  EXPECT_EQ(planes, 4);
 }
 
 // HexMe i12's boss is a cylinder on one side and a B-spline 5e-5 off that cylinder on the
@@ -434,7 +437,8 @@ TEST(ReadSolid, AHalfBossStoredAsABSplineGetsTheOtherHalfsCylinder) {
   const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "canonical_surfaces");
   ASSERT_NE(d, nullptr);
   EXPECT_NE(d->message.find("1 face "), std::string::npos) << d->message;
-  EXPECT_NE(d->message.find("the cylinder of another of its faces"), std::string::npos)
+  EXPECT_NE(d->message.find("1 cylinder (one of them on the cylinder of another of its faces)"),
+            std::string::npos)
       << d->message;
   EXPECT_EQ(r.solid->num_faces(), 45);
   // Face5, the B-spline, on the boss's cylinder: radius 14 about the z axis through
