@@ -1,5 +1,6 @@
 #include "occ/primitives.h"
 
+#include <BRepAlgoAPI_Cut.hxx>
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepBuilderAPI_MakePolygon.hxx>
@@ -236,6 +237,12 @@ bool write_fixture(Fixture kind, const std::string& path) {
       shape = ShapeCustom::ConvertToRevolution(BRepPrimAPI_MakeCylinder(2, 5).Solid());
     } else if (kind == Fixture::bspline_half_cylinder) {
       BRepBuilderAPI_NurbsConvert nurbs(BRepPrimAPI_MakeCylinder(2, 5, M_PI).Solid(), true);
+      shape = nurbs.Shape();
+    } else if (kind == Fixture::bspline_tube) {
+      const TopoDS_Shape tube = BRepAlgoAPI_Cut(BRepPrimAPI_MakeCylinder(2, 5).Solid(),
+                                                BRepPrimAPI_MakeCylinder(1, 5).Solid())
+                                    .Shape();
+      BRepBuilderAPI_NurbsConvert nurbs(tube, true);
       shape = nurbs.Shape();
     } else if (kind == Fixture::revolved_cone) {
       shape = ShapeCustom::ConvertToRevolution(BRepPrimAPI_MakeCone(3, 1, 4).Solid());

@@ -25,6 +25,7 @@ enum class Fixture {
   // Every face stored as a B-spline surface (OCCT's BRepBuilderAPI_NurbsConvert), as some
   // translators export them:
   bspline_half_cylinder,  // half a cylinder of radius 2 and height 5 on the z axis (y >= 0)
+  bspline_tube,           // a tube, radii 1 and 2, height 5, on the z axis (closed faces, seams)
 };
 
 // Writes the fixture; the format comes from the extension (.brep/.brp or .step/.stp).

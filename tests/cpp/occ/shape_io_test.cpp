@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -426,6 +427,30 @@ TEST(ReadSolid, BSplineCylindersAndPlanesAreReadAsCylindersAndPlanes) {
   }
   EXPECT_EQ(cylinders, 1);
   EXPECT_EQ(planes, 4);
+}
+
+// The same for closed faces: a NURBS tube's two round faces (each bounding its seam edge
+// twice) become cylinders of radii 1 and 2 with their seams where they were, and the tube
+// stays valid with its volume.
+TEST(ReadSolid, ClosedBSplineCylindersAreReadAsCylinders) {
+  const std::string path = ::testing::TempDir() + "/bspline_tube.brep";
+  ASSERT_TRUE(detail::write_fixture(detail::Fixture::bspline_tube, path));
+  const ReadResult r = read_solid(path);
+  std::remove(path.c_str());
+  ASSERT_TRUE(r.ok());
+  const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "canonical_surfaces");
+  ASSERT_NE(d, nullptr);
+  EXPECT_NE(d->message.find("2 cylinders and 2 planes"), std::string::npos) << d->message;
+  EXPECT_NEAR(r.solid->volume(), M_PI * 3 * 5, 1e-9 * M_PI * 15);
+  std::vector<double> radii;
+  for (int f = 1; f <= r.solid->num_faces(); ++f) {
+    CutCylinder cyl;
+    if (face_cylinder(*r.solid, core::FaceId(f), &cyl)) radii.push_back(cyl.radius);
+  }
+  std::sort(radii.begin(), radii.end());
+  ASSERT_EQ(radii.size(), 2u);
+  EXPECT_NEAR(radii[0], 1, 1e-9);
+  EXPECT_NEAR(radii[1], 2, 1e-9);
 }
 
 // HexMe i12's boss is a cylinder on one side and a B-spline 5e-5 off that cylinder on the
