@@ -246,10 +246,11 @@ TopoDS_Solid with_elementary_surfaces(const TopoDS_Solid& solid, const std::stri
     if (c.converted > 0) m << plural(c.converted, "cylinder");
     if (c.converted > 0 && c.planes > 0) m << " and ";
     if (c.planes > 0) m << plural(c.planes, "plane");
-    if (c.snapped > 0)
+    if (n == 1 && c.snapped > 0)
+      m << " (on the cylinder of another of its faces)";
+    else if (c.snapped > 0)
       m << " (" << (c.snapped == 1 ? "one" : std::to_string(c.snapped))
-        << " of them on the cylinder "
-        << "of another of its faces)";
+        << " of them on the cylinder of another of its faces)";
     m << "; " << (n == 1 ? "it was" : "they were") << " given "
       << (n == 1 ? "that surface" : "those surfaces") << " and meshed as such.";
     r.diagnostics.push_back(make_info("canonical_surfaces", m.str()));

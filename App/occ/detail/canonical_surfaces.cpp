@@ -4,7 +4,6 @@
 #include <BRepGProp.hxx>
 #include <BRepLib.hxx>
 #include <BRepTools.hxx>
-#include <BRepTools_Modification.hxx>
 #include <BRepTools_Modifier.hxx>
 #include <BRep_Tool.hxx>
 #include <Bnd_Box.hxx>
@@ -34,6 +33,8 @@
 #include <map>
 #include <optional>
 #include <vector>
+
+#include "occ/detail/surface_swap.h"
 
 namespace vorohex::occ::detail {
 namespace {
@@ -221,50 +222,33 @@ Handle(Geom_CylindricalSurface) cylinder_for(const std::vector<Sample>& samples,
   return cyl;
 }
 
-struct Converted {
-  Handle(Geom_Surface) surface;
-  double seam = 0;
-};
-
-class ToCylinders : public BRepTools_Modification {
+// The cylinders and planes by face (global), and where each cylinder's turn starts (its
+// faces lie in u in [seam, seam + 2 pi)).
+class ToCylinders : public SurfaceSwap {
  public:
-  explicit ToCylinders(std::map<const void*, Converted> by_face) : by_face_(std::move(by_face)) {}
+  ToCylinders(std::map<const void*, Handle(Geom_Surface)> by_face,
+              std::map<const void*, double> seams)
+      : SurfaceSwap(std::move(by_face), false), seams_(std::move(seams)) {}
 
-  Standard_Boolean NewSurface(const TopoDS_Face& f, Handle(Geom_Surface) & s, TopLoc_Location& l,
-                              Standard_Real& tol, Standard_Boolean& rev_wires,
-                              Standard_Boolean& rev_face) override {
-    auto it = by_face_.find(f.TShape().get());
-    if (it == by_face_.end()) return false;
-    s = it->second.surface;  // global: no location
-    l = TopLoc_Location();
-    tol = BRep_Tool::Tolerance(f);
-    rev_wires = rev_face = false;
-    return true;
-  }
-  Standard_Boolean NewCurve(const TopoDS_Edge&, Handle(Geom_Curve) &, TopLoc_Location&,
-                            Standard_Real&) override {
-    return false;
-  }
-  Standard_Boolean NewPoint(const TopoDS_Vertex&, gp_Pnt&, Standard_Real&) override {
-    return false;
-  }
-  // The edge's curve projected onto the cylinder, in the turn [0, 2 pi) the face lies in
-  // (its seam is outside the face), with a tolerance that covers the projection.
+  // The edge's curve projected onto the face's cylinder or plane; on a cylinder in the turn
+  // the face lies in (from its seam; a seam edge at the side the face lies on), with a
+  // tolerance that covers the projection.
   Standard_Boolean NewCurve2d(const TopoDS_Edge& e, const TopoDS_Face& f, const TopoDS_Edge&,
                               const TopoDS_Face&, Handle(Geom2d_Curve) & c,
                               Standard_Real& tol) override {
-    auto it = by_face_.find(f.TShape().get());
-    if (it == by_face_.end()) return false;
+    const Handle(Geom_Surface)* swapped = surface_of(f);
+    if (!swapped) return false;
+    const Handle(Geom_Surface)& surface = *swapped;
+    const double seam = seams_.count(f.TShape().get()) ? seams_.at(f.TShape().get()) : 0;
     double first, last;
     const Handle(Geom_Curve) curve = BRep_Tool::Curve(e, first, last);  // located
     if (curve.IsNull()) return false;
     double reached = BRep_Tool::Tolerance(e);
-    const Handle(Geom_Surface)& surface = it->second.surface;
     c = GeomProjLib::Curve2d(curve, first, last, surface, reached);
     if (c.IsNull()) return false;
     const double mid = 0.5 * (first + last);
     const auto cylinder = Handle(Geom_CylindricalSurface)::DownCast(surface);
-    const double u = c->Value(mid).X() - it->second.seam;
+    const double u = c->Value(mid).X() - seam;
     double shift = cylinder.IsNull() ? 0 : -2 * M_PI * std::floor(u / (2 * M_PI));
     if (!cylinder.IsNull() && BRep_Tool::IsClosed(e, f)) {
       // The seam edge: at the start of the turn where the face lies on its left going along
@@ -279,7 +263,7 @@ class ToCylinders : public BRepTools_Modification {
       gp_Vec n = du.Crossed(dv);
       if (f.Orientation() == TopAbs_REVERSED) n.Reverse();
       const bool start = n.Crossed(t).Dot(du) > 0;
-      const double at = it->second.seam + (start ? 0 : 2 * M_PI);
+      const double at = seam + (start ? 0 : 2 * M_PI);
       shift = 2 * M_PI * std::round((at - c->Value(mid).X()) / (2 * M_PI));
     }
     if (shift != 0) c->Translate(gp_Vec2d(shift, 0));
@@ -293,17 +277,9 @@ class ToCylinders : public BRepTools_Modification {
     tol = std::max({BRep_Tool::Tolerance(e), reached, 1.5 * worst});
     return true;
   }
-  Standard_Boolean NewParameter(const TopoDS_Vertex&, const TopoDS_Edge&, Standard_Real&,
-                                Standard_Real&) override {
-    return false;
-  }
-  GeomAbs_Shape Continuity(const TopoDS_Edge& e, const TopoDS_Face& f1, const TopoDS_Face& f2,
-                           const TopoDS_Edge&, const TopoDS_Face&, const TopoDS_Face&) override {
-    return BRep_Tool::Continuity(e, f1, f2);
-  }
 
  private:
-  std::map<const void*, Converted> by_face_;
+  std::map<const void*, double> seams_;
 };
 
 }  // namespace
@@ -317,7 +293,8 @@ CanonicalResult canonical_surfaces(const TopoDS_Solid& solid, double tolerance) 
     const double size = std::sqrt(box.SquareExtent());
     std::vector<gp_Ax3> frames;
     const std::vector<Fit> analytic = cylinders_of(solid, frames);
-    std::map<const void*, Converted> by_face;
+    std::map<const void*, Handle(Geom_Surface)> by_face;
+    std::map<const void*, double> seams;
     double deviation = 0, bound = 0;
     int snapped = 0, planes = 0;
     for (TopExp_Explorer ex(solid, TopAbs_FACE); ex.More(); ex.Next()) {
@@ -341,7 +318,7 @@ CanonicalResult canonical_surfaces(const TopoDS_Solid& solid, double tolerance) 
         for (const Sample& q : samples)
           dev = std::max(dev, pln.Distance(gp_Pnt(q.point.x(), q.point.y(), q.point.z())));
         if (!(dev <= tolerance)) continue;
-        by_face[f.TShape().get()] = Converted{new Geom_Plane(pln), 0};
+        by_face[f.TShape().get()] = new Geom_Plane(pln);
         deviation = std::max(deviation, dev);
         bound += dev * area.Mass();
         ++planes;
@@ -377,13 +354,14 @@ CanonicalResult canonical_surfaces(const TopoDS_Solid& solid, double tolerance) 
       const Handle(Geom_CylindricalSurface) cyl =
           cylinder_for(samples, fit, seam_point ? &*seam_point : nullptr, seam);
       if (cyl.IsNull()) continue;
-      by_face[f.TShape().get()] = Converted{Handle(Geom_Surface)(cyl), seam};
+      by_face[f.TShape().get()] = cyl;
+      seams[f.TShape().get()] = seam;
       deviation = std::max(deviation, fit.deviation);
       bound += fit.deviation * area.Mass();
       snapped += own ? 1 : 0;
     }
     if (by_face.empty()) return out;
-    Handle(ToCylinders) modification = new ToCylinders(by_face);
+    Handle(ToCylinders) modification = new ToCylinders(by_face, seams);
     BRepTools_Modifier modifier(solid, modification);
     if (!modifier.IsDone()) return out;
     const TopoDS_Shape result = modifier.ModifiedShape(solid);

@@ -1,7 +1,6 @@
 #include "occ/detail/elementary_surfaces.h"
 
 #include <BRepTools.hxx>
-#include <BRepTools_Modification.hxx>
 #include <BRepTools_Modifier.hxx>
 #include <BRep_Tool.hxx>
 #include <GeomAdaptor_Surface.hxx>
@@ -18,6 +17,8 @@
 
 #include <cmath>
 #include <map>
+
+#include "occ/detail/surface_swap.h"
 
 namespace vorohex::occ::detail {
 namespace {
@@ -63,50 +64,21 @@ Handle(Geom_Surface) same_surface(const Handle(Geom_SurfaceOfRevolution) & rev) 
   return new Geom_ConicalSurface(frame, angle, r);
 }
 
-class ToElementary : public BRepTools_Modification {
+// Same parametrisation: the curves on the faces are the old ones.
+class ToElementary : public SurfaceSwap {
  public:
   explicit ToElementary(std::map<const void*, Handle(Geom_Surface)> by_face)
-      : by_face_(std::move(by_face)) {}
+      : SurfaceSwap(std::move(by_face), true) {}
 
-  Standard_Boolean NewSurface(const TopoDS_Face& f, Handle(Geom_Surface) & s, TopLoc_Location& l,
-                              Standard_Real& tol, Standard_Boolean& rev_wires,
-                              Standard_Boolean& rev_face) override {
-    auto it = by_face_.find(f.TShape().get());
-    if (it == by_face_.end()) return false;
-    BRep_Tool::Surface(f, l);
-    s = it->second;
-    tol = BRep_Tool::Tolerance(f);
-    rev_wires = rev_face = false;
-    return true;
-  }
-  Standard_Boolean NewCurve(const TopoDS_Edge&, Handle(Geom_Curve) &, TopLoc_Location&,
-                            Standard_Real&) override {
-    return false;
-  }
-  Standard_Boolean NewPoint(const TopoDS_Vertex&, gp_Pnt&, Standard_Real&) override {
-    return false;
-  }
-  // Same parametrisation: the curves on the face are the old ones.
   Standard_Boolean NewCurve2d(const TopoDS_Edge& e, const TopoDS_Face& f, const TopoDS_Edge&,
                               const TopoDS_Face&, Handle(Geom2d_Curve) & c,
                               Standard_Real& tol) override {
-    if (!by_face_.count(f.TShape().get())) return false;
+    if (!surface_of(f)) return false;
     double first, last;
     c = BRep_Tool::CurveOnSurface(e, f, first, last);
     tol = BRep_Tool::Tolerance(e);
     return !c.IsNull();
   }
-  Standard_Boolean NewParameter(const TopoDS_Vertex&, const TopoDS_Edge&, Standard_Real&,
-                                Standard_Real&) override {
-    return false;
-  }
-  GeomAbs_Shape Continuity(const TopoDS_Edge& e, const TopoDS_Face& f1, const TopoDS_Face& f2,
-                           const TopoDS_Edge&, const TopoDS_Face&, const TopoDS_Face&) override {
-    return BRep_Tool::Continuity(e, f1, f2);
-  }
-
- private:
-  std::map<const void*, Handle(Geom_Surface)> by_face_;
 };
 
 }  // namespace
