@@ -1,6 +1,5 @@
 #include "occ/shape_io.h"
 
-#include <BRepBndLib.hxx>
 #include <BRepBuilderAPI_MakeSolid.hxx>
 #include <BRepCheck_Analyzer.hxx>
 #include <BRepGProp.hxx>
@@ -8,7 +7,6 @@
 #include <BRepTools.hxx>
 #include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
-#include <Bnd_Box.hxx>
 #include <GProp_GProps.hxx>
 #include <IFSelect_ReturnStatus.hxx>
 #include <IGESControl_Reader.hxx>
@@ -230,11 +228,7 @@ TopoDS_Solid with_elementary_surfaces(const TopoDS_Solid& solid, const std::stri
             "are (same points, same parametrisation) and are meshed as such."));
     out = e.solid;
   }
-  Bnd_Box box;
-  BRepBndLib::Add(out, box);
-  if (box.IsVoid()) return out;
-  const double size = std::sqrt(box.SquareExtent());
-  const detail::CanonicalResult c = detail::canonical_surfaces(out, 2e-6 * size);
+  const detail::CanonicalResult c = detail::canonical_surfaces(out, 2e-6);
   if (c.converted + c.planes > 0 &&
       same_solid(out, c.solid, c.volume_bound + 1e-6 * std::abs(signed_volume(out)), true)) {
     std::ostringstream m;

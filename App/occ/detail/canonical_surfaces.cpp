@@ -284,13 +284,22 @@ class ToCylinders : public SurfaceSwap {
 
 }  // namespace
 
-CanonicalResult canonical_surfaces(const TopoDS_Solid& solid, double tolerance) {
+CanonicalResult canonical_surfaces(const TopoDS_Solid& solid, double relative_tolerance) {
   CanonicalResult out;
   try {
+    // Nothing to do (and nothing computed) without a B-spline or Bezier face.
+    bool any = false;
+    for (TopExp_Explorer ex(solid, TopAbs_FACE); ex.More() && !any; ex.Next()) {
+      const Handle(Geom_Surface) b = basis_of(TopoDS::Face(ex.Current()));
+      any = !Handle(Geom_BSplineSurface)::DownCast(b).IsNull() ||
+            !Handle(Geom_BezierSurface)::DownCast(b).IsNull();
+    }
+    if (!any) return out;
     Bnd_Box box;
     BRepBndLib::Add(solid, box);
     if (box.IsVoid()) return out;
     const double size = std::sqrt(box.SquareExtent());
+    const double tolerance = relative_tolerance * size;
     std::vector<gp_Ax3> frames;
     const std::vector<Fit> analytic = cylinders_of(solid, frames);
     std::map<const void*, Handle(Geom_Surface)> by_face;
