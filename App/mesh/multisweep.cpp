@@ -524,6 +524,21 @@ MultisweepResult multisweep(const core::MeshDomain& solid, const MultisweepOptio
       }
     }
   }
+  // Nodes on the solid's edges and faces put onto them: the arrangement traces a B-spline edge
+  // by a curve through samples of it (occ::prismatic_structure), which a NURBS export's
+  // circle of radius 20 leaves 2.4e-4 off; extruded from there, they would lie off the CAD.
+  // Only nodes that near (1e-4 of the size), and not those on vertices: a vertex's point may
+  // lie off its edges by its tolerance (HexMe i16: 2.9e-4; two hexahedra folded there).
+  const double off = 1e-9 * solid.diagonal(), near = 1e-4 * solid.diagonal();
+  for (std::size_t n = 0; n < mesh.points().size(); ++n) {
+    const core::NodeId id(static_cast<std::int32_t>(n));
+    const core::NodeClass c = mesh.node_class(id);
+    const Vec3& q = mesh.points()[n];
+    Vec3 on = q;
+    if (c.dim == 1) on = solid.project_to_edge(core::EdgeId(c.id), q);
+    if (c.dim == 2) on = solid.project_to_face(core::FaceId(c.id), q);
+    if (const double d = (on - q).norm(); d > off && d < near) mesh.set_point(id, on);
+  }
   // The corners of an extruded quad are positive when the quad is (and its column rises); a
   // region whose quads turned the wrong way would show here.
   std::size_t folded = 0;

@@ -1,6 +1,7 @@
 #include "occ/primitives.h"
 
 #include <BRepAlgoAPI_Cut.hxx>
+#include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepBuilderAPI_MakePolygon.hxx>
@@ -24,6 +25,7 @@
 #include <STEPControl_Writer.hxx>
 #include <ShapeCustom.hxx>
 #include <ShapeFix_Face.hxx>
+#include <ShapeUpgrade_UnifySameDomain.hxx>
 #include <Standard_Failure.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopoDS.hxx>
@@ -237,6 +239,16 @@ bool write_fixture(Fixture kind, const std::string& path) {
       shape = ShapeCustom::ConvertToRevolution(BRepPrimAPI_MakeCylinder(2, 5).Solid());
     } else if (kind == Fixture::bspline_half_cylinder) {
       BRepBuilderAPI_NurbsConvert nurbs(BRepPrimAPI_MakeCylinder(2, 5, M_PI).Solid(), true);
+      shape = nurbs.Shape();
+    } else if (kind == Fixture::bspline_flanged_pipe) {
+      const TopoDS_Shape body = BRepAlgoAPI_Fuse(BRepPrimAPI_MakeCylinder(10, 40).Solid(),
+                                                 BRepPrimAPI_MakeCylinder(20, 6).Solid())
+                                    .Shape();
+      ShapeUpgrade_UnifySameDomain unify(body);
+      unify.Build();
+      const TopoDS_Shape pipe =
+          BRepAlgoAPI_Cut(unify.Shape(), BRepPrimAPI_MakeCylinder(6, 40).Solid()).Shape();
+      BRepBuilderAPI_NurbsConvert nurbs(pipe, true);
       shape = nurbs.Shape();
     } else if (kind == Fixture::bspline_tube) {
       const TopoDS_Shape tube = BRepAlgoAPI_Cut(BRepPrimAPI_MakeCylinder(2, 5).Solid(),

@@ -26,6 +26,7 @@ enum class Fixture {
   // translators export them:
   bspline_half_cylinder,  // half a cylinder of radius 2 and height 5 on the z axis (y >= 0)
   bspline_tube,           // a tube, radii 1 and 2, height 5, on the z axis (closed faces, seams)
+  bspline_flanged_pipe,   // a pipe (radii 6 and 10, 40 long) on a flange (radius 20, 6 thick)
 };
 
 // Writes the fixture; the format comes from the extension (.brep/.brp or .step/.stp).
