@@ -524,13 +524,20 @@ MultisweepResult multisweep(const core::MeshDomain& solid, const MultisweepOptio
       }
     }
   }
-  // Nodes on the solid's edges and faces put onto them: the arrangement traces a B-spline edge
-  // by a curve through samples of it (occ::prismatic_structure), which a NURBS export's
-  // circle of radius 20 leaves 2.4e-4 off; extruded from there, they would lie off the CAD.
-  // Only nodes that near (1e-4 of the size), and not those on vertices: a vertex's point may
-  // lie off its edges by its tolerance (HexMe i16: 2.9e-4; two hexahedra folded there).
+  // Nodes on the solid's edges and faces put onto them where the arrangement traces an edge
+  // by a curve through samples of it (occ::prismatic_structure: any edge but a line or a
+  // circle across the axis), which a NURBS export's circle of radius 20 leaves 2.4e-4 off;
+  // extruded from there, nodes lay off the CAD. Only nodes that near (1e-4 of the size), and
+  // not those on vertices: a vertex's point may lie off its edges by its tolerance (HexMe
+  // i16: 2.9e-4; two hexahedra folded there).
+  const std::vector<core::EdgeId> edges = solid.edges();
+  const bool traced = std::any_of(edges.begin(), edges.end(), [&](core::EdgeId e) {
+    const core::CurveInfo c = solid.curve_info(e);
+    return c.kind == core::CurveKind::other ||
+           (c.kind == core::CurveKind::circle && std::abs(c.direction.dot(s.axis)) < 1 - 1e-9);
+  });
   const double off = 1e-9 * solid.diagonal(), near = 1e-4 * solid.diagonal();
-  for (std::size_t n = 0; n < mesh.points().size(); ++n) {
+  for (std::size_t n = 0; traced && n < mesh.points().size(); ++n) {
     const core::NodeId id(static_cast<std::int32_t>(n));
     const core::NodeClass c = mesh.node_class(id);
     const Vec3& q = mesh.points()[n];

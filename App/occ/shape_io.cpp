@@ -181,14 +181,12 @@ TopoDS_Solid repaired(const TopoDS_Solid& solid, double time_limit, std::string&
 }
 
 // Whether `converted` is `solid` with other surfaces only: valid, with the same numbers of
-// faces, edges and vertices, and a volume within `volume_bound` of its own (integrated to
-// 1e-9 where `precise`: a B-spline and its cylinder, the bound then allowing 1e-6 more, what
-// OCCT's integration of a rational B-spline may miss by (a NURBS flanged pipe: 1.4e-7 of its
-// volume, 160 times the error it estimates);
-// else OCCT's fixed-order integration, the same on both where the
-// surfaces give the same points).
-bool same_solid(const TopoDS_Solid& solid, const TopoDS_Solid& converted, double volume_bound,
-                bool precise) {
+// faces, edges and vertices, and its volume within `absolute` + `relative` x the solid's of
+// it. Integrated to 1e-9 where `precise` (a B-spline and the surface it is: OCCT's fixed
+// order errs on B-splines), else with OCCT's fixed order (the same surfaces, reparametrised:
+// the same error on both).
+bool same_solid(const TopoDS_Solid& solid, const TopoDS_Solid& converted, double relative,
+                double absolute, bool precise) {
   try {
     for (TopAbs_ShapeEnum kind : {TopAbs_FACE, TopAbs_EDGE, TopAbs_VERTEX}) {
       TopTools_IndexedMapOfShape a, b;
@@ -196,15 +194,16 @@ bool same_solid(const TopoDS_Solid& solid, const TopoDS_Solid& converted, double
       TopExp::MapShapes(converted, kind, b);
       if (a.Extent() != b.Extent()) return false;
     }
-    GProp_GProps p0, p1;
-    if (precise) {
-      BRepGProp::VolumeProperties(solid, p0, 1e-9);
-      BRepGProp::VolumeProperties(converted, p1, 1e-9);
-    } else {
-      BRepGProp::VolumeProperties(solid, p0);
-      BRepGProp::VolumeProperties(converted, p1);
-    }
-    return std::abs(p1.Mass() - p0.Mass()) <= volume_bound &&
+    auto volume = [&](const TopoDS_Solid& s) {
+      GProp_GProps props;
+      if (precise)
+        BRepGProp::VolumeProperties(s, props, 1e-9);
+      else
+        BRepGProp::VolumeProperties(s, props);
+      return props.Mass();
+    };
+    const double v0 = volume(solid), v1 = volume(converted);
+    return std::abs(v1 - v0) <= absolute + relative * std::abs(v0) &&
            BRepCheck_Analyzer(converted).IsValid();
   } catch (const Standard_Failure&) {
     return false;
@@ -212,15 +211,17 @@ bool same_solid(const TopoDS_Solid& solid, const TopoDS_Solid& converted, double
 }
 
 // Turned faces stored as surfaces of revolution of a line get the cylinder or cone they
-// are (occ/detail/elementary_surfaces.h), and B-spline faces within 2e-6 of the solid's
-// size of a cylinder that cylinder (occ/detail/canonical_surfaces.h). Each result is kept
-// only when it is the same solid (same_solid: for the B-splines, the volume within their
-// deviation times their area); else the solid stays as it was.
+// are (occ/detail/elementary_surfaces.h: the same points, the volume to 1e-7), and B-spline
+// faces within 2e-6 of the solid's size of a plane or cylinder that surface
+// (occ/detail/canonical_surfaces.h: the volume within their deviation times their area,
+// and 1e-6 more, what OCCT's integration of a rational B-spline may miss by: a NURBS
+// flanged pipe's 1.4e-7, 160 times the error it reports). Each result is kept only when it
+// is the same solid (same_solid); else the solid stays as it was.
 TopoDS_Solid with_elementary_surfaces(const TopoDS_Solid& solid, const std::string& where,
                                       ReadResult& r) {
   TopoDS_Solid out = solid;
   const detail::ElementaryResult e = detail::elementary_surfaces(out);
-  if (e.converted > 0 && same_solid(out, e.solid, 1e-7 * std::abs(signed_volume(out)), false)) {
+  if (e.converted > 0 && same_solid(out, e.solid, 1e-7, 0, false)) {
     r.diagnostics.push_back(make_info(
         "elementary_surfaces",
         where + " stores " + plural(e.converted, "face") +
@@ -229,8 +230,7 @@ TopoDS_Solid with_elementary_surfaces(const TopoDS_Solid& solid, const std::stri
     out = e.solid;
   }
   const detail::CanonicalResult c = detail::canonical_surfaces(out, 2e-6);
-  if (c.converted + c.planes > 0 &&
-      same_solid(out, c.solid, c.volume_bound + 1e-6 * std::abs(signed_volume(out)), true)) {
+  if (c.converted + c.planes > 0 && same_solid(out, c.solid, 1e-6, c.volume_bound, true)) {
     std::ostringstream m;
     m.precision(2);
     const int n = c.converted + c.planes;

@@ -39,13 +39,16 @@
 namespace vorohex::occ::detail {
 namespace {
 
-// The surface under a face, without its trimming.
+// The surface under a face (located: in global coordinates), without its trimming.
 Handle(Geom_Surface) basis_of(const TopoDS_Face& f) {
-  TopLoc_Location l;
-  Handle(Geom_Surface) s = BRep_Tool::Surface(f, l);
-  if (s.IsNull()) return s;
+  Handle(Geom_Surface) s = BRep_Tool::Surface(f);
   if (auto t = Handle(Geom_RectangularTrimmedSurface)::DownCast(s)) s = t->BasisSurface();
   return s;
+}
+
+bool is_bspline(const Handle(Geom_Surface) & b) {
+  return !Handle(Geom_BSplineSurface)::DownCast(b).IsNull() ||
+         !Handle(Geom_BezierSurface)::DownCast(b).IsNull();
 }
 
 struct Sample {
@@ -75,8 +78,8 @@ std::vector<Sample> samples_of(const TopoDS_Face& f) {
 struct Fit {
   Eigen::Vector3d origin, axis;
   double radius = 0;
-  double deviation = 0;           // the largest |distance to the axis - radius| over the samples
-  const gp_Ax3* frame = nullptr;  // an analytic cylinder's own frame (its seam), if any
+  double deviation = 0;         // the largest |distance to the axis - radius| over the samples
+  std::optional<gp_Ax3> frame;  // an analytic cylinder's own frame (its seam), if any
 };
 
 double deviation_of(const std::vector<Sample>& samples, const Eigen::Vector3d& o,
@@ -148,28 +151,21 @@ bool fit_cylinder(const std::vector<Sample>& samples, Fit& fit) {
   for (const Sample& s : samples) centre += s.point;
   centre /= double(samples.size());
   o += (centre - o).dot(a) * a;
-  fit = {o, a, r, deviation_of(samples, o, a, r)};
+  fit = {o, a, r, deviation_of(samples, o, a, r), std::nullopt};
   return r > 0;
 }
 
-// The analytic cylinders of the solid's own faces (global axis and radius; their frames
-// kept in `frames`).
-std::vector<Fit> cylinders_of(const TopoDS_Solid& solid, std::vector<gp_Ax3>& frames) {
+// The analytic cylinders of the solid's own faces (global axis, radius and frame).
+std::vector<Fit> cylinders_of(const TopoDS_Solid& solid) {
   std::vector<Fit> out;
   for (TopExp_Explorer ex(solid, TopAbs_FACE); ex.More(); ex.Next()) {
-    const Handle(Geom_Surface) s = BRep_Tool::Surface(TopoDS::Face(ex.Current()));
-    Handle(Geom_Surface) b = s;
-    if (auto t = Handle(Geom_RectangularTrimmedSurface)::DownCast(b)) b = t->BasisSurface();
-    const auto c = Handle(Geom_CylindricalSurface)::DownCast(b);
+    const auto c = Handle(Geom_CylindricalSurface)::DownCast(basis_of(TopoDS::Face(ex.Current())));
     if (c.IsNull()) continue;
-    const gp_Ax1 ax = c->Axis();
-    frames.push_back(c->Position());
-    out.push_back({{ax.Location().X(), ax.Location().Y(), ax.Location().Z()},
-                   {ax.Direction().X(), ax.Direction().Y(), ax.Direction().Z()},
-                   c->Radius(),
-                   0});
+    const gp_Ax3 frame = c->Position();
+    const gp_Pnt o = frame.Location();
+    const gp_Dir d = frame.Direction();
+    out.push_back({{o.X(), o.Y(), o.Z()}, {d.X(), d.Y(), d.Z()}, c->Radius(), 0, frame});
   }
-  for (std::size_t k = 0; k < out.size(); ++k) out[k].frame = &frames[k];
   return out;
 }
 
@@ -177,8 +173,9 @@ std::vector<Fit> cylinders_of(const TopoDS_Solid& solid, std::vector<gp_Ax3>& fr
 // u in [seam, seam + 2 pi)). Its frame is an analytic cylinder's where the fit was snapped
 // to one (the same seam, so that OCCT unifies the two faces as one surface), else one with
 // its seam in the middle of the widest gap of the samples' angles; direct or not so that its
-// normal is the B-spline's (the face keeps its orientation and wires). Null where the
-// samples go round with no gap of 10 degrees (a closed face, which would need a seam edge).
+// normal is the B-spline's (the face keeps its orientation and wires). A closed face (one
+// with a seam edge: `seam_point` on it) gets its seam there; null where the samples of a
+// face without one go round with no gap of 10 degrees.
 Handle(Geom_CylindricalSurface) cylinder_for(const std::vector<Sample>& samples, const Fit& fit,
                                              const gp_Pnt* seam_point, double& seam) {
   const Eigen::Vector3d a = fit.axis;
@@ -267,7 +264,7 @@ class ToCylinders : public SurfaceSwap {
       shift = 2 * M_PI * std::round((at - c->Value(mid).X()) / (2 * M_PI));
     }
     if (shift != 0) c->Translate(gp_Vec2d(shift, 0));
-    // The tolerance: the largest distance between the edge and its image on the cylinder.
+    // The tolerance: the largest distance between the edge and its image on the surface.
     double worst = 0;
     for (int k = 0; k <= 16; ++k) {
       const double t = first + (last - first) * k / 16;
@@ -289,19 +286,15 @@ CanonicalResult canonical_surfaces(const TopoDS_Solid& solid, double relative_to
   try {
     // Nothing to do (and nothing computed) without a B-spline or Bezier face.
     bool any = false;
-    for (TopExp_Explorer ex(solid, TopAbs_FACE); ex.More() && !any; ex.Next()) {
-      const Handle(Geom_Surface) b = basis_of(TopoDS::Face(ex.Current()));
-      any = !Handle(Geom_BSplineSurface)::DownCast(b).IsNull() ||
-            !Handle(Geom_BezierSurface)::DownCast(b).IsNull();
-    }
+    for (TopExp_Explorer ex(solid, TopAbs_FACE); ex.More() && !any; ex.Next())
+      any = is_bspline(basis_of(TopoDS::Face(ex.Current())));
     if (!any) return out;
     Bnd_Box box;
     BRepBndLib::Add(solid, box);
     if (box.IsVoid()) return out;
     const double size = std::sqrt(box.SquareExtent());
     const double tolerance = relative_tolerance * size;
-    std::vector<gp_Ax3> frames;
-    const std::vector<Fit> analytic = cylinders_of(solid, frames);
+    const std::vector<Fit> analytic = cylinders_of(solid);
     std::map<const void*, Handle(Geom_Surface)> by_face;
     std::map<const void*, double> seams;
     double deviation = 0, bound = 0;
@@ -309,13 +302,13 @@ CanonicalResult canonical_surfaces(const TopoDS_Solid& solid, double relative_to
     for (TopExp_Explorer ex(solid, TopAbs_FACE); ex.More(); ex.Next()) {
       const TopoDS_Face& f = TopoDS::Face(ex.Current());
       const Handle(Geom_Surface) b = basis_of(f);
-      if (b.IsNull() || by_face.count(f.TShape().get())) continue;
-      if (Handle(Geom_BSplineSurface)::DownCast(b).IsNull() &&
-          Handle(Geom_BezierSurface)::DownCast(b).IsNull())
-        continue;
+      if (by_face.count(f.TShape().get()) || !is_bspline(b)) continue;
       const std::vector<Sample> samples = samples_of(f);
-      GProp_GProps area;
-      BRepGProp::SurfaceProperties(f, area);
+      auto area = [&] {
+        GProp_GProps props;
+        BRepGProp::SurfaceProperties(f, props);
+        return props.Mass();
+      };
       // A plane (not a cylinder of a radius large enough), its normal the B-spline's.
       if (const GeomLib_IsPlanarSurface planar(b, tolerance); planar.IsPlanar()) {
         if (samples.empty()) continue;
@@ -329,7 +322,7 @@ CanonicalResult canonical_surfaces(const TopoDS_Solid& solid, double relative_to
         if (!(dev <= tolerance)) continue;
         by_face[f.TShape().get()] = new Geom_Plane(pln);
         deviation = std::max(deviation, dev);
-        bound += dev * area.Mass();
+        bound += dev * area();
         ++planes;
         continue;
       }
@@ -366,19 +359,18 @@ CanonicalResult canonical_surfaces(const TopoDS_Solid& solid, double relative_to
       by_face[f.TShape().get()] = cyl;
       seams[f.TShape().get()] = seam;
       deviation = std::max(deviation, fit.deviation);
-      bound += fit.deviation * area.Mass();
+      bound += fit.deviation * area();
       snapped += own ? 1 : 0;
     }
     if (by_face.empty()) return out;
     Handle(ToCylinders) modification = new ToCylinders(by_face, seams);
     BRepTools_Modifier modifier(solid, modification);
     if (!modifier.IsDone()) return out;
-    const TopoDS_Shape result = modifier.ModifiedShape(solid);
+    TopoDS_Shape result = modifier.ModifiedShape(solid);
     if (result.IsNull() || result.ShapeType() != TopAbs_SOLID) return out;
-    TopoDS_Shape fixed = result;
-    BRepLib::SameParameter(fixed, 1e-7, Standard_True);
-    BRepLib::UpdateTolerances(fixed, Standard_False);
-    out.solid = TopoDS::Solid(fixed);
+    BRepLib::SameParameter(result, 1e-7, Standard_True);
+    BRepLib::UpdateTolerances(result, Standard_False);
+    out.solid = TopoDS::Solid(result);
     out.converted = int(by_face.size()) - planes;
     out.planes = planes;
     out.snapped = snapped;

@@ -358,12 +358,21 @@ TEST(ReadSolid, HexMeModelsReadAsSolids) {
   EXPECT_EQ(models, listed);
 }
 
+// A fixture written to a temporary file and read back (the file removed again).
+ReadResult read_fixture(detail::Fixture kind, const std::string& file) {
+  const std::string path = ::testing::TempDir() + "/" + file;
+  if (!detail::write_fixture(kind, path)) return {};
+  ReadResult r = read_solid(path);
+  std::remove(path.c_str());
+  return r;
+}
+
 }  // namespace
+
 // Turned faces stored as surfaces of revolution of a line get the cylinder or cone they are
 // when read (elementary_surfaces), with the same points: the volume, each face's area and
 // the order of the faces stay; the cylinder is then one the cuts at concave edges can follow.
 TEST(ReadSolid, SurfacesOfRevolutionOfALineAreReadAsCylindersAndCones) {
-  const std::string dir = ::testing::TempDir();
   struct Case {
     detail::Fixture kind;
     const char* file;
@@ -375,9 +384,7 @@ TEST(ReadSolid, SurfacesOfRevolutionOfALineAreReadAsCylindersAndCones) {
                         Case{detail::Fixture::revolved_cone, "revolved_cone.brep",
                              M_PI * 4 / 3 * (9 + 3 + 1), M_PI * (3 + 1) * slant}}) {
     SCOPED_TRACE(c.file);
-    const std::string path = dir + "/" + c.file;
-    ASSERT_TRUE(detail::write_fixture(c.kind, path));
-    const ReadResult r = read_solid(path);
+    const ReadResult r = read_fixture(c.kind, c.file);
     ASSERT_TRUE(r.ok());
     const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "elementary_surfaces");
     ASSERT_NE(d, nullptr);
@@ -396,7 +403,6 @@ TEST(ReadSolid, SurfacesOfRevolutionOfALineAreReadAsCylindersAndCones) {
     EXPECT_EQ(r.solid->surface_info(core::FaceId(1)).kind,
               c.kind == detail::Fixture::revolved_cylinder ? core::SurfaceKind::cylinder
                                                            : core::SurfaceKind::cone);
-    std::remove(path.c_str());
   }
 }
 
@@ -405,10 +411,7 @@ TEST(ReadSolid, SurfacesOfRevolutionOfALineAreReadAsCylindersAndCones) {
 // round one becomes a cylinder of radius 2 about z, the four flat ones planes, and the
 // volume stays.
 TEST(ReadSolid, BSplineCylindersAndPlanesAreReadAsCylindersAndPlanes) {
-  const std::string path = ::testing::TempDir() + "/bspline_half_cylinder.brep";
-  ASSERT_TRUE(detail::write_fixture(detail::Fixture::bspline_half_cylinder, path));
-  const ReadResult r = read_solid(path);
-  std::remove(path.c_str());
+  const ReadResult r = read_fixture(detail::Fixture::bspline_half_cylinder, "half_cylinder.brep");
   ASSERT_TRUE(r.ok());
   const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "canonical_surfaces");
   ASSERT_NE(d, nullptr);
@@ -433,10 +436,7 @@ TEST(ReadSolid, BSplineCylindersAndPlanesAreReadAsCylindersAndPlanes) {
 // twice) become cylinders of radii 1 and 2 with their seams where they were, and the tube
 // stays valid with its volume.
 TEST(ReadSolid, ClosedBSplineCylindersAreReadAsCylinders) {
-  const std::string path = ::testing::TempDir() + "/bspline_tube.brep";
-  ASSERT_TRUE(detail::write_fixture(detail::Fixture::bspline_tube, path));
-  const ReadResult r = read_solid(path);
-  std::remove(path.c_str());
+  const ReadResult r = read_fixture(detail::Fixture::bspline_tube, "bspline_tube.brep");
   ASSERT_TRUE(r.ok());
   const core::Diagnostic* d = testing::find_diagnostic(r.diagnostics, "canonical_surfaces");
   ASSERT_NE(d, nullptr);
